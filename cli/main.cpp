@@ -1,0 +1,39 @@
+// vbim: the command-line tool. Thin: parses arguments, wires files to the model.
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "cli/command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"vbim: a simulator of the PlayStation 2 video-based illumination map pipeline\n"
+               "(DVD -> IOP stream ring -> SIF -> EE demux -> IPU decode -> GS blend, on a simulated clock)"};
+  app.set_version_flag("--version", "vbim 0.1.0");
+  app.require_subcommand(1);
+  app.fallthrough(false);
+  vbim::cli::addDemo(app);
+  vbim::cli::addPlay(app);
+  vbim::cli::addProfile(app);
+  vbim::cli::addAuthor(app);
+  vbim::cli::addInfo(app);
+  vbim::cli::addDecode(app);
+  vbim::cli::addLightmap(app);
+  vbim::cli::addRender(app);
+  vbim::cli::addConfig(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() != 0) {
+      std::cerr << "vbim: " << e.what() << "\n\n" << app.help() << std::flush;
+      return 2;
+    }
+    return app.exit(e);
+  } catch (const vbim::cli::Exit& e) {
+    std::cerr << e.what() << "\n";
+    return e.code();
+  } catch (const std::exception& e) {
+    std::cerr << "vbim: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,48 @@
+#include "cli/output_dir.hpp"
+
+#include <unistd.h>
+
+#include "cli/command.hpp"
+
+namespace vbim::cli {
+
+namespace fs = std::filesystem;
+
+OutputDir::OutputDir(const fs::path& final, bool force) : final_(final), force_(force) {
+  std::error_code ec;
+  if (fs::exists(final_, ec) && !force_) {
+    if (!fs::is_directory(final_, ec)) throw Exit(2, final_.string() + ": exists and is not a directory");
+    if (!fs::is_empty(final_, ec)) throw Exit(2, final_.string() + ": exists and is not empty (use --force to replace it)");
+  }
+  const fs::path parent = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
+  fs::create_directories(parent, ec);
+  if (ec) throw Exit(2, parent.string() + ": cannot create the directory: " + ec.message());
+  tmp_ = parent / ("." + final_.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  fs::remove_all(tmp_, ec);
+  fs::create_directory(tmp_, ec);
+  if (ec) throw Exit(2, tmp_.string() + ": cannot create the temporary output directory: " + ec.message());
+}
+
+OutputDir::~OutputDir() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove_all(tmp_, ec);
+  }
+}
+
+void OutputDir::commit() {
+  std::error_code ec;
+  if (fs::exists(final_, ec)) {
+    // Move the old directory aside first so the final name never holds a mix of old and new.
+    const fs::path old = tmp_.string() + ".old";
+    fs::remove_all(old, ec);
+    fs::rename(final_, old, ec);
+    if (ec) throw Exit(2, final_.string() + ": cannot replace the existing directory: " + ec.message());
+    fs::remove_all(old, ec);
+  }
+  fs::rename(tmp_, final_, ec);
+  if (ec) throw Exit(2, final_.string() + ": cannot move the finished output into place: " + ec.message());
+  committed_ = true;
+}
+
+}  // namespace vbim::cli

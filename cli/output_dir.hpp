@@ -1,0 +1,31 @@
+// An output directory that is complete or absent: files are written into a temporary sibling
+// directory, which is renamed onto the final name by commit(). If the program fails before
+// commit(), the temporary directory is removed and the final name is left untouched.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace vbim::cli {
+
+class OutputDir {
+ public:
+  // Fails (cli::Exit) if `final` exists, is not empty and `force` is false.
+  OutputDir(const std::filesystem::path& final, bool force);
+  ~OutputDir();
+  OutputDir(const OutputDir&) = delete;
+  OutputDir& operator=(const OutputDir&) = delete;
+
+  // Path of a file inside the temporary directory.
+  std::filesystem::path path(const std::string& name) const { return tmp_ / name; }
+  const std::filesystem::path& finalPath() const { return final_; }
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path tmp_;
+  bool force_;
+  bool committed_ = false;
+};
+
+}  // namespace vbim::cli

@@ -1,0 +1,51 @@
+# Finds every dependency once, and stops with the Debian package to install when one is missing.
+# scripts/setup.sh installs all of them.
+
+find_package(PkgConfig QUIET)
+if(NOT PKG_CONFIG_FOUND)
+  message(FATAL_ERROR "pkg-config not found: apt-get install pkg-config (or run scripts/setup.sh)")
+endif()
+
+# vbim_require_config(<find_package name> <debian package> [COMPONENTS ...])
+macro(vbim_require_config name debpkg)
+  find_package(${name} CONFIG QUIET ${ARGN})
+  if(NOT ${name}_FOUND)
+    message(FATAL_ERROR "${name} not found: apt-get install ${debpkg} (or run scripts/setup.sh as root)")
+  endif()
+endmacro()
+
+# vbim_require_pkgconfig(<prefix> <debian packages> <pkg-config modules...>)
+macro(vbim_require_pkgconfig prefix debpkgs)
+  pkg_check_modules(${prefix} QUIET IMPORTED_TARGET ${ARGN})
+  if(NOT ${prefix}_FOUND)
+    message(FATAL_ERROR "pkg-config modules '${ARGN}' not found: apt-get install ${debpkgs} (or run scripts/setup.sh as root)")
+  endif()
+endmacro()
+
+vbim_require_config(CLI11 libcli11-dev)
+vbim_require_config(nlohmann_json nlohmann-json3-dev)
+vbim_require_pkgconfig(TOMLPP libtomlplusplus-dev tomlplusplus)
+vbim_require_pkgconfig(LIBAV "libavcodec-dev libavformat-dev libavutil-dev libswscale-dev"
+                       libavformat libavcodec libavutil libswscale)
+vbim_require_pkgconfig(LIBMPEG2 libmpeg2-4-dev libmpeg2 libmpeg2convert)
+vbim_require_pkgconfig(LIBISO9660 "libiso9660-dev libcdio-dev" libiso9660 libcdio)
+vbim_require_pkgconfig(OSMESA libosmesa6-dev osmesa)
+vbim_require_pkgconfig(HWY libhwy-dev libhwy)
+vbim_require_config(glm libglm-dev)
+
+# OpenImageIO through pkg-config: Debian 12's CMake config lists /usr/include/opencv4 and the
+# openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step
+# fails (notes/dependencies.md, pitfall 1).
+vbim_require_pkgconfig(OIIO libopenimageio-dev OpenImageIO)
+
+if(VBIM_BUILD_TESTS)
+  find_package(GTest QUIET)
+  if(NOT GTest_FOUND)
+    message(FATAL_ERROR "GoogleTest not found: apt-get install libgtest-dev libgmock-dev (or run scripts/setup.sh as root)")
+  endif()
+  include(GoogleTest)
+endif()
+if(VBIM_BUILD_BENCH)
+  vbim_require_config(benchmark libbenchmark-dev)
+endif()
+find_package(Threads REQUIRED)

@@ -1,0 +1,144 @@
+#include "runtime/scheduler.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "runtime/event.hpp"
+
+namespace vbim {
+
+Scheduler::Scheduler() : ready_(64) {}
+
+Scheduler::~Scheduler() {
+  // Frames of unfinished processes are destroyed with the scheduler. Nested Task frames are owned
+  // by the frames that await them and go with them.
+  for (auto& p : processes_) {
+    if (p->root_) p->root_.destroy();
+  }
+}
+
+Process& Scheduler::spawn(std::string name, Task<void> task) {
+  auto proc = std::make_unique<Process>();
+  proc->name_ = std::move(name);
+  proc->root_ = task.release();
+  proc->root_.promise().rootDone = &proc->done_;
+  Process& p = *proc;
+  processes_.push_back(std::move(proc));
+  pushReady(p.root_.address(), &p);
+  return p;
+}
+
+void Scheduler::scheduleAt(Tick t, void* target, Process* p) {
+  if (t <= now_) {
+    pushReady(target, p);
+    return;
+  }
+  heap_.push_back(Entry{t, seq_++, target, p});
+  std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
+
+void Scheduler::pushReady(void* target, Process* p) {
+  if (readyCount() == ready_.size()) {
+    // Grow the ring, keeping FIFO order.
+    std::vector<Entry> bigger(ready_.size() * 2);
+    for (std::size_t i = 0; i < readyCount(); ++i) bigger[i] = ready_[(readyHead_ + i) & (ready_.size() - 1)];
+    readyTail_ = readyCount();
+    readyHead_ = 0;
+    ready_.swap(bigger);
+  }
+  ready_[readyTail_ & (ready_.size() - 1)] = Entry{now_, seq_++, target, p};
+  ++readyTail_;
+}
+
+void Scheduler::notifyAt(Event& e, Tick t) { scheduleAt(t, &e, nullptr); }
+
+// Entries already in the heap at time now_ were scheduled before time reached now_, so they come
+// before anything made ready at now_: (time, insertion order) holds without comparing sequences.
+bool Scheduler::popNext(Tick limit, Entry& out) {
+  if (!heap_.empty() && heap_.front().time <= now_) {
+    std::pop_heap(heap_.begin(), heap_.end(), Later{});
+    out = heap_.back();
+    heap_.pop_back();
+    return true;
+  }
+  if (readyCount() != 0) {
+    out = ready_[readyHead_ & (ready_.size() - 1)];
+    ++readyHead_;
+    if (readyHead_ == readyTail_) readyHead_ = readyTail_ = 0;
+    return true;
+  }
+  if (heap_.empty() || heap_.front().time > limit) return false;
+  std::pop_heap(heap_.begin(), heap_.end(), Later{});
+  out = heap_.back();
+  heap_.pop_back();
+  now_ = out.time;
+  return true;
+}
+
+void Scheduler::dispatch(const Entry& e) {
+  ++events_;
+  if (e.proc == nullptr) {
+    static_cast<Event*>(e.target)->notify();
+    return;
+  }
+  Process& p = *e.proc;
+  if (e.target == nullptr) {
+    resume(p);
+    return;
+  }
+  if (p.suspended_) {
+    p.deferred_.push_back(e.target);
+    return;
+  }
+  current_ = &p;
+  std::coroutine_handle<>::from_address(e.target).resume();
+  current_ = nullptr;
+  if (p.done_) finishProcess(p);
+}
+
+void Scheduler::finishProcess(Process& p) {
+  auto root = std::exchange(p.root_, {});
+  std::exception_ptr err = root.promise().error;
+  root.destroy();
+  if (err) {
+    try {
+      std::rethrow_exception(err);
+    } catch (const std::exception& ex) {
+      throw std::runtime_error("process '" + p.name_ + "' failed at tick " + std::to_string(now_) + ": " + ex.what());
+    }
+  }
+}
+
+Tick Scheduler::run() {
+  Entry e;
+  while (popNext(kNever, e)) dispatch(e);
+  return now_;
+}
+
+void Scheduler::runUntil(Tick t) {
+  Entry e;
+  while (popNext(t, e)) dispatch(e);
+  if (t > now_) now_ = t;
+}
+
+void Scheduler::suspend(Process& p) {
+  if (p.suspended_ || p.done_) return;
+  p.suspended_ = true;
+  p.suspendedSince_ = now_;
+}
+
+void Scheduler::resume(Process& p) {
+  if (!p.suspended_) return;
+  p.suspended_ = false;
+  p.suspendedTotal_ += now_ - p.suspendedSince_;
+  std::vector<void*> held;
+  held.swap(p.deferred_);
+  for (void* target : held) pushReady(target, &p);
+}
+
+void Scheduler::suspendFor(Process& p, Tick duration) {
+  suspend(p);
+  scheduleAt(now_ + std::max<Tick>(duration, 0), nullptr, &p);
+}
+
+}  // namespace vbim

@@ -1,0 +1,123 @@
+// The deterministic discrete-event scheduler: every cooperating thread of the model is a coroutine
+// resumed here, in (time, insertion order). Only the simulation thread touches it; model code never
+// reads the wall clock. Style after emulator schedulers (Dolphin CoreTiming, ares cooperative
+// threads): small, explicit, one time base.
+#pragma once
+
+#include <coroutine>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/clock.hpp"
+#include "runtime/task.hpp"
+
+namespace vbim {
+
+class Event;
+
+// One spawned cooperating thread. Owned by the scheduler; handles stay valid for its lifetime.
+class Process {
+ public:
+  const std::string& name() const { return name_; }
+  bool done() const { return done_; }
+  bool suspended() const { return suspended_; }
+  // Total simulated time this process spent suspended from outside.
+  Tick suspendedTotal() const { return suspendedTotal_; }
+
+ private:
+  friend class Scheduler;
+  std::string name_;
+  std::coroutine_handle<Task<void>::promise_type> root_;
+  bool done_ = false;
+  bool suspended_ = false;
+  Tick suspendedSince_ = 0;
+  Tick suspendedTotal_ = 0;
+  std::vector<void*> deferred_;  // coroutine addresses whose wake-up fell inside a suspension
+};
+
+class Scheduler {
+ public:
+  Scheduler();
+  ~Scheduler();
+  Scheduler(const Scheduler&) = delete;
+  Scheduler& operator=(const Scheduler&) = delete;
+
+  // Starts a process at the current time (after everything already due now).
+  Process& spawn(std::string name, Task<void> task);
+
+  Tick now() const { return now_; }
+  // The process whose coroutine is running (null outside run()).
+  Process* current() const { return current_; }
+  // Number of wake-ups processed so far (the "model events" of the benchmarks).
+  std::uint64_t eventsProcessed() const { return events_; }
+
+  // Runs until no work is left. Returns the time of the last event.
+  Tick run();
+  // Runs every event with time <= t, then sets now() to t (if t is later). Events after t wait.
+  void runUntil(Tick t);
+  // True when nothing is scheduled (waiters on events or FIFOs do not count).
+  bool idle() const { return heap_.empty() && readyCount() == 0; }
+
+  // Suspends p from outside (fault injection): wake-ups that fall inside the suspension are held
+  // and delivered, in order, when it is resumed. Suspending a suspended process is a no-op.
+  void suspend(Process& p);
+  void resume(Process& p);
+  // Suspends p now and resumes it `duration` ticks later.
+  void suspendFor(Process& p, Tick duration);
+
+  // co_await sched.delay(t): resumes the caller t ticks from now (t >= 0; 0 yields to everything
+  // else due now).
+  struct DelayAwaiter {
+    Scheduler& s;
+    Tick d;
+    bool await_ready() const noexcept { return false; }
+    void await_suspend(std::coroutine_handle<> h) const { s.scheduleAt(s.now_ + d, h.address(), s.current_); }
+    void await_resume() const noexcept {}
+  };
+  DelayAwaiter delay(Tick d) { return DelayAwaiter{*this, d < 0 ? 0 : d}; }
+  // co_await sched.until(t): resumes the caller at absolute time t (or now, if t has passed).
+  DelayAwaiter until(Tick t) { return DelayAwaiter{*this, t > now_ ? t - now_ : 0}; }
+
+  // Low-level: wake coroutine `h` of process `p` now, after what is already due now. Used by
+  // Event and Fifo.
+  void wakeNow(std::coroutine_handle<> h, Process* p) { pushReady(h.address(), p); }
+  // Low-level: notify `e` at absolute time t.
+  void notifyAt(Event& e, Tick t);
+
+ private:
+  // An entry is one of: resume a coroutine (target = frame address, proc = owner), notify an event
+  // (target = Event*, proc = null), or resume a suspended process (target = null, proc set).
+  struct Entry {
+    Tick time;
+    std::uint64_t seq;
+    void* target;
+    Process* proc;
+  };
+  struct Later {
+    bool operator()(const Entry& a, const Entry& b) const {
+      return a.time != b.time ? a.time > b.time : a.seq > b.seq;
+    }
+  };
+
+  void scheduleAt(Tick t, void* target, Process* p);
+  void pushReady(void* target, Process* p);
+  std::size_t readyCount() const { return readyTail_ - readyHead_; }
+  bool popNext(Tick limit, Entry& out);
+  void dispatch(const Entry& e);
+  void finishProcess(Process& p);
+
+  Tick now_ = 0;
+  std::uint64_t seq_ = 0;
+  std::uint64_t events_ = 0;
+  Process* current_ = nullptr;
+  std::vector<Entry> heap_;   // future entries, min-heap on (time, seq)
+  std::vector<Entry> ready_;  // entries due at now_, FIFO (ring buffer, power-of-two size)
+  std::size_t readyHead_ = 0;
+  std::size_t readyTail_ = 0;
+  std::deque<std::unique_ptr<Process>> processes_;
+};
+
+}  // namespace vbim

@@ -1,0 +1,204 @@
+#include "runtime/trace.hpp"
+
+#include <algorithm>
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+namespace vbim {
+
+namespace {
+
+std::string micros(Tick t) {
+  char buf[40];
+  formatMicros(t, buf, sizeof buf);
+  return buf;
+}
+
+// VCD time unit is 1 ps; one tick is 6,781.9 ps, so distinct ticks stay distinct.
+long long vcdPicoseconds(Tick t) {
+  const __int128 a = static_cast<__int128>(t) * 1'000'000'000;  // ps = t * 1e12 / 147456000
+  return static_cast<long long>((a + 73'728) / 147'456);
+}
+
+// VCD identifier codes: printable ASCII 33..126, base 94.
+std::string vcdId(std::size_t n) {
+  std::string id;
+  do {
+    id.push_back(static_cast<char>(33 + n % 94));
+    n /= 94;
+  } while (n != 0);
+  return id;
+}
+
+std::string vcdName(std::string s) {
+  for (char& c : s) {
+    if (c == ' ' || c == '\t') c = '_';
+  }
+  return s;
+}
+
+std::string binary(std::int64_t v) {
+  auto u = static_cast<std::uint64_t>(v);
+  std::string s;
+  do {
+    s.push_back(static_cast<char>('0' + (u & 1)));
+    u >>= 1;
+  } while (u != 0);
+  std::reverse(s.begin(), s.end());
+  return s;
+}
+
+}  // namespace
+
+Tracer::TrackId Tracer::track(std::string name) {
+  tracks_.push_back(std::move(name));
+  open_.emplace_back();
+  return static_cast<TrackId>(tracks_.size() - 1);
+}
+
+Tracer::CounterId Tracer::counter(std::string name) {
+  counters_.push_back(std::move(name));
+  last_.push_back(0);
+  hasLast_.push_back(false);
+  return static_cast<CounterId>(counters_.size() - 1);
+}
+
+std::uint32_t Tracer::intern(std::string_view s) {
+  for (std::size_t i = 0; i < labels_.size(); ++i) {
+    if (labels_[i] == s) return static_cast<std::uint32_t>(i);
+  }
+  labels_.emplace_back(s);
+  return static_cast<std::uint32_t>(labels_.size() - 1);
+}
+
+void Tracer::span(TrackId track, Tick b, Tick e, std::string_view what) {
+  if (!enabled_ || e < b) return;
+  spans_.push_back(Span{track, b, e, intern(what), false});
+}
+
+void Tracer::begin(TrackId track, Tick t, std::string_view what) {
+  if (!enabled_) return;
+  open_[track] = Open{t, intern(what)};
+}
+
+void Tracer::end(TrackId track, Tick t) {
+  if (!enabled_ || open_[track].begin < 0) return;
+  spans_.push_back(Span{track, open_[track].begin, t, open_[track].label, false});
+  open_[track].begin = -1;
+}
+
+void Tracer::instant(TrackId track, Tick t, std::string_view what) {
+  if (!enabled_) return;
+  spans_.push_back(Span{track, t, t, intern(what), true});
+}
+
+void Tracer::value(CounterId c, Tick t, std::int64_t v) {
+  if (!enabled_) return;
+  if (hasLast_[c] && last_[c] == v) return;
+  hasLast_[c] = true;
+  last_[c] = v;
+  samples_.push_back(Sample{c, t, v});
+}
+
+Tick Tracer::busyTime(TrackId track, Tick from, Tick to) const {
+  Tick sum = 0;
+  for (const Span& s : spans_) {
+    if (s.track != track || s.instant) continue;
+    const Tick b = std::max(s.begin, from);
+    const Tick e = std::min(s.end, to);
+    if (e > b) sum += e - b;
+  }
+  return sum;
+}
+
+void Tracer::writeChromeJson(std::ostream& out) const {
+  // Written by hand, line per event, so the bytes depend on nothing but the recorded data.
+  out << "{\"displayTimeUnit\":\"ns\",\"otherData\":{\"clock\":\"vbim simulated bus clock\",\"tick_hz\":" << kBusHz
+      << "},\n\"traceEvents\":[\n";
+  bool first = true;
+  auto sep = [&] {
+    if (!first) out << ",\n";
+    first = false;
+  };
+  sep();
+  out << R"({"name":"process_name","ph":"M","pid":1,"tid":0,"args":{"name":"vbim model"}})";
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    sep();
+    out << R"({"name":"thread_name","ph":"M","pid":1,"tid":)" << i + 1 << R"(,"args":{"name":)"
+        << nlohmann::json(tracks_[i]).dump() << "}}";
+    sep();
+    out << R"({"name":"thread_sort_index","ph":"M","pid":1,"tid":)" << i + 1 << R"(,"args":{"sort_index":)" << i
+        << "}}";
+  }
+  std::vector<std::string> quoted;
+  quoted.reserve(labels_.size());
+  for (const auto& l : labels_) quoted.push_back(nlohmann::json(l).dump());
+  for (const Span& s : spans_) {
+    sep();
+    if (s.instant) {
+      out << R"({"name":)" << quoted[s.label] << R"(,"ph":"i","s":"t","pid":1,"tid":)" << s.track + 1
+          << R"(,"ts":)" << micros(s.begin) << "}";
+    } else {
+      out << R"({"name":)" << quoted[s.label] << R"(,"ph":"X","pid":1,"tid":)" << s.track + 1 << R"(,"ts":)"
+          << micros(s.begin) << R"(,"dur":)" << micros(s.end - s.begin) << "}";
+    }
+  }
+  for (const Sample& s : samples_) {
+    sep();
+    out << R"({"name":)" << nlohmann::json(counters_[s.counter]).dump() << R"(,"ph":"C","pid":1,"ts":)" << micros(s.t)
+        << R"(,"args":{"value":)" << s.v << "}}";
+  }
+  out << "\n]}\n";
+}
+
+void Tracer::writeVcd(std::ostream& out) const {
+  out << "$comment vbim simulated bus clock, 147.456 MHz; times in ps $end\n";
+  out << "$timescale 1ps $end\n$scope module vbim $end\n";
+  // One 1-bit "busy" wire per track, one 64-bit integer per counter.
+  for (std::size_t i = 0; i < tracks_.size(); ++i)
+    out << "$var wire 1 " << vcdId(i) << ' ' << vcdName(tracks_[i]) << "_busy $end\n";
+  for (std::size_t i = 0; i < counters_.size(); ++i)
+    out << "$var integer 64 " << vcdId(tracks_.size() + i) << ' ' << vcdName(counters_[i]) << " $end\n";
+  out << "$upscope $end\n$enddefinitions $end\n";
+
+  struct Change {
+    Tick t;
+    std::size_t order;
+    std::size_t var;
+    std::int64_t v;
+  };
+  std::vector<Change> changes;
+  changes.reserve(spans_.size() * 2 + samples_.size());
+  std::size_t order = 0;
+  for (const Span& s : spans_) {
+    if (s.instant) continue;
+    changes.push_back({s.begin, order++, s.track, 1});
+    changes.push_back({s.end, order++, s.track, 0});
+  }
+  for (const Sample& s : samples_) changes.push_back({s.t, order++, tracks_.size() + s.counter, s.v});
+  // Time order; at equal times a span's end sorts before a later span's begin on the same track
+  // because ends are recorded before the next begin.
+  std::stable_sort(changes.begin(), changes.end(), [](const Change& a, const Change& b) {
+    return a.t != b.t ? a.t < b.t : a.order < b.order;
+  });
+  out << "#0\n$dumpvars\n";
+  for (std::size_t i = 0; i < tracks_.size(); ++i) out << "0" << vcdId(i) << "\n";
+  for (std::size_t i = 0; i < counters_.size(); ++i) out << "b0 " << vcdId(tracks_.size() + i) << "\n";
+  out << "$end\n";
+  long long lastPs = 0;
+  for (const Change& c : changes) {
+    const long long ps = vcdPicoseconds(c.t);
+    if (ps != lastPs) {
+      out << '#' << ps << '\n';
+      lastPs = ps;
+    }
+    if (c.var < tracks_.size()) {
+      out << (c.v ? '1' : '0') << vcdId(c.var) << '\n';
+    } else {
+      out << 'b' << binary(c.v) << ' ' << vcdId(c.var) << '\n';
+    }
+  }
+}
+
+}  // namespace vbim

@@ -1,0 +1,75 @@
+// Busy spans and counters on the simulated clock, written as Chrome trace-event JSON (opens in
+// the Perfetto UI) and as VCD (opens in GTKWave). Output is byte-identical across runs: no dates,
+// no host times, integer time formatting, insertion order preserved.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "runtime/clock.hpp"
+
+namespace vbim {
+
+class Tracer {
+ public:
+  using TrackId = std::uint32_t;
+  using CounterId = std::uint32_t;
+
+  explicit Tracer(bool enabled = true) : enabled_(enabled) {}
+  bool enabled() const { return enabled_; }
+
+  // A row of busy spans: one per component ("drive", "sif", "ipu", ...).
+  TrackId track(std::string name);
+  // A named integer signal ("ring.banks_full", "gs.pop").
+  CounterId counter(std::string name);
+
+  // Marks track busy from `begin` to `end` doing `what` (a short static label).
+  void span(TrackId track, Tick begin, Tick end, std::string_view what);
+  void begin(TrackId track, Tick t, std::string_view what);
+  void end(TrackId track, Tick t);
+  // Records a counter value from time t on. Repeated equal values are dropped.
+  void value(CounterId counter, Tick t, std::int64_t v);
+  // A zero-length marker on a track ("stall", "underrun").
+  void instant(TrackId track, Tick t, std::string_view what);
+
+  void writeChromeJson(std::ostream& out) const;
+  void writeVcd(std::ostream& out) const;
+
+  std::size_t spanCount() const { return spans_.size(); }
+  // Sum of span lengths on a track within [from, to).
+  Tick busyTime(TrackId track, Tick from, Tick to) const;
+
+ private:
+  struct Span {
+    TrackId track;
+    Tick begin;
+    Tick end;  // begin == end: instant
+    std::uint32_t label;
+    bool instant;
+  };
+  struct Sample {
+    CounterId counter;
+    Tick t;
+    std::int64_t v;
+  };
+  struct Open {
+    Tick begin = -1;
+    std::uint32_t label = 0;
+  };
+  std::uint32_t intern(std::string_view s);
+
+  bool enabled_;
+  std::vector<std::string> tracks_;
+  std::vector<Open> open_;
+  std::vector<std::string> counters_;
+  std::vector<std::int64_t> last_;
+  std::vector<bool> hasLast_;
+  std::vector<std::string> labels_;
+  std::vector<Span> spans_;
+  std::vector<Sample> samples_;
+};
+
+}  // namespace vbim

@@ -1,0 +1,93 @@
+#include "runtime/worker_pool.hpp"
+
+namespace vbim {
+
+WorkerPool::WorkerPool(unsigned threads) {
+  workers_.reserve(threads);
+  for (unsigned i = 0; i < threads; ++i) workers_.emplace_back([this] { workerLoop(); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    std::lock_guard lock(mu_);
+    stopping_ = true;
+  }
+  work_.notify_all();
+  for (auto& t : workers_) t.join();
+}
+
+std::shared_ptr<WorkerPool::Batch> WorkerPool::submit(std::size_t count, std::function<void(std::size_t)> fn) {
+  auto b = std::make_shared<Batch>();
+  b->pool_ = this;
+  b->fn_ = std::move(fn);
+  b->count_ = count;
+  if (count == 0) return b;
+  {
+    std::lock_guard lock(mu_);
+    queue_.push_back(b);
+  }
+  work_.notify_all();
+  return b;
+}
+
+void WorkerPool::parallelFor(std::size_t count, std::function<void(std::size_t)> fn) {
+  submit(count, std::move(fn))->wait();
+}
+
+// Takes one item of the oldest batch with items left and runs it with the lock released.
+// Returns false when there is nothing to take.
+bool WorkerPool::runOne(std::unique_lock<std::mutex>& lock) {
+  while (!queue_.empty() && queue_.front()->next_ >= queue_.front()->count_) queue_.pop_front();
+  if (queue_.empty()) return false;
+  std::shared_ptr<Batch> b = queue_.front();
+  const std::size_t i = b->next_++;
+  lock.unlock();
+  std::exception_ptr err;
+  try {
+    b->fn_(i);
+  } catch (...) {
+    err = std::current_exception();
+  }
+  lock.lock();
+  if (err && !b->error_) b->error_ = err;
+  if (++b->done_ == b->count_) done_.notify_all();
+  return true;
+}
+
+void WorkerPool::workerLoop() {
+  std::unique_lock lock(mu_);
+  for (;;) {
+    if (runOne(lock)) continue;
+    if (stopping_) return;
+    work_.wait(lock);
+  }
+}
+
+void WorkerPool::Batch::wait() {
+  if (count_ == 0) return;
+  WorkerPool& pool = *pool_;
+  std::unique_lock lock(pool.mu_);
+  // Help with this batch's remaining items, then wait for items other threads hold.
+  while (next_ < count_) {
+    const std::size_t i = next_++;
+    lock.unlock();
+    std::exception_ptr err;
+    try {
+      fn_(i);
+    } catch (...) {
+      err = std::current_exception();
+    }
+    lock.lock();
+    if (err && !error_) error_ = err;
+    ++done_;
+  }
+  pool.done_.wait(lock, [this] { return done_ == count_; });
+  if (error_) std::rethrow_exception(error_);
+}
+
+bool WorkerPool::Batch::finished() const {
+  std::lock_guard lock(pool_->mu_);
+  return done_ == count_;
+}
+
+}  // namespace vbim

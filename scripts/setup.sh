@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages vbim needs, only the ones that are missing.
+# Idempotent and non-interactive; run as root (or with sudo available).
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  build-essential cmake pkg-config git clang libclang-rt-14-dev clang-format clang-tidy
+  # command line, config, JSON (header-only)
+  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # media around the model: images, encoding, the comparison decoders, ffprobe
+  libopenimageio-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
+  libmpeg2-4-dev
+  # disc images
+  libiso9660-dev libcdio-dev xorriso
+  # pictures
+  libosmesa6-dev libglm-dev
+  # portable SIMD with run-time dispatch
+  libhwy-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null 2>&1 || { echo "setup: missing packages (${missing[*]}) and not root" >&2; exit 1; }
+  SUDO="sudo"
+fi
+echo "setup: installing ${#missing[@]} missing packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+# Refresh the package lists once if they are empty or older than a day.
+if [ -z "$(find /var/lib/apt/lists -maxdepth 1 -name '*Packages*' -mtime -1 2>/dev/null | head -1)" ]; then
+  $SUDO apt-get update -qq
+fi
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "setup: done"

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# README command 2: install what is missing, build, run the whole test suite through ctest.
+#   scripts/test.sh                 Release build in build/
+#   VBIM_SANITIZE=1 scripts/test.sh ASan+UBSan build in build-asan/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+if [ "${VBIM_SANITIZE:-0}" = 1 ]; then
+  # Debug-level optimisation keeps sanitizer reports readable; benchmarks are not built.
+  VBIM_BUILD_TYPE=RelWithDebInfo scripts/build.sh build-asan -DVBIM_SANITIZE=ON -DVBIM_BUILD_BENCH=OFF
+  cd build-asan
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+else
+  scripts/build.sh build
+  cd build
+fi
+ctest --output-on-failure -j"$(nproc)"
