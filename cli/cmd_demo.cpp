@@ -50,8 +50,8 @@ void runDemo(const DemoOptions& o) {
   dir.commit();
 
   std::cout << "vbim demo: the full pipeline is not built yet (issues #3-#9); ran the kernel model instead.\n"
-            << "  simulated " << toSeconds(r.end) << " s in " << wall << " s of host time (" << r.events
-            << " events, " << static_cast<double>(r.events) / wall / 1e6 << " M events/s)\n"
+            << "  simulated " << toSeconds(r.end) << " s in " << wall << " s of host time (" << r.events << " events, "
+            << static_cast<double>(r.events) / wall / 1e6 << " M events/s)\n"
             << "  consumed " << r.consumed << " tokens; " << r.starvedVsyncs << " of " << r.vsyncs
             << " vsyncs saw no progress (the injected 500 ms stall)\n"
             << "Open:\n"
@@ -66,7 +66,9 @@ void addDemo(CLI::App& app) {
   auto opts = std::make_shared<DemoOptions>();
   auto* cmd = app.add_subcommand("demo", "Run the main job on built-in defaults and write everything to out/demo/");
   cmd->add_option("--out", opts->out, "Output directory (replaced)")->capture_default_str();
-  cmd->add_option("--seconds", opts->seconds, "Simulated seconds")->check(CLI::Range(0.001, 86400.0))->capture_default_str();
+  cmd->add_option("--seconds", opts->seconds, "Simulated seconds")
+      ->check(CLI::Range(0.001, 86400.0))
+      ->capture_default_str();
   cmd->callback([opts] { runDemo(*opts); });
 }
 

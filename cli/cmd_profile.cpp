@@ -3,7 +3,8 @@
 namespace vbim::cli {
 
 void addProfile(CLI::App& app) {
-  auto* cmd = app.add_subcommand("profile", "Sweep ring size, bitrate, faults and policy; find the longest survivable stall");
+  auto* cmd =
+      app.add_subcommand("profile", "Sweep ring size, bitrate, faults and policy; find the longest survivable stall");
   cmd->allow_extras();
   cmd->callback([] { notYetAvailable("profile", 7); });
 }

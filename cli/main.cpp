@@ -6,8 +6,9 @@
 #include "cli/command.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"vbim: a simulator of the PlayStation 2 video-based illumination map pipeline\n"
-               "(DVD -> IOP stream ring -> SIF -> EE demux -> IPU decode -> GS blend, on a simulated clock)"};
+  CLI::App app{
+      "vbim: a simulator of the PlayStation 2 video-based illumination map pipeline\n"
+      "(DVD -> IOP stream ring -> SIF -> EE demux -> IPU decode -> GS blend, on a simulated clock)"};
   app.set_version_flag("--version", "vbim 0.1.0");
   app.require_subcommand(1);
   app.fallthrough(false);
@@ -20,6 +21,15 @@ int main(int argc, char** argv) {
   vbim::cli::addLightmap(app);
   vbim::cli::addRender(app);
   vbim::cli::addConfig(app);
+  // A first word that is neither an option nor a subcommand gets a plain answer.
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == argv[1];
+    if (!known) {
+      std::cerr << "vbim: unknown subcommand '" << argv[1] << "'\n\n" << app.help();
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

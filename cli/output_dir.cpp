@@ -12,7 +12,8 @@ OutputDir::OutputDir(const fs::path& final, bool force) : final_(final), force_(
   std::error_code ec;
   if (fs::exists(final_, ec) && !force_) {
     if (!fs::is_directory(final_, ec)) throw Exit(2, final_.string() + ": exists and is not a directory");
-    if (!fs::is_empty(final_, ec)) throw Exit(2, final_.string() + ": exists and is not empty (use --force to replace it)");
+    if (!fs::is_empty(final_, ec))
+      throw Exit(2, final_.string() + ": exists and is not empty (use --force to replace it)");
   }
   const fs::path parent = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
   fs::create_directories(parent, ec);

@@ -8,7 +8,9 @@
 
 namespace vbim {
 
-Tick fromSeconds(double s) { return static_cast<Tick>(std::llround(s * static_cast<double>(kBusHz))); }
+Tick fromSeconds(double s) {
+  return static_cast<Tick>(std::llround(s * static_cast<double>(kBusHz)));
+}
 
 void formatMicros(Tick t, char* out, std::size_t size) {
   // t ticks = t * 1e9 / 147456000 ns = t * 15625 / 2304 ns; rounded to the nearest ns.

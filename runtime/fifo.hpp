@@ -7,10 +7,10 @@
 #include <cassert>
 #include <coroutine>
 #include <cstddef>
-#include <deque>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "runtime/scheduler.hpp"
 
@@ -19,7 +19,8 @@ namespace vbim {
 template <class T>
 class Fifo {
  public:
-  Fifo(Scheduler& s, std::size_t depth, std::string name = {}) : s_(s), depth_(depth), name_(std::move(name)) {
+  Fifo(Scheduler& s, std::size_t depth, std::string name = {})
+      : s_(s), depth_(depth), name_(std::move(name)), slots_(depth) {
     assert(depth > 0);
   }
   Fifo(const Fifo&) = delete;
@@ -30,8 +31,9 @@ class Fifo {
     T value;
     std::coroutine_handle<> h{};
     Process* p = nullptr;
+    PushAwaiter* next = nullptr;
     bool await_ready() {
-      if (f.pushers_.empty() && f.items_.size() < f.depth_) {
+      if (f.pushers_.empty() && f.count_ < f.depth_) {
         f.put(std::move(value));
         return true;
       }
@@ -40,7 +42,7 @@ class Fifo {
     void await_suspend(std::coroutine_handle<> hh) {
       h = hh;
       p = f.s_.current();
-      f.pushers_.push_back(this);
+      f.pushers_.pushBack(this);
     }
     void await_resume() const noexcept {}
   };
@@ -49,8 +51,9 @@ class Fifo {
     std::optional<T> slot{};
     std::coroutine_handle<> h{};
     Process* p = nullptr;
+    PopAwaiter* next = nullptr;
     bool await_ready() {
-      if (f.poppers_.empty() && !f.items_.empty()) {
+      if (f.poppers_.empty() && f.count_ != 0) {
         slot.emplace(f.take());
         return true;
       }
@@ -59,7 +62,7 @@ class Fifo {
     void await_suspend(std::coroutine_handle<> hh) {
       h = hh;
       p = f.s_.current();
-      f.poppers_.push_back(this);
+      f.poppers_.pushBack(this);
     }
     T await_resume() { return std::move(*slot); }
   };
@@ -69,54 +72,81 @@ class Fifo {
 
   // Non-blocking variants for code outside a coroutine.
   bool tryPush(T v) {
-    if (!pushers_.empty() || items_.size() >= depth_) return false;
+    if (!pushers_.empty() || count_ >= depth_) return false;
     put(std::move(v));
     return true;
   }
   std::optional<T> tryPop() {
-    if (!poppers_.empty() || items_.empty()) return std::nullopt;
+    if (!poppers_.empty() || count_ == 0) return std::nullopt;
     return take();
   }
 
-  std::size_t size() const { return items_.size(); }
+  std::size_t size() const { return count_; }
   std::size_t depth() const { return depth_; }
-  bool full() const { return items_.size() >= depth_; }
-  bool empty() const { return items_.empty(); }
-  std::size_t blockedPushers() const { return pushers_.size(); }
-  std::size_t blockedPoppers() const { return poppers_.size(); }
+  bool full() const { return count_ >= depth_; }
+  bool empty() const { return count_ == 0; }
+  std::size_t blockedPushers() const { return pushers_.size; }
+  std::size_t blockedPoppers() const { return poppers_.size; }
   const std::string& name() const { return name_; }
 
  private:
   // Adds a value: straight to the first waiting popper if there is one.
   void put(T v) {
     if (!poppers_.empty()) {
-      PopAwaiter* w = poppers_.front();
-      poppers_.pop_front();
+      PopAwaiter* w = poppers_.popFront();
       w->slot.emplace(std::move(v));
       s_.wakeNow(w->h, w->p);
       return;
     }
-    items_.push_back(std::move(v));
+    std::size_t tail = head_ + count_;
+    if (tail >= depth_) tail -= depth_;
+    slots_[tail] = std::move(v);
+    ++count_;
   }
   // Removes the oldest value and lets the first waiting pusher in.
   T take() {
-    T v = std::move(items_.front());
-    items_.pop_front();
+    T v = std::move(slots_[head_]);
+    if (++head_ == depth_) head_ = 0;
+    --count_;
     if (!pushers_.empty()) {
-      PushAwaiter* w = pushers_.front();
-      pushers_.pop_front();
-      items_.push_back(std::move(w->value));
+      PushAwaiter* w = pushers_.popFront();
+      put(std::move(w->value));
       s_.wakeNow(w->h, w->p);
     }
     return v;
   }
 
+  // Waiters queue through a pointer in their awaiter (which lives in the waiting coroutine's frame),
+  // so blocking allocates nothing.
+  template <class W>
+  struct WaitQueue {
+    W* head = nullptr;
+    W* tail = nullptr;
+    std::size_t size = 0;
+    bool empty() const { return head == nullptr; }
+    void pushBack(W* w) {
+      w->next = nullptr;
+      (tail != nullptr ? tail->next : head) = w;
+      tail = w;
+      ++size;
+    }
+    W* popFront() {
+      W* w = head;
+      head = w->next;
+      if (head == nullptr) tail = nullptr;
+      --size;
+      return w;
+    }
+  };
+
   Scheduler& s_;
   std::size_t depth_;
   std::string name_;
-  std::deque<T> items_;
-  std::deque<PushAwaiter*> pushers_;
-  std::deque<PopAwaiter*> poppers_;
+  std::vector<T> slots_;  // ring of depth_ values
+  std::size_t head_ = 0;
+  std::size_t count_ = 0;
+  WaitQueue<PushAwaiter> pushers_;
+  WaitQueue<PopAwaiter> poppers_;
 };
 
 }  // namespace vbim

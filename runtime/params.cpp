@@ -36,7 +36,8 @@ std::string where(const std::string& origin, const toml::source_region& r, const
   return origin + ":" + std::to_string(r.begin.line) + ": key '" + key + "'";
 }
 
-void flatten(const toml::table& t, const std::string& prefix, std::vector<std::pair<std::string, const toml::node*>>& out) {
+void flatten(const toml::table& t, const std::string& prefix,
+             std::vector<std::pair<std::string, const toml::node*>>& out) {
   for (const auto& [k, v] : t) {
     std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     if (const auto* sub = v.as_table()) {
@@ -51,18 +52,21 @@ void flatten(const toml::table& t, const std::string& prefix, std::vector<std::p
 
 void ParamTable::addInt(std::string key, std::int64_t* field, std::int64_t min, std::int64_t max, std::string unit,
                         std::string source) {
-  params_.push_back(Param{std::move(key), std::move(unit), std::move(source), field, static_cast<double>(min),
-                          static_cast<double>(max), {}});
+  params_.push_back(Param{std::move(key),
+                          std::move(unit),
+                          std::move(source),
+                          field,
+                          static_cast<double>(min),
+                          static_cast<double>(max),
+                          {}});
 }
-void ParamTable::addReal(std::string key, double* field, double min, double max, std::string unit,
-                         std::string source) {
+void ParamTable::addReal(std::string key, double* field, double min, double max, std::string unit, std::string source) {
   params_.push_back(Param{std::move(key), std::move(unit), std::move(source), field, min, max, {}});
 }
 void ParamTable::addBool(std::string key, bool* field, std::string source) {
   params_.push_back(Param{std::move(key), "", std::move(source), field, 0, 1, {}});
 }
-void ParamTable::addChoice(std::string key, std::string* field, std::vector<std::string> choices,
-                           std::string source) {
+void ParamTable::addChoice(std::string key, std::string* field, std::vector<std::string> choices, std::string source) {
   params_.push_back(Param{std::move(key), "", std::move(source), field, 0, 0, std::move(choices)});
 }
 
@@ -86,8 +90,8 @@ void ParamTable::loadToml(std::string_view text, const std::string& origin) {
   try {
     doc = toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
-    throw ConfigError(origin + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
-                      std::string(e.description()));
+    throw ConfigError(origin + ":" + std::to_string(e.source().begin.line) +
+                      ": TOML syntax error: " + std::string(e.description()));
   }
   std::vector<std::pair<std::string, const toml::node*>> entries;
   flatten(doc, "", entries);

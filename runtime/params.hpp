@@ -23,9 +23,9 @@ class ConfigError : public std::runtime_error {
 class ParamTable {
  public:
   struct Param {
-    std::string key;    // "drive.full_seek_ms"
-    std::string unit;   // "ms", "sectors", "bytes/s", ...
-    std::string source; // where the default comes from, or "assumption: why"
+    std::string key;     // "drive.full_seek_ms"
+    std::string unit;    // "ms", "sectors", "bytes/s", ...
+    std::string source;  // where the default comes from, or "assumption: why"
     std::variant<std::int64_t*, double*, bool*, std::string*> field;
     double min = 0;
     double max = 0;

@@ -33,8 +33,41 @@ void Scheduler::scheduleAt(Tick t, void* target, Process* p) {
     pushReady(target, p);
     return;
   }
-  heap_.push_back(Entry{t, seq_++, target, p});
-  std::push_heap(heap_.begin(), heap_.end(), Later{});
+  heapPush(Entry{makeKey(t, seq_++), target, p});
+}
+
+// A binary min-heap with hole-based sifting: the queue holds a handful of entries in typical
+// models, and this loop is the kernel's hottest path.
+void Scheduler::heapPush(const Entry& e) {
+  heap_.push_back(e);
+  std::size_t i = heap_.size() - 1;
+  while (i > 0) {
+    const std::size_t parent = (i - 1) / 2;
+    if (heap_[parent].key <= e.key) break;
+    heap_[i] = heap_[parent];
+    i = parent;
+  }
+  heap_[i] = e;
+}
+
+Scheduler::Entry Scheduler::heapPop() {
+  const Entry top = heap_.front();
+  const Entry last = heap_.back();
+  heap_.pop_back();
+  const std::size_t n = heap_.size();
+  if (n != 0) {
+    std::size_t i = 0;
+    for (;;) {
+      std::size_t child = 2 * i + 1;
+      if (child >= n) break;
+      if (child + 1 < n && heap_[child + 1].key < heap_[child].key) ++child;
+      if (last.key <= heap_[child].key) break;
+      heap_[i] = heap_[child];
+      i = child;
+    }
+    heap_[i] = last;
+  }
+  return top;
 }
 
 void Scheduler::pushReady(void* target, Process* p) {
@@ -46,19 +79,19 @@ void Scheduler::pushReady(void* target, Process* p) {
     readyHead_ = 0;
     ready_.swap(bigger);
   }
-  ready_[readyTail_ & (ready_.size() - 1)] = Entry{now_, seq_++, target, p};
+  ready_[readyTail_ & (ready_.size() - 1)] = Entry{makeKey(now_, seq_++), target, p};
   ++readyTail_;
 }
 
-void Scheduler::notifyAt(Event& e, Tick t) { scheduleAt(t, &e, nullptr); }
+void Scheduler::notifyAt(Event& e, Tick t) {
+  scheduleAt(t, &e, nullptr);
+}
 
 // Entries already in the heap at time now_ were scheduled before time reached now_, so they come
 // before anything made ready at now_: (time, insertion order) holds without comparing sequences.
 bool Scheduler::popNext(Tick limit, Entry& out) {
-  if (!heap_.empty() && heap_.front().time <= now_) {
-    std::pop_heap(heap_.begin(), heap_.end(), Later{});
-    out = heap_.back();
-    heap_.pop_back();
+  if (!heap_.empty() && heap_.front().time() <= now_) {
+    out = heapPop();
     return true;
   }
   if (readyCount() != 0) {
@@ -67,11 +100,9 @@ bool Scheduler::popNext(Tick limit, Entry& out) {
     if (readyHead_ == readyTail_) readyHead_ = readyTail_ = 0;
     return true;
   }
-  if (heap_.empty() || heap_.front().time > limit) return false;
-  std::pop_heap(heap_.begin(), heap_.end(), Later{});
-  out = heap_.back();
-  heap_.pop_back();
-  now_ = out.time;
+  if (heap_.empty() || heap_.front().time() > limit) return false;
+  out = heapPop();
+  now_ = out.time();
   return true;
 }
 

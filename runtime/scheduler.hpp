@@ -90,17 +90,18 @@ class Scheduler {
  private:
   // An entry is one of: resume a coroutine (target = frame address, proc = owner), notify an event
   // (target = Event*, proc = null), or resume a suspended process (target = null, proc set).
+  // The heap orders on one 128-bit key, (time << 64) | seq: times in the queue are never negative.
   struct Entry {
-    Tick time;
-    std::uint64_t seq;
+    unsigned __int128 key;
     void* target;
     Process* proc;
+    Tick time() const { return static_cast<Tick>(key >> 64); }
   };
-  struct Later {
-    bool operator()(const Entry& a, const Entry& b) const {
-      return a.time != b.time ? a.time > b.time : a.seq > b.seq;
-    }
-  };
+  static unsigned __int128 makeKey(Tick t, std::uint64_t seq) {
+    return (static_cast<unsigned __int128>(t) << 64) | seq;
+  }
+  void heapPush(const Entry& e);
+  Entry heapPop();
 
   void scheduleAt(Tick t, void* target, Process* p);
   void pushReady(void* target, Process* p);

@@ -32,10 +32,10 @@ struct ShapeModelResult {
   std::uint64_t produced = 0;
   std::uint64_t consumed = 0;
   std::uint64_t vsyncs = 0;
-  std::uint64_t starvedVsyncs = 0;  // vsyncs at which the consumer made no progress since the last
+  std::uint64_t starvedVsyncs = 0;    // vsyncs at which the consumer made no progress since the last
   std::uint64_t producerBlocked = 0;  // pushes that found the FIFO full
-  std::uint64_t events = 0;         // scheduler wake-ups
-  std::uint64_t frameChecksum = 0;  // combined pool results (0 without a pool)
+  std::uint64_t events = 0;           // scheduler wake-ups
+  std::uint64_t frameChecksum = 0;    // combined pool results (0 without a pool)
   Tick producerSuspended = 0;
   Tick end = 0;
 };

@@ -54,6 +54,7 @@ std::string binary(std::int64_t v) {
 Tracer::TrackId Tracer::track(std::string name) {
   tracks_.push_back(std::move(name));
   open_.emplace_back();
+  lastSpan_.push_back(static_cast<std::size_t>(-1));
   return static_cast<TrackId>(tracks_.size() - 1);
 }
 
@@ -74,7 +75,17 @@ std::uint32_t Tracer::intern(std::string_view s) {
 
 void Tracer::span(TrackId track, Tick b, Tick e, std::string_view what) {
   if (!enabled_ || e < b) return;
-  spans_.push_back(Span{track, b, e, intern(what), false});
+  const std::uint32_t label = intern(what);
+  const std::size_t last = lastSpan_[track];
+  if (last != static_cast<std::size_t>(-1)) {
+    Span& prev = spans_[last];
+    if (prev.end == b && prev.label == label) {
+      prev.end = e;
+      return;
+    }
+  }
+  lastSpan_[track] = spans_.size();
+  spans_.push_back(Span{track, b, e, label, false});
 }
 
 void Tracer::begin(TrackId track, Tick t, std::string_view what) {
@@ -84,8 +95,9 @@ void Tracer::begin(TrackId track, Tick t, std::string_view what) {
 
 void Tracer::end(TrackId track, Tick t) {
   if (!enabled_ || open_[track].begin < 0) return;
-  spans_.push_back(Span{track, open_[track].begin, t, open_[track].label, false});
+  const Open o = open_[track];
   open_[track].begin = -1;
+  span(track, o.begin, t, labels_[o.label]);
 }
 
 void Tracer::instant(TrackId track, Tick t, std::string_view what) {
@@ -137,8 +149,8 @@ void Tracer::writeChromeJson(std::ostream& out) const {
   for (const Span& s : spans_) {
     sep();
     if (s.instant) {
-      out << R"({"name":)" << quoted[s.label] << R"(,"ph":"i","s":"t","pid":1,"tid":)" << s.track + 1
-          << R"(,"ts":)" << micros(s.begin) << "}";
+      out << R"({"name":)" << quoted[s.label] << R"(,"ph":"i","s":"t","pid":1,"tid":)" << s.track + 1 << R"(,"ts":)"
+          << micros(s.begin) << "}";
     } else {
       out << R"({"name":)" << quoted[s.label] << R"(,"ph":"X","pid":1,"tid":)" << s.track + 1 << R"(,"ts":)"
           << micros(s.begin) << R"(,"dur":)" << micros(s.end - s.begin) << "}";
@@ -179,9 +191,8 @@ void Tracer::writeVcd(std::ostream& out) const {
   for (const Sample& s : samples_) changes.push_back({s.t, order++, tracks_.size() + s.counter, s.v});
   // Time order; at equal times a span's end sorts before a later span's begin on the same track
   // because ends are recorded before the next begin.
-  std::stable_sort(changes.begin(), changes.end(), [](const Change& a, const Change& b) {
-    return a.t != b.t ? a.t < b.t : a.order < b.order;
-  });
+  std::stable_sort(changes.begin(), changes.end(),
+                   [](const Change& a, const Change& b) { return a.t != b.t ? a.t < b.t : a.order < b.order; });
   out << "#0\n$dumpvars\n";
   for (std::size_t i = 0; i < tracks_.size(); ++i) out << "0" << vcdId(i) << "\n";
   for (std::size_t i = 0; i < counters_.size(); ++i) out << "b0 " << vcdId(tracks_.size() + i) << "\n";

@@ -26,7 +26,9 @@ class Tracer {
   // A named integer signal ("ring.banks_full", "gs.pop").
   CounterId counter(std::string name);
 
-  // Marks track busy from `begin` to `end` doing `what` (a short static label).
+  // Marks track busy from `begin` to `end` doing `what` (a short label). A span that starts exactly
+  // where the track's previous span with the same label ended extends it, so a component that is
+  // busy back to back shows as one span (the busy time is the same; the files stay small).
   void span(TrackId track, Tick begin, Tick end, std::string_view what);
   void begin(TrackId track, Tick t, std::string_view what);
   void end(TrackId track, Tick t);
@@ -64,6 +66,7 @@ class Tracer {
   bool enabled_;
   std::vector<std::string> tracks_;
   std::vector<Open> open_;
+  std::vector<std::size_t> lastSpan_;  // per track: index in spans_ of its latest span, or npos
   std::vector<std::string> counters_;
   std::vector<std::int64_t> last_;
   std::vector<bool> hasLast_;

@@ -16,10 +16,10 @@ struct VsyncRate {
   std::string_view name;
 };
 
-inline constexpr VsyncRate kNtsc{60000, 1001, "ntsc"};                // 59.94006 Hz interlaced
-inline constexpr VsyncRate kNtscProgressive{5982, 100, "ntsc-p"};      // 59.82 Hz non-interlaced
-inline constexpr VsyncRate kPal{50, 1, "pal"};                          // 50 Hz interlaced
-inline constexpr VsyncRate kPalProgressive{4976, 100, "pal-p"};         // 49.76 Hz non-interlaced
+inline constexpr VsyncRate kNtsc{60000, 1001, "ntsc"};             // 59.94006 Hz interlaced
+inline constexpr VsyncRate kNtscProgressive{5982, 100, "ntsc-p"};  // 59.82 Hz non-interlaced
+inline constexpr VsyncRate kPal{50, 1, "pal"};                     // 50 Hz interlaced
+inline constexpr VsyncRate kPalProgressive{4976, 100, "pal-p"};    // 49.76 Hz non-interlaced
 
 // Looks a rate up by name ("ntsc", "ntsc-p", "pal", "pal-p"); returns false if unknown.
 bool vsyncRateByName(std::string_view name, VsyncRate& out);

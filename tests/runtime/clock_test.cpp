@@ -22,15 +22,15 @@ TEST(Clock, ExactRatios) {
 TEST(Clock, RoundTripsWhereExact) {
   for (std::int64_t iop : {0LL, 1LL, 7LL, 36'864LL, 552'960'000LL}) EXPECT_EQ(toIopCycles(fromIopCycles(iop)), iop);
   for (Tick t : {0LL, 2LL, 1000LL, 147'456LL}) EXPECT_EQ(fromEeCycles(toEeCycles(t)), t);
-  EXPECT_EQ(toIopCycles(5), 1);   // floor
-  EXPECT_EQ(toIopCycles(-1), -1); // floor, not truncation
-  EXPECT_EQ(fromEeCycles(3), 2);  // 1.5 ticks occupy 2
+  EXPECT_EQ(toIopCycles(5), 1);    // floor
+  EXPECT_EQ(toIopCycles(-1), -1);  // floor, not truncation
+  EXPECT_EQ(fromEeCycles(3), 2);   // 1.5 ticks occupy 2
 }
 
 TEST(Clock, MicrosAndSeconds) {
   EXPECT_EQ(fromUs(1000), fromMs(1));
-  EXPECT_EQ(fromUs(1), 147);    // 147.456
-  EXPECT_EQ(fromUs(3), 442);    // 442.368
+  EXPECT_EQ(fromUs(1), 147);         // 147.456
+  EXPECT_EQ(fromUs(3), 442);         // 442.368
   EXPECT_EQ(fromNs(13'900), 2'050);  // 2049.6384
   EXPECT_EQ(fromSeconds(12.5), 12 * kBusHz + kBusHz / 2);
   EXPECT_DOUBLE_EQ(toSeconds(kBusHz * 3), 3.0);

@@ -150,7 +150,7 @@ TEST(Scheduler, ProcessSuspendedFor500msByFaultAndResumed) {
   // Ticks at 100, 200; the tick due at 300 is held until 750; then 850, 950, ...
   std::vector<Tick> times;
   for (const auto& l : log.lines) times.push_back(std::stoll(l));
-  const std::vector<Tick> expected = {fromMs(100), fromMs(200), fromMs(750), fromMs(850), fromMs(950),
+  const std::vector<Tick> expected = {fromMs(100),  fromMs(200),  fromMs(750),  fromMs(850),  fromMs(950),
                                       fromMs(1050), fromMs(1150), fromMs(1250), fromMs(1350), fromMs(1450)};
   EXPECT_EQ(times, expected);
   EXPECT_EQ(p.suspendedTotal(), fromMs(500));

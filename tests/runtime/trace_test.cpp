@@ -83,3 +83,20 @@ TEST(Trace, DisabledRecordsNothing) {
 
 }  // namespace
 }  // namespace vbim
+
+namespace vbim {
+namespace {
+
+TEST(Trace, BackToBackSpansWithTheSameLabelCoalesce) {
+  Tracer t;
+  const auto a = t.track("a");
+  t.span(a, 0, 10, "x");
+  t.span(a, 10, 20, "x");  // contiguous, same label: extends
+  t.span(a, 20, 30, "y");  // other label: new span
+  t.span(a, 35, 40, "y");  // gap: new span
+  EXPECT_EQ(t.spanCount(), 3u);
+  EXPECT_EQ(t.busyTime(a, 0, 100), 35);
+}
+
+}  // namespace
+}  // namespace vbim
