@@ -1,0 +1,81 @@
+// Runs the vbim binary as a user would and checks exit codes, messages and files.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(VBIM_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return {-1, "popen failed"};
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("vbim_cli_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+TEST(Cli, HelpListsSubcommands) {
+  const Result r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* sub : {"demo", "play", "profile", "author", "info", "decode", "lightmap", "render", "config"})
+    EXPECT_NE(r.output.find(sub), std::string::npos) << sub;
+}
+
+TEST(Cli, UnknownSubcommandIsAnErrorWithUsage) {
+  const Result r = run("frobnicate");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("unknown subcommand 'frobnicate'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Subcommands:"), std::string::npos);
+}
+
+TEST(Cli, UnknownOptionIsAnErrorWithUsage) {
+  const Result r = run("demo --bogus");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("--bogus"), std::string::npos) << r.output;
+}
+
+TEST(Cli, NoSubcommandIsAnError) {
+  const Result r = run("");
+  EXPECT_EQ(r.code, 2);
+}
+
+TEST(Cli, DemoWritesACompleteOutputDirectory) {
+  const fs::path out = scratch("demo");
+  const Result r = run("demo --seconds 4 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "trace.json"));
+  EXPECT_TRUE(fs::exists(out / "signals.vcd"));
+  EXPECT_TRUE(fs::exists(out / "summary.txt"));
+  // No temporary directory left beside it.
+  for (const auto& e : fs::directory_iterator(out.parent_path()))
+    EXPECT_EQ(e.path().filename().string().find("." + out.filename().string() + ".tmp"), std::string::npos);
+  EXPECT_NE(r.output.find("trace.json"), std::string::npos);
+  fs::remove_all(out);
+}
+
+TEST(Cli, DemoRejectsOutOfRangeSeconds) {
+  const Result r = run("demo --seconds -1");
+  EXPECT_NE(r.code, 0);
+}
+
+}  // namespace
