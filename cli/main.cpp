@@ -5,7 +5,9 @@
 
 #include "cli/command.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int runVbim(int argc, char** argv) {
   CLI::App app{
       "vbim: a simulator of the PlayStation 2 video-based illumination map pipeline\n"
       "(DVD -> IOP stream ring -> SIF -> EE demux -> IPU decode -> GS blend, on a simulated clock)"};
@@ -46,4 +48,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return runVbim(argc, argv);
+  } catch (...) {
+    std::cerr << "vbim: internal error\n";
+    return 1;
+  }
 }

@@ -95,7 +95,9 @@ void ParamTable::loadToml(std::string_view text, const std::string& origin) {
   }
   std::vector<std::pair<std::string, const toml::node*>> entries;
   flatten(doc, "", entries);
-  for (const auto& [key, node] : entries) {
+  for (const auto& entry : entries) {
+    const std::string& key = entry.first;
+    const toml::node* node = entry.second;
     const Param* p = find(key);
     const std::string at = where(origin, node->source(), key);
     if (p == nullptr) throw ConfigError(at + ": unknown key (see `vbim config --defaults` for the valid keys)");
@@ -113,7 +115,8 @@ void ParamTable::loadToml(std::string_view text, const std::string& origin) {
             std::string list;
             for (const auto& c : p->choices) {
               ok = ok || c == *v;
-              list += (list.empty() ? "" : ", ") + c;
+              if (!list.empty()) list += ", ";
+              list += c;
             }
             if (!ok) throw ConfigError(at + ": '" + *v + "' is not one of " + list);
             *f = *v;
