@@ -10,10 +10,14 @@ namespace vbim::iop {
 
 const char* toString(SeekClass c) {
   switch (c) {
-    case SeekClass::buffered: return "buffered";
-    case SeekClass::contiguous: return "contiguous";
-    case SeekClass::fast: return "fast";
-    case SeekClass::full: return "full";
+    case SeekClass::buffered:
+      return "buffered";
+    case SeekClass::contiguous:
+      return "contiguous";
+    case SeekClass::fast:
+      return "fast";
+    case SeekClass::full:
+      return "full";
   }
   return "?";
 }
@@ -50,17 +54,24 @@ Tick Drive::sectorTicks(std::int64_t lsn) const {
   return static_cast<Tick>((2 * num + den) / (2 * den));
 }
 
-Tick Drive::revolutionTicks() const { return fromUs(p_.revolution_us); }
+Tick Drive::revolutionTicks() const {
+  return fromUs(p_.revolution_us);
+}
 
 Tick Drive::seekTicks(SeekClass c) const {
   switch (c) {
-    case SeekClass::fast: return fromUs(p_.fast_seek_us);
-    case SeekClass::full: return fromUs(p_.full_seek_us);
-    default: return 0;
+    case SeekClass::fast:
+      return fromUs(p_.fast_seek_us);
+    case SeekClass::full:
+      return fromUs(p_.full_seek_us);
+    default:
+      return 0;
   }
 }
 
-Tick Drive::dmaTicks() const { return fromIopCycles(p_.dma_iop_cycles_per_sector); }
+Tick Drive::dmaTicks() const {
+  return fromIopCycles(p_.dma_iop_cycles_per_sector);
+}
 
 SeekClass Drive::classify(std::int64_t from, std::int64_t to) const {
   const std::int64_t d = to - from;

@@ -50,13 +50,13 @@ struct DriveCommand {
 
 struct DriveStats {
   std::int64_t commands = 0;
-  std::int64_t sectorsRead = 0;   // sectors that passed under the head (not buffered hits)
-  std::int64_t bufferedHits = 0;  // sectors served from the read-ahead buffer
+  std::int64_t sectorsRead = 0;          // sectors that passed under the head (not buffered hits)
+  std::int64_t bufferedHits = 0;         // sectors served from the read-ahead buffer
   std::int64_t seeks[4] = {0, 0, 0, 0};  // by SeekClass
-  std::int64_t retries = 0;       // drive retries (revolutions spent on failed attempts)
-  std::int64_t errors = 0;        // commands ended with an error
+  std::int64_t retries = 0;              // drive retries (revolutions spent on failed attempts)
+  std::int64_t errors = 0;               // commands ended with an error
   std::int64_t spinUps = 0;
-  Tick stalled = 0;               // time frozen by stalls while working
+  Tick stalled = 0;  // time frozen by stalls while working
 };
 
 class Drive {
@@ -137,10 +137,10 @@ class Drive {
   std::deque<std::shared_ptr<DriveCommand>> queue_;
   std::shared_ptr<DriveCommand> running_;
   bool spinning_;
-  std::int64_t head_ = 0;       // next sector under the head after the last read
-  bool headValid_ = false;      // read-ahead continues from head_ only after a read
-  Tick lastEnd_ = 0;            // when the drive last went idle
-  std::vector<Stall> stalls_;   // sorted, disjoint
+  std::int64_t head_ = 0;      // next sector under the head after the last read
+  bool headValid_ = false;     // read-ahead continues from head_ only after a read
+  Tick lastEnd_ = 0;           // when the drive last went idle
+  std::vector<Stall> stalls_;  // sorted, disjoint
   std::map<std::int64_t, SectorFault> sectorFaults_;
   std::vector<RandomErrors> randomErrors_;
   DriveStats stats_;

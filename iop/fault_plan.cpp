@@ -16,12 +16,18 @@ namespace vbim::iop {
 
 const char* toString(Fault::Kind k) {
   switch (k) {
-    case Fault::Kind::stall: return "stall";
-    case Fault::Kind::read_error: return "read_error";
-    case Fault::Kind::seek_away: return "seek_away";
-    case Fault::Kind::contention: return "contention";
-    case Fault::Kind::random_stall: return "random_stall";
-    case Fault::Kind::random_error: return "random_error";
+    case Fault::Kind::stall:
+      return "stall";
+    case Fault::Kind::read_error:
+      return "read_error";
+    case Fault::Kind::seek_away:
+      return "seek_away";
+    case Fault::Kind::contention:
+      return "contention";
+    case Fault::Kind::random_stall:
+      return "random_stall";
+    case Fault::Kind::random_error:
+      return "random_error";
   }
   return "?";
 }
@@ -200,7 +206,8 @@ FaultPlan FaultPlan::parse(std::string_view text, const std::string& origin, con
   for (const toml::node& el : *arr) {
     const int line = static_cast<int>(el.source().begin.line);
     const toml::table* t = el.as_table();
-    if (t == nullptr) throw FaultPlanError(origin + ":" + std::to_string(line) + ": each fault must be a [[fault]] table");
+    if (t == nullptr)
+      throw FaultPlanError(origin + ":" + std::to_string(line) + ": each fault must be a [[fault]] table");
     const toml::node* kn = t->get("kind");
     if (kn == nullptr || !kn->value<std::string>()) {
       throw FaultPlanError(origin + ":" + std::to_string(line) +
@@ -256,8 +263,7 @@ FaultPlan FaultPlan::parse(std::string_view text, const std::string& origin, con
         f.sectors = r.integer("sectors", 1, 1'000'000);
         if (disc != nullptr && f.lba + f.sectors > disc->sectorCount()) {
           r.fail("sectors", std::to_string(f.sectors) + " sectors from LBA " + std::to_string(f.lba) +
-                                " run past the end of the disc (" + std::to_string(disc->sectorCount()) +
-                                " sectors)");
+                                " run past the end of the disc (" + std::to_string(disc->sectorCount()) + " sectors)");
         }
         break;
       }
@@ -367,7 +373,8 @@ void applyFaults(Scheduler& s, Drive& drive, const FaultPlan& plan, Rng rng) {
         break;
     }
   }
-  std::stable_sort(events.begin(), events.end(), [](const ForeignEvent& a, const ForeignEvent& b) { return a.at < b.at; });
+  std::stable_sort(events.begin(), events.end(),
+                   [](const ForeignEvent& a, const ForeignEvent& b) { return a.at < b.at; });
   if (!events.empty()) s.spawn("faults", foreignClient(s, drive, std::move(events)));
 }
 

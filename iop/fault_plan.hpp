@@ -33,9 +33,9 @@ class FaultPlanError : public std::runtime_error {
 struct Fault {
   enum class Kind { stall, read_error, seek_away, contention, random_stall, random_error };
   Kind kind = Kind::stall;
-  int line = 0;          // line of the [[fault]] header in the plan
-  Tick at = 0;           // stall, seek_away: when; others: start of the interval ("from")
-  Tick duration = 0;     // stall, contention, random_*: length
+  int line = 0;       // line of the [[fault]] header in the plan
+  Tick at = 0;        // stall, seek_away: when; others: start of the interval ("from")
+  Tick duration = 0;  // stall, contention, random_*: length
   std::int64_t lba = -1;
   std::int64_t sectors = 0;
   std::int64_t attempts = 0;

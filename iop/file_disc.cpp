@@ -9,7 +9,9 @@ namespace vbim::iop {
 
 namespace {
 
-std::string baseName(const std::string& p) { return std::filesystem::path(p).filename().string(); }
+std::string baseName(const std::string& p) {
+  return std::filesystem::path(p).filename().string();
+}
 
 std::string upper(std::string_view s) {
   std::string r(s);

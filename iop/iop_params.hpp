@@ -31,10 +31,10 @@ struct DriveParams {
 };
 
 struct RingParams {
-  std::int64_t bufmax_sectors = 160;  // sceCdStInit bufmax (notes §8: 320 KiB of IOP RAM)
-  std::int64_t bankmax = 5;           // sceCdStInit bankmax (32-sector banks)
-  std::int64_t repoll_ms = 8;         // "read Full" alarm 0x48000 IOP cycles (SDK-ST)
-  std::int64_t issue_retry_ms = 200;  // alarm after a failed sceCdRE, 0x708000 IOP cycles (SDK-ST)
+  std::int64_t bufmax_sectors = 160;            // sceCdStInit bufmax (notes §8: 320 KiB of IOP RAM)
+  std::int64_t bankmax = 5;                     // sceCdStInit bankmax (32-sector banks)
+  std::int64_t repoll_ms = 8;                   // "read Full" alarm 0x48000 IOP cycles (SDK-ST)
+  std::int64_t issue_retry_ms = 200;            // alarm after a failed sceCdRE, 0x708000 IOP cycles (SDK-ST)
   std::int64_t read_timeout_ms = 5'000;         // g_cdvdman_stream_timeout default (SDK-CD)
   std::int64_t first_read_timeout_ms = 15'000;  // 0x20F58000 IOP cycles (SDK-ST)
   std::int64_t read_error_retries = 3;          // on 0x30 / 0x01 (SDK-ST)

@@ -79,7 +79,9 @@ Task<void> StreamRing::produce() {
       } else if (s_.now() >= timeoutAt_) {
         ++stats_.timeouts;
         if (tracer_ != nullptr) tracer_->instant(track_, s_.now(), "timeout");
-        drive_.abort(*cmd_);  // sceCdBreak: the read ends with 0x01; kick_ fires again
+        drive_.abort(*cmd_);  // sceCdBreak: the read ends at once with 0x01, an abort
+        wait_ = Wait::none;
+        callback(cmd_->error);
       }
     } else if (wait_ == Wait::alarm && s_.now() >= alarmAt_) {
       wait_ = Wait::none;
@@ -270,8 +272,7 @@ Task<std::uint32_t> StreamRing::readBlocking(std::uint32_t n, std::span<std::uin
   error = 0;
   std::uint32_t got = 0;
   for (;;) {
-    const std::uint32_t r =
-        co_await read(n - got, dest.subspan(static_cast<std::size_t>(got) * kSectorBytes));
+    const std::uint32_t r = co_await read(n - got, dest.subspan(static_cast<std::size_t>(got) * kSectorBytes));
     got += stCount(r);
     if (stError(r) != 0) error = stError(r);
     if (got >= n) break;

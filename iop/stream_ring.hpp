@@ -32,8 +32,12 @@
 namespace vbim::iop {
 
 // Splits a sceCdStRead result word.
-inline std::uint32_t stCount(std::uint32_t result) { return result & 0xFFFF; }
-inline std::uint32_t stError(std::uint32_t result) { return result >> 16; }
+inline std::uint32_t stCount(std::uint32_t result) {
+  return result & 0xFFFF;
+}
+inline std::uint32_t stError(std::uint32_t result) {
+  return result >> 16;
+}
 
 struct RingStats {
   std::int64_t bankReads = 0;      // drive commands issued for banks (including retries)
@@ -41,8 +45,8 @@ struct RingStats {
   std::int64_t fullPolls = 0;      // "read Full" re-polls (drive idle)
   std::int64_t issueFailures = 0;  // sceCdRE refused (drive busy)
   std::int64_t timeouts = 0;
-  std::int64_t errors = 0;         // drive errors seen by the producer
-  std::int64_t underruns = 0;      // reads that returned fewer sectors than asked
+  std::int64_t errors = 0;     // drive errors seen by the producer
+  std::int64_t underruns = 0;  // reads that returned fewer sectors than asked
   Tick firstUnderrunAt = -1;
 };
 
