@@ -1,6 +1,10 @@
 // Fault plans: parsing, clear rejection of bad plans, and their effect on the simulated clock.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
 #include "iop/fault_plan.hpp"
 #include "tests/iop/iop_fixture.hpp"
 
@@ -206,6 +210,36 @@ TEST(FaultPlan, RandomStallsAreSeededAndPushTheReadBack) {
   EXPECT_EQ(a, 4000 * kClvSectorTicks + kDmaTicks + s1);
   EXPECT_NE(s1, s3);
   (void)c;
+}
+
+}  // namespace
+}  // namespace vbim::iop::test
+
+namespace vbim::iop::test {
+namespace {
+
+// The examples in docs/fault-plans.md parse (against a disc holding the files they name).
+TEST(FaultPlan, DocumentedExamplesParse) {
+  const char* root = std::getenv("VBIM_SOURCE_DIR");
+  ASSERT_NE(root, nullptr);
+  std::ifstream in(std::string(root) + "/docs/fault-plans.md");
+  ASSERT_TRUE(in);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  MemoryDisc disc(kLayer);
+  disc.addPatternFile("/DATA/LEVEL2.BIN", 300'000, 4096);
+  disc.addPatternFile("/AUDIO/MUSIC.PSS", 900'000, 40'000);
+  int blocks = 0;
+  for (std::size_t at = doc.find("```toml\n"); at != std::string::npos; at = doc.find("```toml\n", at + 1)) {
+    const std::size_t begin = at + 8;
+    const std::size_t end = doc.find("```", begin);
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_NO_THROW(FaultPlan::parse(doc.substr(begin, end - begin), "fault-plans.md example", &disc))
+        << doc.substr(begin, end - begin);
+    ++blocks;
+  }
+  EXPECT_EQ(blocks, 4);
 }
 
 }  // namespace
