@@ -13,8 +13,9 @@ void describeParams(ParamTable& t, DriveParams& p) {
            "P-CDVD CLV speed capped at 1.6x: 675 x 1.6");
   t.addInt("drive.layer_sectors", &p.layer_sectors, 1, 1'000'000'000, "sectors",
            "P-CDVD single-layer DVD size, the scale of the CAV position factor");
-  t.addInt("drive.contiguous_window_sectors", &p.contiguous_window_sectors, 0, 1'000'000, "sectors",
-           "P-CDVDi: a jump under 16 sectors is no seek (source calls it an arbitrary assumption); here forward jumps only");
+  t.addInt(
+      "drive.contiguous_window_sectors", &p.contiguous_window_sectors, 0, 1'000'000, "sectors",
+      "P-CDVDi: a jump under 16 sectors is no seek (source calls it an arbitrary assumption); here forward jumps only");
   t.addInt("drive.fast_seek_window_sectors", &p.fast_seek_window_sectors, 0, 1'000'000'000, "sectors",
            "P-CDVDi DVD single layer fast-seek range 14,764 sectors");
   t.addInt("drive.fast_seek_us", &p.fast_seek_us, 0, 10'000'000, "us", "P-CDVDi Cdvd_FastSeek_Cycles = 30 ms");

@@ -11,7 +11,10 @@ StreamRing::StreamRing(Scheduler& s, Drive& drive, SifChannel& sif, const RingPa
     track_ = tracer_->track("ring");
     banksCounter_ = tracer_->counter("ring.banks_full");
   }
-  init(p_.bufmax_sectors, p_.bankmax);
+  if (!init(p_.bufmax_sectors, p_.bankmax)) {
+    throw ConfigError("ring.bufmax_sectors (" + std::to_string(p_.bufmax_sectors) + ") and ring.bankmax (" +
+                      std::to_string(p_.bankmax) + ") make no bank: bufmax must be at least bankmax >= 1");
+  }
   proc_ = &s_.spawn("ring.producer", produce());
 }
 
@@ -226,7 +229,8 @@ std::uint32_t StreamRing::stat() const {
 
 Task<std::uint32_t> StreamRing::read(std::uint32_t n, std::span<std::uint8_t> dest) {
   if (stmstart_ == 2) co_return 0;
-  n = std::min<std::uint32_t>(n, static_cast<std::uint32_t>(dest.size() / kSectorBytes));
+  // The count travels in 16 bits; a larger request is served in part, like any short read.
+  n = std::min<std::uint32_t>({n, static_cast<std::uint32_t>(dest.size() / kSectorBytes), 0xFFFFu});
   std::uint32_t count = 0;
   while (count < n) {
     if (!used_[cur_]) {

@@ -339,3 +339,16 @@ TEST(StreamRing, IdenticalTracesAcrossRepeatedRuns) {
 
 }  // namespace
 }  // namespace vbim::iop::test
+
+namespace vbim::iop::test {
+namespace {
+
+TEST(StreamRing, RejectsASizeThatMakesNoBank) {
+  Rig r;
+  r.p.ring.bufmax_sectors = 3;
+  r.p.ring.bankmax = 5;
+  EXPECT_THROW(r.build(), ConfigError);
+}
+
+}  // namespace
+}  // namespace vbim::iop::test
