@@ -195,8 +195,6 @@ Task<void> statSeekScript(Scheduler& s, StreamRing& ring, std::vector<std::uint3
   out.push_back(sectorHasPattern(buf.data(), 100'000) ? 1 : 0);  // 10
   out.push_back((co_await ring.pause()) ? 1 : 0);                // 11
   co_await s.delay(fromMs(400));
-  const std::size_t readsBefore = 0;
-  (void)readsBefore;
   std::uint32_t got = 0;
   for (int i = 0; i < 10; ++i) got += stCount(co_await ring.read(32, buf));
   out.push_back(got);                          // 12: what was buffered before the pause
