@@ -1,0 +1,340 @@
+#include "iop/drive.hpp"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "iop/cd_errors.hpp"
+
+namespace vbim::iop {
+
+const char* toString(SeekClass c) {
+  switch (c) {
+    case SeekClass::buffered:
+      return "buffered";
+    case SeekClass::contiguous:
+      return "contiguous";
+    case SeekClass::fast:
+      return "fast";
+    case SeekClass::full:
+      return "full";
+  }
+  return "?";
+}
+
+Drive::Drive(Scheduler& s, SectorSource& disc, const DriveParams& p, Rng rng, Tracer* tracer)
+    : s_(s),
+      disc_(disc),
+      p_(p),
+      latencyRng_(rng.fork("drive.latency")),
+      errorRng_(rng.fork("drive.errors")),
+      tracer_(tracer),
+      wake_(s),
+      idle_(s),
+      spinning_(p.initially_spinning) {
+  if (tracer_ != nullptr) {
+    track_ = tracer_->track("drive");
+    dmaTrack_ = tracer_->track("drive.dma");
+  }
+  proc_ = &s_.spawn("drive", run());
+}
+
+// --- the model's arithmetic -------------------------------------------------------------------
+
+Tick Drive::sectorTicks(std::int64_t lsn) const {
+  if (p_.spindle == "clv") {
+    return static_cast<Tick>((2 * kBusHz + p_.clv_sectors_per_s) / (2 * p_.clv_sectors_per_s));
+  }
+  // P-CDVD CAV: rate = outer x (inner% + (100 - inner%) x LSN / layer), linear in LSN.
+  const __int128 layer = p_.layer_sectors;
+  const __int128 pos = std::clamp<std::int64_t>(lsn, 0, p_.layer_sectors);
+  const __int128 num = static_cast<__int128>(kBusHz) * 100 * layer;
+  const __int128 den = static_cast<__int128>(p_.cav_outer_sectors_per_s) *
+                       (p_.cav_inner_percent * layer + (100 - p_.cav_inner_percent) * pos);
+  return static_cast<Tick>((2 * num + den) / (2 * den));
+}
+
+Tick Drive::revolutionTicks() const {
+  return fromUs(p_.revolution_us);
+}
+
+Tick Drive::seekTicks(SeekClass c) const {
+  switch (c) {
+    case SeekClass::fast:
+      return fromUs(p_.fast_seek_us);
+    case SeekClass::full:
+      return fromUs(p_.full_seek_us);
+    default:
+      return 0;
+  }
+}
+
+Tick Drive::dmaTicks() const {
+  return fromIopCycles(p_.dma_iop_cycles_per_sector);
+}
+
+SeekClass Drive::classify(std::int64_t from, std::int64_t to) const {
+  const std::int64_t d = to - from;
+  // Forward jumps inside the window are read through; the head cannot read backwards, so any
+  // backward jump is a seek (P-CDVDi uses |d| < 16 for both directions; see docs/timing/iop.md).
+  if (d >= 0 && d < p_.contiguous_window_sectors) return SeekClass::contiguous;
+  const std::int64_t ad = d < 0 ? -d : d;
+  return ad < p_.fast_seek_window_sectors ? SeekClass::fast : SeekClass::full;
+}
+
+// --- commands ---------------------------------------------------------------------------------
+
+bool Drive::tryIssue(std::shared_ptr<DriveCommand> c) {
+  if (busy()) return false;
+  enqueue(std::move(c));
+  return true;
+}
+
+void Drive::enqueue(std::shared_ptr<DriveCommand> c) {
+  c->issuedAt = s_.now();
+  c->done = false;
+  queue_.push_back(std::move(c));
+  wake_.notify();
+}
+
+void Drive::abort(DriveCommand& c) {
+  if (c.done) return;
+  c.aborted = true;
+  c.error = kCdErAbort;
+  c.done = true;
+  c.finishedAt = s_.now();
+  if (tracer_ != nullptr) tracer_->instant(track_, s_.now(), "break");
+  if (c.notify != nullptr) c.notify->notify();
+}
+
+Task<void> Drive::sync() {
+  while (busy()) co_await idle_.wait();
+}
+
+void Drive::finish(DriveCommand& c) {
+  if (c.error != 0) ++stats_.errors;
+  if (c.done) return;  // aborted earlier: the issuer already has its answer
+  c.done = true;
+  c.finishedAt = s_.now();
+  if (c.notify != nullptr) c.notify->notify();
+}
+
+Task<void> Drive::run() {
+  for (;;) {
+    while (queue_.empty()) co_await wake_.wait();
+    running_ = queue_.front();
+    queue_.pop_front();
+    ++stats_.commands;
+    co_await execute(*running_);
+    running_.reset();
+    lastEnd_ = s_.now();
+    if (queue_.empty()) idle_.notify();
+  }
+}
+
+Task<void> Drive::execute(DriveCommand& c) {
+  if (c.aborted) co_return;
+  co_await waitOutStall();
+  if (c.kind == DriveCommand::Kind::hold) {
+    // Another client has the drive: it ends somewhere else, so the next read of ours seeks.
+    co_await work(c.holdFor, "other client");
+    if (c.lsn >= 0) head_ = c.lsn;
+    headValid_ = false;
+    finish(c);
+    co_return;
+  }
+  co_await executeRead(c);
+}
+
+Task<void> Drive::waitOutStall() {
+  for (;;) {
+    Tick until = -1;
+    for (const Stall& st : stalls_) {
+      if (st.begin <= s_.now() && s_.now() < st.end) until = st.end;
+    }
+    if (until < 0) co_return;
+    if (tracer_ != nullptr) tracer_->span(track_, s_.now(), until, "stall");
+    stats_.stalled += until - s_.now();
+    co_await s_.until(until);
+  }
+}
+
+// Mechanism work of duration d, frozen during stalls: the part that overlaps a stall resumes
+// when the stall ends.
+Task<void> Drive::work(Tick d, std::string_view what) {
+  Tick remaining = d;
+  while (remaining > 0) {
+    co_await waitOutStall();
+    Tick nextStall = kNever;
+    for (const Stall& st : stalls_) {
+      if (st.begin > s_.now()) {
+        nextStall = st.begin;
+        break;
+      }
+    }
+    const Tick step = std::min(remaining, nextStall - s_.now());
+    const Tick begin = s_.now();
+    co_await s_.delay(step);
+    if (tracer_ != nullptr && !what.empty()) tracer_->span(track_, begin, s_.now(), what);
+    remaining -= step;
+  }
+}
+
+Tick Drive::stallOverlap(Tick from, Tick to) const {
+  Tick sum = 0;
+  for (const Stall& st : stalls_) sum += std::max<Tick>(0, std::min(to, st.end) - std::max(from, st.begin));
+  return sum;
+}
+
+std::int64_t Drive::readAheadSectors(Tick idle) const {
+  if (!spinning_ || !headValid_) return 0;
+  std::int64_t n = 0;
+  Tick t = 0;
+  while (n < p_.read_ahead_sectors && head_ + n < disc_.sectorCount()) {
+    t += sectorTicks(head_ + n);
+    if (t > idle) break;
+    ++n;
+  }
+  return n;
+}
+
+bool Drive::attemptFails(std::int64_t lba) {
+  auto it = sectorFaults_.find(lba);
+  if (it != sectorFaults_.end() && s_.now() >= it->second.from && it->second.attempts > 0) {
+    if (--it->second.attempts == 0) sectorFaults_.erase(it);
+    return true;
+  }
+  // Random errors: one draw per attempt, only while a window (or the base rate) applies, so a
+  // clean run makes no draws at all.
+  std::int64_t ppm = 0;
+  std::int64_t attempts = 1;
+  if (p_.sector_error_ppm > 0) ppm = p_.sector_error_ppm;
+  for (const RandomErrors& r : randomErrors_) {
+    if (s_.now() >= r.from && s_.now() < r.to) {
+      ppm = r.ppm;
+      attempts = r.attempts;
+    }
+  }
+  if (ppm > 0 && errorRng_.chance(static_cast<std::uint64_t>(ppm), 1'000'000)) {
+    if (attempts > 1) sectorFaults_[lba] = SectorFault{attempts - 1, 0};
+    return true;
+  }
+  return false;
+}
+
+Task<void> Drive::executeRead(DriveCommand& c) {
+  const std::int64_t end = disc_.sectorCount();
+  if (c.lsn < 0 || c.lsn >= end) {
+    // P-CDVD: an LSN past the last sector is refused at issue with a read error.
+    c.error = kCdErRead;
+    finish(c);
+    co_return;
+  }
+  // Read-ahead gathered while idle (stall time does not count).
+  const Tick now0 = s_.now();
+  const Tick idle = now0 - lastEnd_ - stallOverlap(lastEnd_, now0);
+  const std::int64_t buffered = readAheadSectors(idle);
+
+  if (!spinning_) {
+    ++stats_.spinUps;
+    co_await work(fromMs(p_.spin_up_ms), "spin-up");
+    spinning_ = true;
+    headValid_ = false;
+  }
+  std::int64_t hits = 0;
+  if (headValid_ && c.lsn >= head_ && c.lsn < head_ + buffered) {
+    c.seek = SeekClass::buffered;
+    hits = std::min(head_ + buffered - c.lsn, c.sectors);
+  } else {
+    const std::int64_t from = head_ + buffered;
+    c.seek = classify(from, c.lsn);
+    if (c.seek == SeekClass::contiguous) {
+      // Read through the gap: those sectors pass under the head.
+      Tick skip = 0;
+      for (std::int64_t l = from; l < c.lsn; ++l) skip += sectorTicks(l);
+      co_await work(skip, "skip");
+    } else {
+      co_await work(seekTicks(c.seek), c.seek == SeekClass::fast ? "seek fast" : "seek full");
+      co_await work(static_cast<Tick>(latencyRng_.below(static_cast<std::uint64_t>(revolutionTicks()))), "latency");
+    }
+  }
+  ++stats_.seeks[static_cast<int>(c.seek)];
+  headValid_ = true;
+  head_ = c.seek == SeekClass::buffered ? head_ + buffered : c.lsn;
+
+  std::array<std::uint8_t, kSectorBytes> scratch{};
+  Tick dmaFree = s_.now();
+  Tick dmaFirst = -1;
+  const Tick readBegin = s_.now();
+  for (std::int64_t i = 0; i < c.sectors && !c.aborted; ++i) {
+    const std::int64_t lba = c.lsn + i;
+    if (lba >= end) {
+      c.error = kCdErEndOfMedia;
+      break;
+    }
+    if (i < hits) {
+      ++stats_.bufferedHits;
+    } else {
+      co_await work(sectorTicks(lba), "");
+      std::int64_t retries = 0;
+      bool failed = false;
+      while (attemptFails(lba)) {
+        if (retries == maxRetries()) {
+          failed = true;
+          break;
+        }
+        ++retries;
+        ++stats_.retries;
+        co_await work(revolutionTicks(), "retry");
+      }
+      ++stats_.sectorsRead;
+      head_ = lba + 1;
+      if (failed) {
+        c.error = kCdErRead;
+        break;
+      }
+    }
+    std::uint8_t* out = c.dest != nullptr ? c.dest + i * static_cast<std::int64_t>(kSectorBytes) : scratch.data();
+    const SectorReadResult r = disc_.read(lba, SectorSpan(out, kSectorBytes));
+    if (!r.ok) throw DiscError(r.error);
+    // Drive -> IOP RAM DMA (IOP ch3) overlaps the next sector's read.
+    const Tick dmaStart = std::max(s_.now(), dmaFree);
+    dmaFree = dmaStart + dmaTicks();
+    if (dmaFirst < 0) dmaFirst = dmaStart;
+    ++c.sectorsDone;
+  }
+  if (tracer_ != nullptr) {
+    if (s_.now() > readBegin) tracer_->span(track_, readBegin, s_.now(), c.foreign ? "read other" : "read");
+    if (dmaFirst >= 0) tracer_->span(dmaTrack_, dmaFirst, dmaFree, c.foreign ? "dma other" : "dma");
+  }
+  if (hits > 0 && c.sectors <= hits) head_ = c.lsn + c.sectors;
+  co_await s_.until(dmaFree);
+  finish(c);
+}
+
+// --- faults -----------------------------------------------------------------------------------
+
+void Drive::addStall(Tick begin, Tick end) {
+  if (end <= begin) return;
+  stalls_.push_back(Stall{begin, end});
+  std::sort(stalls_.begin(), stalls_.end(), [](const Stall& a, const Stall& b) { return a.begin < b.begin; });
+  std::vector<Stall> merged;
+  for (const Stall& st : stalls_) {
+    if (!merged.empty() && st.begin <= merged.back().end) {
+      merged.back().end = std::max(merged.back().end, st.end);
+    } else {
+      merged.push_back(st);
+    }
+  }
+  stalls_.swap(merged);
+}
+
+void Drive::addSectorFault(std::int64_t lba, std::int64_t attempts, Tick from) {
+  if (attempts > 0) sectorFaults_[lba] = SectorFault{attempts, from};
+}
+
+void Drive::addRandomErrors(Tick from, Tick to, std::int64_t ppm, std::int64_t attempts) {
+  randomErrors_.push_back(RandomErrors{from, to, ppm, std::max<std::int64_t>(attempts, 1)});
+}
+
+}  // namespace vbim::iop

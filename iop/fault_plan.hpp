@@ -1,0 +1,69 @@
+// Fault plans: timed events that disturb the drive, on the simulated clock and nowhere else.
+// TOML, one [[fault]] table per event, `kind` naming what it is (docs/fault-plans.md):
+//   stall         at, duration                      the drive freezes
+//   read_error    lba, attempts [, from]            the sector fails its next N read attempts
+//   seek_away     at, lba | file, sectors           another file is read (level data, audio)
+//   contention    from, duration, share [, period, lba | file]  another client takes share % of drive time
+//   random_stall  from, duration, mean_interval, stall          seeded stalls at a mean rate
+//   random_error  from, duration, per_million [, attempts]      seeded sector errors at a rate
+// Times are strings with a unit: "12.5s", "800ms", "250us". Anything malformed, unknown,
+// negative, overlapping or out of range is rejected with file:line and the field.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "runtime/clock.hpp"
+#include "runtime/rng.hpp"
+#include "runtime/scheduler.hpp"
+
+namespace vbim::iop {
+
+class SectorSource;
+class Drive;
+
+class FaultPlanError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Fault {
+  enum class Kind { stall, read_error, seek_away, contention, random_stall, random_error };
+  Kind kind = Kind::stall;
+  int line = 0;       // line of the [[fault]] header in the plan
+  Tick at = 0;        // stall, seek_away: when; others: start of the interval ("from")
+  Tick duration = 0;  // stall, contention, random_*: length
+  std::int64_t lba = -1;
+  std::int64_t sectors = 0;
+  std::int64_t attempts = 0;
+  std::int64_t share = 0;       // contention: percent of drive time
+  Tick period = 0;              // contention: slice period
+  Tick meanInterval = 0;        // random_stall
+  Tick stallLength = 0;         // random_stall
+  std::int64_t perMillion = 0;  // random_error
+};
+
+struct FaultPlan {
+  std::string origin;
+  std::vector<Fault> faults;
+
+  // Parses a plan. `disc` (optional) resolves `file = "..."` and checks LBAs against the disc.
+  static FaultPlan parse(std::string_view text, const std::string& origin, const SectorSource* disc = nullptr);
+  static FaultPlan load(const std::string& path, const SectorSource* disc = nullptr);
+};
+
+const char* toString(Fault::Kind k);
+
+// Parses "12.5s", "800ms", "250us" into ticks (nearest tick, integer arithmetic). Throws
+// std::invalid_argument with the reason.
+Tick parseDuration(std::string_view text);
+
+// Arms the plan on a drive: stalls and sector faults become drive hooks; random stalls are drawn
+// now from `rng` (a fork of the run seed); seek-aways and contention slices are issued by a
+// process named "faults" as another IOP client would.
+void applyFaults(Scheduler& s, Drive& drive, const FaultPlan& plan, Rng rng);
+
+}  // namespace vbim::iop

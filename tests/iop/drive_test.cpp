@@ -1,0 +1,202 @@
+// Drive model: sustained rates by radius (CAV) and flat CLV, each seek class with latency drawn from
+// the seed, read-ahead, drive retries, end of media, stalls.
+#include <gtest/gtest.h>
+
+#include "iop/cd_errors.hpp"
+#include "tests/iop/iop_fixture.hpp"
+
+namespace vbim::iop::test {
+namespace {
+
+struct Step {
+  Tick delay;  // idle before issuing
+  std::int64_t lsn;
+  std::int64_t sectors;
+};
+
+struct Done {
+  Tick issued;
+  Tick finished;
+  std::uint32_t error;
+  SeekClass seek;
+};
+
+Task<void> script(Scheduler& s, Drive& d, std::vector<Step> steps, std::vector<Done>& out) {
+  Event ev(s);
+  for (const Step& st : steps) {
+    co_await s.delay(st.delay);
+    auto c = std::make_shared<DriveCommand>();
+    c->lsn = st.lsn;
+    c->sectors = st.sectors;
+    c->notify = &ev;
+    d.enqueue(c);
+    while (!c->done) co_await ev.wait();
+    out.push_back(Done{c->issuedAt, c->finishedAt, c->error, c->seek});
+  }
+}
+
+std::vector<Done> run(Rig& r, std::vector<Step> steps) {
+  r.build(r.disc ? r.disc->sectorCount() : kLayer, false);
+  std::vector<Done> out;
+  r.s.spawn("script", script(r.s, *r.drive, std::move(steps), out));
+  r.s.run();
+  return out;
+}
+
+// Time for n contiguous sectors from lsn with no buffered data: reads back to back, the last
+// sector's DMA after it (the DMA of earlier sectors hides under the next read).
+Tick contiguousReadTicks(std::int64_t lsn, std::int64_t n, Tick (*sector)(std::int64_t)) {
+  Tick t = 0;
+  for (std::int64_t i = 0; i < n; ++i) t += sector(lsn + i);
+  return t + kDmaTicks;
+}
+
+Tick clvSector(std::int64_t) {
+  return kClvSectorTicks;
+}
+
+TEST(DriveRate, CavInnerAndOuterRadiusMatchTheModel) {
+  for (std::int64_t lsn : {std::int64_t{0}, kLayer - 4000}) {
+    Rig r;
+    // Prime the head at lsn, then a long contiguous read: no seek, no latency.
+    auto done = run(r, {{0, lsn, 16}, {0, lsn + 16, 2000}});
+    ASSERT_EQ(done.size(), 2u);
+    EXPECT_EQ(done[1].seek, SeekClass::contiguous);
+    const Tick took = done[1].finished - done[1].issued;
+    EXPECT_EQ(took, contiguousReadTicks(lsn + 16, 2000, cavSectorTicks));
+    // And that is the notes' rate: 1080 sectors/s at the hub, 2700 at the rim (within the drift
+    // of the rate over 2000 sectors).
+    const double rate = 2000.0 / toSeconds(took - kDmaTicks);
+    if (lsn == 0) {
+      EXPECT_NEAR(rate, 1080.0, 1080.0 * 0.001);
+    } else {
+      EXPECT_NEAR(rate, 2700.0, 2700.0 * 0.002);
+    }
+  }
+}
+
+TEST(DriveRate, ClvIsFlat1080) {
+  for (std::int64_t lsn : {std::int64_t{0}, kLayer - 4000}) {
+    Rig r;
+    r.p.drive.spindle = "clv";
+    auto done = run(r, {{0, lsn, 16}, {0, lsn + 16, 1080}});
+    ASSERT_EQ(done.size(), 2u);
+    EXPECT_EQ(done[1].finished - done[1].issued, contiguousReadTicks(lsn + 16, 1080, clvSector));
+  }
+}
+
+TEST(DriveSeek, EachClassCostsItsTimePlusSeededLatency) {
+  Rig r;
+  const std::int64_t base = 100'000;
+  // After each read the head sits at lsn + n. Issue without idling (no read-ahead).
+  auto done = run(r, {{0, base, 8},
+                      {0, base + 8 + 5, 8},                              // forward 5: contiguous, read through
+                      {0, base + 21 + 1000, 8},                          // fast
+                      {0, base + 1029 - 40, 8},                          // backward: fast
+                      {0, base + 997 + 100'000, 8},                      // full
+                      {0, base + 997 + 100'008 + 14'763, 8},             // just inside the fast window
+                      {0, base + 997 + 100'008 + 14'771 + 14'764, 8}});  // just outside: full
+  ASSERT_EQ(done.size(), 7u);
+  EXPECT_EQ(done[1].seek, SeekClass::contiguous);
+  EXPECT_EQ(done[2].seek, SeekClass::fast);
+  EXPECT_EQ(done[3].seek, SeekClass::fast);
+  EXPECT_EQ(done[4].seek, SeekClass::full);
+  EXPECT_EQ(done[5].seek, SeekClass::fast);
+  EXPECT_EQ(done[6].seek, SeekClass::full);
+
+  // Latency draws: the drive's fork of the seed, one draw per seek, uniform in [0, 16 ms).
+  Rng lat = Rng(r.seed).fork("drive.latency");
+  const Tick rev = fromUs(16'000);
+  std::vector<Tick> draws;
+  auto draw = [&] { return static_cast<Tick>(lat.below(static_cast<std::uint64_t>(rev))); };
+  const std::int64_t lsns[] = {base,           base + 13,      base + 1021,   base + 989,
+                               base + 100'997, base + 115'768, base + 130'540};
+  const Tick first = fromUs(100'000) + draw();  // the first read: head at 0, a full seek
+  EXPECT_EQ(done[0].finished - done[0].issued, first + contiguousReadTicks(lsns[0], 8, cavSectorTicks));
+  EXPECT_EQ(done[1].finished - done[1].issued,
+            contiguousReadTicks(lsns[1] - 5, 13, cavSectorTicks));  // 5 skipped + 8 read
+  const Tick seekCost[] = {0, 0, fromUs(30'000), fromUs(30'000), fromUs(100'000), fromUs(30'000), fromUs(100'000)};
+  for (int i = 2; i < 7; ++i) {
+    const Tick expected = seekCost[i] + draw() + contiguousReadTicks(lsns[i], 8, cavSectorTicks);
+    EXPECT_EQ(done[static_cast<std::size_t>(i)].finished - done[static_cast<std::size_t>(i)].issued, expected)
+        << "step " << i;
+  }
+  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::fast)], 3);
+  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::full)], 3);
+}
+
+TEST(DriveSeek, ReadAheadServesTheNextSectorsAfterIdle) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  // Idle 50 ms after the first read: 16 sectors (2.2 ms of reading) are buffered.
+  auto done = run(r, {{0, 5000, 32}, {fromMs(50), 5032, 32}});
+  ASSERT_EQ(done.size(), 2u);
+  EXPECT_EQ(done[1].seek, SeekClass::buffered);
+  // 16 buffered sectors need only their DMA (16 x 24,768 ticks, chained); the other 16 are read
+  // from t = 0 and the reads outpace the DMA from the 4th on, so the last DMA ends 16 reads + 1 DMA in.
+  EXPECT_EQ(done[1].finished - done[1].issued, 16 * kClvSectorTicks + kDmaTicks);
+  EXPECT_EQ(r.drive->stats().bufferedHits, 16);
+}
+
+TEST(DriveSeek, SpinUpFromStopped) {
+  Rig r;
+  r.p.drive.initially_spinning = false;
+  r.p.drive.spindle = "clv";
+  auto done = run(r, {{0, 0, 1}});
+  // Spin-up (333 ms), then LSN 0 is where the head rests: read it.
+  EXPECT_EQ(done[0].seek, SeekClass::contiguous);
+  EXPECT_EQ(done[0].finished - done[0].issued, fromMs(333) + kClvSectorTicks + kDmaTicks);
+  EXPECT_EQ(r.drive->stats().spinUps, 1);
+}
+
+TEST(DriveErrors, RetriesCostARevolutionEachThenFail) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  r.p.drive.retry_count = 2;
+  r.build(kLayer, false);
+  r.drive->addSectorFault(10, 2);  // fails twice, third attempt reads
+  r.drive->addSectorFault(50, 3);  // fails all three attempts
+  std::vector<Done> out;
+  r.s.spawn("script", script(r.s, *r.drive, {{0, 0, 32}, {0, 32, 32}}, out));
+  r.s.run();
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].error, 0u);
+  EXPECT_EQ(out[0].finished - out[0].issued, 32 * kClvSectorTicks + 2 * fromUs(16'000) + kDmaTicks);
+  EXPECT_EQ(out[1].error, kCdErRead);
+  // Sectors 32..49 read, then sector 50 read and retried twice, then the error after its DMA wait.
+  // Sectors 32..49 read; sector 50 is read and retried twice; the command ends there, with
+  // sector 49's DMA long finished.
+  EXPECT_EQ(out[1].finished - out[1].issued, 19 * kClvSectorTicks + 2 * fromUs(16'000));
+  EXPECT_EQ(r.drive->stats().retries, 4);
+}
+
+TEST(DriveErrors, EndOfMediaIs0x32AfterTheLastSector) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  r.disc = std::make_unique<MemoryDisc>(100);
+  auto done = run(r, {{0, 0, 90}, {0, 90, 32}, {0, 100, 1}});
+  ASSERT_EQ(done.size(), 3u);
+  EXPECT_EQ(done[1].error, kCdErEndOfMedia);
+  EXPECT_EQ(done[1].finished - done[1].issued, contiguousReadTicks(90, 10, clvSector));
+  EXPECT_EQ(done[2].error, kCdErRead);  // an LSN past the end is refused at issue (P-CDVD)
+}
+
+TEST(DriveStall, WorkOverlappingAStallIsPushedBackByTheOverlap) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  r.build(kLayer, false);
+  // The second read (160 sectors, 21.8 ms) starts at T; a 300 ms stall begins 10 ms into it.
+  std::vector<Done> out;
+  r.s.spawn("script", script(r.s, *r.drive, {{0, 0, 16}, {0, 16, 160}}, out));
+  r.s.runUntil(1);  // let the first command start
+  const Tick firstEnd = contiguousReadTicks(0, 16, clvSector);
+  r.drive->addStall(firstEnd + fromMs(10), firstEnd + fromMs(310));
+  r.s.run();
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].finished, firstEnd);
+  EXPECT_EQ(out[1].finished - out[1].issued, contiguousReadTicks(16, 160, clvSector) + fromMs(300));
+  EXPECT_EQ(r.drive->stats().stalled, fromMs(300));
+}
+
+}  // namespace
+}  // namespace vbim::iop::test
