@@ -73,6 +73,30 @@ TEST(Cli, DemoWritesACompleteOutputDirectory) {
   fs::remove_all(out);
 }
 
+TEST(Cli, ConfigPrintsEveryKeyWithItsSource) {
+  const Result r = run("config");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("[drive]"), std::string::npos);
+  EXPECT_NE(r.output.find("[ring]"), std::string::npos);
+  EXPECT_NE(r.output.find("[sif]"), std::string::npos);
+  EXPECT_NE(r.output.find("bankmax = 5"), std::string::npos);
+}
+
+TEST(Cli, ConfigCheckNamesFileLineAndKey) {
+  const fs::path dir = scratch("config");
+  fs::create_directories(dir);
+  const fs::path bad = dir / "plat.toml";
+  {
+    FILE* f = fopen(bad.c_str(), "w");
+    fputs("[ring]\nbankmax = 5\nbanks = 3\n", f);
+    fclose(f);
+  }
+  const Result r = run("config --check " + bad.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find(bad.string() + ":3: key 'ring.banks': unknown key"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, DemoRejectsOutOfRangeSeconds) {
   const Result r = run("demo --seconds -1");
   EXPECT_NE(r.code, 0);
