@@ -39,7 +39,9 @@ void PictureAssembler::append(std::span<const std::uint8_t> payload, std::uint32
 // by position through the descriptor index, not by PTS.
 void PictureAssembler::onStartCode(std::size_t pos, std::uint8_t code, std::vector<Picture>& out) {
   if (!synced_) {
-    if (!startsAccessUnit(code)) return;
+    // (Re)start only at a sequence header: a picture cannot be decoded without the one before it, and
+    // after a seek the bytes before the indexed sequence header are the previous picture's tail.
+    if (code != kSequenceHeaderCode) return;
     drop(pos);
     synced_ = true;
     seenPicture_ = false;

@@ -1,7 +1,8 @@
 // Reassembles the pictures of one video stream from its PES payloads. A picture is the run of
 // elementary-stream bytes from the sequence header (or GOP or picture header) that precedes a
 // picture start code, up to the next such header after it (ISO/IEC 13818-2 §6.2). Start codes are
-// found across PES and pack boundaries. A picture is complete when the next one begins, at a
+// found across PES and pack boundaries. Reading starts, and restarts after reset(), at a sequence
+// header. A picture is complete when the next one begins, at a
 // sequence end code, or at finish().
 #pragma once
 

@@ -69,18 +69,30 @@ Rgba8Image Mpeg2Decoder::decodeRgba(std::span<const std::uint8_t> picture) {
   return out;
 }
 
-double psnrRgb(const Rgba8Image& a, const Rgba8Image& b) {
-  if (!a.sameSize(b)) throw AuthoringError("PSNR of images of different sizes");
+namespace {
+double psnr(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, std::size_t step) {
+  if (a.size() != b.size()) throw AuthoringError("PSNR of images of different sizes");
   double se = 0;
   std::size_t n = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = double(a.pixels[i]) - double(b.pixels[i]);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (step == 4 && i % 4 == 3) continue;  // alpha
+    const double d = double(a[i]) - double(b[i]);
     se += d * d;
     ++n;
   }
   if (se == 0) return std::numeric_limits<double>::infinity();
   return 10.0 * std::log10(255.0 * 255.0 / (se / static_cast<double>(n)));
+}
+}  // namespace
+
+double psnrRgb(const Rgba8Image& a, const Rgba8Image& b) {
+  if (!a.sameSize(b)) throw AuthoringError("PSNR of images of different sizes");
+  return psnr(a.pixels, b.pixels, 4);
+}
+
+PlanePsnr psnrYuv(const Yuv420Image& a, const Yuv420Image& b) {
+  if (a.width != b.width || a.height != b.height) throw AuthoringError("PSNR of images of different sizes");
+  return PlanePsnr{psnr(a.y, b.y, 1), psnr(a.cb, b.cb, 1), psnr(a.cr, b.cr, 1)};
 }
 
 }  // namespace vbim::streams

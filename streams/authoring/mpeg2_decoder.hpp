@@ -2,6 +2,7 @@
 // picture (as the reader reassembles it) in, RGBA8 or the YCbCr planes out.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 
@@ -36,5 +37,11 @@ class Mpeg2Decoder {
 
 // PSNR in dB over R, G, B of two same-size images (inf when identical).
 double psnrRgb(const Rgba8Image& a, const Rgba8Image& b);
+// PSNR in dB of each plane (Y, Cb, Cr) of two same-size images.
+struct PlanePsnr {
+  double y = 0, cb = 0, cr = 0;
+  double min() const { return std::min(y, std::min(cb, cr)); }
+};
+PlanePsnr psnrYuv(const Yuv420Image& a, const Yuv420Image& b);
 
 }  // namespace vbim::streams

@@ -4,6 +4,32 @@
 
 namespace vbim::streams {
 
+namespace {
+
+SwsContext* makeRgbaToYuv(int width, int height) {
+  SwsContext* sws = sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_YUV420P,
+                                   SWS_BICUBIC | SWS_ACCURATE_RND | SWS_BITEXACT, nullptr, nullptr, nullptr);
+  if (!sws) throw AuthoringError("cannot set up the RGB -> YCbCr conversion");
+  // Full-range RGB in, BT.601 limited-range YCbCr out: the IPU's CSC matrix (ps2-hardware.md).
+  const int* bt601 = sws_getCoefficients(SWS_CS_ITU601);
+  sws_setColorspaceDetails(sws, bt601, 1, bt601, 0, 0, 1 << 16, 1 << 16);
+  return sws;
+}
+
+}  // namespace
+
+Yuv420Image rgbaToYuv420(const Rgba8Image& img) {
+  SwsContext* sws = makeRgbaToYuv(img.width, img.height);
+  Yuv420Image out(img.width, img.height);
+  const std::uint8_t* src[1] = {img.pixels.data()};
+  const int srcStride[1] = {img.width * 4};
+  std::uint8_t* dst[3] = {out.y.data(), out.cb.data(), out.cr.data()};
+  const int dstStride[3] = {out.width, out.chromaWidth(), out.chromaWidth()};
+  sws_scale(sws, src, srcStride, 0, img.height, dst, dstStride);
+  sws_freeContext(sws);
+  return out;
+}
+
 Mpeg2Encoder::Mpeg2Encoder(int width, int height, const EncoderSettings& s) {
   const AVCodec* codec = avcodec_find_encoder(AV_CODEC_ID_MPEG2VIDEO);
   if (!codec) throw AuthoringError("libavcodec has no MPEG-2 video encoder");
@@ -38,16 +64,12 @@ Mpeg2Encoder::Mpeg2Encoder(int width, int height, const EncoderSettings& s) {
     throw AuthoringError("cannot open the MPEG-2 encoder for " + std::to_string(width) + "x" + std::to_string(height) +
                          ": " + avError(r));
   }
-  sws_ = sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_YUV420P,
-                        SWS_BICUBIC | SWS_ACCURATE_RND | SWS_BITEXACT, nullptr, nullptr, nullptr);
-  // Full-range RGB in, BT.601 limited-range YCbCr out.
-  const int* bt601 = sws_getCoefficients(SWS_CS_ITU601);
-  sws_setColorspaceDetails(sws_, bt601, 1, bt601, 0, 0, 1 << 16, 1 << 16);
+  sws_ = makeRgbaToYuv(width, height);
   frame_ = av_frame_alloc();
   frame_->format = AV_PIX_FMT_YUV420P;
   frame_->width = width;
   frame_->height = height;
-  if (!sws_ || av_frame_get_buffer(frame_, 0) < 0) throw AuthoringError("cannot allocate the encoder's frame");
+  if (av_frame_get_buffer(frame_, 0) < 0) throw AuthoringError("cannot allocate the encoder's frame");
 }
 
 Mpeg2Encoder::~Mpeg2Encoder() {

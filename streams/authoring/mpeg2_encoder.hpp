@@ -20,6 +20,10 @@ struct EncoderSettings {
 inline constexpr std::int64_t kDvdMaxVideoRate = 9'800'000;
 inline constexpr int kDvdVbvBits = 1'835'008;
 
+// The encoder's colour conversion: full-range RGB -> BT.601 limited-range YCbCr 4:2:0 (libswscale,
+// bicubic chroma filter, bit-exact mode). Exposed so tests measure the codec against its real input.
+Yuv420Image rgbaToYuv420(const Rgba8Image& img);
+
 class Mpeg2Encoder {
  public:
   Mpeg2Encoder(int width, int height, const EncoderSettings& s);
