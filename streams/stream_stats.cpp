@@ -28,10 +28,10 @@ class Scanner {
     scan_.descriptor = demux_.descriptor();
     scan_.errors = demux_.errors();
     if (scan_.descriptor && bytes < std::uint64_t{scan_.descriptor->totalSectors} * kSectorBytes)
-      scan_.errors.push_back(StreamError{ErrorKind::ShortSector, bytes, static_cast<std::uint32_t>(bytes / kSectorBytes),
-                                         "stream ends after " + std::to_string(bytes) + " bytes; its descriptor says " +
-                                             std::to_string(scan_.descriptor->totalSectors) +
-                                             " sectors (truncated stream)"});
+      scan_.errors.push_back(
+          StreamError{ErrorKind::ShortSector, bytes, static_cast<std::uint32_t>(bytes / kSectorBytes),
+                      "stream ends after " + std::to_string(bytes) + " bytes; its descriptor says " +
+                          std::to_string(scan_.descriptor->totalSectors) + " sectors (truncated stream)"});
     scan_.stats = demux_.stats();
     scan_.every2048 = bytes % kSectorBytes == 0 && scan_.stats.badSectors == 0 && bytes > 0;
     return std::move(scan_);

@@ -34,14 +34,17 @@ Outcome run(const std::string& cmd) {
   return r;
 }
 
-std::string vbim() { return VBIM_BINARY; }
+std::string vbim() {
+  return VBIM_BINARY;
+}
 
 void writePng(const fs::path& path, int w, int h, int seed) {
   std::vector<std::uint8_t> px(static_cast<std::size_t>(w) * h * 3);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c)
-        px[(static_cast<std::size_t>(y) * w + x) * 3 + c] = static_cast<std::uint8_t>((x * 3 + y * 2 + c * 40 + seed * 9) & 0xFF);
+        px[(static_cast<std::size_t>(y) * w + x) * 3 + c] =
+            static_cast<std::uint8_t>((x * 3 + y * 2 + c * 40 + seed * 9) & 0xFF);
   auto out = OIIO::ImageOutput::create(path.string());
   ASSERT_TRUE(out);
   OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
@@ -82,10 +85,10 @@ class CliStream : public ::testing::Test {
     }
     const fs::path d = dir_->path();
     authored_ = new Outcome(run(vbim() + " author --frames '" + (d / "clear/lm_%04d.exr").string() + "' --sky '" +
-                            (d / "clear/sky_%04d.exr").string() + "' --name clear --variant 'overcast=" +
-                            (d / "overcast/lm_%04d.exr").string() + "' --variant-sky 'overcast=" +
-                            (d / "overcast/sky_%04d.exr").string() + "' --fps 1/2 --loop 2 --out " +
-                            (d / "day.vbim").string()));
+                                (d / "clear/sky_%04d.exr").string() +
+                                "' --name clear --variant 'overcast=" + (d / "overcast/lm_%04d.exr").string() +
+                                "' --variant-sky 'overcast=" + (d / "overcast/sky_%04d.exr").string() +
+                                "' --fps 1/2 --loop 2 --out " + (d / "day.vbim").string()));
   }
   static void TearDownTestSuite() {
     delete authored_;
@@ -122,10 +125,10 @@ TEST_F(CliStream, AuthorWritesTheStreamAndInfoDescribesIt) {
 
 TEST_F(CliStream, FfprobeListsExactlyTwoVideoStreamsOfIntraPictures) {
   ASSERT_EQ(authored_->status, 0) << authored_->out;
-  const Outcome streams = run("ffprobe -v error -show_entries stream=id,codec_type,codec_name,width,height -of json " +
-                              stream().string());
+  const Outcome streams =
+      run("ffprobe -v error -show_entries stream=id,codec_type,codec_name,width,height -of json " + stream().string());
   ASSERT_EQ(streams.status, 0) << streams.out << "\n(ffprobe comes with Debian's ffmpeg package: scripts/setup.sh)";
-  const auto js = nlohmann::json::parse(streams.out)["streams"];
+  const auto js = nlohmann::json::parse(streams.out).at("streams");
   ASSERT_EQ(js.size(), 2u) << streams.out;
   const char* ids[] = {"0x1e0", "0x1e1"};
   const int widths[] = {64, 32};
@@ -135,12 +138,16 @@ TEST_F(CliStream, FfprobeListsExactlyTwoVideoStreamsOfIntraPictures) {
     EXPECT_EQ(js[i]["id"], ids[i]);
     EXPECT_EQ(js[i]["width"], widths[i]);
   }
-  const Outcome frames = run("ffprobe -v error -show_entries frame=pict_type,stream_index -of json " + stream().string());
+  const Outcome frames =
+      run("ffprobe -v error -show_entries frame=pict_type,stream_index -of json " + stream().string());
   ASSERT_EQ(frames.status, 0) << frames.out;
   int intra[2] = {0, 0}, other = 0;
-  for (const auto& f : nlohmann::json::parse(frames.out)["frames"]) {
-    if (f["pict_type"] == "I") ++intra[f["stream_index"].get<int>()];
-    else ++other;
+  const auto jf = nlohmann::json::parse(frames.out);
+  for (const auto& f : jf["frames"]) {
+    if (f["pict_type"] == "I")
+      ++intra[f["stream_index"].get<int>()];
+    else
+      ++other;
   }
   EXPECT_EQ(intra[0], 12);
   EXPECT_EQ(intra[1], 12);
@@ -199,18 +206,22 @@ TEST(CliBadInput, AuthorFailsCleanlyAndLeavesNothingUnderTheFinalName) {
   for (const BadCase& c : cases) {
     TempDir dir;
     for (const auto& [file, size] : c.files) {
-      if (size.first == 0) test::writeFile(dir / file, {'n', 'o', 'p', 'e'});
-      else writePng(dir / file, size.first, size.second, 1);
+      if (size.first == 0)
+        test::writeFile(dir / file, {'n', 'o', 'p', 'e'});
+      else
+        writePng(dir / file, size.first, size.second, 1);
     }
     std::string args = c.args;
     for (std::size_t p; (p = args.find("D/")) != std::string::npos;) args.replace(p, 1, dir.path().string());
     const fs::path out = dir / "out.vbim";
     const Outcome r = run(vbim() + " author " + args + " --fps 1 --out " + out.string());
     EXPECT_NE(r.status, 0) << c.name << "\n" << r.out;
-    for (const std::string& w : c.words) EXPECT_NE(r.out.find(w), std::string::npos) << c.name << ": '" << w << "'\n" << r.out;
+    for (const std::string& w : c.words)
+      EXPECT_NE(r.out.find(w), std::string::npos) << c.name << ": '" << w << "'\n" << r.out;
     EXPECT_FALSE(fs::exists(out)) << c.name;
     for (const auto& entry : fs::directory_iterator(dir.path()))
-      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << c.name << ": left " << entry.path();
+      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+          << c.name << ": left " << entry.path();
   }
 }
 

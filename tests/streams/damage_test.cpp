@@ -87,7 +87,8 @@ TEST(Damage, AFlippedPictureBitFailsTheIndexCrcWithTheFrameNumber) {
   ASSERT_FALSE(parsePack(pack, e.sector, parsed));
   std::size_t at = 0;
   for (const PesPacket& p : parsed.packets)
-    if (p.streamId == kLightmapStream) at = std::size_t{e.sector} * kSectorBytes + p.payloadOffset + p.payload.size() - 1;
+    if (p.streamId == kLightmapStream)
+      at = std::size_t{e.sector} * kSectorBytes + p.payloadOffset + p.payload.size() - 1;
   ASSERT_GT(at, 0u);
   bad[at] ^= 0x01;
   const StreamScan scan = scanStream(bad);

@@ -22,8 +22,8 @@ std::vector<std::uint8_t> videoPack(std::size_t videoBytes, std::int64_t scr = 1
   for (std::size_t i = 0; i < videoBytes; ++i) p[pos + i] = static_cast<std::uint8_t>(0x40 + i % 64);
   pos += videoBytes;
   const std::size_t pad = kSectorBytes - pos - 6;
-  const std::uint8_t padHdr[] = {0, 0, 1, kPaddingStream, static_cast<std::uint8_t>(pad >> 8),
-                                 static_cast<std::uint8_t>(pad)};
+  const std::uint8_t padHdr[] = {
+      0, 0, 1, kPaddingStream, static_cast<std::uint8_t>(pad >> 8), static_cast<std::uint8_t>(pad)};
   std::copy(std::begin(padHdr), std::end(padHdr), p.begin() + pos);
   std::fill(p.begin() + pos + 6, p.end(), 0xFF);
   return p;
@@ -45,7 +45,8 @@ TEST(PackParser, ReadsHeaderTimestampsAndPackets) {
 }
 
 TEST(PackParser, ScrRoundTripsThroughTheHeaderBits) {
-  for (std::int64_t scr : {std::int64_t{0}, std::int64_t{299}, std::int64_t{300} * ((std::int64_t{1} << 33) - 1) + 299}) {
+  for (std::int64_t scr :
+       {std::int64_t{0}, std::int64_t{299}, std::int64_t{300} * ((std::int64_t{1} << 33) - 1) + 299}) {
     const auto p = videoPack(10, scr);
     ParsedPack out;
     ASSERT_FALSE(parsePack(p, 0, out));

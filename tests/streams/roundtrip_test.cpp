@@ -22,7 +22,8 @@ std::span<const std::uint8_t> sectorOf(const std::vector<std::uint8_t>& bytes, s
 TEST(RoundTrip, EveryPictureDecodesAbove40DbAtTheDefaultQuality) {
   const auto& s = smallStream();
   Demuxer dm;
-  for (std::uint32_t lsn = 0; lsn * kSectorBytes < s.bytes.size(); ++lsn) EXPECT_EQ(dm.feed(sectorOf(s.bytes, lsn), lsn), 0u);
+  for (std::uint32_t lsn = 0; lsn * kSectorBytes < s.bytes.size(); ++lsn)
+    EXPECT_EQ(dm.feed(sectorOf(s.bytes, lsn), lsn), 0u);
   dm.finish();
   ASSERT_TRUE(dm.descriptor());
   EXPECT_TRUE(dm.errors().empty());
@@ -46,8 +47,8 @@ TEST(RoundTrip, EveryPictureDecodesAbove40DbAtTheDefaultQuality) {
     const PlanePsnr psnr = psnrYuv(got, rgbaToYuv420(want));
     worst = std::min(worst, psnr.min());
     worstRgb = std::min(worstRgb, psnrRgb(dec.decodeRgba(p.data), want));
-    EXPECT_GE(psnr.min(), 40.0) << "stream " << int(p.streamId) << " frame " << *p.frame << ": Y " << psnr.y
-                                << " Cb " << psnr.cb << " Cr " << psnr.cr;
+    EXPECT_GE(psnr.min(), 40.0) << "stream " << int(p.streamId) << " frame " << *p.frame << ": Y " << psnr.y << " Cb "
+                                << psnr.cb << " Cr " << psnr.cr;
   }
   RecordProperty("worst_plane_psnr_db", std::to_string(worst));
   RecordProperty("worst_rgb_psnr_db", std::to_string(worstRgb));

@@ -41,8 +41,8 @@ const SmallStream& smallStream(std::uint32_t frames, int variants) {
 }
 
 TempDir::TempDir() {
-  path_ = std::filesystem::temp_directory_path() /
-          ("vbim-streams-test-" + std::to_string(::getpid()) + "-" + std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+  path_ = std::filesystem::temp_directory_path() / ("vbim-streams-test-" + std::to_string(::getpid()) + "-" +
+                                                    std::to_string(reinterpret_cast<std::uintptr_t>(this)));
   std::filesystem::create_directories(path_);
 }
 

@@ -32,7 +32,7 @@ TEST(ToneMap, ExposureCurveTransferAndWhiteAreApplied) {
   EXPECT_EQ(mapOne(0.25f, m)[0], 64);
   m.exposure = 0;
   m.curve = ToneMapping::Curve::Reinhard;
-  EXPECT_EQ(mapOne(1.0f, m)[0], 64);  // 1/(1+1)
+  EXPECT_EQ(mapOne(1.0f, m)[0], 64);   // 1/(1+1)
   EXPECT_EQ(mapOne(1.0f, m)[2], 102);  // 4/5
   parseTransfer("gamma:2", m);
   m.curve = ToneMapping::Curve::Clamp;
