@@ -36,7 +36,13 @@ std::size_t Demuxer::feed(std::span<const std::uint8_t> sector, std::uint32_t ls
   for (const PesPacket& p : pack.packets) {
     const int slot = slotOf(p.streamId);
     if (slot >= 0) {
-      assemblers_[slot].append(p.payload, lsn, base + p.payloadOffset, p.pts, pictures_);
+      if (!assemblers_[slot].append(p.payload, lsn, base + p.payloadOffset, p.pts, pictures_)) {
+        ++stats_.droppedPictures;
+        errors_.push_back(StreamError{ErrorKind::PictureDropped, base + p.offset, lsn,
+                                      std::string("picture of stream ") + (slot == 0 ? "0xE0" : "0xE1") +
+                                          " dropped: longer than the " + std::to_string(kMaxPictureBytes) +
+                                          "-byte MPEG-2 VBV without a picture boundary"});
+      }
     } else if (p.streamId == kPaddingStream) {
       stats_.paddingBytes += p.payload.size() + 6;
     } else if (p.streamId == kPrivateStream2 && parseDescriptorChunk(p.payload)) {

@@ -12,9 +12,9 @@ bool startsAccessUnit(std::uint8_t code) {
 }
 }  // namespace
 
-void PictureAssembler::append(std::span<const std::uint8_t> payload, std::uint32_t sector, std::uint64_t byteOffset,
+bool PictureAssembler::append(std::span<const std::uint8_t> payload, std::uint32_t sector, std::uint64_t byteOffset,
                               std::optional<std::int64_t> pts, std::vector<Picture>& out) {
-  if (payload.empty()) return;
+  if (payload.empty()) return true;
   segments_.push_back(Segment{static_cast<std::int64_t>(buf_.size()), sector, byteOffset, pts});
   buf_.insert(buf_.end(), payload.begin(), payload.end());
   std::size_t i = scanFrom_;
@@ -30,6 +30,11 @@ void PictureAssembler::append(std::span<const std::uint8_t> payload, std::uint32
   }
   scanFrom_ = i;
   if (!synced_ && buf_.size() > 3) drop(buf_.size() - 3);  // keep only what may begin a start code
+  if (buf_.size() > kMaxPictureBytes) {
+    reset();
+    return false;
+  }
+  return true;
 }
 
 // PTS: ISO/IEC 13818-1 §2.4.3.7 gives a PES packet's PTS to the first picture whose picture start

@@ -24,13 +24,18 @@ struct Picture {
   std::vector<std::uint8_t> data;      // sequence header .. last slice
 };
 
+// The largest picture accepted: the MPEG-2 Main Profile @ Main Level VBV buffer, 1835008 bits
+// (13818-2 table 8-13). A longer run without a picture boundary is damage; it also bounds memory.
+inline constexpr std::size_t kMaxPictureBytes = 1835008 / 8;
+
 class PictureAssembler {
  public:
   explicit PictureAssembler(std::uint8_t streamId) : streamId_(streamId) {}
 
   // Appends one PES payload that starts at `byteOffset` of the file, in `sector`. Completed pictures
-  // are appended to `out`.
-  void append(std::span<const std::uint8_t> payload, std::uint32_t sector, std::uint64_t byteOffset,
+  // are appended to `out`. Returns false if the picture in progress grew past kMaxPictureBytes and was
+  // dropped.
+  bool append(std::span<const std::uint8_t> payload, std::uint32_t sector, std::uint64_t byteOffset,
               std::optional<std::int64_t> pts, std::vector<Picture>& out);
   // Drops the picture in progress (after damage or a seek); true if one was under way.
   bool reset();

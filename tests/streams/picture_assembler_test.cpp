@@ -80,5 +80,18 @@ TEST(PictureAssembler, SequenceEndCodeCompletesThePicture) {
   EXPECT_EQ(out.size(), 1u);
 }
 
+TEST(PictureAssembler, APictureLongerThanTheVbvIsDroppedAndMemoryStaysBounded) {
+  PictureAssembler a(0xE0);
+  std::vector<Picture> out;
+  const std::vector<std::uint8_t> head = {0, 0, 1, 0xB3, 1, 2, 0, 0, 1, 0x00, 7};
+  EXPECT_TRUE(a.append(head, 0, 0, std::nullopt, out));
+  const std::vector<std::uint8_t> junk(2000, 0x55);
+  bool dropped = false;
+  for (int i = 0; i < 200 && !dropped; ++i) dropped = !a.append(junk, 0, 0, std::nullopt, out);
+  EXPECT_TRUE(dropped);
+  EXPECT_TRUE(out.empty());
+  EXPECT_FALSE(a.reset());  // nothing under way any more
+}
+
 }  // namespace
 }  // namespace vbim::streams
