@@ -63,7 +63,7 @@ void writeExr(const fs::path& path, const FloatRgbImage& img) {
 }
 
 // A stream authored through the CLI from EXR files: two variants, each lightmap + sky.
-class CliStream : public ::testing::Test {
+class StreamsCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new TempDir;
@@ -98,10 +98,10 @@ class CliStream : public ::testing::Test {
   static TempDir* dir_;
   static Outcome* authored_;
 };
-TempDir* CliStream::dir_ = nullptr;
-Outcome* CliStream::authored_ = nullptr;
+TempDir* StreamsCli::dir_ = nullptr;
+Outcome* StreamsCli::authored_ = nullptr;
 
-TEST_F(CliStream, AuthorWritesTheStreamAndInfoDescribesIt) {
+TEST_F(StreamsCli, AuthorWritesTheStreamAndInfoDescribesIt) {
   ASSERT_EQ(authored_->status, 0) << authored_->out;
   const Outcome info = run(vbim() + " info --json " + stream().string());
   ASSERT_EQ(info.status, 0) << info.out;
@@ -123,7 +123,7 @@ TEST_F(CliStream, AuthorWritesTheStreamAndInfoDescribesIt) {
     EXPECT_NE(text.out.find(words), std::string::npos) << words << "\n" << text.out;
 }
 
-TEST_F(CliStream, FfprobeListsExactlyTwoVideoStreamsOfIntraPictures) {
+TEST_F(StreamsCli, FfprobeListsExactlyTwoVideoStreamsOfIntraPictures) {
   ASSERT_EQ(authored_->status, 0) << authored_->out;
   const Outcome streams =
       run("ffprobe -v error -show_entries stream=id,codec_type,codec_name,width,height -of json " + stream().string());
@@ -156,7 +156,7 @@ TEST_F(CliStream, FfprobeListsExactlyTwoVideoStreamsOfIntraPictures) {
   EXPECT_EQ(decode.status, 0) << decode.out;
 }
 
-TEST(CliBadInput, InfoRejectsAWrongFormatFileAndNamesIt) {
+TEST(StreamsCliBadInput, InfoRejectsAWrongFormatFileAndNamesIt) {
   TempDir dir;
   test::writeFile(dir / "x.png", std::vector<std::uint8_t>(5000, 0x42));
   const Outcome r = run(vbim() + " info " + (dir / "x.png").string());
@@ -176,7 +176,7 @@ struct BadCase {
   std::vector<std::string> words;
 };
 
-TEST(CliBadInput, AuthorFailsCleanlyAndLeavesNothingUnderTheFinalName) {
+TEST(StreamsCliBadInput, AuthorFailsCleanlyAndLeavesNothingUnderTheFinalName) {
   const std::vector<BadCase> cases = {
       {"pattern matches no file", {}, "--frames D/lm_%04d.png", {"lm_%04d.png", "matches no file"}},
       {"missing directory", {}, "--frames D/nodir/lm_%04d.png", {"nodir", "does not exist"}},
@@ -225,7 +225,7 @@ TEST(CliBadInput, AuthorFailsCleanlyAndLeavesNothingUnderTheFinalName) {
   }
 }
 
-TEST(CliBadInput, UnwritableOutputNamesTheFileAndKeepsAnOldStream) {
+TEST(StreamsCliBadInput, UnwritableOutputNamesTheFileAndKeepsAnOldStream) {
   TempDir dir;
   writePng(dir / "lm_0000.png", 32, 32, 1);
   const std::string frames = " author --frames " + (dir / "lm_%04d.png").string() + " --fps 1 --out ";

@@ -26,7 +26,7 @@ std::string all(const StreamScan& scan) {
   return s;
 }
 
-TEST(Damage, TruncationMidSectorAndAtASectorBoundary) {
+TEST(StreamsDamage, TruncationMidSectorAndAtASectorBoundary) {
   const auto& good = smallStream().bytes;
   auto cut = good;
   cut.resize(good.size() - 3000);  // ends 1096 bytes into a sector
@@ -42,7 +42,7 @@ TEST(Damage, TruncationMidSectorAndAtASectorBoundary) {
   EXPECT_TRUE(anyError(scan, ErrorKind::ShortSector, last - 2, "descriptor says")) << all(scan);
 }
 
-TEST(Damage, AFlippedPackHeaderBitIsReportedAtItsSectorAndReadingContinues) {
+TEST(StreamsDamage, AFlippedPackHeaderBitIsReportedAtItsSectorAndReadingContinues) {
   const auto& good = smallStream().bytes;
   auto bad = good;
   const std::uint32_t sector = 5;
@@ -68,7 +68,7 @@ TEST(Damage, AFlippedPackHeaderBitIsReportedAtItsSectorAndReadingContinues) {
   }
 }
 
-TEST(Damage, AFlippedPesLengthIsAnOverrunAtItsSector) {
+TEST(StreamsDamage, AFlippedPesLengthIsAnOverrunAtItsSector) {
   auto bad = smallStream().bytes;
   const std::uint32_t sector = 3;
   const std::size_t at = sector * kSectorBytes + 14 + (bad[sector * kSectorBytes + 13] & 7) + 4;
@@ -79,7 +79,7 @@ TEST(Damage, AFlippedPesLengthIsAnOverrunAtItsSector) {
   EXPECT_EQ(scan.errors[0].sector, sector);
 }
 
-TEST(Damage, AFlippedPictureBitFailsTheIndexCrcWithTheFrameNumber) {
+TEST(StreamsDamage, AFlippedPictureBitFailsTheIndexCrcWithTheFrameNumber) {
   const auto& s = smallStream();
   auto bad = s.bytes;
   const IndexEntry& e = s.descriptor.index[0][3];  // lightmap frame 3
@@ -103,7 +103,7 @@ TEST(Damage, AFlippedPictureBitFailsTheIndexCrcWithTheFrameNumber) {
   EXPECT_TRUE(named) << all(scan);
 }
 
-TEST(Damage, AFlippedDescriptorBitIsABadDescriptor) {
+TEST(StreamsDamage, AFlippedDescriptorBitIsABadDescriptor) {
   auto bad = smallStream().bytes;
   bad[14 + 20 + 6 + 12 + 60] ^= 0x80;  // inside the descriptor body in pack 0
   const StreamScan scan = scanStream(bad);
@@ -112,7 +112,7 @@ TEST(Damage, AFlippedDescriptorBitIsABadDescriptor) {
   EXPECT_FALSE(scan.pictures.empty());  // the video is still readable
 }
 
-TEST(Damage, WrongFormatInputsFailAtSectorZero) {
+TEST(StreamsDamage, WrongFormatInputsFailAtSectorZero) {
   // A PNG signature, a text file, an MPEG-1 system stream pack and an empty file.
   std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
   png.resize(4096, 0);
@@ -133,7 +133,7 @@ TEST(Damage, WrongFormatInputsFailAtSectorZero) {
   EXPECT_TRUE(scan.pictures.empty());
 }
 
-TEST(Damage, ASectorGapDropsThePictureInProgress) {
+TEST(StreamsDamage, ASectorGapDropsThePictureInProgress) {
   const auto& s = smallStream();
   Demuxer dm;
   const std::uint32_t n = s.descriptor.totalSectors;
@@ -147,7 +147,7 @@ TEST(Damage, ASectorGapDropsThePictureInProgress) {
   for (const Picture& p : dm.pictures()) EXPECT_FALSE(p.damaged);
 }
 
-TEST(Damage, RandomByteDamageNeverCrashesAndNeverPassesUnnoticed) {
+TEST(StreamsDamage, RandomByteDamageNeverCrashesAndNeverPassesUnnoticed) {
   // Seeded damage anywhere in the stream: the reader must not crash (ASan/UBSan in CI), and every
   // picture it still delivers as undamaged must be exactly the original bytes.
   const auto& s = smallStream();

@@ -27,12 +27,12 @@ Descriptor sample(std::uint32_t frames = 3) {
   return d;
 }
 
-TEST(Crc32, MatchesTheStandardCheckValue) {
+TEST(StreamsCrc32, MatchesTheStandardCheckValue) {
   const std::string s = "123456789";
   EXPECT_EQ(crc32({reinterpret_cast<const std::uint8_t*>(s.data()), s.size()}), 0xCBF43926u);
 }
 
-TEST(Descriptor, SerialisesToTheDocumentedSizeAndParsesBack) {
+TEST(StreamsDescriptor, SerialisesToTheDocumentedSizeAndParsesBack) {
   const Descriptor d = sample();
   const auto body = serialize(d);
   EXPECT_EQ(body.size(), 48u + 2 * 8 + 2 * 32 + 2 * 6 * 16);
@@ -51,7 +51,7 @@ TEST(Descriptor, SerialisesToTheDocumentedSizeAndParsesBack) {
   EXPECT_EQ(r.descriptor->variantOf(4), 1u);
 }
 
-TEST(Descriptor, ABitFlipAnywhereFailsTheCrc) {
+TEST(StreamsDescriptor, ABitFlipAnywhereFailsTheCrc) {
   const auto body = serialize(sample());
   for (std::size_t at : {std::size_t{5}, std::size_t{50}, body.size() - 1}) {
     auto bad = body;
@@ -62,7 +62,7 @@ TEST(Descriptor, ABitFlipAnywhereFailsTheCrc) {
   }
 }
 
-TEST(Descriptor, RejectsTruncationAndInconsistentFields) {
+TEST(StreamsDescriptor, RejectsTruncationAndInconsistentFields) {
   auto body = serialize(sample());
   body.resize(body.size() - 16);
   const DescriptorParse r = parseDescriptor(body);
@@ -80,7 +80,7 @@ TEST(Descriptor, RejectsTruncationAndInconsistentFields) {
   EXPECT_FALSE(d.validate().empty());
 }
 
-TEST(DescriptorPacks, SpanSeveralWholePacksAndReassembleInTheDemuxer) {
+TEST(StreamsDescriptorPacks, SpanSeveralWholePacksAndReassembleInTheDemuxer) {
   const Descriptor d = sample(200);  // 2 streams x 400 frames x 16 B: several packs
   const auto body = serialize(d);
   std::vector<std::uint8_t> sys = {0, 0, 1, kSystemHeaderStartCode, 0, 6, 0x80, 0, 1, 0, 0, 0xFF};
@@ -99,7 +99,7 @@ TEST(DescriptorPacks, SpanSeveralWholePacksAndReassembleInTheDemuxer) {
   EXPECT_EQ(dm.stats().systemHeaders, 1u);
 }
 
-TEST(DescriptorPacks, ADamagedDescriptorIsReportedWithItsSector) {
+TEST(StreamsDescriptorPacks, ADamagedDescriptorIsReportedWithItsSector) {
   const auto body = serialize(sample());
   std::vector<std::int64_t> scr(1, 0);
   auto packs = makeDescriptorPacks(body, {}, 25200, scr);

@@ -29,7 +29,7 @@ std::vector<std::uint8_t> videoPack(std::size_t videoBytes, std::int64_t scr = 1
   return p;
 }
 
-TEST(PackParser, ReadsHeaderTimestampsAndPackets) {
+TEST(StreamsPackParser, ReadsHeaderTimestampsAndPackets) {
   const auto p = videoPack(100);
   ParsedPack out;
   ASSERT_FALSE(parsePack(p, 3, out));
@@ -44,7 +44,7 @@ TEST(PackParser, ReadsHeaderTimestampsAndPackets) {
   EXPECT_EQ(out.packets[1].streamId, kPaddingStream);
 }
 
-TEST(PackParser, ScrRoundTripsThroughTheHeaderBits) {
+TEST(StreamsPackParser, ScrRoundTripsThroughTheHeaderBits) {
   for (std::int64_t scr :
        {std::int64_t{0}, std::int64_t{299}, std::int64_t{300} * ((std::int64_t{1} << 33) - 1) + 299}) {
     const auto p = videoPack(10, scr);
@@ -62,7 +62,7 @@ struct Case {
   const char* words;
 };
 
-TEST(PackParser, MalformedPacksNameTheKindOffsetAndSector) {
+TEST(StreamsPackParser, MalformedPacksNameTheKindOffsetAndSector) {
   const Case cases[] = {
       {"pack start code", 3, 0xBB, ErrorKind::BadPackHeader, "00 00 01 BA"},
       {"MPEG-1 pack", 4, 0x21, ErrorKind::BadPackHeader, "MPEG-1"},
@@ -87,7 +87,7 @@ TEST(PackParser, MalformedPacksNameTheKindOffsetAndSector) {
   }
 }
 
-TEST(PackParser, ShortSectorIsATruncation) {
+TEST(StreamsPackParser, ShortSectorIsATruncation) {
   auto p = videoPack(100);
   p.resize(1000);
   ParsedPack out;
@@ -97,7 +97,7 @@ TEST(PackParser, ShortSectorIsATruncation) {
   EXPECT_NE(err->message.find("truncated"), std::string::npos);
 }
 
-TEST(PackParser, EndCodeEndsThePack) {
+TEST(StreamsPackParser, EndCodeEndsThePack) {
   auto p = videoPack(100);
   const std::size_t pad = 14 + 14 + 100;
   p[pad + 3] = kProgramEndCode;
@@ -107,7 +107,7 @@ TEST(PackParser, EndCodeEndsThePack) {
   EXPECT_EQ(out.packets.size(), 1u);
 }
 
-TEST(PackParser, NoInputMakesItReadOutOfBounds) {
+TEST(StreamsPackParser, NoInputMakesItReadOutOfBounds) {
   // Every single-byte corruption of a valid pack either parses or yields an error, never a crash
   // (ASan/UBSan in CI would catch an out-of-bounds read).
   const auto good = videoPack(300);

@@ -18,7 +18,7 @@ std::vector<std::uint8_t> fakeStream(int n, std::vector<std::size_t>* starts = n
   return es;
 }
 
-TEST(PictureAssembler, SplitsAtSequenceHeadersAcrossAnyPayloadBoundary) {
+TEST(StreamsPictureAssembler, SplitsAtSequenceHeadersAcrossAnyPayloadBoundary) {
   std::vector<std::size_t> starts;
   const auto es = fakeStream(4, &starts);
   for (std::size_t chunk : {std::size_t{1}, std::size_t{2}, std::size_t{3}, std::size_t{7}, es.size()}) {
@@ -45,7 +45,7 @@ TEST(PictureAssembler, SplitsAtSequenceHeadersAcrossAnyPayloadBoundary) {
   }
 }
 
-TEST(PictureAssembler, DiscardsBytesBeforeTheFirstHeaderAndDropsOnReset) {
+TEST(StreamsPictureAssembler, DiscardsBytesBeforeTheFirstHeaderAndDropsOnReset) {
   std::vector<std::size_t> starts;
   const auto es = fakeStream(3, &starts);
   PictureAssembler a(0xE1);
@@ -68,7 +68,7 @@ TEST(PictureAssembler, DiscardsBytesBeforeTheFirstHeaderAndDropsOnReset) {
   EXPECT_EQ(out.size(), 2u);  // picture 1 lost, picture 2 complete
 }
 
-TEST(PictureAssembler, SequenceEndCodeCompletesThePicture) {
+TEST(StreamsPictureAssembler, SequenceEndCodeCompletesThePicture) {
   auto es = fakeStream(1);
   es.insert(es.end(), {0, 0, 1, 0xB7});
   PictureAssembler a(0xE0);
@@ -80,7 +80,7 @@ TEST(PictureAssembler, SequenceEndCodeCompletesThePicture) {
   EXPECT_EQ(out.size(), 1u);
 }
 
-TEST(PictureAssembler, APictureLongerThanTheVbvIsDroppedAndMemoryStaysBounded) {
+TEST(StreamsPictureAssembler, APictureLongerThanTheVbvIsDroppedAndMemoryStaysBounded) {
   PictureAssembler a(0xE0);
   std::vector<Picture> out;
   const std::vector<std::uint8_t> head = {0, 0, 1, 0xB3, 1, 2, 0, 0, 1, 0x00, 7};

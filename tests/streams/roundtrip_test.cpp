@@ -19,7 +19,7 @@ std::span<const std::uint8_t> sectorOf(const std::vector<std::uint8_t>& bytes, s
   return std::span(bytes).subspan(std::size_t{lsn} * kSectorBytes, kSectorBytes);
 }
 
-TEST(RoundTrip, EveryPictureDecodesAbove40DbAtTheDefaultQuality) {
+TEST(StreamsRoundTrip, EveryPictureDecodesAbove40DbAtTheDefaultQuality) {
   const auto& s = smallStream();
   Demuxer dm;
   for (std::uint32_t lsn = 0; lsn * kSectorBytes < s.bytes.size(); ++lsn)
@@ -55,7 +55,7 @@ TEST(RoundTrip, EveryPictureDecodesAbove40DbAtTheDefaultQuality) {
   for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], 1) << "picture " << i;
 }
 
-TEST(RoundTrip, EveryPackIs2048BytesAndSumsExactly) {
+TEST(StreamsRoundTrip, EveryPackIs2048BytesAndSumsExactly) {
   // An independent walker (not the reader): each 2048-byte slice starts with an MPEG-2 pack header
   // and its packets' lengths add up to exactly 2048.
   const auto& b = smallStream().bytes;
@@ -76,7 +76,7 @@ TEST(RoundTrip, EveryPackIs2048BytesAndSumsExactly) {
   EXPECT_GT(pes, b.size() / kSectorBytes);
 }
 
-TEST(RoundTrip, TheIndexPointsAtTheSectorWhereEachPictureBegins) {
+TEST(StreamsRoundTrip, TheIndexPointsAtTheSectorWhereEachPictureBegins) {
   const auto& s = smallStream();
   const Descriptor& d = s.descriptor;
   EXPECT_EQ(d.totalSectors * kSectorBytes, s.bytes.size());
@@ -130,7 +130,7 @@ TEST(RoundTrip, TheIndexPointsAtTheSectorWhereEachPictureBegins) {
   }
 }
 
-TEST(RoundTrip, AuthoringIsDeterministic) {
+TEST(StreamsRoundTrip, AuthoringIsDeterministic) {
   // Same frames, same bytes (fresh writer, same settings as the fixture).
   const auto& s = smallStream(3, 1);
   AuthorSettings settings;
@@ -142,7 +142,7 @@ TEST(RoundTrip, AuthoringIsDeterministic) {
   EXPECT_EQ(w.finish(), s.bytes);
 }
 
-TEST(RoundTrip, AFixedQuantiserIsHonouredAndCoarserMeansSmaller) {
+TEST(StreamsRoundTrip, AFixedQuantiserIsHonouredAndCoarserMeansSmaller) {
   const auto& s = smallStream(3, 1);
   std::vector<std::size_t> sizes;
   for (int q : {2, 8, 20}) {
@@ -161,7 +161,7 @@ TEST(RoundTrip, AFixedQuantiserIsHonouredAndCoarserMeansSmaller) {
   EXPECT_GT(sizes[1], sizes[2]);
 }
 
-TEST(RoundTrip, ABitrateTargetRunsWithTheDvdVbv) {
+TEST(StreamsRoundTrip, ABitrateTargetRunsWithTheDvdVbv) {
   const auto& s = smallStream(8, 1);
   AuthorSettings settings;
   settings.encoder.bitrate = 400'000;
@@ -174,7 +174,7 @@ TEST(RoundTrip, ABitrateTargetRunsWithTheDvdVbv) {
   EXPECT_EQ(scan.muxRate, 25200u);  // the DVD mux rate, not the muxer's 880 Mbit/s default
 }
 
-TEST(StreamWriter, RejectsBadFramesWithMessagesThatSayWhy) {
+TEST(StreamsStreamWriter, RejectsBadFramesWithMessagesThatSayWhy) {
   AuthorSettings settings;
   StreamWriter w(settings);
   Rgba8Image odd(33, 32), a(32, 32), b(48, 32), sky(32, 16);

@@ -34,10 +34,10 @@ void expectSample(const char* name, std::uint32_t frames, std::vector<std::strin
   }
 }
 
-TEST(Samples, DayClear) {
+TEST(StreamsSamples, DayClear) {
   expectSample("day_clear.vbim", 48, {"clear"});
 }
-TEST(Samples, DayWeather) {
+TEST(StreamsSamples, DayWeather) {
   expectSample("day_weather.vbim", 24, {"clear", "overcast"});
 }
 

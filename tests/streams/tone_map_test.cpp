@@ -14,7 +14,7 @@ std::array<int, 3> mapOne(float v, const ToneMapping& m) {
   return {out.pixels[0], out.pixels[1], out.pixels[2]};
 }
 
-TEST(ToneMap, DefaultIsClampThenSrgbTo255) {
+TEST(StreamsToneMap, DefaultIsClampThenSrgbTo255) {
   ToneMapping m;
   EXPECT_EQ(mapOne(0.0f, m)[0], 0);
   EXPECT_EQ(mapOne(0.18f, m)[0], 118);  // sRGB(0.18) = 0.4613
@@ -23,7 +23,7 @@ TEST(ToneMap, DefaultIsClampThenSrgbTo255) {
   EXPECT_EQ(mapOne(0.5f, m)[2], 255);   // 2.0 clamps
 }
 
-TEST(ToneMap, ExposureCurveTransferAndWhiteAreApplied) {
+TEST(StreamsToneMap, ExposureCurveTransferAndWhiteAreApplied) {
   ToneMapping m;
   m.transfer = ToneMapping::Transfer::Linear;
   m.white = 128;  // the GS's 1.0
@@ -42,7 +42,7 @@ TEST(ToneMap, ExposureCurveTransferAndWhiteAreApplied) {
   EXPECT_EQ(parseCurve("filmic"), ToneMapping::Curve::Filmic);
 }
 
-TEST(SyntheticDay, IsDeterministicDarkAtNightBrightAtNoonAndWeatherDiffers) {
+TEST(StreamsSyntheticDay, IsDeterministicDarkAtNightBrightAtNoonAndWeatherDiffers) {
   SyntheticDay d;
   d.width = d.height = 32;
   d.skyWidth = 32;
