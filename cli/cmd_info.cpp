@@ -1,11 +1,172 @@
+// vbim info: what a VBIM stream holds, read sector by sector with the model's reader.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
 #include "cli/command.hpp"
+#include "streams/format.hpp"
+#include "streams/stream_stats.hpp"
 
 namespace vbim::cli {
 
+namespace {
+
+using namespace vbim::streams;
+
+constexpr std::size_t kTextBuckets = 24;  // rows of the bitrate table in text output
+
+std::string hexId(std::uint8_t id) {
+  char b[8];
+  std::snprintf(b, sizeof b, "0x%02X", id);
+  return b;
+}
+
+nlohmann::json summaryJson(const Summary& s) {
+  return {{"min", s.min}, {"mean", s.mean}, {"max", s.max}};
+}
+
+nlohmann::json descriptorJson(const Descriptor& d) {
+  nlohmann::json j;
+  j["game_fps"] = {{"num", d.gameFps.num}, {"den", d.gameFps.den}};
+  j["frames_per_variant"] = d.framesPerVariant;
+  j["loop_frame"] = d.loopFrame;
+  j["first_pts"] = d.firstPts;
+  j["pts_per_frame"] = d.ptsPerFrame;
+  j["descriptor_sectors"] = d.descriptorSectors;
+  j["total_sectors"] = d.totalSectors;
+  for (const StreamEntry& s : d.streams)
+    j["streams"].push_back({{"id", hexId(s.id)},
+                            {"role", s.role == StreamRole::Lightmap ? "lightmap" : "sky"},
+                            {"width", s.width},
+                            {"height", s.height}});
+  for (const Variant& v : d.variants)
+    j["variants"].push_back({{"name", v.name}, {"first_frame", v.firstFrame}, {"first_sector", v.firstSector}});
+  for (std::size_t s = 0; s < d.index.size(); ++s) {
+    nlohmann::json sectors = nlohmann::json::array();
+    for (const IndexEntry& e : d.index[s]) sectors.push_back(e.sector);
+    j["index_sectors"][hexId(d.streams[s].id)] = sectors;
+  }
+  return j;
+}
+
+void printText(const std::string& path, const StreamScan& scan, const std::vector<StreamReport>& reports, double fps,
+               bool fpsGuessed) {
+  std::printf("%s: %llu bytes, %u sectors\n", path.c_str(), static_cast<unsigned long long>(scan.fileBytes),
+              scan.sectors);
+  std::printf("packs: %s\n", scan.every2048 ? "every pack is 2048 bytes and well formed"
+                                            : "NOT every pack is a well-formed 2048-byte pack (see errors)");
+  std::printf("mux rate: %u x 50 B/s = %.2f Mbit/s\n", scan.muxRate, scan.muxRate * 400.0 / 1e6);
+  const DemuxStats& st = scan.stats;
+  std::printf("system headers %llu, padding %llu bytes, skipped packets %llu\n",
+              static_cast<unsigned long long>(st.systemHeaders), static_cast<unsigned long long>(st.paddingBytes),
+              static_cast<unsigned long long>(st.skippedPackets));
+  if (scan.descriptor) {
+    const Descriptor& d = *scan.descriptor;
+    std::printf("descriptor: %u sectors; game rate %u/%u frames/s; %u frames per variant; loop to frame %u\n",
+                d.descriptorSectors, d.gameFps.num, d.gameFps.den, d.framesPerVariant, d.loopFrame);
+    std::printf("  container: first PTS %lld, %u ticks (90 kHz) per frame; %u sectors in all\n",
+                static_cast<long long>(d.firstPts), d.ptsPerFrame, d.totalSectors);
+    for (const StreamEntry& s : d.streams)
+      std::printf("  stream %s %s %ux%u\n", hexId(s.id).c_str(), s.role == StreamRole::Lightmap ? "lightmap" : "sky",
+                  s.width, s.height);
+    for (const Variant& v : d.variants)
+      std::printf("  variant '%s': frames %u..%u, from sector %u\n", v.name.c_str(), v.firstFrame,
+                  v.firstFrame + d.framesPerVariant - 1, v.firstSector);
+  } else {
+    std::printf("descriptor: none (not a VBIM stream, or damaged); rates below assume %.3g frames/s\n", fps);
+  }
+  for (const StreamReport& r : reports) {
+    std::printf("\nstream %s: %zu pictures\n", hexId(r.id).c_str(), r.pictures);
+    std::printf("  bytes per picture    min %.0f  mean %.1f  max %.0f\n", r.bytes.min, r.bytes.mean, r.bytes.max);
+    std::printf("  sectors per picture  min %.0f  mean %.2f  max %.0f   (sectors its bytes touch)\n", r.spanSectors.min,
+                r.spanSectors.mean, r.spanSectors.max);
+    std::printf("  sectors per frame    min %.0f  mean %.2f  max %.0f   (read to advance one frame, all streams)\n",
+                r.stepSectors.min, r.stepSectors.mean, r.stepSectors.max);
+    std::printf("  worst run            %u sectors for %u frames from frame %u (%.0f sectors/s at %.3g%s frames/s)\n",
+                r.runSectors, r.runFrames, r.runStart, r.runSectors * fps / r.runFrames, fps,
+                fpsGuessed ? " (guessed)" : "");
+    std::printf("  read rate over time  (%u frames per row, Mbit/s of game time)\n", r.bucketFrames);
+    double peak = 0;
+    for (double b : r.bitsPerSecond) peak = std::max(peak, b);
+    for (std::size_t i = 0; i < r.bitsPerSecond.size(); ++i) {
+      const int bar = peak > 0 ? static_cast<int>(std::lround(40 * r.bitsPerSecond[i] / peak)) : 0;
+      std::printf("    frames %5zu+ %9.3f |%.*s\n", i * r.bucketFrames, r.bitsPerSecond[i] / 1e6, bar,
+                  "########################################");
+    }
+  }
+  std::printf("\nerrors: %zu\n", scan.errors.size());
+  for (std::size_t i = 0; i < scan.errors.size() && i < 20; ++i)
+    std::printf("  %s\n", scan.errors[i].describe().c_str());
+  if (scan.errors.size() > 20) std::printf("  ... %zu more\n", scan.errors.size() - 20);
+}
+
+}  // namespace
+
 void addInfo(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "Inspect a VBIM stream: streams, frames, sectors per frame, bitrate, descriptor");
-  cmd->allow_extras();
-  cmd->callback([] { notYetAvailable("info", 4); });
+  auto* cmd =
+      app.add_subcommand("info", "Inspect a VBIM stream: streams, frames, sectors per frame, bitrate, descriptor");
+  auto path = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("STREAM", *path, "Stream file")->required();
+  cmd->add_flag("--json", *json, "Machine-readable output");
+  cmd->callback([path, json] {
+    StreamScan scan;
+    try {
+      scan = scanStreamFile(*path);
+    } catch (const std::exception& e) {
+      throw Exit(1, std::string("vbim info: ") + e.what());
+    }
+    if (scan.pictures.empty() && scan.stats.badSectors == scan.stats.sectors) {
+      throw Exit(1, "vbim info: " + *path + ": not an MPEG-2 program stream with 2048-byte packs: " +
+                        (scan.errors.empty() ? std::string("empty file") : scan.errors.front().describe()));
+    }
+    const bool guessed = !scan.descriptor;
+    const double fps = guessed ? 25.0 : scan.descriptor->gameFps.value();
+    std::size_t frames = 0;
+    for (const PictureRecord& p : scan.pictures) frames += p.streamId == kLightmapStream;
+    const auto perRow = static_cast<std::uint32_t>((frames + kTextBuckets - 1) / kTextBuckets);
+    const auto reports = summarise(scan, fps, *json ? 1 : std::max<std::uint32_t>(1, perRow));
+    if (*json) {
+      nlohmann::json j;
+      j["file"] = *path;
+      j["bytes"] = scan.fileBytes;
+      j["sectors"] = scan.sectors;
+      j["every_pack_2048"] = scan.every2048;
+      j["mux_rate_bps"] = scan.muxRate * 400.0;
+      j["descriptor"] = scan.descriptor ? descriptorJson(*scan.descriptor) : nlohmann::json(nullptr);
+      for (const StreamReport& r : reports) {
+        nlohmann::json pictures = nlohmann::json::array();
+        for (const PictureRecord& p : scan.pictures)
+          if (p.streamId == r.id)
+            pictures.push_back({{"first_sector", p.firstSector},
+                                {"last_sector", p.lastSector},
+                                {"bytes", p.bytes},
+                                {"frame", p.frame ? nlohmann::json(*p.frame) : nlohmann::json(nullptr)},
+                                {"damaged", p.damaged}});
+        j["streams"].push_back(
+            {{"id", hexId(r.id)},
+             {"pictures", r.pictures},
+             {"bytes_per_picture", summaryJson(r.bytes)},
+             {"sectors_per_picture", summaryJson(r.spanSectors)},
+             {"sectors_per_frame", summaryJson(r.stepSectors)},
+             {"worst_run", {{"frames", r.runFrames}, {"sectors", r.runSectors}, {"start_frame", r.runStart}}},
+             {"bits_per_second_per_frame", r.bitsPerSecond},
+             {"picture_list", pictures}});
+      }
+      for (const StreamError& e : scan.errors)
+        j["errors"].push_back(
+            {{"kind", toString(e.kind)}, {"sector", e.sector}, {"byte_offset", e.byteOffset}, {"message", e.message}});
+      if (!j.contains("errors")) j["errors"] = nlohmann::json::array();
+      std::cout << j.dump(2) << "\n";
+    } else {
+      printText(*path, scan, reports, fps, guessed);
+    }
+    if (!scan.errors.empty())
+      throw Exit(1, "vbim info: " + *path + ": " + std::to_string(scan.errors.size()) +
+                        " defects found (first: " + scan.errors.front().describe() + ")");
+  });
 }
 
 }  // namespace vbim::cli

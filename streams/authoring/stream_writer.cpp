@@ -1,0 +1,233 @@
+#include "streams/authoring/stream_writer.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/ps_muxer.hpp"
+#include "streams/descriptor_packs.hpp"
+#include "streams/format.hpp"
+#include "streams/stream_stats.hpp"
+
+namespace vbim::streams {
+
+struct StreamWriter::Encoders {
+  PsMuxer mux;
+  std::unique_ptr<Mpeg2Encoder> lightmap, sky;
+  int lightmapStream = -1, skyStream = -1;
+};
+
+StreamWriter::StreamWriter(AuthorSettings s) : settings_(s) {
+  const Rational c = s.encoder.containerFps;
+  if (s.gameFps.num == 0 || s.gameFps.den == 0) throw AuthoringError("the game frame rate must be positive");
+  if (c.num == 0 || c.den == 0 || (std::uint64_t{kPtsHz} * c.den) % c.num != 0)
+    throw AuthoringError("container frame rate " + std::to_string(c.num) + "/" + std::to_string(c.den) +
+                         " does not give a whole number of 90 kHz ticks per frame (use 24, 25, 30, 30000/1001, 50, "
+                         "60 or 60000/1001)");
+  if (s.encoder.bitrate == 0 && (s.encoder.qscale < 1 || s.encoder.qscale > 31))
+    throw AuthoringError("quantiser " + std::to_string(s.encoder.qscale) + " is outside 1..31");
+  if (s.encoder.bitrate < 0 || s.encoder.bitrate > kDvdMaxVideoRate)
+    throw AuthoringError("bitrate " + std::to_string(s.encoder.bitrate) +
+                         " bit/s is outside 1..9800000 (the DVD video maximum)");
+  descriptor_.gameFps = s.gameFps;
+  descriptor_.loopFrame = s.loopFrame;
+  descriptor_.ptsPerFrame = static_cast<std::uint32_t>(std::uint64_t{kPtsHz} * c.den / c.num);
+}
+
+StreamWriter::~StreamWriter() = default;
+
+int StreamWriter::maxQscaleUsed() const {
+  if (!enc_) return 0;
+  return std::max(enc_->lightmap->maxQscaleUsed(), enc_->sky ? enc_->sky->maxQscaleUsed() : 0);
+}
+
+void StreamWriter::beginVariant(const std::string& name) {
+  if (finished_) throw AuthoringError("beginVariant after finish");
+  if (!descriptor_.variants.empty()) closeVariant();
+  if (name.empty() || name.size() > Descriptor::kMaxVariantName)
+    throw AuthoringError("variant name '" + name + "' must have 1 to 23 bytes");
+  for (const Variant& v : descriptor_.variants)
+    if (v.name == name) throw AuthoringError("variant '" + name + "' is given twice");
+  if (descriptor_.variants.size() == 255) throw AuthoringError("at most 255 variants");
+  descriptor_.variants.push_back(Variant{name, framesTotal_, 0});
+  framesInVariant_ = 0;
+}
+
+void StreamWriter::closeVariant() {
+  const Variant& v = descriptor_.variants.back();
+  if (framesInVariant_ == 0) throw AuthoringError("variant '" + v.name + "' has no frames");
+  if (descriptor_.variants.size() == 1) {
+    descriptor_.framesPerVariant = framesInVariant_;
+  } else if (framesInVariant_ != descriptor_.framesPerVariant) {
+    throw AuthoringError("variant '" + v.name + "' has " + std::to_string(framesInVariant_) + " frames; variant '" +
+                         descriptor_.variants.front().name + "' has " + std::to_string(descriptor_.framesPerVariant) +
+                         " (branching needs equal lengths)");
+  }
+}
+
+void StreamWriter::checkSize(const Rgba8Image& img, const char* what, int& w, int& h) const {
+  const std::string frame = std::string(what) + " frame " + std::to_string(framesInVariant_) + " of variant '" +
+                            descriptor_.variants.back().name + "'";
+  if (img.width % 16 || img.height % 16 || img.width < 16 || img.height < 16 || img.width > kMaxFrameSide ||
+      img.height > kMaxFrameSide)
+    throw AuthoringError(frame + " is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                         "; width and height must be multiples of 16 from 16 to 4080 (the IPU decodes whole 16x16 "
+                         "macroblocks)");
+  if (img.pixels.size() != static_cast<std::size_t>(img.width) * img.height * 4)
+    throw AuthoringError(frame + " has a pixel buffer of the wrong size");
+  if (w == 0) {
+    w = img.width;
+    h = img.height;
+  } else if (img.width != w || img.height != h) {
+    throw AuthoringError(frame + " is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                         "; the first " + what + " frame is " + std::to_string(w) + "x" + std::to_string(h) +
+                         " (all frames of a stream must have one size)");
+  }
+}
+
+void StreamWriter::open() {
+  enc_ = std::make_unique<Encoders>();
+  enc_->lightmap = std::make_unique<Mpeg2Encoder>(lmW_, lmH_, settings_.encoder);
+  enc_->lightmapStream = enc_->mux.addStream(enc_->lightmap->context());
+  descriptor_.streams.push_back(StreamEntry{kLightmapStream, StreamRole::Lightmap, static_cast<std::uint16_t>(lmW_),
+                                            static_cast<std::uint16_t>(lmH_)});
+  if (settings_.withSky) {
+    enc_->sky = std::make_unique<Mpeg2Encoder>(skyW_, skyH_, settings_.encoder);
+    enc_->skyStream = enc_->mux.addStream(enc_->sky->context());
+    descriptor_.streams.push_back(
+        StreamEntry{kSkyStream, StreamRole::Sky, static_cast<std::uint16_t>(skyW_), static_cast<std::uint16_t>(skyH_)});
+  }
+  enc_->mux.begin();
+}
+
+void StreamWriter::addFrame(const Rgba8Image& lightmap, const Rgba8Image* sky) {
+  if (finished_) throw AuthoringError("addFrame after finish");
+  if (descriptor_.variants.empty()) beginVariant("default");
+  if (settings_.withSky != (sky != nullptr))
+    throw AuthoringError(std::string("frame ") + std::to_string(framesInVariant_) + " of variant '" +
+                         descriptor_.variants.back().name + "' " +
+                         (settings_.withSky ? "has no sky picture (the stream was set up with a sky)"
+                                            : "has a sky picture but the stream was set up without one"));
+  checkSize(lightmap, "lightmap", lmW_, lmH_);
+  if (sky) checkSize(*sky, "sky", skyW_, skyH_);
+  if (!enc_) open();
+  std::vector<AVPacket*> packets;
+  const AVRational tb = enc_->lightmap->context()->time_base;
+  enc_->lightmap->encode(lightmap, framesTotal_, packets);
+  for (AVPacket* p : packets) enc_->mux.write(p, enc_->lightmapStream, tb);
+  packets.clear();
+  if (sky) {
+    enc_->sky->encode(*sky, framesTotal_, packets);
+    for (AVPacket* p : packets) enc_->mux.write(p, enc_->skyStream, tb);
+  }
+  ++framesInVariant_;
+  ++framesTotal_;
+}
+
+std::vector<std::uint8_t> StreamWriter::finish() {
+  if (finished_) throw AuthoringError("finish called twice");
+  if (descriptor_.variants.empty() || !enc_) throw AuthoringError("the stream has no frames");
+  closeVariant();
+  finished_ = true;
+  std::vector<AVPacket*> packets;
+  const AVRational tb = enc_->lightmap->context()->time_base;
+  enc_->lightmap->flush(packets);
+  for (AVPacket* p : packets) enc_->mux.write(p, enc_->lightmapStream, tb);
+  packets.clear();
+  if (enc_->sky) {
+    enc_->sky->flush(packets);
+    for (AVPacket* p : packets) enc_->mux.write(p, enc_->skyStream, tb);
+  }
+  const std::vector<std::uint8_t> muxed = enc_->mux.finish();
+
+  // Read the muxed stream back, as a player would, to find where each picture landed.
+  const StreamScan scan = scanStream(muxed);
+  if (!scan.every2048 || !scan.errors.empty())
+    throw AuthoringError(
+        "internal: the muxer wrote a malformed pack: " +
+        (scan.errors.empty() ? std::string("size not a multiple of 2048") : scan.errors.front().describe()));
+  Descriptor& d = descriptor_;
+  d.index.assign(d.streams.size(), std::vector<IndexEntry>(d.totalFrames()));
+  // Each stream's pictures come out of the muxer in frame order. Where a picture carries a PTS it
+  // must be its frame's time: a cross-check of that order.
+  std::vector<std::uint32_t> next(d.streams.size(), 0);
+  std::optional<std::int64_t> firstPts;
+  for (const PictureRecord& p : scan.pictures) {
+    const auto s = static_cast<std::size_t>(d.streamIndex(p.streamId));
+    const std::uint32_t frame = next[s]++;
+    if (frame == 0 && s == 0) firstPts = p.pts;
+    if (frame >= d.totalFrames() || !firstPts || (p.pts && *p.pts != *firstPts + std::int64_t{frame} * d.ptsPerFrame))
+      throw AuthoringError("internal: stream " + std::to_string(s) + " picture " + std::to_string(frame) + " has PTS " +
+                           (p.pts ? std::to_string(*p.pts) : "none") + ", expected frame " + std::to_string(frame) +
+                           "'s time");
+    d.index[s][frame] =
+        IndexEntry{p.firstSector, static_cast<std::uint16_t>(p.byteOffset % kSectorBytes), p.bytes, p.crc};
+  }
+  for (std::size_t s = 0; s < d.streams.size(); ++s)
+    if (next[s] != d.totalFrames())
+      throw AuthoringError("internal: stream " + std::to_string(s) + " has " + std::to_string(next[s]) +
+                           " pictures, expected " + std::to_string(d.totalFrames()));
+  d.firstPts = *firstPts;
+
+  // The first muxed pack's system header is repeated in the first descriptor pack.
+  const std::size_t sysAt = kPackHeaderBytes + (muxed[13] & 7);
+  std::span<const std::uint8_t> sys;
+  if (muxed[sysAt + 3] == kSystemHeaderStartCode)
+    sys = std::span(muxed).subspan(sysAt, 6 + ((std::size_t{muxed[sysAt + 4]} << 8) | muxed[sysAt + 5]));
+  const std::size_t k =
+      descriptorPackCount(serializedSize(d.streams.size(), d.variants.size(), d.framesPerVariant), sys.size());
+  d.descriptorSectors = static_cast<std::uint32_t>(k);
+  d.totalSectors = static_cast<std::uint32_t>(k + muxed.size() / kSectorBytes);
+  for (auto& table : d.index)
+    for (IndexEntry& e : table) e.sector += static_cast<std::uint32_t>(k);
+  for (Variant& v : d.variants) {
+    v.firstSector = d.index[0][v.firstFrame].sector;
+    for (const auto& table : d.index) v.firstSector = std::min(v.firstSector, table[v.firstFrame].sector);
+  }
+  const std::vector<std::uint8_t> body = serialize(d);
+
+  // Descriptor packs take the SCRs just before the first muxed pack, one pack time apart at the mux
+  // rate, so the SCR still rises through the file (clamped at 0).
+  const std::uint32_t muxRate = scan.muxRate;
+  const std::int64_t packTicks = std::int64_t{kSectorBytes} * 27'000'000 / (std::int64_t{muxRate} * 50);
+  ParsedPack first;
+  parsePack(std::span(muxed).first(kSectorBytes), 0, first);
+  std::vector<std::int64_t> scr(k);
+  for (std::size_t i = 0; i < k; ++i)
+    scr[i] = std::max<std::int64_t>(0, first.scr27MHz - static_cast<std::int64_t>(k - i) * packTicks);
+  std::vector<std::uint8_t> out = makeDescriptorPacks(body, sys, muxRate, scr);
+  out.insert(out.end(), muxed.begin(), muxed.end());
+  return out;
+}
+
+void writeStreamFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw AuthoringError(path.string() + ": is a directory; expected a stream file name");
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec))
+    throw AuthoringError(path.string() + ": directory " + dir.string() + " does not exist");
+  const fs::path tmp = dir / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw AuthoringError(path.string() + ": cannot create " + tmp.string() + ": " + std::strerror(errno));
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) {
+      const std::string why = std::strerror(errno);
+      fs::remove(tmp, ec);
+      throw AuthoringError(path.string() + ": cannot write " + tmp.string() + ": " + why);
+    }
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(tmp, ec);
+    throw AuthoringError(path.string() + ": cannot move the finished stream into place: " + why);
+  }
+}
+
+}  // namespace vbim::streams

@@ -1,0 +1,80 @@
+// Authoring API: frames in, one finished VBIM stream out. Takes frames one at a time from memory, so
+// a content generator (Technique A) can feed it without image files:
+//
+//   StreamWriter w(settings);
+//   w.beginVariant("clear");
+//   for (...) w.addFrame(lightmap, &sky);
+//   w.beginVariant("overcast");  ...
+//   writeStreamFile("day.vbim", w.finish());
+//
+// Each frame is converted to YCbCr 4:2:0, encoded as an intra MPEG-2 picture (stream 0xE0 lightmap,
+// 0xE1 sky) and muxed into 2048-byte packs. Variants follow one another on one timeline. finish()
+// reads the muxed stream back with the Demuxer to build the descriptor index and puts the descriptor
+// packs in front. The whole stream is held in memory until then (about 40 KiB per frame pair at
+// 720x576).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "runtime/image.hpp"
+#include "streams/authoring/mpeg2_encoder.hpp"
+#include "streams/descriptor.hpp"
+
+namespace vbim::streams {
+
+struct AuthorSettings {
+  Rational gameFps{1, 1};       // stream frames per second of game time (descriptor)
+  std::uint32_t loopFrame = 0;  // frame playback returns to after the last one
+  EncoderSettings encoder;      // quantiser or bitrate, container frame rate
+  bool withSky = true;          // every frame has a sky picture (stream 0xE1)
+};
+
+// Largest frame side: MPEG-2 horizontal/vertical_size without extension bits is 12 bits.
+inline constexpr int kMaxFrameSide = 4080;
+
+class StreamWriter {
+ public:
+  explicit StreamWriter(AuthorSettings s);
+  ~StreamWriter();
+  StreamWriter(const StreamWriter&) = delete;
+  StreamWriter& operator=(const StreamWriter&) = delete;
+
+  // Starts a variant (weather). Every variant must have as many frames as the first one.
+  void beginVariant(const std::string& name);
+  // Adds the next frame of the current variant (the first call starts a variant "default" if none
+  // was begun). `sky` must be given exactly when settings.withSky. Throws AuthoringError for a frame
+  // of the wrong size (not a multiple of 16, or unlike the first frame of its stream).
+  void addFrame(const Rgba8Image& lightmap, const Rgba8Image* sky = nullptr);
+  // Completes the stream and returns its bytes (a whole number of 2048-byte packs).
+  std::vector<std::uint8_t> finish();
+
+  std::uint32_t framesInCurrentVariant() const { return framesInVariant_; }
+  const Descriptor& descriptor() const { return descriptor_; }
+  // Largest quantiser the encoders used (above the requested one if the VBV forced re-quantising).
+  int maxQscaleUsed() const;
+
+ private:
+  struct Encoders;
+  void checkSize(const Rgba8Image& img, const char* what, int& w, int& h) const;
+  void open();
+  void closeVariant();
+
+  AuthorSettings settings_;
+  std::unique_ptr<Encoders> enc_;
+  Descriptor descriptor_;
+  std::uint32_t framesInVariant_ = 0;
+  std::uint32_t framesTotal_ = 0;
+  int lmW_ = 0, lmH_ = 0, skyW_ = 0, skyH_ = 0;
+  bool finished_ = false;
+};
+
+// Writes `bytes` to `path` under a temporary name in the same directory and renames it into place,
+// so `path` holds a complete stream or is left as it was. Throws AuthoringError naming the file.
+void writeStreamFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+
+}  // namespace vbim::streams

@@ -1,0 +1,45 @@
+// The committed sample streams are well formed and say what their README says.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "streams/format.hpp"
+#include "streams/stream_stats.hpp"
+
+namespace vbim::streams {
+namespace {
+
+std::filesystem::path samples() {
+  const char* root = std::getenv("VBIM_SOURCE_DIR");
+  return std::filesystem::path(root ? root : ".") / "streams" / "samples";
+}
+
+void expectSample(const char* name, std::uint32_t frames, std::vector<std::string> variants) {
+  const StreamScan scan = scanStreamFile(samples() / name);
+  EXPECT_TRUE(scan.every2048) << name;
+  ASSERT_TRUE(scan.errors.empty()) << name << ": " << scan.errors.front().describe();
+  ASSERT_TRUE(scan.descriptor) << name;
+  const Descriptor& d = *scan.descriptor;
+  EXPECT_EQ(d.framesPerVariant, frames);
+  ASSERT_EQ(d.variants.size(), variants.size());
+  for (std::size_t v = 0; v < variants.size(); ++v) EXPECT_EQ(d.variants[v].name, variants[v]);
+  ASSERT_EQ(d.streams.size(), 2u);
+  EXPECT_EQ(d.streams[0].width, 256);
+  EXPECT_EQ(d.streams[1].width, 128);
+  EXPECT_EQ(d.totalSectors, scan.sectors);
+  EXPECT_EQ(scan.pictures.size(), 2 * d.totalFrames());
+  for (const PictureRecord& p : scan.pictures) {
+    ASSERT_TRUE(p.frame);
+    EXPECT_FALSE(p.damaged);
+  }
+}
+
+TEST(StreamsSamples, DayClear) {
+  expectSample("day_clear.vbim", 48, {"clear"});
+}
+TEST(StreamsSamples, DayWeather) {
+  expectSample("day_weather.vbim", 24, {"clear", "overcast"});
+}
+
+}  // namespace
+}  // namespace vbim::streams
