@@ -52,6 +52,7 @@ void scanRowBlock(const Terrain& t, int d, int r0, int r1, std::uint16_t* out, s
 // per line with the stack levels interleaved, so each step touches neighbouring memory.
 void scanBand(const Terrain& t, int d, int j0, int j1, std::uint16_t* out, std::vector<HullPoint>& pool) {
   const int dc = kGridSteps[d].dc, dr = kGridSteps[d].dr;
+  const int shear = dc * dr;  // a line keeps j = c - shear * r
   const double scale = slopeScale(t, d);
   const int lanes = j1 - j0;
   const int maxLen = dc == 0 ? t.height : std::min(t.width, t.height);
@@ -60,7 +61,7 @@ void scanBand(const Terrain& t, int d, int j0, int j1, std::uint16_t* out, std::
   for (int k = 0; k < t.height; ++k) {
     const int r = dr > 0 ? t.height - 1 - k : k;
     const int x = dr > 0 ? r : -r;
-    const int cBase = j0 + dc * r;  // column of lane 0 in this row
+    const int cBase = j0 + shear * r;  // column of lane 0 in this row
     const int l0 = std::max(0, -cBase), l1 = std::min(lanes, t.width - cBase);
     const std::int32_t* row = t.heights.data() + static_cast<std::size_t>(r) * t.width;
     std::uint16_t* orow = out + static_cast<std::size_t>(r) * t.width;
@@ -75,7 +76,7 @@ void scanBand(const Terrain& t, int d, int j0, int j1, std::uint16_t* out, std::
 
 struct WorkItem {
   int direction;
-  int begin, end;  // rows (E, W) or line indices j = c - dc * r (others)
+  int begin, end;  // rows (E, W) or line indices j = c - dc * dr * r (others)
 };
 
 std::vector<WorkItem> workItems(const Terrain& t, int direction) {
@@ -85,9 +86,10 @@ std::vector<WorkItem> workItems(const Terrain& t, int direction) {
     for (int r = 0; r < t.height; r += kRowBlock) items.push_back({direction, r, std::min(t.height, r + kRowBlock)});
     return items;
   }
-  // j = c - dc * r over the whole grid.
-  const int jMin = s.dc > 0 ? -(t.height - 1) : 0;
-  const int jMax = s.dc < 0 ? t.width - 1 + t.height - 1 : t.width - 1;
+  // j = c - shear * r over the whole grid.
+  const int shear = s.dc * s.dr;
+  const int jMin = shear > 0 ? -(t.height - 1) : 0;
+  const int jMax = shear < 0 ? t.width - 1 + t.height - 1 : t.width - 1;
   for (int j = jMin; j <= jMax; j += kBandLanes) items.push_back({direction, j, std::min(jMax + 1, j + kBandLanes)});
   return items;
 }
