@@ -52,18 +52,20 @@ float horizonTan(const HullPoint* top, const HullPoint& p, double scale) {
   return static_cast<float>(static_cast<double>(top->h - p.h) / static_cast<double>(top->x - p.x) * scale);
 }
 
-void sweepLines(const Terrain& t, const Geometry& g, int j0, int j1, float* out) {
+void sweepLines(const Terrain& t, const Geometry& g, const std::vector<int>& offsets, int j0, int j1, float* out) {
   thread_local std::vector<HullPoint> stack;
   stack.resize(static_cast<std::size_t>(g.uSize));
   const bool forward = g.du > 0;  // positions grow with u: the far end is the last u
+  const std::ptrdiff_t su = g.majorIsCol ? 1 : t.width, sv = g.majorIsCol ? t.width : 1;
+  const std::int32_t* heights = t.heights.data();
   for (int j = j0; j < j1; ++j) {
     int depth = 0;
     for (int k = 0; k < g.uSize; ++k) {
       const int u = forward ? g.uSize - 1 - k : k;
-      const int v = j + g.offset(u);
+      const int v = j + offsets[static_cast<std::size_t>(u)];
       if (v < 0 || v >= g.vSize) continue;
-      const std::size_t i = g.index(u, v, t.width);
-      const HullPoint p{u * g.du + v * g.dv, t.heights[i]};
+      const std::ptrdiff_t i = u * su + v * sv;
+      const HullPoint p{u * g.du + v * g.dv, heights[i]};
       HullPoint hp;
       out[i] = horizonTan(hullPush(stack.data(), depth, 1, p, hp), p, g.tanScale);
     }
@@ -74,11 +76,13 @@ void sweepLines(const Terrain& t, const Geometry& g, int j0, int j1, float* out)
 
 void sweepAzimuth(const Terrain& t, double azimuth, float* out, WorkerPool* pool) {
   const Geometry g = geometry(t, azimuth);
+  std::vector<int> offsets(static_cast<std::size_t>(g.uSize));
+  for (int u = 0; u < g.uSize; ++u) offsets[static_cast<std::size_t>(u)] = g.offset(u);
   const int lines = g.lineEnd() - g.lineBegin();
   const int items = (lines + kLinesPerItem - 1) / kLinesPerItem;
   auto run = [&](std::size_t item) {
     const int j0 = g.lineBegin() + static_cast<int>(item) * kLinesPerItem;
-    sweepLines(t, g, j0, std::min(g.lineEnd(), j0 + kLinesPerItem), out);
+    sweepLines(t, g, offsets, j0, std::min(g.lineEnd(), j0 + kLinesPerItem), out);
   };
   if (pool != nullptr) {
     pool->parallelFor(static_cast<std::size_t>(items), run);

@@ -97,16 +97,32 @@ float CloudLayer::transmittance(double x, double y, double hours, const Dir3& li
   return sample(u, v);
 }
 
-void CloudLayer::transmittanceRow(int row, int width, double cellSize, double hours, const Dir3& light,
+void CloudLayer::transmittanceRow(int row, int x0, int count, double cellSize, double hours, const Dir3& light,
                                   float* out) const {
   if (!p_.enabled) {
-    std::fill(out, out + width, 1.0f);
+    std::fill(out, out + count, 1.0f);
     return;
   }
   double u, v;
-  textureCoords(0.0, row * cellSize, hours, light, u, v);
-  const double step = cellSize / p_.scaleMetres * density_.width;
-  for (int x = 0; x < width; ++x) out[x] = sample(u + x * step, v);
+  textureCoords(x0 * cellSize, row * cellSize, hours, light, u, v);
+  // The texture row pair and its weight are fixed along a terrain row; walk u incrementally.
+  const int w = density_.width, h = density_.height;
+  const double step = cellSize / p_.scaleMetres * w;
+  const double fv = std::floor(v), tv = v - fv;
+  const int y0 = ((static_cast<int>(fv) % h) + h) % h, y1 = y0 + 1 == h ? 0 : y0 + 1;
+  const float* top = density_.pixels.data() + static_cast<std::size_t>(y0) * w;
+  const float* bottom = density_.pixels.data() + static_cast<std::size_t>(y1) * w;
+  const float opacity = static_cast<float>(p_.opacity), wv = static_cast<float>(tv);
+  const double wrapStep = step - std::floor(step / w) * w;  // same position modulo the tile
+  double uu = u;                                             // in [0, w) (textureCoords)
+  for (int x = 0; x < count; ++x) {
+    const int xa = std::min(static_cast<int>(uu), w - 1), xb = xa + 1 == w ? 0 : xa + 1;
+    const float tu = static_cast<float>(uu - xa);
+    const float a = top[xa] + (top[xb] - top[xa]) * tu, b = bottom[xa] + (bottom[xb] - bottom[xa]) * tu;
+    out[x] = 1.0f - opacity * std::clamp(a + (b - a) * wv, 0.0f, 1.0f);
+    uu += wrapStep;
+    if (uu >= w) uu -= w;
+  }
 }
 
 }  // namespace vbim::lighting

@@ -29,8 +29,9 @@ class CloudLayer {
   // Fraction of direct light that reaches ground point (x, y) metres (east, south) at `hours` after
   // the start, for light arriving from unit direction `light` (z up).
   float transmittance(double x, double y, double hours, const Dir3& light) const;
-  // The same for texel row `row` of a grid of `cellSize` metres: out[x] for x = 0..width-1.
-  void transmittanceRow(int row, int width, double cellSize, double hours, const Dir3& light, float* out) const;
+  // The same for texels (x0 + k, row), k = 0..count-1, of a grid of `cellSize` metres.
+  void transmittanceRow(int row, int x0, int count, double cellSize, double hours, const Dir3& light,
+                        float* out) const;
 
   const FloatImage& density() const { return density_; }
 

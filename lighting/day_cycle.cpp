@@ -19,6 +19,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 constexpr int kRowBlock = 8;
+constexpr int kCloudChunk = 256;  // texels of cloud transmittance computed ahead
 
 double smoothstep(double edge0, double edge1, double x) {
   const double t = std::clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
@@ -155,28 +156,48 @@ void relight(const Precomputed& pre, const FrameLighting& light, const float* ke
   const bool cloudy = params.clouds.enabled;
   const double hours = light.hour - params.startHour;
 
+  // Local copies: the output stores below are floats too, so without them the compiler would have
+  // to reload every coefficient after every store.
+  float patchRadiance[kMaxSkyPatches * 3];
+  for (int q = 0; q < patches; ++q)
+    for (int c = 0; c < 3; ++c) patchRadiance[q * 3 + c] = light.patch[q][c];
+  const bool albedo = params.multiplyAlbedo, exact = params.exactDisc;
+  const std::uint8_t* __restrict paletteIndex = pre.palette.index.data();
+
   auto rows = [&](std::size_t block) {
-    std::vector<float> cloudRow(static_cast<std::size_t>(t.width), 1.0f);
+    float cloudRow[kCloudChunk];
     const int y0 = static_cast<int>(block) * kRowBlock, y1 = std::min(t.height, y0 + kRowBlock);
     for (int y = y0; y < y1; ++y) {
-      if (cloudy) clouds.transmittanceRow(y, t.width, t.cellSize, hours, l, cloudRow.data());
       const std::size_t base = static_cast<std::size_t>(y) * t.width;
-      float* o = out.pixels.data() + base * 3;
-      const float* sky = pre.sky.factor.data() + base * patches * 3;
-      for (int x = 0; x < t.width; ++x, o += 3, sky += patches * 3) {
-        const std::size_t i = base + x;
-        const float h = keyHorizonTan[i];
-        float vis = h <= tanLo   ? 1.0f
-                    : h >= tanHi ? 0.0f
-                                 : static_cast<float>(sunOcclusion(std::atan(h), e, diameter, params.exactDisc));
-        vis *= cloudRow[x];
-        const auto& lit = table[pre.palette.index[i]];
-        for (int c = 0; c < 3; ++c) {
-          float v = vis * lit[c];
-          for (int p = 0; p < patches; ++p) v += light.patch[p][c] * sky[p * 3 + c];
-          o[c] = params.multiplyAlbedo ? v * t.albedoAt(i, c) : v;
+      for (int x0 = 0; x0 < t.width; x0 += kCloudChunk) {
+        const int n = std::min(kCloudChunk, t.width - x0);
+        if (cloudy) {
+          clouds.transmittanceRow(y, x0, n, t.cellSize, hours, l, cloudRow);
         }
-        if (shadowMask != nullptr) shadowMask->pixels[i] = vis;
+        float* __restrict o = out.pixels.data() + (base + x0) * 3;
+        const float* __restrict sky = pre.sky.factor.data() + (base + x0) * patches * 3;
+        const float* __restrict horizon = keyHorizonTan + base + x0;
+        float* __restrict mask = shadowMask != nullptr ? shadowMask->pixels.data() + base + x0 : nullptr;
+        for (int x = 0; x < n; ++x, o += 3, sky += patches * 3) {
+          const std::size_t i = base + x0 + x;
+          const float h = horizon[x];
+          float vis = h <= tanLo ? 1.0f
+                      : h >= tanHi ? 0.0f
+                                   : static_cast<float>(sunOcclusion(std::atan(h), e, diameter, exact));
+          if (cloudy) vis *= cloudRow[x];
+          const float* lit = table[paletteIndex[i]].data();
+          float v[3] = {vis * lit[0], vis * lit[1], vis * lit[2]};
+          for (int q = 0; q < patches; ++q) {
+            for (int c = 0; c < 3; ++c) v[c] += patchRadiance[q * 3 + c] * sky[q * 3 + c];
+          }
+          if (albedo) {
+            for (int c = 0; c < 3; ++c) v[c] *= t.albedoAt(i, c);
+          }
+          o[0] = v[0];
+          o[1] = v[1];
+          o[2] = v[2];
+          if (mask != nullptr) mask[x] = vis;
+        }
       }
     }
   };
