@@ -114,7 +114,7 @@ void CloudLayer::transmittanceRow(int row, int x0, int count, double cellSize, d
   const float* bottom = density_.pixels.data() + static_cast<std::size_t>(y1) * w;
   const float opacity = static_cast<float>(p_.opacity), wv = static_cast<float>(tv);
   const double wrapStep = step - std::floor(step / w) * w;  // same position modulo the tile
-  double uu = u;                                             // in [0, w) (textureCoords)
+  double uu = u;                                            // in [0, w) (textureCoords)
   for (int x = 0; x < count; ++x) {
     const int xa = std::min(static_cast<int>(uu), w - 1), xb = xa + 1 == w ? 0 : xa + 1;
     const float tu = static_cast<float>(uu - xa);

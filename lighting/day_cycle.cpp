@@ -181,7 +181,7 @@ void relight(const Precomputed& pre, const FrameLighting& light, const float* ke
         for (int x = 0; x < n; ++x, o += 3, sky += patches * 3) {
           const std::size_t i = base + x0 + x;
           const float h = horizon[x];
-          float vis = h <= tanLo ? 1.0f
+          float vis = h <= tanLo   ? 1.0f
                       : h >= tanHi ? 0.0f
                                    : static_cast<float>(sunOcclusion(std::atan(h), e, diameter, exact));
           if (cloudy) vis *= cloudRow[x];
