@@ -19,7 +19,9 @@ const Terrain& terrain(int size) {
   static std::map<int, Terrain> cache;
   auto it = cache.find(size);
   if (it == cache.end()) {
-    it = cache.emplace(size, proceduralTerrain({.size = size, .cellSize = 10.0 * 512 / size, .reliefMetres = 900, .seed = 1}))
+    it = cache
+             .emplace(size,
+                      proceduralTerrain({.size = size, .cellSize = 10.0 * 512 / size, .reliefMetres = 900, .seed = 1}))
              .first;
   }
   return it->second;
