@@ -1,0 +1,97 @@
+// Item 5: the sky-visibility integral (notes/lighting-math.md 1.1-1.4).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "lighting/fixed_angle.hpp"
+#include "lighting/horizon_scan.hpp"
+#include "lighting/sky_factor.hpp"
+#include "tests/lighting/test_terrains.hpp"
+
+namespace vbim::lighting {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+const Vec3 kUp{0, 0, 1};
+
+TEST(SkyFactor, FlatOpenTexelHasKOne) {
+  const std::uint16_t open[8] = {};
+  EXPECT_NEAR(skyViewFactor(open, kUp), 1.0, 1e-12);
+  for (int patches = 1; patches <= 8; ++patches) {
+    double per[8];
+    EXPECT_NEAR(skyViewFactor(open, kUp, patches, per), 1.0, 1e-12);
+    double sum = 0;
+    for (int p = 0; p < patches; ++p) sum += per[p];
+    EXPECT_NEAR(sum, 1.0, 1e-12) << patches;
+  }
+  // And through the whole pipeline on flat terrain.
+  const Terrain t = testing::flatTerrain(9, 9);
+  const SkyFactors s = computeSkyFactors(t, computeHorizons(t), terrainNormals(t), 1);
+  for (float k : s.k) EXPECT_NEAR(k, 1.0f, 1e-6f);
+}
+
+TEST(SkyFactor, UniformHorizonGivesCosSquared) {
+  for (double g : {10.0, 30.0, 45.0, 60.0, 80.0}) {
+    const std::uint16_t c = codeFromAngle(g * kDeg);
+    const std::uint16_t codes[8] = {c, c, c, c, c, c, c, c};
+    const double gamma = angleFromCode(c);
+    EXPECT_NEAR(skyViewFactor(codes, kUp), std::cos(gamma) * std::cos(gamma), 1e-12) << g;
+  }
+}
+
+TEST(SkyFactor, WallToTheNorthDarkensANormalTiltedTowardsIt) {
+  // Flat ground with a 200 m wall along the northern edge (rows 0..2); the texel is 6 rows south.
+  const int w = 31, h = 31;
+  std::vector<std::uint32_t> counts(static_cast<std::size_t>(w) * h, 0);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < w; ++x) counts[static_cast<std::size_t>(y) * w + x] = 200;
+  const Terrain t = terrainFromCounts(w, h, counts, 10.0, 1.0, "wall");
+  const HorizonMaps m = computeHorizons(t);
+  const std::size_t i = static_cast<std::size_t>(8) * w + 15;
+  std::uint16_t codes[8];
+  for (int d = 0; d < 8; ++d) codes[d] = m.code[d][i];
+  EXPECT_GT(codes[6], codeFromAngle(60 * kDeg));  // north (-row) sees the wall high up
+  EXPECT_EQ(codes[2], 0);                         // south is open
+  const float s = static_cast<float>(std::sin(20 * kDeg)), c = static_cast<float>(std::cos(20 * kDeg));
+  const Vec3 towards{0, -s, c}, away{0, s, c};  // north is -row
+  const double kTowards = skyViewFactor(codes, towards), kAway = skyViewFactor(codes, away);
+  EXPECT_LT(kTowards, kAway);
+  EXPECT_LT(skyViewFactor(codes, kUp), 1.0);
+  // Without the wall both tilts see the same open sky: the difference is the wall's doing.
+  const std::uint16_t open[8] = {};
+  EXPECT_NEAR(skyViewFactor(open, towards), skyViewFactor(open, away), 1e-12);
+}
+
+TEST(SkyFactor, OpenSlopeGivesTheTextbookValue) {
+  // An open 30-degree slope with the sky above the horizontal only: (1 + cos s) / 2 (notes 1.3).
+  const Terrain t = testing::slopeTerrain(41, 41, std::tan(30 * kDeg));
+  const std::vector<Vec3> normals = terrainNormals(t);
+  const SkyFactors s = computeSkyFactors(t, computeHorizons(t), normals, 1);
+  const std::size_t i = static_cast<std::size_t>(20) * 41 + 20;
+  EXPECT_NEAR(s.k[i], (1 + std::cos(30 * kDeg)) / 2, 0.01);
+}
+
+TEST(SkyFactor, StewartLangerInterreflection) {
+  Terrain t = testing::randomTerrain(24, 24, 4, 3000);
+  const std::vector<Vec3> normals = terrainNormals(t);
+  const HorizonMaps m = computeHorizons(t);
+  const SkyFactors black = [&] {
+    Terrain u = t;
+    u.defaultAlbedo = 0.0f;
+    return computeSkyFactors(u, m, normals, 2);
+  }();
+  t.defaultAlbedo = 0.5f;
+  const SkyFactors grey = computeSkyFactors(t, m, normals, 2);
+  for (std::size_t i = 0; i < t.texels(); ++i) {
+    const double k = grey.k[i];
+    const double sumBlack = black.factor[i * 6 + 0] + black.factor[i * 6 + 3];
+    const double sumGrey = grey.factor[i * 6 + 1] + grey.factor[i * 6 + 4];
+    EXPECT_NEAR(sumBlack, k, 1e-5);                       // rho = 0: S = K
+    EXPECT_NEAR(sumGrey, k / (1 - 0.5 * (1 - k)), 1e-5);  // S = K / (1 - rho (1 - K))
+    EXPECT_GE(sumGrey, sumBlack - 1e-7);
+  }
+}
+
+}  // namespace
+}  // namespace vbim::lighting
