@@ -139,6 +139,7 @@ const BlendKernels& kernels() {
 }
 
 void forEachTarget(const std::function<void(const std::string& target)>& fn) {
+  (void)kernels();  // name the normal dispatch choice before any target is forced
   for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
     fn(HWY_DYNAMIC_DISPATCH(TargetNameHere)());

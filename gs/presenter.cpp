@@ -206,6 +206,7 @@ Task<void> Presenter::present(std::int64_t vsync) {
   rec.variant = target_.variant;
   if (rec.behind) ++counters_.behindVsyncs;
 
+  const bool initialFill = target_.image && !filled_;
   if (target_.image) {
     rec.catchUp = target_.late;
     if (rec.catchUp) ++counters_.catchUpVsyncs;
@@ -223,10 +224,11 @@ Task<void> Presenter::present(std::int64_t vsync) {
   }
 
   ++counters_.vsyncs;
-  counters_.maxPop = std::max(counters_.maxPop, rec.pop);
+  if (!initialFill) counters_.maxPop = std::max(counters_.maxPop, rec.pop);
   if (opt_.keepHistory) history_.push_back(rec);
   last_ = rec;
   trace(rec);
+  if (opt_.onVsync) opt_.onVsync(rec, lightmap_);
   presented_ = vsync + 1;
   presentedEvent_.notify();
 }

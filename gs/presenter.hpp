@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,8 +78,8 @@ struct PresenterCounters {
   std::int64_t tilesBlended = 0;  // host work (convergence-aware mode skips the rest)
   std::int64_t tilesSkipped = 0;
   Tick gsBusy = 0;
-  Tick slip = 0;  // play-late: how far the schedule has slipped
-  int maxPop = 0;
+  Tick slip = 0;   // play-late: how far the schedule has slipped
+  int maxPop = 0;  // largest pop, not counting the first frame copied into the empty lightmap
 };
 
 struct PresenterOptions {
@@ -87,6 +88,9 @@ struct PresenterOptions {
   Tracer* tracer = nullptr;
   std::string name = "gs";  // trace track and counter prefix
   bool keepHistory = true;  // keep a VsyncRecord per vsync
+  // Called after every vsync with its record and the lightmap as it now is (a frame sink: the
+  // player writes lightmap frames from here; tests check invariants).
+  std::function<void(const VsyncRecord&, const Rgba8Image&)> onVsync;
 };
 
 class Presenter {
@@ -110,6 +114,7 @@ class Presenter {
   VsyncClock clock() const { return clock_; }
   // Number of vsyncs presented so far, and an event notified after each one.
   std::int64_t presented() const { return presented_; }
+  int variant() const { return variant_; }  // the stream in force after the branches so far
   Event& presentedEvent() { return presentedEvent_; }
 
  private:
