@@ -35,10 +35,13 @@ int BlendSpanT(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT 
   const std::size_t step = hn::Lanes(d8);
 
   const auto low = hn::Set(d16, 0x00FF);
+  // Even channels (R, B) use FIX. Odd channels are G and A: G uses FIX, A uses 128 (a copy: As is
+  // written) or 0 (Ad is kept), so alpha needs no separate select.
   const auto f4 = hn::Set(di16, static_cast<std::int16_t>(spec.fix * 4));
+  const std::uint32_t alphaMul = kKeepAlpha ? 0u : 128u * 4u;
+  const auto f4odd = hn::BitCast(di16, hn::Set(d32, (alphaMul << 16) | (static_cast<std::uint32_t>(spec.fix) * 4u)));
   const auto zero = hn::Zero(di16);
   const auto max8 = hn::Set(di16, 255);
-  const auto alphaBytes = hn::BitCast(d16, hn::Set(d32, 0xFF000000u));
   auto deltaAcc = hn::Zero(d8);
 
   std::size_t i = 0;
@@ -52,7 +55,7 @@ int BlendSpanT(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT 
     const auto so = hn::BitCast(di16, hn::ShiftRight<8>(s));
     const auto dod = hn::BitCast(di16, hn::ShiftRight<8>(d));
     auto te = hn::Add(hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(se, de)), f4), de);
-    auto to = hn::Add(hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4), dod);
+    auto to = hn::Add(hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4odd), dod);
     if constexpr (kWide) {
       if constexpr (kWrap) {
         te = hn::BitCast(di16, hn::And(hn::BitCast(d16, te), low));  // odd lane: << 8 drops the rest
@@ -61,9 +64,7 @@ int BlendSpanT(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT 
         to = hn::Min(hn::Max(to, zero), max8);
       }
     }
-    auto r = hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to)));
-    r = hn::IfVecThenElse(alphaBytes, kKeepAlpha ? d : s, r);
-    const auto r8 = hn::BitCast(d8, r);
+    const auto r8 = hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
     if constexpr (kTrack) {
       deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r8, dd8), hn::SaturatedSub(dd8, r8)));
     }
