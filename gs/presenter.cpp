@@ -218,6 +218,7 @@ Task<void> Presenter::present(std::int64_t vsync) {
     } else if (params_.catchupFix > 0 && (rec.behind || target_.late)) {
       spec = catchupSpec_;
     }
+    if (newTarget && target_.late && !rec.snapped) ++counters_.framesCaughtUp;
     rec.fix = spec.fix;
     co_await drawAll(spec, newTarget, rec);
     filled_ = true;

@@ -65,13 +65,14 @@ struct VsyncRecord {
 
 struct PresenterCounters {
   std::int64_t vsyncs = 0;
-  std::int64_t framesShown = 0;    // distinct frames that became the target
-  std::int64_t framesLate = 0;     // of those, ready after they were due
-  std::int64_t framesDropped = 0;  // frames skipped over, never the target
-  std::int64_t catchUpVsyncs = 0;  // vsyncs blending toward a late frame (catch-up frames)
-  std::int64_t behindVsyncs = 0;   // vsyncs at which the newest due frame was not ready
-  std::int64_t missedVsyncs = 0;   // vsyncs lost because the GS work of the previous one overran
-  std::int64_t snaps = 0;          // frames copied in instead of blended
+  std::int64_t framesShown = 0;     // distinct frames that became the target
+  std::int64_t framesLate = 0;      // of those, ready after they were due
+  std::int64_t framesCaughtUp = 0;  // late frames blended toward (not copied in): smooth catch-up
+  std::int64_t framesDropped = 0;   // frames skipped over, never the target
+  std::int64_t catchUpVsyncs = 0;   // vsyncs blending toward a late frame (catch-up frames)
+  std::int64_t behindVsyncs = 0;    // vsyncs at which the newest due frame was not ready
+  std::int64_t missedVsyncs = 0;    // vsyncs lost because the GS work of the previous one overran
+  std::int64_t snaps = 0;           // frames copied in instead of blended
   std::int64_t loopWraps = 0;
   std::int64_t branches = 0;
   std::int64_t uploadBytes = 0;

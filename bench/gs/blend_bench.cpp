@@ -10,8 +10,8 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <ctime>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,9 +78,15 @@ void blendBench(benchmark::State& state, const BlendKernels& k, bool delta) {
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * kPixels * 4);
   state.SetLabel(k.name);
 }
-void BM_BlendScalar(benchmark::State& state) { blendBench(state, scalarKernels(), false); }
-void BM_BlendSimd(benchmark::State& state) { blendBench(state, simd::kernels(), false); }
-void BM_BlendSimdWithPop(benchmark::State& state) { blendBench(state, simd::kernels(), true); }
+void BM_BlendScalar(benchmark::State& state) {
+  blendBench(state, scalarKernels(), false);
+}
+void BM_BlendSimd(benchmark::State& state) {
+  blendBench(state, simd::kernels(), false);
+}
+void BM_BlendSimdWithPop(benchmark::State& state) {
+  blendBench(state, simd::kernels(), true);
+}
 BENCHMARK(BM_BlendScalar)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BlendSimd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BlendSimdWithPop)->Unit(benchmark::kMicrosecond);
@@ -149,8 +155,12 @@ void steady(benchmark::State& state, bool aware) {
     benchmark::DoNotOptimize(r.pop);
   }
 }
-void BM_SteadyConvergedAware(benchmark::State& state) { steady(state, true); }
-void BM_SteadyConvergedBlendAll(benchmark::State& state) { steady(state, false); }
+void BM_SteadyConvergedAware(benchmark::State& state) {
+  steady(state, true);
+}
+void BM_SteadyConvergedBlendAll(benchmark::State& state) {
+  steady(state, false);
+}
 BENCHMARK(BM_SteadyConvergedAware)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SteadyConvergedBlendAll)->Unit(benchmark::kMicrosecond);
 

@@ -98,6 +98,7 @@ TEST(CatchUp, BlendThroughReturnsToTheReferenceWithinThePredictedVsyncs) {
 
   const PresenterCounters& k = rig.run.counters();
   EXPECT_GT(k.framesLate, 0);
+  EXPECT_EQ(k.framesCaughtUp, k.framesLate);  // blend-through blends toward every late frame it shows
   EXPECT_GT(k.catchUpVsyncs, 0);
   EXPECT_GT(k.behindVsyncs, 25);  // 500 ms of missing frames is ~30 vsyncs
   EXPECT_GT(k.framesDropped, 0);  // the catch-up burst skips frames nobody blended toward
@@ -133,6 +134,8 @@ TEST(CatchUp, HardSkipShowsThePopBlendThroughAvoids) {
   EXPECT_LT(b[firstSnap].pop, h[firstSnap].pop);
   EXPECT_GT(skip.run.counters().maxPop, smooth.run.counters().maxPop);
   EXPECT_EQ(skip.run.counters().snaps, snaps + 1);
+  EXPECT_EQ(skip.run.counters().framesCaughtUp, 0);  // every late frame was copied in
+  EXPECT_EQ(skip.run.counters().framesLate, snaps);
   // On time the pattern moves 9 levels per frame, so no vsync pops by more than that.
   EXPECT_LE(smooth.ref.counters().maxPop, 9);
   std::printf("max pop: on time %d, blend-through %d, hard skip %d\n", smooth.ref.counters().maxPop,

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "gs/blend_simd.hpp"
+#include "runtime/trace.hpp"
+
+#include <sstream>
 #include "presenter_fixture.hpp"
 
 namespace vbim::gs {
@@ -139,6 +142,24 @@ TEST(Presenter, SimdConvergenceAwareEqualsScalarBlendEverything) {
   EXPECT_EQ(hashesA, hashesB);
   EXPECT_GT(a.counters().tilesSkipped, 0);
   EXPECT_EQ(b.counters().tilesSkipped, 0);
+}
+
+TEST(Presenter, TracesGsBusySpansAndCounters) {
+  GsParams p;
+  Tracer tracer;
+  Scheduler s;
+  ScriptedFrameSource src({stream("clear")}, wave, onTime());
+  PresenterOptions o;
+  o.tracer = &tracer;
+  Presenter pr(s, src, p, o);
+  s.spawn("gs", pr.run(fromMs(500)));
+  s.runUntil(fromMs(500));
+  EXPECT_GT(tracer.spanCount(), 30u);
+  EXPECT_EQ(tracer.busyTime(0, 0, fromMs(500)), pr.counters().gsBusy);
+  std::ostringstream json;
+  tracer.writeChromeJson(json);
+  EXPECT_NE(json.str().find("gs.pop"), std::string::npos);
+  EXPECT_NE(json.str().find("upload"), std::string::npos);
 }
 
 TEST(Presenter, PalPresentsFiftyTimesASecond) {
