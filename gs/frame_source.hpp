@@ -49,6 +49,11 @@ class FrameSource {
   virtual void branch(int variant, std::int64_t fromSeq, Tick now) = 0;
 };
 
+// The frame of the stream that sequence number seq shows (seq keeps counting across loops).
+inline std::int64_t streamFrameOf(const StreamInfo& s, std::int64_t seq) {
+  return seq % s.frameCount;
+}
+
 // Stream frame k of a stream is due at t0 + k * fpsDen / fpsNum, rounded down to a tick.
 inline Tick dueTime(const StreamInfo& s, Tick t0, std::int64_t seq) {
   const __int128 p = static_cast<__int128>(seq) * kBusHz * s.fpsDen;

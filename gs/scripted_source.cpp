@@ -58,9 +58,9 @@ std::optional<ReadyFrame> ScriptedFrameSource::newestReady(std::int64_t maxSeq, 
   const std::int64_t seq = (std::upper_bound(ready_.begin(), end, now) - ready_.begin()) - 1;
   const int variant = variantFor(seq);
   if (!cached_ || cache_.seq != seq || cache_.variant != variant) {
-    const std::int64_t frames = streams_[static_cast<std::size_t>(variant)].frameCount;
+    const StreamInfo& info = streams_[static_cast<std::size_t>(variant)];
     cache_ = ReadyFrame{variant, seq, ready_[static_cast<std::size_t>(seq)],
-                        std::make_shared<const Rgba8Image>(image_(variant, seq % frames))};
+                        std::make_shared<const Rgba8Image>(image_(variant, streamFrameOf(info, seq)))};
     cached_ = true;
     ++framesMade_;
   }
