@@ -4,7 +4,9 @@
 //     ((Cs - Cd) * FIX) >> 7  ==  MulHigh((Cs - Cd) << 7, FIX << 2)
 // since (Cs - Cd) << 7 fits in int16 (|.| <= 32640), FIX << 2 <= 1020, and MulHigh keeps the high
 // 16 bits of the exact 32-bit product, i.e. floor(product / 65536): the hardware's floor.
-// With FIX <= 128 the result lies between Cd and Cs, so COLCLAMP cannot act and is skipped.
+// With FIX <= 128 the result lies between Cd and Cs, so COLCLAMP cannot act and is skipped, and
+// both channels' steps are added to the lane at once. Alpha rides in the odd channel with a
+// multiplier of 128 (As written) or 0 (Ad kept). About 13 vector operations per vector of pixels.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "gs/blend_simd.cpp"
@@ -54,17 +56,24 @@ int BlendSpanT(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT 
     const auto de = hn::BitCast(di16, hn::And(d, low));
     const auto so = hn::BitCast(di16, hn::ShiftRight<8>(s));
     const auto dod = hn::BitCast(di16, hn::ShiftRight<8>(d));
-    auto te = hn::Add(hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(se, de)), f4), de);
-    auto to = hn::Add(hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4odd), dod);
-    if constexpr (kWide) {
+    const auto me = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(se, de)), f4);
+    const auto mo = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4odd);
+    hn::Vec<decltype(d8)> r8;
+    if constexpr (!kWide) {
+      // FIX <= 128: each channel's result stays in 0..255, so the two steps add to the 16-bit lane
+      // without carries: Cd + me + (mo << 8).
+      r8 = hn::BitCast(d8, hn::Add(hn::Add(d, hn::BitCast(d16, me)), hn::ShiftLeft<8>(hn::BitCast(d16, mo))));
+    } else {
+      auto te = hn::Add(me, de);
+      auto to = hn::Add(mo, dod);
       if constexpr (kWrap) {
         te = hn::BitCast(di16, hn::And(hn::BitCast(d16, te), low));  // odd lane: << 8 drops the rest
       } else {
         te = hn::Min(hn::Max(te, zero), max8);
         to = hn::Min(hn::Max(to, zero), max8);
       }
+      r8 = hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
     }
-    const auto r8 = hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
     if constexpr (kTrack) {
       deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r8, dd8), hn::SaturatedSub(dd8, r8)));
     }
