@@ -1,0 +1,57 @@
+#include "gs/blend.hpp"
+
+#include <cstdlib>
+#include <string>
+
+#include "gs/gs_error.hpp"
+
+namespace vbim::gs {
+
+BlendSpec makeBlendSpec(std::int64_t fix, ColClamp colclamp, AlphaWrite alpha) {
+  if (fix < 0 || fix > 255) {
+    throw GsError("blend FIX " + std::to_string(fix) +
+                  " is outside 0..255 (ALPHA.FIX is an 8-bit field; 128 = 1.0, 64 = half way per vsync)");
+  }
+  return BlendSpec{static_cast<std::uint8_t>(fix), colclamp, alpha};
+}
+
+namespace {
+
+template <bool kTrack>
+int blendSpan(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+  const int fix = spec.fix;
+  const ColClamp cc = spec.colclamp;
+  const bool keepAlpha = spec.alpha == AlphaWrite::Keep;
+  int delta = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    std::uint8_t* d = dst + 4 * i;
+    const std::uint8_t* s = src + 4 * i;
+    for (int c = 0; c < 3; ++c) {
+      const int v = blendChannel(s[c], d[c], fix, cc);
+      if constexpr (kTrack) delta = std::max(delta, std::abs(v - d[c]));
+      d[c] = static_cast<std::uint8_t>(v);
+    }
+    if (!keepAlpha) {
+      if constexpr (kTrack) delta = std::max(delta, std::abs(s[3] - d[3]));
+      d[3] = s[3];
+    }
+  }
+  return delta;
+}
+
+}  // namespace
+
+void blendSpanScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+  blendSpan<false>(dst, src, pixels, spec);
+}
+
+int blendSpanDeltaScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+  return blendSpan<true>(dst, src, pixels, spec);
+}
+
+const BlendKernels& scalarKernels() {
+  static const BlendKernels k{"scalar", &blendSpanScalar, &blendSpanDeltaScalar};
+  return k;
+}
+
+}  // namespace vbim::gs

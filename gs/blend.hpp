@@ -1,0 +1,76 @@
+// The GS alpha blend used to fold a decoded video frame into the lightmap in place (T-GS
+// AlphaBlending; ps2-hardware.md 5.2): ALPHA_1 = (A = Cs, B = Cd, C = FIX, D = Cd), so per colour
+// channel
+//     Cv = (((Cs - Cd) * FIX) >> 7) + Cd
+// on 9-bit signed values with an arithmetic shift (floor, as PCSX2's software renderer does [E]),
+// then COLCLAMP: clamp to 0..255, or keep the low 8 bits (wrap). FIX = 0x80 is 1.0 (a copy).
+// The written alpha is As (the texture's alpha passed through MODULATE with vertex alpha 0x80), or
+// the old Ad when FRAME.FBMSK masks the alpha byte.
+//
+// The scalar functions here are the reference: SIMD kernels (gs/blend_simd.hpp) must match them
+// bit for bit, and the tests check that exhaustively.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+namespace vbim::gs {
+
+enum class ColClamp : std::uint8_t { Clamp, Wrap };
+enum class AlphaWrite : std::uint8_t { Source, Keep };
+
+struct BlendSpec {
+  std::uint8_t fix = 0x40;
+  ColClamp colclamp = ColClamp::Clamp;
+  AlphaWrite alpha = AlphaWrite::Source;
+  bool operator==(const BlendSpec&) const = default;
+};
+
+// Checks FIX (the 8-bit ALPHA.FIX field, bits 32-39) and builds a spec; throws GsError otherwise.
+BlendSpec makeBlendSpec(std::int64_t fix, ColClamp colclamp = ColClamp::Clamp, AlphaWrite alpha = AlphaWrite::Source);
+
+// One channel. cs, cd in 0..255, fix in 0..255. C++20 defines >> on negative values as arithmetic.
+constexpr int blendChannel(int cs, int cd, int fix, ColClamp c) {
+  const int v = (((cs - cd) * fix) >> 7) + cd;
+  return c == ColClamp::Clamp ? std::clamp(v, 0, 255) : (v & 0xFF);
+}
+
+// True if blending cd toward cs leaves it unchanged: floor((cs - cd) * fix / 128) == 0, that is
+// 0 <= (cs - cd) * fix < 128. Below the target a texel can stop short (up to ceil(128/fix) - 1
+// levels); above it, every step moves by at least one, so it always reaches cs.
+constexpr bool isFixedPoint(int cs, int cd, int fix) {
+  const int p = (cs - cd) * fix;
+  return p >= 0 && p < 128;
+}
+
+// The largest change one blend step can make to a channel whose distance to the target is
+// |cs - cd| = diff: ceil(diff * fix / 128), capped at 255 (the channel's range).
+constexpr int maxStep(int diff, int fix) {
+  return std::min(255, (diff * fix + 127) / 128);
+}
+
+// The widest band below the target where repeated blending stalls: ceil(128 / fix) - 1 (fix > 0).
+constexpr int stallBand(int fix) {
+  return fix <= 0 ? 255 : std::min(255, (128 + fix - 1) / fix - 1);
+}
+
+// A span of RGBA8 pixels (4 bytes each), blended in place: dst = blend(src, dst).
+using BlendSpanFn = void (*)(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
+// The same, returning the largest per-byte change it made (0: the span was already at its fixed
+// point). This is the pop metric and the convergence test in one pass.
+using BlendSpanDeltaFn = int (*)(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
+
+struct BlendKernels {
+  const char* name;
+  BlendSpanFn blend;
+  BlendSpanDeltaFn blendDelta;
+};
+
+void blendSpanScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
+int blendSpanDeltaScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
+
+// The reference kernels ("scalar").
+const BlendKernels& scalarKernels();
+
+}  // namespace vbim::gs

@@ -1,0 +1,22 @@
+// SIMD blend kernels, chosen at run time by Highway's dynamic dispatch (never -march=native: the
+// build must run anywhere, valgrind included). Lives in its own target, vbim_gs_simd, because the
+// dispatch needs libhwy; the model (vbim_gs) takes any BlendKernels and defaults to the scalar
+// reference. The tests prove every compiled target bit-identical to gs/blend.hpp.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gs/blend.hpp"
+
+namespace vbim::gs::simd {
+
+// Kernels for the best target this CPU supports; name() is the Highway target ("AVX2", "AVX3").
+const BlendKernels& kernels();
+
+// Runs fn once per compiled target the CPU supports, with dispatch forced to that target (tests);
+// restores normal dispatch afterwards. fn receives the target name.
+void forEachTarget(const std::function<void(const std::string& target)>& fn);
+
+}  // namespace vbim::gs::simd

@@ -1,0 +1,31 @@
+// What the GS work of one vsync costs on the simulated clock (1 tick = 1 GS clock = 1 bus clock).
+//   IMAGE transfer over PATH3: (setup qwords * 16 + payload bytes) / GIF bytes per tick.
+//   Textured SPRITE draw with the blend: setup qwords over the GIF, then
+//   pixels / (textured px per clock) * (1 + page-break overhead).
+// Both round up to whole ticks. Sources: gs/params.cpp and docs/timing/gs.md.
+#pragma once
+
+#include <cstdint>
+
+#include "gs/params.hpp"
+#include "runtime/clock.hpp"
+
+namespace vbim::gs {
+
+class GsTiming {
+ public:
+  explicit GsTiming(const GsParams& p) : p_(p) {}
+  Tick imageTransfer(std::int64_t payloadBytes) const {
+    return ceilDiv(p_.uploadSetupQwords * 16 + payloadBytes, p_.gifBytesPerTick);
+  }
+  Tick spriteDraw(std::int64_t width, std::int64_t height) const {
+    const Tick setup = ceilDiv(p_.drawSetupQwords * 16, p_.gifBytesPerTick);
+    return setup + ceilDiv(width * height * (100 + p_.pageBreakOverheadPct), 100 * p_.texturedPixelsPerClock);
+  }
+
+ private:
+  static constexpr std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return (a + b - 1) / b; }
+  GsParams p_;
+};
+
+}  // namespace vbim::gs

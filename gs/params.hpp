@@ -1,0 +1,47 @@
+// Every constant and setting of the GS model, as named parameters under "gs." with units and
+// sources (docs/timing/gs.md lists them; `vbim config --defaults` prints them).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace vbim {
+class ParamTable;
+}
+
+namespace vbim::gs {
+
+struct GsParams {
+  // GIF -> GS transfer and drawing (ps2-hardware.md 5.1, 8).
+  std::int64_t gifBytesPerTick = 8;         // 64-bit GIF bus, one word per bus clock
+  std::int64_t uploadSetupQwords = 6;       // GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR + IMAGE GIFtag
+  std::int64_t drawSetupQwords = 11;        // GIFtag + TEXFLUSH, TEX0, ALPHA, FRAME, PRIM, RGBAQ, 2x(UV, XYZ2)
+  std::int64_t texturedPixelsPerClock = 8;  // textured fill rate
+  std::int64_t pageBreakOverheadPct = 25;   // extra draw time for DRAM page breaks (assumption)
+
+  // VRAM layout besides the lightmap (whose size comes from the stream).
+  std::int64_t frameBuffers = 2;
+  std::int64_t frameWidth = 640;
+  std::int64_t frameHeight = 448;
+  std::string frameFormat = "ct32";
+  std::string depthFormat = "z16";  // or "none"
+  std::int64_t skyWidth = 256;      // 0: no sky texture
+  std::int64_t skyHeight = 256;
+  std::string uploadMode = "full";  // or "strips"
+  std::int64_t stripRows = 32;      // rows per strip in strip mode (a multiple of 32: one page high)
+
+  // Presentation.
+  std::string video = "ntsc";             // ntsc, ntsc-p, pal, pal-p
+  std::int64_t fix = 64;                  // ALPHA.FIX per vsync
+  std::string colclamp = "clamp";         // or "wrap"
+  std::string alphaWrite = "source";      // or "keep" (FBMSK protects the lightmap's alpha)
+  std::string catchup = "blend-through";  // or "hard-skip", "play-late"
+  std::int64_t catchupFix = 0;            // FIX while behind schedule; 0 = same as fix
+  bool loop = true;                       // wrap from the last frame to the first
+  bool convergenceAware = true;           // host-side shortcut; bit-identical, no simulated-time effect
+};
+
+// Registers every field under "gs." with its unit, range and source.
+void describeParams(ParamTable& table, GsParams& params);
+
+}  // namespace vbim::gs

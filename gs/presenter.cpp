@@ -1,0 +1,280 @@
+#include "gs/presenter.hpp"
+
+#include <algorithm>
+
+#include "gs/gs_error.hpp"
+
+namespace vbim::gs {
+
+CatchUp catchUpByName(const std::string& name) {
+  if (name == "blend-through") return CatchUp::BlendThrough;
+  if (name == "hard-skip") return CatchUp::HardSkip;
+  if (name == "play-late") return CatchUp::PlayLate;
+  throw GsError("unknown catch-up policy '" + name + "' (expected blend-through, hard-skip or play-late)");
+}
+
+VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight) {
+  if (lightmapWidth <= 0 || lightmapHeight <= 0 || lightmapWidth > 1024 || lightmapHeight > 1024) {
+    throw GsError("lightmap " + std::to_string(lightmapWidth) + "x" + std::to_string(lightmapHeight) +
+                  " cannot be a GS texture: each side must be 1..1024 (TEX0.TW/TH are log2 sizes up to 10)");
+  }
+  std::vector<VramRequest> req;
+  const Psm fb = psmByName(p.frameFormat);
+  for (std::int64_t i = 0; i < p.frameBuffers; ++i) {
+    req.push_back({"frame" + std::to_string(i), fb, static_cast<int>(p.frameWidth), static_cast<int>(p.frameHeight)});
+  }
+  if (p.depthFormat != "none") {
+    req.push_back({"depth", psmByName(p.depthFormat), static_cast<int>(p.frameWidth), static_cast<int>(p.frameHeight)});
+  }
+  req.push_back({"lightmap", Psm::Ct32, lightmapWidth, lightmapHeight});
+  const bool strips = p.uploadMode == "strips";
+  const int stagingRows = strips ? std::min<int>(static_cast<int>(p.stripRows), lightmapHeight) : lightmapHeight;
+  req.push_back({"staging", Psm::Ct32, lightmapWidth, stagingRows});
+  if (p.skyWidth > 0 && p.skyHeight > 0) {
+    req.push_back({"sky", Psm::Ct32, static_cast<int>(p.skyWidth), static_cast<int>(p.skyHeight)});
+  }
+  return VramLayout::place(req);
+}
+
+namespace {
+
+VsyncClock clockFor(const GsParams& p) {
+  VsyncRate rate{};
+  if (!vsyncRateByName(p.video, rate)) {
+    throw GsError("unknown video mode '" + p.video + "' (expected ntsc, ntsc-p, pal or pal-p)");
+  }
+  return VsyncClock(rate);
+}
+
+ColClamp colclampFor(const GsParams& p) {
+  if (p.colclamp == "clamp") return ColClamp::Clamp;
+  if (p.colclamp == "wrap") return ColClamp::Wrap;
+  throw GsError("unknown COLCLAMP mode '" + p.colclamp + "' (expected clamp or wrap)");
+}
+
+AlphaWrite alphaFor(const GsParams& p) {
+  if (p.alphaWrite == "source") return AlphaWrite::Source;
+  if (p.alphaWrite == "keep") return AlphaWrite::Keep;
+  throw GsError("unknown alpha write '" + p.alphaWrite + "' (expected source or keep)");
+}
+
+const StreamInfo& checkedStreams(const FrameSource& source) {
+  const auto& s = source.streams();
+  if (s.empty()) throw GsError("the frame source has no streams");
+  for (std::size_t i = 1; i < s.size(); ++i) {
+    if (s[i].width != s[0].width || s[i].height != s[0].height || s[i].frameCount != s[0].frameCount ||
+        s[i].fpsNum * s[0].fpsDen != s[0].fpsNum * s[i].fpsDen) {
+      throw GsError("stream " + std::to_string(i) + " '" + s[i].name + "' (" + std::to_string(s[i].width) + "x" +
+                    std::to_string(s[i].height) + ", " + std::to_string(s[i].frameCount) +
+                    " frames) does not match stream 0 '" + s[0].name + "' (" + std::to_string(s[0].width) + "x" +
+                    std::to_string(s[0].height) + ", " + std::to_string(s[0].frameCount) +
+                    " frames): variants must share size, length and rate to branch at the same time of day");
+    }
+  }
+  if (s[0].frameCount <= 0 || s[0].fpsNum <= 0 || s[0].fpsDen <= 0) {
+    throw GsError("stream 0 '" + s[0].name + "' needs a positive frame count and frame rate");
+  }
+  return s[0];
+}
+
+bool checkedStrips(const GsParams& p) {
+  if (p.uploadMode != "full" && p.uploadMode != "strips") {
+    throw GsError("unknown upload mode '" + p.uploadMode + "' (expected full or strips)");
+  }
+  if (p.stripRows <= 0 || p.stripRows % kTileHeight != 0) {
+    throw GsError("strip rows " + std::to_string(p.stripRows) +
+                  " must be a positive multiple of 32 (one PSMCT32 page)");
+  }
+  return p.uploadMode == "strips";
+}
+
+}  // namespace
+
+Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& params, PresenterOptions options)
+    : sched_(sched),
+      source_(source),
+      params_(params),
+      opt_(std::move(options)),
+      stream_(checkedStreams(source)),
+      timing_(params),
+      clock_(clockFor(params)),
+      spec_(makeBlendSpec(params.fix, colclampFor(params), alphaFor(params))),
+      catchupSpec_(makeBlendSpec(params.catchupFix == 0 ? params.fix : params.catchupFix, spec_.colclamp, spec_.alpha)),
+      policy_(catchUpByName(params.catchup)),
+      strips_(checkedStrips(params)),
+      vram_(planVram(params, stream_.width, stream_.height)),
+      lightmap_(stream_.width, stream_.height),
+      blender_(stream_.width, stream_.height, opt_.kernels != nullptr ? *opt_.kernels : scalarKernels(),
+               params.convergenceAware),
+      presentedEvent_(sched) {
+  if (opt_.tracer != nullptr && opt_.tracer->enabled()) {
+    track_ = opt_.tracer->track(opt_.name);
+    popCounter_ = opt_.tracer->counter(opt_.name + ".pop");
+    targetCounter_ = opt_.tracer->counter(opt_.name + ".target_seq");
+    lateCounter_ = opt_.tracer->counter(opt_.name + ".frames_late");
+    droppedCounter_ = opt_.tracer->counter(opt_.name + ".frames_dropped");
+    catchUpCounter_ = opt_.tracer->counter(opt_.name + ".catchup_vsyncs");
+  }
+}
+
+void Presenter::scheduleBranch(Tick at, int variant) {
+  const auto& s = source_.streams();
+  if (variant < 0 || variant >= static_cast<int>(s.size())) {
+    std::string names;
+    for (std::size_t i = 0; i < s.size(); ++i) names += (i ? ", " : "") + std::to_string(i) + " '" + s[i].name + "'";
+    throw GsError("branch to stream " + std::to_string(variant) + ", which does not exist: the source has " +
+                  std::to_string(s.size()) + " stream(s): " + names);
+  }
+  branches_.push_back(Branch{at, variant});
+  std::stable_sort(branches_.begin(), branches_.end(), [](const Branch& a, const Branch& b) { return a.at < b.at; });
+}
+
+Task<void> Presenter::run(Tick end) {
+  for (std::int64_t n = 0; clock_.time(n) < end;) {
+    co_await sched_.until(clock_.time(n));
+    co_await present(n);
+    // The next vsync not already past: GS work that overruns a vsync period loses vsyncs.
+    std::int64_t next = clock_.countAt(sched_.now());
+    if (clock_.time(next) < sched_.now()) ++next;
+    next = std::max(next, n + 1);
+    counters_.missedVsyncs += next - n - 1;
+    n = next;
+  }
+}
+
+void Presenter::checkFrame(const ReadyFrame& f) const {
+  if (!f.image || f.image->width != lightmap_.width || f.image->height != lightmap_.height ||
+      f.image->pixels.size() != static_cast<std::size_t>(lightmap_.width) * lightmap_.height * 4) {
+    const auto& s = source_.streams();
+    const std::string name = f.variant >= 0 && f.variant < static_cast<int>(s.size()) ? s[f.variant].name : "?";
+    throw GsError("frame seq " + std::to_string(f.seq) + " of stream " + std::to_string(f.variant) + " '" + name +
+                  "' is " +
+                  (f.image ? std::to_string(f.image->width) + "x" + std::to_string(f.image->height) : "empty") +
+                  " but the lightmap is " + std::to_string(lightmap_.width) + "x" + std::to_string(lightmap_.height));
+  }
+}
+
+void Presenter::takeTarget(const ReadyFrame& f, Tick scheduleT0, VsyncRecord& rec) {
+  checkFrame(f);
+  if (target_.seq >= 0) {
+    if (f.seq > target_.seq + 1) counters_.framesDropped += f.seq - target_.seq - 1;
+    if (params_.loop && f.seq / stream_.frameCount > target_.seq / stream_.frameCount) ++counters_.loopWraps;
+  }
+  target_ = Target{f.seq, f.variant, f.readyAt > dueTime(stream_, scheduleT0, f.seq), f.image};
+  ++counters_.framesShown;
+  if (target_.late) ++counters_.framesLate;
+  rec.targetSeq = f.seq;
+}
+
+Task<void> Presenter::present(std::int64_t vsync) {
+  const Tick now = sched_.now();
+  VsyncRecord rec;
+  rec.vsync = vsync;
+  rec.at = now;
+
+  while (!branches_.empty() && branches_.front().at <= now) {
+    const int variant = branches_.front().variant;
+    branches_.erase(branches_.begin());
+    const std::int64_t from = dueSeq(stream_, opt_.t0 + counters_.slip, now) + 1;
+    source_.branch(variant, from, now);
+    variant_ = variant;
+    ++counters_.branches;
+  }
+
+  const Tick scheduleBefore = opt_.t0 + counters_.slip;
+  if (policy_ == CatchUp::PlayLate) {
+    // Never skip: if the next frame is due but arrived late, shift the schedule so it is due now.
+    const std::int64_t next = target_.seq + 1;
+    if (dueTime(stream_, scheduleBefore, next) <= now) {
+      const auto g = source_.newestReady(next, now);
+      if (g && g->seq == next && g->readyAt > dueTime(stream_, scheduleBefore, next)) {
+        counters_.slip = std::max(counters_.slip, now - dueTime(stream_, opt_.t0, next));
+      }
+    }
+  }
+  std::int64_t due = dueSeq(stream_, opt_.t0 + counters_.slip, now);
+  if (!params_.loop) due = std::min(due, stream_.frameCount - 1);
+  rec.dueSeq = due;
+  const auto f = source_.newestReady(due, now);
+  rec.behind = due >= 0 && (!f || f->seq < due);
+  bool newTarget = false;
+  if (f && (f->seq != target_.seq || f->variant != target_.variant)) {
+    takeTarget(*f, scheduleBefore, rec);
+    newTarget = true;
+  }
+  rec.targetSeq = target_.seq;
+  rec.variant = target_.variant;
+  if (rec.behind) ++counters_.behindVsyncs;
+
+  const bool initialFill = target_.image && !filled_;
+  if (target_.image) {
+    rec.catchUp = target_.late;
+    if (rec.catchUp) ++counters_.catchUpVsyncs;
+    BlendSpec spec = spec_;
+    if (!filled_ || (policy_ == CatchUp::HardSkip && newTarget && target_.late)) {
+      spec.fix = 0x80;  // a copy: the first frame, or a hard skip
+      rec.snapped = true;
+      ++counters_.snaps;
+    } else if (params_.catchupFix > 0 && (rec.behind || target_.late)) {
+      spec = catchupSpec_;
+    }
+    if (newTarget && target_.late && !rec.snapped) ++counters_.framesCaughtUp;
+    rec.fix = spec.fix;
+    co_await drawAll(spec, newTarget, rec);
+    filled_ = true;
+  }
+
+  ++counters_.vsyncs;
+  if (!initialFill) counters_.maxPop = std::max(counters_.maxPop, rec.pop);
+  if (opt_.keepHistory) history_.push_back(rec);
+  last_ = rec;
+  trace(rec);
+  if (opt_.onVsync) opt_.onVsync(rec, lightmap_);
+  presented_ = vsync + 1;
+  presentedEvent_.notify();
+}
+
+Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord& rec) {
+  const int w = lightmap_.width;
+  const int h = lightmap_.height;
+  const Tick start = sched_.now();
+  const std::uint64_t id =
+      (static_cast<std::uint64_t>(target_.seq) << 16) ^ static_cast<std::uint64_t>(target_.variant);
+  Tracer* tr = opt_.tracer != nullptr && opt_.tracer->enabled() ? opt_.tracer : nullptr;
+  // Full mode re-uploads only a new frame (the staging texture keeps it); strip mode has room for one
+  // strip, so every vsync streams the whole frame through it again.
+  const int rows = strips_ ? static_cast<int>(params_.stripRows) : h;
+  for (int y0 = 0; y0 < h; y0 += rows) {
+    const int y1 = std::min(h, y0 + rows);
+    if (strips_ || newTarget) {
+      const std::int64_t bytes = static_cast<std::int64_t>(w) * (y1 - y0) * 4;
+      const Tick t = sched_.now();
+      co_await sched_.delay(timing_.imageTransfer(bytes));
+      if (tr != nullptr) tr->span(track_, t, sched_.now(), "upload");
+      counters_.uploadBytes += bytes;
+    }
+    const Tick t = sched_.now();
+    co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));
+    if (tr != nullptr) tr->span(track_, t, sched_.now(), "blend");
+    const TiledBlender::Result r = blender_.blend(lightmap_, *target_.image, spec, id, y0, y1);
+    rec.pop = std::max(rec.pop, r.pop);
+    counters_.tilesBlended += r.tilesBlended;
+    counters_.tilesSkipped += r.tilesSkipped;
+  }
+  rec.gsBusy = sched_.now() - start;
+  counters_.gsBusy += rec.gsBusy;
+}
+
+void Presenter::trace(const VsyncRecord& rec) {
+  Tracer* tr = opt_.tracer;
+  if (tr == nullptr || !tr->enabled()) return;
+  const Tick t = sched_.now();
+  tr->value(popCounter_, t, rec.pop);
+  tr->value(targetCounter_, t, rec.targetSeq);
+  tr->value(lateCounter_, t, counters_.framesLate);
+  tr->value(droppedCounter_, t, counters_.framesDropped);
+  tr->value(catchUpCounter_, t, counters_.catchUpVsyncs);
+  if (rec.snapped) tr->instant(track_, t, "snap");
+}
+
+}  // namespace vbim::gs

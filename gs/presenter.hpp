@@ -1,0 +1,166 @@
+// The vsync presenter: a cooperating process that, at every vsync, blends the lightmap in place
+// toward the newest decoded frame that is due (DESIGN.md "Presentation"). Stream frame k is due at
+// t0 + k / fps. The GS work of a vsync is simulated in order: the IMAGE upload of a new frame over
+// PATH3 into the staging texture, then the textured SPRITE with ALPHA (Cs, Cd, FIX, Cd) into the
+// lightmap; in strip mode each horizontal strip is uploaded and drawn in turn, every vsync, through
+// a staging area one strip high. The lightmap's pixels change when each draw completes.
+//
+// Catch-up when frames are late (CatchUp):
+//   blend-through  target the newest due frame that is ready; while none is new, keep blending
+//                  toward the last one (the seeds: "the frame interpolation process will continue
+//                  unhindered ... smooth 'catch up' frames").
+//   hard-skip      the same targets, but a frame that arrived late is copied in outright (FIX 128),
+//                  skipping the in-between: the pop blend-through avoids.
+//   play-late      never skip: show the next frame in sequence, and slip the schedule by however
+//                  late it was; the lag stays.
+// catchupFix > 0 blends with that FIX instead while behind (a due frame missing, or the target
+// arrived late).
+//
+// Looping: seq k shows stream frame k % frameCount; the blend hides the jump from the last frame to
+// the first. Branching: at a scheduled time the presenter asks the source for another variant from
+// the next due frame on, at the same time of day; it keeps blending toward the old target until
+// the new variant's frame arrives, then blends toward it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gs/blend.hpp"
+#include "gs/frame_source.hpp"
+#include "gs/gs_timing.hpp"
+#include "gs/params.hpp"
+#include "gs/tiled_blender.hpp"
+#include "gs/vram.hpp"
+#include "runtime/event.hpp"
+#include "runtime/scheduler.hpp"
+#include "runtime/trace.hpp"
+#include "runtime/vsync.hpp"
+
+namespace vbim::gs {
+
+enum class CatchUp : std::uint8_t { BlendThrough, HardSkip, PlayLate };
+CatchUp catchUpByName(const std::string& name);  // throws GsError
+
+// The VRAM a game using this presenter would have: frame buffers, Z, the lightmap, the upload
+// staging area (the whole frame, or one strip) and the sky texture. Throws GsError if it does not fit.
+VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight);
+
+// What happened at one vsync.
+struct VsyncRecord {
+  std::int64_t vsync = 0;
+  Tick at = 0;
+  std::int64_t dueSeq = -1;     // newest frame due (on the presenter's own, possibly slipped, schedule)
+  std::int64_t targetSeq = -1;  // frame blended toward (-1: none yet)
+  int variant = 0;
+  int fix = 0;           // FIX used (128 for a copy)
+  int pop = 0;           // largest per-byte change made to the lightmap
+  bool behind = false;   // the newest due frame was not ready
+  bool catchUp = false;  // blended toward a frame that arrived after it was due
+  bool snapped = false;  // copied in (first frame, or hard skip)
+  Tick gsBusy = 0;       // simulated GS time spent at this vsync
+};
+
+struct PresenterCounters {
+  std::int64_t vsyncs = 0;
+  std::int64_t framesShown = 0;     // distinct frames that became the target
+  std::int64_t framesLate = 0;      // of those, ready after they were due
+  std::int64_t framesCaughtUp = 0;  // late frames blended toward (not copied in): smooth catch-up
+  std::int64_t framesDropped = 0;   // frames skipped over, never the target
+  std::int64_t catchUpVsyncs = 0;   // vsyncs blending toward a late frame (catch-up frames)
+  std::int64_t behindVsyncs = 0;    // vsyncs at which the newest due frame was not ready
+  std::int64_t missedVsyncs = 0;    // vsyncs lost because the GS work of the previous one overran
+  std::int64_t snaps = 0;           // frames copied in instead of blended
+  std::int64_t loopWraps = 0;
+  std::int64_t branches = 0;
+  std::int64_t uploadBytes = 0;
+  std::int64_t tilesBlended = 0;  // host work (convergence-aware mode skips the rest)
+  std::int64_t tilesSkipped = 0;
+  Tick gsBusy = 0;
+  Tick slip = 0;   // play-late: how far the schedule has slipped
+  int maxPop = 0;  // largest pop, not counting the first frame copied into the empty lightmap
+};
+
+struct PresenterOptions {
+  Tick t0 = 0;                            // when stream frame 0 is due
+  const BlendKernels* kernels = nullptr;  // null: the scalar reference
+  Tracer* tracer = nullptr;
+  std::string name = "gs";  // trace track and counter prefix
+  bool keepHistory = true;  // keep a VsyncRecord per vsync
+  // Called after every vsync with its record and the lightmap as it now is (a frame sink: the
+  // player writes lightmap frames from here; tests check invariants).
+  std::function<void(const VsyncRecord&, const Rgba8Image&)> onVsync;
+};
+
+class Presenter {
+ public:
+  // Checks the parameters and plans VRAM (throws GsError on FIX outside 0..255, unknown names,
+  // strip rows not a multiple of 32, a layout that does not fit, or streams of different sizes).
+  Presenter(Scheduler& sched, FrameSource& source, const GsParams& params, PresenterOptions options = {});
+
+  // At the first vsync at or after `at`, switch to stream `variant` from the next due frame on.
+  // Throws GsError if the source has no such stream.
+  void scheduleBranch(Tick at, int variant);
+
+  // The process: presents at vsyncs 0, 1, ... while their time is before `end`.
+  Task<void> run(Tick end);
+
+  const Rgba8Image& lightmap() const { return lightmap_; }
+  const VramLayout& vram() const { return vram_; }
+  const PresenterCounters& counters() const { return counters_; }
+  const std::vector<VsyncRecord>& history() const { return history_; }
+  const VsyncRecord& last() const { return last_; }
+  VsyncClock clock() const { return clock_; }
+  // Number of vsyncs presented so far, and an event notified after each one.
+  std::int64_t presented() const { return presented_; }
+  int variant() const { return variant_; }  // the stream in force after the branches so far
+  Event& presentedEvent() { return presentedEvent_; }
+
+ private:
+  struct Target {
+    std::int64_t seq = -1;
+    int variant = 0;
+    bool late = false;
+    std::shared_ptr<const Rgba8Image> image;
+  };
+  struct Branch {
+    Tick at;
+    int variant;
+  };
+
+  Task<void> present(std::int64_t vsync);
+  Task<void> drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord& rec);
+  void takeTarget(const ReadyFrame& f, Tick scheduleT0, VsyncRecord& rec);
+  void checkFrame(const ReadyFrame& f) const;
+  void trace(const VsyncRecord& rec);
+
+  Scheduler& sched_;
+  FrameSource& source_;
+  GsParams params_;
+  PresenterOptions opt_;
+  StreamInfo stream_;
+  GsTiming timing_;
+  VsyncClock clock_;
+  BlendSpec spec_;
+  BlendSpec catchupSpec_;
+  CatchUp policy_;
+  bool strips_;
+  VramLayout vram_;
+  Rgba8Image lightmap_;
+  TiledBlender blender_;
+  Target target_;
+  bool filled_ = false;
+  int variant_ = 0;
+  std::vector<Branch> branches_;
+  PresenterCounters counters_;
+  std::vector<VsyncRecord> history_;
+  VsyncRecord last_;
+  std::int64_t presented_ = 0;
+  Event presentedEvent_;
+  Tracer::TrackId track_ = 0;
+  Tracer::CounterId popCounter_ = 0, targetCounter_ = 0, lateCounter_ = 0, droppedCounter_ = 0, catchUpCounter_ = 0;
+};
+
+}  // namespace vbim::gs

@@ -1,0 +1,63 @@
+#include "gs/tiled_blender.hpp"
+
+#include <algorithm>
+
+#include "gs/gs_error.hpp"
+
+namespace vbim::gs {
+
+TiledBlender::TiledBlender(int width, int height, const BlendKernels& kernels, bool convergenceAware)
+    : width_(width),
+      height_(height),
+      tilesX_((width + kTileWidth - 1) / kTileWidth),
+      tilesY_((height + kTileHeight - 1) / kTileHeight),
+      kernels_(&kernels),
+      aware_(convergenceAware),
+      convergedAt_(static_cast<std::size_t>(tilesX_) * tilesY_, 0) {}
+
+TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec,
+                                         std::uint64_t sourceId, int rowBegin, int rowEnd) {
+  if (dst.width != width_ || dst.height != height_ || !src.sameSize(dst)) {
+    throw GsError("blend of a " + std::to_string(src.width) + "x" + std::to_string(src.height) + " frame into a " +
+                  std::to_string(dst.width) + "x" + std::to_string(dst.height) + " lightmap; expected both " +
+                  std::to_string(width_) + "x" + std::to_string(height_));
+  }
+  if (sourceId != lastSourceId_ || !(spec == lastSpec_)) {
+    ++epoch_;
+    lastSourceId_ = sourceId;
+    lastSpec_ = spec;
+  }
+  Result r;
+  const int ty0 = rowBegin / kTileHeight;
+  const int ty1 = (std::min(rowEnd, height_) + kTileHeight - 1) / kTileHeight;
+  for (int ty = ty0; ty < ty1; ++ty) {
+    const int y0 = ty * kTileHeight;
+    const int y1 = std::min(y0 + kTileHeight, height_);
+    if (!aware_) {
+      // Whole rows at once: the kernels run longest without a call boundary.
+      const std::size_t pixels = static_cast<std::size_t>(width_) * (y1 - y0);
+      r.pop = std::max(r.pop, kernels_->blendDelta(dst.row(y0), src.row(y0), pixels, spec));
+      r.tilesBlended += tilesX_;
+      continue;
+    }
+    for (int tx = 0; tx < tilesX_; ++tx) {
+      std::uint64_t& mark = convergedAt_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      if (mark == epoch_) {
+        ++r.tilesSkipped;
+        continue;
+      }
+      const int x0 = tx * kTileWidth;
+      const std::size_t w = static_cast<std::size_t>(std::min(kTileWidth, width_ - x0));
+      int pop = 0;
+      for (int y = y0; y < y1; ++y) {
+        pop = std::max(pop, kernels_->blendDelta(dst.row(y) + 4 * x0, src.row(y) + 4 * x0, w, spec));
+      }
+      if (pop == 0) mark = epoch_;
+      r.pop = std::max(r.pop, pop);
+      ++r.tilesBlended;
+    }
+  }
+  return r;
+}
+
+}  // namespace vbim::gs

@@ -1,0 +1,53 @@
+// Blends a source frame into the lightmap, tile by tile (64x32 pixels: one PSMCT32 page), with an
+// optional host-side shortcut: a tile whose last blend changed nothing is at the blend's fixed
+// point for that source and spec, so blending it again would change nothing either; it is skipped
+// until the source or the spec changes. The result is bit-identical to blending everything (the
+// tests check it); only host time is saved, never simulated time (the GS still draws every pixel).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "gs/blend.hpp"
+#include "runtime/image.hpp"
+
+namespace vbim::gs {
+
+inline constexpr int kTileWidth = 64;
+inline constexpr int kTileHeight = 32;
+
+class TiledBlender {
+ public:
+  TiledBlender(int width, int height, const BlendKernels& kernels, bool convergenceAware);
+
+  struct Result {
+    int pop = 0;  // largest per-byte change made
+    int tilesBlended = 0;
+    int tilesSkipped = 0;
+  };
+
+  // Blends rows [rowBegin, rowEnd) of `src` into `dst`. rowBegin must be a multiple of 32 (a tile
+  // row); rowEnd a multiple of 32 or the height. `sourceId` must change whenever the content of
+  // `src` changes (e.g. the frame's sequence number and variant).
+  Result blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, std::uint64_t sourceId, int rowBegin,
+               int rowEnd);
+  Result blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, std::uint64_t sourceId) {
+    return blend(dst, src, spec, sourceId, 0, height_);
+  }
+  // Forget every convergence mark (call when the lightmap is written by anything else).
+  void invalidate() { ++epoch_; }
+
+ private:
+  int width_;
+  int height_;
+  int tilesX_;
+  int tilesY_;
+  const BlendKernels* kernels_;
+  bool aware_;
+  std::uint64_t epoch_ = 1;
+  std::uint64_t lastSourceId_ = ~std::uint64_t{0};
+  BlendSpec lastSpec_{};
+  std::vector<std::uint64_t> convergedAt_;  // per tile: the epoch in which it was found converged
+};
+
+}  // namespace vbim::gs

@@ -1,0 +1,92 @@
+// Bad input gives a GsError (or, from inside the running process, the scheduler's error that wraps
+// it) whose message says what was given and what was expected.
+#include <gtest/gtest.h>
+
+#include "gs/gs_error.hpp"
+#include "presenter_fixture.hpp"
+
+namespace vbim::gs {
+namespace {
+
+using namespace test;
+
+template <class Fn>
+std::string errorOf(Fn&& fn) {
+  try {
+    fn();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+ScriptedFrameSource source(std::vector<StreamInfo> s = {stream("clear"), stream("rain")}) {
+  return ScriptedFrameSource(std::move(s), wave, SourceScript{});
+}
+
+TEST(BadInput, FixOutsideTheRegister) {
+  Scheduler s;
+  auto src = source();
+  for (std::int64_t fix : {-1LL, 256LL}) {
+    GsParams p;
+    p.fix = fix;
+    EXPECT_NE(errorOf([&] { Presenter pr(s, src, p); }).find("outside 0..255"), std::string::npos);
+    GsParams q;
+    q.catchupFix = fix;
+    EXPECT_NE(errorOf([&] { Presenter pr(s, src, q); }).find("outside 0..255"), std::string::npos);
+  }
+}
+
+TEST(BadInput, FrameOfTheWrongSize) {
+  Scheduler s;
+  // The stream says 128x64; its frames are 64x64.
+  ScriptedFrameSource src(
+      {stream("clear")}, [](int v, std::int64_t k) { return waveSized(v, k, 64, 64); }, SourceScript{});
+  Presenter pr(s, src, GsParams{});
+  s.spawn("gs", pr.run(fromMs(100)));
+  const std::string msg = errorOf([&] { s.run(); });
+  EXPECT_NE(msg.find("frame seq 0 of stream 0 'clear' is 64x64 but the lightmap is 128x64"), std::string::npos) << msg;
+}
+
+TEST(BadInput, BranchToAStreamThatDoesNotExist) {
+  Scheduler s;
+  auto src = source();
+  Presenter pr(s, src, GsParams{});
+  const std::string msg = errorOf([&] { pr.scheduleBranch(fromMs(10), 2); });
+  EXPECT_NE(msg.find("branch to stream 2, which does not exist"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("0 'clear', 1 'rain'"), std::string::npos) << msg;
+  EXPECT_NE(errorOf([&] { pr.scheduleBranch(fromMs(10), -1); }).find("does not exist"), std::string::npos);
+  EXPECT_NE(errorOf([&] { src.branch(5, 0, 0); }).find("branch to stream 5"), std::string::npos);
+}
+
+TEST(BadInput, VariantsThatCannotBranchAtTheSameTimeOfDay) {
+  Scheduler s;
+  auto src = source({stream("clear"), stream("rain", 300, 64, 64)});
+  const std::string msg = errorOf([&] { Presenter pr(s, src, GsParams{}); });
+  EXPECT_NE(msg.find("stream 1 'rain' (64x64"), std::string::npos) << msg;
+}
+
+TEST(BadInput, SettingsOutsideTheirChoices) {
+  Scheduler s;
+  auto src = source();
+  GsParams a;
+  a.stripRows = 48;
+  a.uploadMode = "strips";
+  EXPECT_NE(errorOf([&] { Presenter pr(s, src, a); }).find("multiple of 32"), std::string::npos);
+  GsParams b;
+  b.catchup = "rewind";
+  EXPECT_NE(errorOf([&] { Presenter pr(s, src, b); }).find("unknown catch-up policy 'rewind'"), std::string::npos);
+  GsParams c;
+  c.video = "secam";
+  EXPECT_NE(errorOf([&] { Presenter pr(s, src, c); }).find("unknown video mode 'secam'"), std::string::npos);
+}
+
+TEST(BadInput, LightmapThatDoesNotFitVram) {
+  Scheduler s;
+  auto src = source({stream("huge", 10, 1024, 1024)});
+  const std::string msg = errorOf([&] { Presenter pr(s, src, GsParams{}); });
+  EXPECT_NE(msg.find("VRAM layout does not fit"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace vbim::gs

@@ -1,0 +1,195 @@
+// The vsync presenter on time: schedule, GS time per vsync (full and strip mode), loop wrap,
+// convergence-aware steady stretches, SIMD vs scalar, PAL.
+#include "gs/presenter.hpp"
+
+#include <gtest/gtest.h>
+
+#include "gs/blend_simd.hpp"
+#include "runtime/trace.hpp"
+
+#include <sstream>
+#include "presenter_fixture.hpp"
+
+namespace vbim::gs {
+namespace {
+
+using namespace test;
+
+SourceScript onTime(Tick lead = fromMs(20)) {
+  SourceScript s;
+  s.lead = lead;
+  s.decodeTime = fromMs(2);
+  return s;
+}
+
+TEST(Presenter, StallFreeRunMatchesTheReferenceExactly) {
+  GsParams p;
+  Rig rig({stream("clear")}, wave, onTime(), p, p);
+  rig.runFor(fromMs(2000));
+  ASSERT_EQ(rig.lag().size(), 120u);  // NTSC vsyncs 0..119 before 2 s
+  for (const LagSample& s : rig.lag()) ASSERT_EQ(s.maxDiff, 0) << "vsync " << s.vsync;
+  const PresenterCounters& c = rig.run.counters();
+  EXPECT_EQ(c.vsyncs, 120);
+  EXPECT_EQ(c.framesShown, 60);  // one stream frame every second vsync
+  EXPECT_EQ(c.framesLate, 0);
+  EXPECT_EQ(c.framesDropped, 0);
+  EXPECT_EQ(c.behindVsyncs, 0);
+  EXPECT_EQ(c.catchUpVsyncs, 0);
+  EXPECT_EQ(c.snaps, 1);  // the first frame is copied in
+  // Frame k is the target from vsync 2k on.
+  for (const VsyncRecord& r : rig.run.history()) ASSERT_EQ(r.targetSeq, r.vsync / 2) << r.vsync;
+}
+
+TEST(Presenter, FullModeUploadsNewFramesOnlyStripModeStreamsEveryVsync) {
+  GsParams full;
+  GsParams strips;
+  strips.uploadMode = "strips";
+  Rig a({stream("clear")}, wave, onTime(), full, full);
+  Rig b({stream("clear")}, wave, onTime(), strips, strips);
+  a.runFor(fromMs(500));
+  b.runFor(fromMs(500));
+  const GsTiming t{GsParams{}};
+  const Tick upload = t.imageTransfer(kW * kH * 4);
+  const Tick draw = t.spriteDraw(kW, kH);
+  const Tick stripCost = 2 * (t.imageTransfer(kW * 32 * 4) + t.spriteDraw(kW, 32));  // 64 rows = 2 strips
+  ASSERT_EQ(a.run.history().size(), b.run.history().size());
+  for (std::size_t n = 0; n < a.run.history().size(); ++n) {
+    const VsyncRecord& ra = a.run.history()[n];
+    const VsyncRecord& rb = b.run.history()[n];
+    EXPECT_EQ(ra.gsBusy, ra.vsync % 2 == 0 ? upload + draw : draw) << n;
+    EXPECT_EQ(rb.gsBusy, stripCost) << n;
+    EXPECT_EQ(ra.pop, rb.pop) << n;
+  }
+  // Same pixels, less VRAM, more bus traffic.
+  EXPECT_EQ(a.run.lightmap().pixels, b.run.lightmap().pixels);
+  EXPECT_LT(b.run.vram().pagesUsed(), a.run.vram().pagesUsed());
+  EXPECT_GT(b.run.counters().uploadBytes, a.run.counters().uploadBytes);
+}
+
+TEST(Presenter, LoopWrapPopNeverExceedsOneBlendStep) {
+  GsParams p;
+  std::vector<StreamInfo> s = {stream("ramp", 12)};
+  Rig rig(s, ramp, onTime(), p, p);
+  rig.runFor(fromMs(1300));  // 12 frames at ~30 fps loop every ~0.4 s
+  const auto& h = rig.run.history();
+  int wraps = 0;
+  for (std::size_t n = 1; n < h.size(); ++n) {
+    const VsyncRecord& r = h[n];
+    const Rgba8Image target = ramp(0, r.targetSeq % 12);
+    const int distance = maxDiff(target, rig.before[n]);
+    ASSERT_LE(r.pop, maxStep(distance, p.fix)) << "vsync " << n;
+    if (r.targetSeq > 0 && r.targetSeq % 12 == 0 && h[n - 1].targetSeq % 12 == 11) {
+      ++wraps;
+      // The stream jumps by 220 levels (230 -> 10); the lightmap moves by one blend step.
+      EXPECT_GE(distance, 200);
+      EXPECT_LE(r.pop, maxStep(220, p.fix));
+      EXPECT_LE(r.pop, maxStep(255, p.fix));
+      EXPECT_GT(r.pop, 0);
+    }
+  }
+  EXPECT_EQ(wraps, 3);
+  EXPECT_EQ(rig.run.counters().loopWraps, 3);
+  // The wraps are the largest pops of the run, and still one blend step.
+  EXPECT_LE(rig.run.counters().maxPop, maxStep(220, p.fix));
+  EXPECT_GT(rig.run.counters().maxPop, 90);
+}
+
+TEST(Presenter, WithoutLoopTheLastFrameHoldsAndSteadyVsyncsCostNoHostWork) {
+  GsParams p;
+  p.loop = false;
+  SourceScript sc = onTime();
+  sc.loop = false;
+  Rig rig({stream("ramp", 12)}, ramp, sc, p, p);
+  rig.runFor(fromMs(1500));
+  const auto& h = rig.run.history();
+  EXPECT_EQ(h.back().targetSeq, 11);
+  EXPECT_EQ(rig.run.counters().loopWraps, 0);
+  // Converged on the last frame: the tail of the run skips every tile, and the texels are 230.
+  const int tiles = (kW / 64) * (kH / 32);
+  EXPECT_GT(rig.run.counters().tilesSkipped, 40 * tiles);
+  // Approached from below, floor stops FIX 64 one level short: 229 (the asymmetric fixed point).
+  EXPECT_GE(rig.run.lightmap().pixels[0], 230 - stallBand(p.fix));
+  EXPECT_LE(rig.run.lightmap().pixels[0], 230);
+  // The GS still draws every vsync: simulated time does not depend on the shortcut.
+  EXPECT_EQ(h.back().gsBusy, GsTiming(p).spriteDraw(kW, kH));
+}
+
+TEST(Presenter, SimdConvergenceAwareEqualsScalarBlendEverything) {
+  GsParams fast;  // convergence-aware by default
+  GsParams plain;
+  plain.convergenceAware = false;
+  SourceScript sc = onTime();
+  sc.stalls = {{fromMs(700), fromMs(400)}};
+  std::vector<std::uint64_t> hashesA, hashesB;
+  auto hasher = [](std::vector<std::uint64_t>& out) {
+    return [&out](const VsyncRecord&, const Rgba8Image& lm) {
+      std::uint64_t h = 1469598103934665603ULL;
+      for (std::uint8_t b : lm.pixels) h = (h ^ b) * 1099511628211ULL;
+      out.push_back(h);
+    };
+  };
+  Scheduler s;
+  ScriptedFrameSource srcA({stream("clear", 30)}, wave, sc), srcB({stream("clear", 30)}, wave, sc);
+  PresenterOptions oa, ob;
+  oa.kernels = &simd::kernels();
+  oa.onVsync = hasher(hashesA);
+  ob.onVsync = hasher(hashesB);
+  Presenter a(s, srcA, fast, oa), b(s, srcB, plain, ob);
+  s.spawn("a", a.run(fromMs(3000)));
+  s.spawn("b", b.run(fromMs(3000)));
+  s.runUntil(fromMs(3000));
+  ASSERT_EQ(hashesA.size(), 180u);
+  EXPECT_EQ(hashesA, hashesB);
+  EXPECT_GT(a.counters().tilesSkipped, 0);
+  EXPECT_EQ(b.counters().tilesSkipped, 0);
+}
+
+TEST(Presenter, TracesGsBusySpansAndCounters) {
+  GsParams p;
+  Tracer tracer;
+  Scheduler s;
+  ScriptedFrameSource src({stream("clear")}, wave, onTime());
+  PresenterOptions o;
+  o.tracer = &tracer;
+  Presenter pr(s, src, p, o);
+  s.spawn("gs", pr.run(fromMs(500)));
+  s.runUntil(fromMs(500));
+  EXPECT_GT(tracer.spanCount(), 30u);
+  EXPECT_EQ(tracer.busyTime(0, 0, fromMs(500)), pr.counters().gsBusy);
+  std::ostringstream json;
+  tracer.writeChromeJson(json);
+  EXPECT_NE(json.str().find("gs.pop"), std::string::npos);
+  EXPECT_NE(json.str().find("upload"), std::string::npos);
+}
+
+TEST(Presenter, PalPresentsFiftyTimesASecond) {
+  GsParams p;
+  p.video = "pal";
+  Rig rig({stream("clear")}, wave, onTime(), p, p);
+  rig.runFor(fromMs(1000));
+  EXPECT_EQ(rig.run.counters().vsyncs, 50);
+  EXPECT_EQ(rig.run.history()[1].at, fromMs(20));
+}
+
+TEST(Presenter, GsWorkLongerThanAVsyncLosesVsyncs) {
+  GsParams p;
+  p.frameBuffers = 0;
+  p.depthFormat = "none";
+  p.skyWidth = 0;
+  p.uploadMode = "strips";
+  p.texturedPixelsPerClock = 1;
+  p.pageBreakOverheadPct = 400;
+  const int w = 1024, h = 512;  // 524,288 px * 5 clocks > one NTSC field (2.46 M ticks)
+  Scheduler s;
+  ScriptedFrameSource src(
+      {stream("big", 10, w, h)}, [](int, std::int64_t k) { return waveSized(0, k, 1024, 512); }, onTime());
+  Presenter pr(s, src, p);
+  s.spawn("gs", pr.run(fromMs(200)));
+  s.runUntil(fromMs(200));
+  EXPECT_GT(pr.counters().missedVsyncs, 0);
+  EXPECT_LT(pr.counters().vsyncs, 12);
+  EXPECT_EQ(pr.counters().vsyncs + pr.counters().missedVsyncs, 12);
+}
+
+}  // namespace
+}  // namespace vbim::gs

@@ -1,0 +1,43 @@
+#include "gs/gs_timing.hpp"
+
+#include <gtest/gtest.h>
+
+#include "gs/params.hpp"
+#include "runtime/params.hpp"
+
+namespace vbim::gs {
+namespace {
+
+TEST(GsTiming, UploadAndDrawFromTheParameters) {
+  const GsParams p;
+  const GsTiming t(p);
+  // IMAGE transfer of a 256x256 PSMCT32 frame: (6 qw * 16 + 262,144 B) / 8 B per tick.
+  EXPECT_EQ(t.imageTransfer(256 * 256 * 4), (6 * 16 + 262144) / 8);
+  // About 222 us at GIF peak (ps2-hardware.md 5.1).
+  EXPECT_NEAR(toMs(t.imageTransfer(256 * 256 * 4)) * 1000.0, 222.0, 1.0);
+  // Sprite: 11 qw of registers, then 65,536 px / 8 per clock * 1.25.
+  EXPECT_EQ(t.spriteDraw(256, 256), 22 + 10240);
+  GsParams q;
+  q.pageBreakOverheadPct = 0;
+  EXPECT_EQ(GsTiming(q).spriteDraw(256, 256), 22 + 8192);  // ~56 us at peak fill
+  EXPECT_EQ(GsTiming(q).spriteDraw(1, 1), 22 + 1);         // rounds up
+}
+
+TEST(GsTiming, ParamsLoadFromTomlAndRejectBadValues) {
+  ParamTable table;
+  GsParams p;
+  describeParams(table, p);
+  table.loadToml("[gs]\nfix = 96\ncatchup = \"hard-skip\"\nupload_mode = \"strips\"\n", "<test>");
+  EXPECT_EQ(p.fix, 96);
+  EXPECT_EQ(p.catchup, "hard-skip");
+  EXPECT_EQ(p.uploadMode, "strips");
+  EXPECT_THROW(table.loadToml("[gs]\nfix = 256\n", "<test>"), ConfigError);
+  EXPECT_THROW(table.loadToml("[gs]\ncatchup = \"rewind\"\n", "<test>"), ConfigError);
+  for (const auto& param : table.params()) {
+    EXPECT_EQ(param.key.rfind("gs.", 0), 0u) << param.key;
+    EXPECT_FALSE(param.source.empty()) << param.key;
+  }
+}
+
+}  // namespace
+}  // namespace vbim::gs
