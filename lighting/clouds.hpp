@@ -30,8 +30,7 @@ class CloudLayer {
   // the start, for light arriving from unit direction `light` (z up).
   float transmittance(double x, double y, double hours, const Dir3& light) const;
   // The same for texels (x0 + k, row), k = 0..count-1, of a grid of `cellSize` metres.
-  void transmittanceRow(int row, int x0, int count, double cellSize, double hours, const Dir3& light,
-                        float* out) const;
+  void transmittanceRow(int row, int x0, int count, double cellSize, double hours, const Dir3& light, float* out) const;
 
   const FloatImage& density() const { return density_; }
 
