@@ -28,6 +28,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The codec at the default quantiser (q = 3): the streams tests measure 40 dB per plane on smooth
+// frames; Technique A's texel-scale detail measured 36-39 dB on Y (tests/author/technique_a_stream_test).
+constexpr double kCodecPsnrDb = 35.0;
+
 struct Outcome {
   int status = -1;
   std::string out;  // stdout and stderr together
@@ -138,7 +142,8 @@ TEST(AuthorCli, TerrainFileToAStreamThatMatchesTheGenerator) {
       runTool("ffprobe -v error -show_entries frame=pict_type,stream_index,width,height -of json " + out.string());
   ASSERT_EQ(probe.status, 0) << probe.out;
   int intra[2] = {0, 0};
-  for (const auto& f : nlohmann::json::parse(probe.out)["frames"]) {
+  const nlohmann::json probed = nlohmann::json::parse(probe.out);
+  for (const auto& f : probed.at("frames")) {
     EXPECT_EQ(f["pict_type"], "I");
     const int s = f["stream_index"].get<int>();
     ASSERT_TRUE(s == 0 || s == 1);
@@ -166,12 +171,17 @@ TEST(AuthorCli, TerrainFileToAStreamThatMatchesTheGenerator) {
   p.skyPatches = 3;
   p.sunDiameterDeg = 3;
   DayCycleGenerator gen(loadTerrain(s.terrain), p);
-  FloatImage lm, sky;
-  gen.renderFrame(2, lm, sky);  // 10 h: the east face lit, the west face in shadow
-  const Rgba8Image wantLm = streamFrame(lm, s.tone), wantSky = streamFrame(sky, s.tone);
+  std::vector<Rgba8Image> wantLm, wantSky;
+  for (int f = 0; f < gen.frameCount(); ++f) {
+    FloatImage lm, sky;
+    gen.renderFrame(f, lm, sky);
+    wantLm.push_back(streamFrame(lm, s.tone));
+    wantSky.push_back(streamFrame(sky, s.tone));
+  }
   std::ifstream in(out, std::ios::binary);
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // The pictures as our reader reassembles them, decoded by libavcodec.
+  // The pictures as our reader reassembles them, decoded by libavcodec: each within the codec's PSNR
+  // of its own frame, and closer to it than to any other frame.
   streams::Mpeg2Decoder dec;
   streams::Demuxer dm;
   for (std::uint32_t lsn = 0; lsn * streams::kSectorBytes < bytes.size(); ++lsn)
@@ -179,15 +189,21 @@ TEST(AuthorCli, TerrainFileToAStreamThatMatchesTheGenerator) {
   dm.finish();
   int compared = 0;
   for (const streams::Picture& pic : dm.pictures()) {
-    if (!pic.frame || *pic.frame != 2) continue;
+    ASSERT_TRUE(pic.frame);
     const bool isSky = pic.streamId == streams::kSkyStream;
-    const Rgba8Image& want = isSky ? wantSky : wantLm;
-    const streams::PlanePsnr psnr = streams::psnrYuv(dec.decodeYuv(pic.data), streams::rgbaToYuv420(want));
-    EXPECT_GE(psnr.min(), 40.0) << (isSky ? "sky" : "lightmap") << ": Y " << psnr.y << " Cb " << psnr.cb << " Cr "
-                                << psnr.cr;
+    const std::vector<Rgba8Image>& want = isSky ? wantSky : wantLm;
+    const Yuv420Image got = dec.decodeYuv(pic.data);
+    const streams::PlanePsnr psnr = streams::psnrYuv(got, streams::rgbaToYuv420(want.at(*pic.frame)));
+    EXPECT_GE(psnr.min(), kCodecPsnrDb) << (isSky ? "sky" : "lightmap") << " frame " << *pic.frame << ": Y " << psnr.y
+                                        << " Cb " << psnr.cb << " Cr " << psnr.cr;
+    for (std::size_t j = 0; j < want.size(); ++j) {
+      if (j == *pic.frame || want[j].pixels == want[*pic.frame].pixels) continue;
+      EXPECT_LT(streams::psnrYuv(got, streams::rgbaToYuv420(want[j])).min(), psnr.min())
+          << (isSky ? "sky" : "lightmap") << " frame " << *pic.frame << " looks more like frame " << j;
+    }
     ++compared;
   }
-  EXPECT_EQ(compared, 2);
+  EXPECT_EQ(compared, 14);
   fs::remove(out);
 }
 
