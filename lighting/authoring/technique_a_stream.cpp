@@ -15,12 +15,15 @@ namespace {
 
 using streams::AuthoringError;
 
-// The overcast preset (see the header): cloud shadows over most of the ground, a hazy atmosphere,
-// half the direct sun. Assumption: an artistic stand-in, not a radiative model of overcast skies.
+// The overcast preset (see the header): cloud shadows over most of the ground, a hazy atmosphere
+// (the top of Preetham's fitted range: higher turbidities brighten the sky instead of dimming it),
+// less direct sun, and everything dimmer through a higher exposure normalisation. Assumption: an
+// artistic stand-in, not a radiative model of overcast skies.
 constexpr double kOvercastCoverage = 0.85;
 constexpr double kOvercastOpacity = 0.8;
-constexpr double kOvercastTurbidity = 8.0;
-constexpr double kOvercastSunFactor = 0.5;
+constexpr double kOvercastTurbidity = 6.0;
+constexpr double kOvercastSunFactor = 0.4;
+constexpr double kOvercastExposureFactor = 1.6;
 
 // A frame side the MPEG-2 encoder and the IPU take: a whole number of 16x16 macroblocks, at most
 // the 12-bit size field without extensions.
@@ -48,6 +51,7 @@ WeatherVariant weatherVariant(const std::string& name, const DayCycleParams& bas
     v.params.clouds.opacity = kOvercastOpacity;
     v.params.turbidity = std::max(base.turbidity, kOvercastTurbidity);
     v.params.sunKlux = base.sunKlux * kOvercastSunFactor;
+    v.params.exposureKlux = base.exposureKlux * kOvercastExposureFactor;
     return v;
   }
   std::string known;

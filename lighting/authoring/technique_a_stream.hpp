@@ -50,9 +50,9 @@ struct WeatherVariant {
 
 // The built-in weathers, derived from `base`:
 //   "clear":    `base` unchanged.
-//   "overcast": moving cloud shadows (coverage 0.85, opacity 0.8), a hazier atmosphere (turbidity 8,
-//               a whiter, brighter-at-the-horizon Preetham sky) and half the direct sun (sun_klux / 2):
-//               dim, soft direct light and relatively more skylight.
+//   "overcast": moving cloud shadows (coverage 0.85, opacity 0.8), a hazier atmosphere (turbidity 6,
+//               the top of Preetham's fitted range), 0.4x the direct sun (sun_klux) and the whole
+//               frame dimmer (exposure_klux x 1.6): dim, soft direct light, relatively more skylight.
 // Throws streams::AuthoringError for another name.
 WeatherVariant weatherVariant(const std::string& name, const DayCycleParams& base);
 // The names weatherVariant accepts.
