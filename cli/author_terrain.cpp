@@ -82,7 +82,8 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   }
   track(cmd->add_option("--terrain", o->terrain.heightfield,
                         "Heightfield (single-channel 16-bit PNG, TIFF, EXR...); sides multiples of 16"));
-  track(cmd->add_flag("--procedural", o->procedural, "Use the built-in procedural terrain (the default)"));
+  track(cmd->add_flag("--procedural", o->procedural,
+                      "Use the built-in procedural terrain (also what any Technique A option without --terrain gets)"));
   track(cmd->add_option("--albedo", o->terrain.albedo, "Diffuse colour map of the heightfield's size"));
   track(cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
                         "Single-channel cloud density texture (implies --clouds)"));
