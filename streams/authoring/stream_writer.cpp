@@ -153,12 +153,20 @@ std::vector<std::uint8_t> StreamWriter::finish() {
   d.index.assign(d.streams.size(), std::vector<IndexEntry>(d.totalFrames()));
   // Each stream's pictures come out of the muxer in frame order. Where a picture carries a PTS it
   // must be its frame's time: a cross-check of that order.
+  // The time origin is the lightmap stream's first picture. It is looked up first: pictures are
+  // listed in completion order, and small sky pictures (a dark night sky) can complete before the
+  // first lightmap picture does.
   std::vector<std::uint32_t> next(d.streams.size(), 0);
   std::optional<std::int64_t> firstPts;
   for (const PictureRecord& p : scan.pictures) {
+    if (d.streamIndex(p.streamId) == 0) {
+      firstPts = p.pts;
+      break;
+    }
+  }
+  for (const PictureRecord& p : scan.pictures) {
     const auto s = static_cast<std::size_t>(d.streamIndex(p.streamId));
     const std::uint32_t frame = next[s]++;
-    if (frame == 0 && s == 0) firstPts = p.pts;
     if (frame >= d.totalFrames() || !firstPts || (p.pts && *p.pts != *firstPts + std::int64_t{frame} * d.ptsPerFrame))
       throw AuthoringError("internal: stream " + std::to_string(s) + " picture " + std::to_string(frame) + " has PTS " +
                            (p.pts ? std::to_string(*p.pts) : "none") + ", expected frame " + std::to_string(frame) +

@@ -35,10 +35,10 @@ void expectSample(const char* name, std::uint32_t frames, std::vector<std::strin
 }
 
 TEST(StreamsSamples, DayClear) {
-  expectSample("day_clear.vbim", 48, {"clear"});
+  expectSample("day_clear.vbim", 24, {"clear"});
 }
 TEST(StreamsSamples, DayWeather) {
-  expectSample("day_weather.vbim", 24, {"clear", "overcast"});
+  expectSample("day_weather.vbim", 12, {"clear", "overcast"});
 }
 
 }  // namespace

@@ -1,0 +1,165 @@
+#include "cli/author_terrain.hpp"
+
+#include <algorithm>
+#include <iostream>
+#include <sstream>
+
+#include "cli/command.hpp"
+#include "runtime/params.hpp"
+#include "streams/authoring/authoring_error.hpp"
+
+extern "C" {
+#include <libavutil/log.h>
+}
+
+namespace vbim::cli {
+
+namespace {
+
+using lighting::DayCycleParams;
+
+// Base settings: the generator's defaults, then --lighting-config, then the options given.
+DayCycleParams baseParams(const TerrainAuthorOptions& o) {
+  DayCycleParams params;
+  if (!o.lightingConfig.empty()) {
+    ParamTable table;
+    lighting::describeParams(table, params);
+    table.loadTomlFile(o.lightingConfig);
+  }
+  for (const auto& [opt, apply] : o.given)
+    if (opt->count() > 0) apply(params);
+  return params;
+}
+
+// --weather clear,overcast,storm=storm.toml: presets, or NAME=FILE with lighting.* keys applied on
+// top of the base settings.
+std::vector<lighting::WeatherVariant> parseWeather(const std::string& list, const DayCycleParams& base) {
+  std::vector<lighting::WeatherVariant> out;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      out.push_back(lighting::weatherVariant(item, base));
+      continue;
+    }
+    if (eq == 0 || eq + 1 == item.size())
+      throw Exit(2, "vbim author: --weather '" + item + "': expected a preset name or NAME=FILE.toml");
+    lighting::WeatherVariant v{item.substr(0, eq), base};
+    ParamTable table;
+    lighting::describeParams(table, v.params);
+    table.loadTomlFile(item.substr(eq + 1));
+    out.push_back(std::move(v));
+  }
+  if (out.empty()) throw Exit(2, "vbim author: --weather names no variant");
+  return out;
+}
+
+}  // namespace
+
+void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o) {
+  using Apply = std::function<void(DayCycleParams&)>;
+  const DayCycleParams& p = o->params;  // defaults shown in --help
+  const std::string group = "Technique A (--terrain FILE or --procedural)";
+  auto track = [&](CLI::Option* opt) {
+    opt->group(group);
+    o->options.push_back(opt);
+    return opt;
+  };
+  // A lighting option is bound to the command line's copy of the field and copied over the
+  // config file's value only when given. `field` names the field in any DayCycleParams.
+  auto param = [&](const std::string& flags, auto field, const std::string& help) {
+    CLI::Option* opt = track(cmd->add_option(flags, field(o->params), help));
+    o->given.push_back({opt, Apply([o, field](DayCycleParams& dst) { field(dst) = field(o->params); })});
+    return opt;
+  };
+  auto flag = [&](const std::string& flags, auto field, const std::string& help) {
+    CLI::Option* opt = track(cmd->add_flag(flags, field(o->params), help));
+    o->given.push_back({opt, Apply([o, field](DayCycleParams& dst) { field(dst) = field(o->params); })});
+  };
+#define VBIM_FIELD(member)          \
+  [](DayCycleParams & q) -> auto& { \
+    return q.member;                \
+  }
+  track(cmd->add_option("--terrain", o->terrain.heightfield,
+                        "Heightfield (single-channel 16-bit PNG, TIFF, EXR...); sides multiples of 16"));
+  track(cmd->add_flag("--procedural", o->procedural,
+                      "Use the built-in procedural terrain (also what any Technique A option without --terrain gets)"));
+  track(cmd->add_option("--albedo", o->terrain.albedo, "Diffuse colour map of the heightfield's size"));
+  track(cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
+                        "Single-channel cloud density texture (implies --clouds)"));
+  track(cmd->add_option("--cell-size", o->terrain.cellSize, "Metres between heightfield samples")->default_val(10.0));
+  track(cmd->add_option("--vertical-scale", o->terrain.verticalScale,
+                        "Metres at full scale for integer heightfields; metres per unit for float ones")
+            ->default_val(1000.0));
+  track(cmd->add_option("--size", o->terrain.procedural.size, "Procedural terrain size in texels (multiple of 16)")
+            ->default_val(512));
+  track(cmd->add_option("--seed", o->terrain.procedural.seed, "Procedural terrain seed")->default_val(1));
+  track(cmd->add_option("--relief", o->terrain.procedural.reliefMetres, "Procedural terrain relief in metres")
+            ->default_val(900.0));
+  param("--latitude", VBIM_FIELD(latitudeDeg), "Latitude in degrees, -90..90")->default_val(p.latitudeDeg);
+  param("--day", VBIM_FIELD(dayOfYear), "Day of the year, 1..366")->default_val(p.dayOfYear);
+  param("--start-hour", VBIM_FIELD(startHour), "Local solar time of the first frame")->default_val(p.startHour);
+  param("--end-hour", VBIM_FIELD(endHour), "Local solar time of the last frame (0 to 24 loops a day)")
+      ->default_val(p.endHour);
+  param("--frame-count", VBIM_FIELD(frames), "Frames per variant")->default_val(p.frames);
+  param("--sun-diameter", VBIM_FIELD(sunDiameterDeg), "Sun's angular diameter in degrees (larger = softer shadows)")
+      ->default_val(p.sunDiameterDeg);
+  flag("--exact-disc", VBIM_FIELD(exactDisc), "Occlude the sun by visible disc area (not the linear ramp)");
+  param("--turbidity", VBIM_FIELD(turbidity), "Atmospheric turbidity (Preetham; 2-6)")->default_val(p.turbidity);
+  param("--sky-patches", VBIM_FIELD(skyPatches), "Sky patches, 1..8")->default_val(p.skyPatches);
+  param("--exposure-klux", VBIM_FIELD(exposureKlux), "Irradiance in klux that maps to 1.0")
+      ->default_val(p.exposureKlux);
+  flag("--multiply-albedo", VBIM_FIELD(multiplyAlbedo), "Multiply the lightmap by the colour map (as the article)");
+  param("--sky-width", VBIM_FIELD(skyWidth), "Sky dome width, multiple of 32 (height = width / 2)")
+      ->default_val(p.skyWidth);
+  flag("--clouds", VBIM_FIELD(clouds.enabled), "Moving procedural cloud shadows");
+  param("--cloud-coverage", VBIM_FIELD(clouds.coverage), "Cloud coverage 0..1")->default_val(p.clouds.coverage);
+  CLI::Option* noMoon = track(cmd->add_flag("--no-moon", o->noMoon, "No moonlight at night"));
+  o->given.push_back({noMoon, Apply([o](DayCycleParams& dst) { dst.moon = !o->noMoon; })});
+  param("--moon-irradiance", VBIM_FIELD(moonIrradiance), "Moonlight, normalised (1.0 = --exposure-klux)")
+      ->default_val(p.moonIrradiance);
+#undef VBIM_FIELD
+  track(cmd->add_option("--lighting-config", o->lightingConfig,
+                        "TOML file of lighting.* keys (command-line options win)"));
+  track(cmd->add_option("--weather", o->weather,
+                        "Variants: presets clear, overcast, or NAME=FILE.toml (lighting.* over the base), "
+                        "comma-separated")
+            ->capture_default_str());
+  track(cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")->default_val(2));
+}
+
+std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o) {
+  for (const CLI::Option* opt : o.options)
+    if (opt->count() > 0) return opt->get_name();
+  return "";
+}
+
+void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, const std::string& out) {
+  if (o.procedural && !o.terrain.heightfield.empty())
+    throw Exit(2, "vbim author: --procedural and --terrain exclude each other");
+  lighting::TechniqueAStreamSettings s;
+  s.terrain = o.terrain;
+  s.stream = streamSettings(enc);
+  s.tone = toneMapping(enc);
+  s.threads = o.threads;
+  try {
+    s.base = baseParams(o);
+    s.variants = parseWeather(o.weather, s.base);
+  } catch (const ConfigError& e) {
+    throw Exit(2, std::string("vbim author: ") + e.what());
+  }
+
+  av_log_set_level(AV_LOG_ERROR);
+  const std::size_t total =
+      s.variants.size() * static_cast<std::size_t>(std::max<std::int64_t>(0, s.variants.front().params.frames));
+  Progress progress(total);
+  const lighting::AuthoredStream stream = lighting::authorTechniqueA(
+      s, out, [&](const lighting::TechniqueAProgress& p) { progress.step(p.variant + " " + std::to_string(p.frame)); });
+  progress.end();
+  const streams::Descriptor& d = stream.descriptor;
+  std::cout << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
+            << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width
+            << "x" << d.streams[0].height << ", sky " << d.streams[1].width << "x" << d.streams[1].height << "\n";
+}
+
+}  // namespace vbim::cli

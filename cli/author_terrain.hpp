@@ -1,0 +1,34 @@
+// `vbim author --terrain FILE | --procedural ...`: Technique A (lighting/) straight to a VBIM stream,
+// frames rendered one at a time in memory (lighting/authoring/technique_a_stream.hpp).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/author_common.hpp"
+#include "lighting/authoring/technique_a_stream.hpp"
+
+namespace vbim::cli {
+
+struct TerrainAuthorOptions {
+  lighting::TerrainSource terrain;
+  bool procedural = false, noMoon = false;
+  std::string lightingConfig, weather = "clear";
+  unsigned threads = 2;
+  lighting::DayCycleParams params;  // values given on the command line
+  // Lighting options: each copies its value over the config file's only when it was given.
+  std::vector<std::pair<CLI::Option*, std::function<void(lighting::DayCycleParams&)>>> given;
+  std::vector<CLI::Option*> options;  // every option of this source, to tell whether it was chosen
+};
+
+void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o);
+// The first Technique A option on the command line ("" if none): selects this source.
+std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o);
+void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, const std::string& out);
+
+}  // namespace vbim::cli

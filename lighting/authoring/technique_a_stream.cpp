@@ -1,0 +1,186 @@
+#include "lighting/authoring/technique_a_stream.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+
+#include "lighting/errors.hpp"
+#include "lighting/image_io.hpp"
+#include "runtime/worker_pool.hpp"
+#include "streams/authoring/authoring_error.hpp"
+
+namespace vbim::lighting {
+
+namespace {
+
+using streams::AuthoringError;
+
+// The overcast preset (see the header): cloud shadows over most of the ground, a hazy atmosphere
+// (the top of Preetham's fitted range: higher turbidities brighten the sky instead of dimming it),
+// less direct sun, and everything dimmer through a higher exposure normalisation. Assumption: an
+// artistic stand-in, not a radiative model of overcast skies.
+constexpr double kOvercastCoverage = 0.85;
+constexpr double kOvercastOpacity = 0.8;
+constexpr double kOvercastTurbidity = 6.0;
+constexpr double kOvercastSunFactor = 0.4;
+constexpr double kOvercastExposureFactor = 1.6;
+
+// A frame side the MPEG-2 encoder and the IPU take: a whole number of 16x16 macroblocks, at most
+// the 12-bit size field without extensions.
+void checkSide(int side, const std::string& what) {
+  if (side <= 0 || side % 16 != 0 || side > streams::kMaxFrameSide) {
+    throw AuthoringError(what + " is " + std::to_string(side) +
+                         " texels; a stream frame side must be a multiple of 16 (" + "whole macroblocks) from 16 to " +
+                         std::to_string(streams::kMaxFrameSide));
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& weatherPresetNames() {
+  static const std::vector<std::string> names{"clear", "overcast"};
+  return names;
+}
+
+WeatherVariant weatherVariant(const std::string& name, const DayCycleParams& base) {
+  WeatherVariant v{name, base};
+  if (name == "clear") return v;
+  if (name == "overcast") {
+    v.params.clouds.enabled = true;
+    v.params.clouds.coverage = kOvercastCoverage;
+    v.params.clouds.opacity = kOvercastOpacity;
+    v.params.turbidity = std::max(base.turbidity, kOvercastTurbidity);
+    v.params.sunKlux = base.sunKlux * kOvercastSunFactor;
+    v.params.exposureKlux = base.exposureKlux * kOvercastExposureFactor;
+    return v;
+  }
+  std::string known;
+  for (const std::string& n : weatherPresetNames()) known += (known.empty() ? "" : ", ") + n;
+  throw AuthoringError("unknown weather '" + name + "'; expected one of " + known + " (or NAME=FILE.toml)");
+}
+
+Terrain loadTerrain(const TerrainSource& src) {
+  try {
+    Terrain t;
+    if (src.heightfield.empty()) {
+      t = proceduralTerrain(src.procedural);
+      if (src.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
+    } else {
+      t = readHeightfield(src.heightfield, src.cellSize, src.verticalScale);
+    }
+    if (!src.albedo.empty()) setAlbedo(t, readColourMap(src.albedo), src.albedo);
+    return t;
+  } catch (const LightingError& e) {
+    throw AuthoringError(e.what());
+  }
+}
+
+void checkStreamSettings(const TechniqueAStreamSettings& s, int terrainWidth, int terrainHeight,
+                         const std::string& terrainOrigin) {
+  checkSide(terrainWidth, terrainOrigin + ": width");
+  checkSide(terrainHeight, terrainOrigin + ": height");
+  std::vector<WeatherVariant> variants = s.variants;
+  if (variants.empty()) variants.push_back(weatherVariant("clear", s.base));
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    const WeatherVariant& v = variants[i];
+    const std::string who = "variant '" + v.name + "': ";
+    if (v.name.empty() || v.name.size() > streams::Descriptor::kMaxVariantName)
+      throw AuthoringError(who + "a variant name must have 1 to " +
+                           std::to_string(streams::Descriptor::kMaxVariantName) + " bytes");
+    for (std::size_t j = 0; j < i; ++j)
+      if (variants[j].name == v.name) throw AuthoringError(who + "the name is given twice");
+    try {
+      validateParams(v.params);
+    } catch (const LightingError& e) {
+      throw AuthoringError(who + e.what());
+    }
+    checkSide(static_cast<int>(v.params.skyWidth), who + "lighting.sky_width");
+    checkSide(static_cast<int>(v.params.skyWidth / 2), who + "the sky height (lighting.sky_width / 2)");
+    const WeatherVariant& first = variants.front();
+    if (v.params.frames != first.params.frames)
+      throw AuthoringError(who + "lighting.frames = " + std::to_string(v.params.frames) + " but variant '" +
+                           first.name + "' has " + std::to_string(first.params.frames) +
+                           " (variants need equal lengths to branch)");
+    if (v.params.skyWidth != first.params.skyWidth)
+      throw AuthoringError(who + "lighting.sky_width = " + std::to_string(v.params.skyWidth) + " but variant '" +
+                           first.name + "' has " + std::to_string(first.params.skyWidth) +
+                           " (one sky size per stream)");
+  }
+}
+
+Rgba8Image streamFrame(const FloatImage& image, const streams::ToneMapping& tone) {
+  streams::FloatRgbImage rgb(image.width, image.height);
+  const std::size_t n = static_cast<std::size_t>(image.width) * image.height;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      rgb.rgb[i * 3 + c] = image.pixels[i * image.channels + (image.channels >= 3 ? c : 0)];
+  return streams::toneMap(rgb, tone);
+}
+
+AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const TechniqueAProgressFn& progress) {
+  std::vector<WeatherVariant> variants = s.variants;
+  if (variants.empty()) variants.push_back(weatherVariant("clear", s.base));
+  // Cheap checks first (settings), then the terrain file, then its size: nothing heavy runs on a
+  // setting that would fail later.
+  for (const WeatherVariant& v : variants) {
+    try {
+      validateParams(v.params);
+    } catch (const LightingError& e) {
+      throw AuthoringError("variant '" + v.name + "': " + e.what());
+    }
+  }
+  const Terrain terrain = loadTerrain(s.terrain);
+  const std::string origin = s.terrain.heightfield.empty() ? "procedural terrain" : s.terrain.heightfield;
+  checkStreamSettings(s, terrain.width, terrain.height, origin);
+  FloatImage cloudTexture;
+  if (!s.terrain.cloudTexture.empty()) {
+    try {
+      cloudTexture = readDensityMap(s.terrain.cloudTexture);
+    } catch (const LightingError& e) {
+      throw AuthoringError(e.what());
+    }
+  }
+
+  streams::AuthorSettings settings = s.stream;
+  settings.withSky = true;
+  streams::StreamWriter writer(settings);
+  std::optional<WorkerPool> pool;
+  if (s.threads > 1) pool.emplace(s.threads - 1);
+  WorkerPool* poolPtr = pool ? &*pool : nullptr;
+
+  TechniqueAProgress p;
+  p.total = static_cast<int>(variants.size() * static_cast<std::size_t>(variants.front().params.frames));
+  FloatImage light, sky;
+  try {
+    for (WeatherVariant& v : variants) {
+      if (!cloudTexture.empty()) v.params.clouds.enabled = true;
+      DayCycleGenerator gen(terrain, v.params, poolPtr, cloudTexture);
+      writer.beginVariant(v.name);
+      for (int f = 0; f < gen.frameCount(); ++f) {
+        gen.renderFrame(f, light, sky);
+        const Rgba8Image lm = streamFrame(light, s.tone), skyFrame = streamFrame(sky, s.tone);
+        writer.addFrame(lm, &skyFrame);
+        ++p.done;
+        p.variant = v.name;
+        p.frame = f;
+        if (progress) progress(p);
+      }
+    }
+  } catch (const LightingError& e) {
+    throw AuthoringError(e.what());
+  }
+  AuthoredStream out;
+  out.bytes = writer.finish();
+  out.descriptor = writer.descriptor();
+  out.maxQscaleUsed = writer.maxQscaleUsed();
+  return out;
+}
+
+AuthoredStream authorTechniqueA(const TechniqueAStreamSettings& s, const std::filesystem::path& out,
+                                const TechniqueAProgressFn& progress) {
+  AuthoredStream stream = authorTechniqueAStream(s, progress);
+  streams::writeStreamFile(out, stream.bytes);
+  return stream;
+}
+
+}  // namespace vbim::lighting
