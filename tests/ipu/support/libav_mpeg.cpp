@@ -101,7 +101,7 @@ std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<
   c->pix_fmt = AV_PIX_FMT_YUV420P;
   c->time_base = AVRational{1, 25};
   c->framerate = AVRational{25, 1};
-  c->gop_size = 1;
+  c->gop_size = o.gopSize;
   c->max_b_frames = 0;
   c->thread_count = 1;
   c->flags |= AV_CODEC_FLAG_QSCALE;
@@ -152,7 +152,7 @@ std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<
     }
     frame->pts = static_cast<std::int64_t>(f);
     frame->quality = c->global_quality;
-    frame->pict_type = AV_PICTURE_TYPE_I;
+    frame->pict_type = o.gopSize == 1 ? AV_PICTURE_TYPE_I : AV_PICTURE_TYPE_NONE;
     check(avcodec_send_frame(c, frame), "avcodec_send_frame");
     drain();
     av_frame_unref(frame);

@@ -16,6 +16,7 @@ struct EncodeOptions {
   int width = 64;
   int height = 48;
   int frames = 2;
+  int gopSize = 1;    // 1: intra only; more: P pictures follow the I picture
   int quantiser = 5;  // fixed qscale 1..31 (frame->quality, notes/dependencies.md pitfall 7)
   bool mpeg1 = false;
   bool intraVlc = false;  // B.15
