@@ -5,11 +5,11 @@
 namespace vbim::ipu {
 namespace {
 
-// Fractional bits kept between the passes; the row pass shifts by 14 - kRowFrac, the column pass by
-// 14 + kRowFrac + 3 (the 3 undoes the sqrt(8) * sqrt(8) scale of the two passes).
-constexpr int kRowFrac = 12;
-constexpr int kRowShift = 14 - kRowFrac;
-constexpr int kColShift = 14 + kRowFrac + 3;
+// The row pass keeps its sums whole (no rounding: at most 2048 * 7.47 * 2^14 < 2^28), the column
+// pass sums in 64 bits and rounds once: out = floor((sum_u sum_v F W W + 2^30) / 2^31). With no
+// intermediate rounding the result is one exact integer expression, so any evaluation order (the
+// SIMD paths, the sparse shortcuts) gives the same bits.
+constexpr int kColShift = 31;
 
 inline std::uint8_t clampPixel(std::int64_t v) {
   return static_cast<std::uint8_t>(v < 0 ? 0 : (v > 255 ? 255 : v));
@@ -19,13 +19,12 @@ inline std::uint8_t clampPixel(std::int64_t v) {
 inline void rowPass(const std::int16_t* f, std::int32_t* out) {
   const std::int32_t f0 = f[0], f1 = f[1], f2 = f[2], f3 = f[3], f4 = f[4], f5 = f[5], f6 = f[6], f7 = f[7];
   if ((f1 | f2 | f3 | f4 | f5 | f6 | f7) == 0) {
-    const std::int32_t v = f0 * (1 << kRowFrac);  // == (f0 * 2^14 + round) >> kRowShift exactly
+    const std::int32_t v = f0 * 16384;
     for (int n = 0; n < 8; ++n) out[n] = v;
     return;
   }
-  constexpr std::int32_t kRound = 1 << (kRowShift - 1);
-  const std::int32_t t0 = (f0 + f4) * 16384 + kRound;
-  const std::int32_t t1 = (f0 - f4) * 16384 + kRound;
+  const std::int32_t t0 = (f0 + f4) * 16384;
+  const std::int32_t t1 = (f0 - f4) * 16384;
   const std::int32_t t2 = kIdctW2 * f2 + kIdctW6 * f6;
   const std::int32_t t3 = kIdctW6 * f2 - kIdctW2 * f6;
   const std::int32_t e0 = t0 + t2, e3 = t0 - t2, e1 = t1 + t3, e2 = t1 - t3;
@@ -33,14 +32,14 @@ inline void rowPass(const std::int16_t* f, std::int32_t* out) {
   const std::int32_t o1 = kIdctW3 * f1 - kIdctW7 * f3 - kIdctW1 * f5 - kIdctW5 * f7;
   const std::int32_t o2 = kIdctW5 * f1 - kIdctW1 * f3 + kIdctW7 * f5 + kIdctW3 * f7;
   const std::int32_t o3 = kIdctW7 * f1 - kIdctW5 * f3 + kIdctW3 * f5 - kIdctW1 * f7;
-  out[0] = (e0 + o0) >> kRowShift;
-  out[7] = (e0 - o0) >> kRowShift;
-  out[1] = (e1 + o1) >> kRowShift;
-  out[6] = (e1 - o1) >> kRowShift;
-  out[2] = (e2 + o2) >> kRowShift;
-  out[5] = (e2 - o2) >> kRowShift;
-  out[3] = (e3 + o3) >> kRowShift;
-  out[4] = (e3 - o3) >> kRowShift;
+  out[0] = (e0 + o0);
+  out[7] = (e0 - o0);
+  out[1] = (e1 + o1);
+  out[6] = (e1 - o1);
+  out[2] = (e2 + o2);
+  out[5] = (e2 - o2);
+  out[3] = (e3 + o3);
+  out[4] = (e3 - o3);
 }
 
 // The column pass and the output stage, shared by the pixel and the signed entry points:
@@ -59,6 +58,7 @@ void idctCore(const std::int16_t* block, unsigned rowMask, Store&& store) {
     // Only the first row: every output row equals (r0 * 2^14 + 2^(kColShift-1)) >> kColShift.
     for (int c = 0; c < 8; ++c) {
       const std::int64_t v = (static_cast<std::int64_t>(r[c]) + (1 << (kColShift - 15))) >> (kColShift - 14);
+      // == (r0 * 2^14 + 2^30) >> 31
       for (int y = 0; y < 8; ++y) store(y, c, v);
     }
     return;

@@ -5,8 +5,9 @@
 //
 // Each 1-D pass is the direct even/odd form of x(n) = sum_u C(u) F(u) cos((2n+1)u pi/16) with the
 // constants W_k = round(2^14 * sqrt(2) * cos(k pi/16)), so W_4 = 2^14 and the DC term is exact.
-// Rows keep 12 fractional bits; columns accumulate in 64 bits (no overflow for any input in the
-// saturated range [-2048, 2047], including adversarial ones).
+// Rows are summed exactly in 32 bits, columns in 64 bits with one rounding at the end, so the
+// result is the exact integer floor((sum F(v,u) W(u,x) W(v,y) + 2^30) / 2^31): no overflow for any
+// input in the saturated range [-2048, 2047], and every evaluation order gives the same bits.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,6 @@
 #include "tests/ipu/support/libav_mpeg.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -40,7 +41,7 @@ std::string EncodeOptions::describe() const {
   if (dcPrecision) s += " dc" + std::to_string(8 + dcPrecision);
   if (customMatrix) s += " custom_matrix";
   if (interlacedDct) s += " field_dct";
-  static const char* const kNames[] = {" smooth", " busy", " noise", " interlaced"};
+  static const char* const kNames[] = {" smooth", " busy", " noise", " interlaced", " lightmap"};
   s += kNames[static_cast<int>(content)];
   return s;
 }
@@ -64,6 +65,10 @@ std::vector<Yuv420Image> makeFrames(const EncodeOptions& o) {
             v = ((x + ((y & 1) ? 9 : 0) + 3 * f) / 6) % 2 ? 190 : 60;
             v += (y & 1) ? 25 : -25;
             break;
+          case Content::kLightmap:  // soft light and shadow shapes, slowly drifting with f
+            v = static_cast<int>(120 + 70 * std::sin((x + 3 * f) / 47.0) * std::cos(y / 61.0) +
+                                 30 * std::sin((x + y) / 23.0 + f * 0.05));
+            break;
           default:
             v = static_cast<int>(rng.next() & 0xFF);
             break;
@@ -77,6 +82,9 @@ std::vector<Yuv420Image> makeFrames(const EncodeOptions& o) {
         if (o.content == Content::kNoise) {
           img.cb[i] = static_cast<std::uint8_t>(rng.next() & 0xFF);
           img.cr[i] = static_cast<std::uint8_t>(rng.next() & 0xFF);
+        } else if (o.content == Content::kLightmap) {
+          img.cb[i] = static_cast<std::uint8_t>(118 + 8 * std::sin(x / 31.0));
+          img.cr[i] = static_cast<std::uint8_t>(134 + 10 * std::cos(y / 27.0 + f * 0.03));
         } else if (o.content == Content::kBusy) {
           img.cb[i] = static_cast<std::uint8_t>(((x + y + f) & 4) ? 90 : 170);
           img.cr[i] = static_cast<std::uint8_t>(128 + ((x * 7 + y * 3) % 61) - 30);
