@@ -35,13 +35,19 @@ void cscRowRgba32Scalar(const std::uint8_t* y, const std::uint8_t* cb, const std
   }
 }
 
+void cscRowsRgba32Scalar(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+                         int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
+  for (int r = 0; r < rows; ++r) cscRowRgba32Scalar(y + r * yStride, cb, cr, width, rgba + r * rgbaStride, th);
+}
+
 void convertToRgba32(const FrameStore& fs, int width, int height, CscThresholds th, Rgba8Image& out, CscRowFn row) {
-  if (!row) row = cscRowRgba32Scalar;
+  if (!row) row = cscRowsRgba32Scalar;
   if (out.width != width || out.height != height) out = Rgba8Image(width, height);
-  for (int yy = 0; yy < height; ++yy) {
+  for (int yy = 0; yy < height; yy += 2) {
     const std::uint8_t* yl = fs.y.data() + static_cast<std::size_t>(yy) * fs.lumaStride;
     const std::size_t c = static_cast<std::size_t>(yy >> 1) * fs.chromaStride;
-    row(yl, fs.cb.data() + c, fs.cr.data() + c, width, out.row(yy), th);
+    row(yl, fs.lumaStride, height - yy >= 2 ? 2 : 1, fs.cb.data() + c, fs.cr.data() + c, width, out.row(yy), width * 4,
+        th);
   }
 }
 

@@ -19,11 +19,15 @@ struct CscThresholds {
 };
 
 // One output line: `width` pixels from luma line y, chroma lines cb/cr (one chroma sample per two
-// pixels) to RGBA8. Implementations must give identical bytes; the scalar one is the reference.
-using CscRowFn = void (*)(const std::uint8_t* y, const std::uint8_t* cb, const std::uint8_t* cr, int width,
-                          std::uint8_t* rgba, CscThresholds th);
+// pixels) to RGBA8. This scalar code is the reference.
 void cscRowRgba32Scalar(const std::uint8_t* y, const std::uint8_t* cb, const std::uint8_t* cr, int width,
                         std::uint8_t* rgba, CscThresholds th);
+// `rows` (1 or 2) luma lines that share one chroma line. Implementations must give the bytes of
+// cscRowRgba32Scalar on each line.
+using CscRowFn = void (*)(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+                          int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th);
+void cscRowsRgba32Scalar(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+                         int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th);
 
 // The IPU matrix for one pixel (RGB only), exposed for tests and the RGB16 path.
 struct Rgb {

@@ -27,6 +27,7 @@ struct DecoderOptions {
   // (notes §4.2). By default we decode 11-bit DC precision as the standard says.
   bool dcPrecision11AsNine = false;
   bool recordMacroblocks = false;  // fill macroblockTrace() for the timing model
+  const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
 };
 
 class Decoder {

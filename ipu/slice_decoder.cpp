@@ -14,6 +14,7 @@ namespace {
 struct alignas(32) MacroblockCoefficients {
   std::int16_t block[6][64];
   unsigned rowMask[6];
+  unsigned colMask[6];
   bool acPresent[6];
 };
 
@@ -113,6 +114,7 @@ SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
   blk[0] = static_cast<std::int16_t>(dc);
   unsigned parity = static_cast<unsigned>(dc);
   unsigned rowMask = 1;
+  unsigned colMask = 1;
   bool ac = false;
 
   // AC coefficients (§7.2.2, §7.3, §7.4.2-7.4.3).
@@ -176,14 +178,17 @@ SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
     blk[pos] = static_cast<std::int16_t>(v);
     parity ^= static_cast<unsigned>(v);
     rowMask |= 1u << (pos >> 3);
+    colMask |= 1u << (pos & 7);
     ac = true;
   }
   // §7.4.4 mismatch control: if the sum of all coefficients is even, toggle the LSB of F[7][7].
   if (!pp_.mpeg1 && (parity & 1) == 0) {
     blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
     rowMask |= 0x80;
+    colMask |= 0x80;
   }
   mb_.rowMask[b] = rowMask;
+  mb_.colMask[b] = colMask;
   mb_.acPresent[b] = ac;
   return Status::kOk;
 }
@@ -200,7 +205,7 @@ void SliceDecoder::storeBlock(int b, std::uint8_t* dst, int stride) {
     const std::uint8_t v = idctDcValue(dc);
     for (int yy = 0; yy < 8; ++yy) std::memset(dst + yy * stride, v, 8);
   } else {
-    idctScalar(blk, rowMask, dst, stride);
+    pp_.idct(blk, rowMask, mb_.colMask[b], dst, stride);
   }
   for (int r = 0; r < 8; ++r)
     if (rowMask & (1u << r)) std::memset(blk + 8 * r, 0, 16);
