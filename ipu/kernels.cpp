@@ -6,7 +6,7 @@ namespace vbim::ipu {
 namespace {
 
 void idctScalarKernel(const std::int16_t* block, unsigned rowMask, unsigned, std::uint8_t* dst, int stride) {
-  idctScalar(block, rowMask, dst, stride);
+  idctScalar(block, (rowMask & kIdctToggleOnly) ? (rowMask | 0x80) : rowMask, dst, stride);
 }
 
 }  // namespace

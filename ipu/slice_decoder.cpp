@@ -184,8 +184,12 @@ SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
   // §7.4.4 mismatch control: if the sum of all coefficients is even, toggle the LSB of F[7][7].
   if (!pp_.mpeg1 && (parity & 1) == 0) {
     blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
-    rowMask |= 0x80;
-    colMask |= 0x80;
+    if (((rowMask | colMask) & 0x80) == 0) {
+      rowMask |= kIdctToggleOnly;  // F[7][7] = +-1 alone in its row and column
+    } else {
+      rowMask |= 0x80;
+      colMask |= 0x80;
+    }
   }
   mb_.rowMask[b] = rowMask;
   mb_.colMask[b] = colMask;
@@ -209,6 +213,7 @@ void SliceDecoder::storeBlock(int b, std::uint8_t* dst, int stride) {
   }
   for (int r = 0; r < 8; ++r)
     if (rowMask & (1u << r)) std::memset(blk + 8 * r, 0, 16);
+  blk[63] = 0;  // the mismatch toggle (kIdctToggleOnly) is not in the row mask
 }
 
 void SliceDecoder::reconstruct(int mbX, int mbY, bool fieldDct) {

@@ -17,6 +17,7 @@
 namespace vbim::ipu::simd_detail {
 struct Basis {
   alignas(64) std::int32_t b[8][8];  // [k][n]
+  alignas(64) std::int32_t toggle[8][8];  // [y][x]: B(7, y) * B(7, x), the F[7][7] = 1 term
   Basis() {
     static constexpr std::int32_t kW[8] = {23170, 22725, 21407, 19266, 16384, 12873, 8867, 4520};
     for (int k = 0; k < 8; ++k)
@@ -29,6 +30,8 @@ struct Basis {
         if (m > 16) m = 32 - m;          // cos is even around 2 pi
         b[k][n] = m < 8 ? kW[m] : (m == 8 ? 0 : -kW[16 - m]);
       }
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) toggle[y][x] = b[7][y] * b[7][x];
   }
 };
 inline const Basis& basis() {
@@ -42,16 +45,78 @@ HWY_BEFORE_NAMESPACE();
 namespace vbim::ipu::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// Low-frequency blocks (rows and columns below R and C, plus the flagged mismatch toggle): the
+// same arithmetic as IdctImpl with compile-time trip counts, so it unrolls into registers.
+template <int R, int C>
+HWY_INLINE void IdctLowImpl(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
+  const hn::CappedTag<std::int32_t, 8> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const std::size_t N = hn::Lanes(d);
+  const auto& B = simd_detail::basis().b;
+  const auto& T = simd_detail::basis().toggle;
+  using V = hn::Vec<decltype(d)>;
+  const std::int32_t sign = toggle ? block[63] : 0;
+  for (std::size_t x0 = 0; x0 < 8; x0 += N) {
+    V ch[R], cl[R];
+    for (int v = 0; v < R; ++v) {
+      V acc = hn::Mul(hn::Set(d, block[8 * v]), hn::LoadU(d, &B[0][x0]));
+      for (int u = 1; u < C; ++u) acc = hn::Add(acc, hn::Mul(hn::Set(d, block[8 * v + u]), hn::LoadU(d, &B[u][x0])));
+      ch[v] = hn::ShiftRight<14>(hn::Add(acc, hn::Set(d, 1 << 13)));
+      cl[v] = hn::Sub(acc, hn::ShiftLeft<14>(ch[v]));
+    }
+    const V zero = hn::Zero(d), k255 = hn::Set(d, 255);
+    for (int y = 0; y < 4; ++y) {
+      V he = hn::Set(d, 1 << 16), ho = zero, le = zero, lo = zero;
+      for (int v = 0; v < R; ++v) {
+        const V b = hn::Set(d, B[v][y]);
+        if (v & 1) {
+          ho = hn::Add(ho, hn::Mul(ch[v], b));
+          lo = hn::Add(lo, hn::Mul(cl[v], b));
+        } else {
+          he = hn::Add(he, hn::Mul(ch[v], b));
+          le = hn::Add(le, hn::Mul(cl[v], b));
+        }
+      }
+      V lt = hn::Add(le, lo), lb = hn::Sub(le, lo);
+      if (sign > 0) {
+        lt = hn::Add(lt, hn::LoadU(d, &T[y][x0]));
+        lb = hn::Add(lb, hn::LoadU(d, &T[7 - y][x0]));
+      } else if (sign < 0) {
+        lt = hn::Sub(lt, hn::LoadU(d, &T[y][x0]));
+        lb = hn::Sub(lb, hn::LoadU(d, &T[7 - y][x0]));
+      }
+      const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(lt)));
+      const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(lb)));
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(top, zero), k255)), d8, dst + y * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(bottom, zero), k255)), d8, dst + (7 - y) * stride + x0);
+    }
+  }
+}
+
+void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride);
+
+void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  const bool toggle = (rowMask & 0x100) != 0;
+  const unsigned rows = rowMask & 0xFF, cols = colMask & 0xFF;
+  if ((rows | cols) <= 0x3) return IdctLowImpl<2, 2>(block, toggle, dst, stride);
+  if ((rows | cols) <= 0xF) return IdctLowImpl<4, 4>(block, toggle, dst, stride);
+  IdctGeneralImpl(block, rowMask, colMask, dst, stride);
+}
+
 // Horizontal pass first, over the non-zero rows and columns only: c[v][x] = sum_u F[v][u] B(u, x),
 // exact in 32 bits (|c| < 2048 * 122,400 < 2^28). Vertical pass with c split as
 // ch * 2^14 + cl (cl in [-2^13, 2^13)) so both partial sums fit 32 bits:
 // out = (H + (L >> 14) + 2^16) >> 17 == floor((sum_v c B + 2^30) / 2^31), the scalar result (the
 // double sum is one exact integer, so the order of the passes does not matter).
-void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   const auto& B = simd_detail::basis().b;
+  // The mismatch toggle alone in row 7 and column 7 adds +-B(7,y) B(7,x) (< 2^30) to the sum; it
+  // goes into the low partial sum (|l| < 2^30 + 2^30 fits 32 bits).
+  const bool toggle = (rowMask & 0x100) != 0;
+  const std::int32_t toggleSign = toggle ? block[63] : 0;
   int rows[8], cols[8];
   int nr = 0, nc = 0;
   for (int i = 0; i < 8; ++i) {
@@ -71,17 +136,33 @@ void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
       ch[i] = hn::ShiftRight<14>(hn::Add(acc, hn::Set(d, 1 << 13)));
       cl[i] = hn::Sub(acc, hn::ShiftLeft<14>(ch[i]));
     }
-    for (int y = 0; y < 8; ++y) {
-      V h = hn::Set(d, 1 << 16);
-      V l = hn::Zero(d);
-      for (int i = 0; i < nr; ++i) {
-        const V b = hn::Set(d, B[rows[i]][y]);
-        h = hn::Add(h, hn::Mul(ch[i], b));
-        l = hn::Add(l, hn::Mul(cl[i], b));
+    // Rows y and 7 - y share the products: B(v, 7 - y) = (-1)^v B(v, y).
+    for (int y = 0; y < 4; ++y) {
+      V he = hn::Set(d, 1 << 16), ho = hn::Zero(d), le = hn::Zero(d), lo = hn::Zero(d);
+      V lt = hn::Zero(d), lb = hn::Zero(d);
+      if (toggle) {
+        const V t = hn::LoadU(d, &simd_detail::basis().toggle[y][x0]);
+        const V tb = hn::LoadU(d, &simd_detail::basis().toggle[7 - y][x0]);
+        lt = toggleSign > 0 ? t : hn::Neg(t);
+        lb = toggleSign > 0 ? tb : hn::Neg(tb);
       }
-      const V out = hn::ShiftRight<17>(hn::Add(h, hn::ShiftRight<14>(l)));
-      const V clamped = hn::Min(hn::Max(out, hn::Zero(d)), hn::Set(d, 255));
-      hn::StoreU(hn::DemoteTo(d8, clamped), d8, dst + y * stride + x0);
+      for (int i = 0; i < nr; ++i) {
+        const int v = rows[i];
+        const V b = hn::Set(d, B[v][y]);
+        if (v & 1) {
+          ho = hn::Add(ho, hn::Mul(ch[i], b));
+          lo = hn::Add(lo, hn::Mul(cl[i], b));
+        } else {
+          he = hn::Add(he, hn::Mul(ch[i], b));
+          le = hn::Add(le, hn::Mul(cl[i], b));
+        }
+      }
+      const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(hn::Add(hn::Add(le, lo), lt))));
+      const V bottom =
+          hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(hn::Add(hn::Sub(le, lo), lb))));
+      const V zero = hn::Zero(d), k255 = hn::Set(d, 255);
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(top, zero), k255)), d8, dst + y * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(bottom, zero), k255)), d8, dst + (7 - y) * stride + x0);
     }
   }
 }
@@ -157,7 +238,7 @@ HWY_EXPORT(CscRowImpl);
 HWY_EXPORT(UpsampleImpl);
 
 void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  HWY_DYNAMIC_DISPATCH(IdctImpl)(block, rowMask & 0xFF, colMask & 0xFF, dst, stride);
+  HWY_DYNAMIC_DISPATCH(IdctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
 }
 
 void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
