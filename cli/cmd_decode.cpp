@@ -193,7 +193,8 @@ void run(const Options& o) {
   Yuv420Image yuv;
   std::vector<float> floats;
   for (const ipu::AccessUnit& au : ipu::splitAccessUnits(dm.es)) {
-    const ipu::PictureReport r = decoder.decode(std::span(dm.es).subspan(au.offset, au.size), pool.get());
+    const auto bytes = std::span(dm.es).subspan(au.offset, au.size);
+    const ipu::PictureReport r = pool ? decoder.decode(bytes, *pool) : decoder.decode(bytes);
     for (const ipu::DecodeIssue& is : r.issues) {
       std::cerr << "vbim decode: " << o.input << where << ": byte " << dm.fileOffsetOf(au.offset + is.byteOffset);
       if (is.mbX >= 0) std::cerr << ", picture " << pictures << " macroblock (" << is.mbX << "," << is.mbY << ")";

@@ -4,7 +4,6 @@
 #include <cstring>
 
 #include "ipu/quant_tables.hpp"
-#include "runtime/worker_pool.hpp"
 
 namespace vbim::ipu {
 namespace {
@@ -109,7 +108,7 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   pictureValid_ = true;
 }
 
-void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, WorkerPool* pool) {
+void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool) {
   pictureOpen_ = false;
   if (!pictureValid_) {
     slices_.clear();
@@ -123,7 +122,7 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
     std::vector<PictureReport> reports(jobs);
     std::vector<std::vector<MacroblockBits>> traces(jobs);
     const int rows = params_.mbRows;
-    pool->parallelFor(jobs, [&](std::size_t j) {
+    pool->run(jobs, [&](std::size_t j) {
       const int lo = static_cast<int>(rows * j / jobs);
       const int hi = static_cast<int>(rows * (j + 1) / jobs);
       SliceOutput out{&reports[j], &decoded_, options_.recordMacroblocks ? &traces[j] : nullptr};
@@ -163,7 +162,7 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   report.produced = true;
 }
 
-PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, WorkerPool* pool) {
+PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* pool) {
   PictureReport report;
   trace_.clear();
   const std::uint8_t* d = bytes.data();

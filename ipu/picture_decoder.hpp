@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -20,13 +21,22 @@ class WorkerPool;
 
 namespace vbim::ipu {
 
+// Runs fn(0) .. fn(count - 1), possibly on several host threads, and returns when all are done.
+// The decoder core stays free of the kernel; vbim::WorkerPool is adapted in ipu/pool_runner.cpp.
+class SliceRunner {
+ public:
+  virtual ~SliceRunner() = default;
+  virtual unsigned threads() const = 0;  // besides the caller
+  virtual void run(std::size_t count, const std::function<void(std::size_t)>& fn) = 0;
+};
+
 struct DecoderOptions {
   int maxWidth = 4096;  // larger sizes are reported as absurd (MPEG-2 MP@HL is 1920x1152)
   int maxHeight = 4096;
   // The IPU's IDP field holds 8, 9 or 10 bits; 11 bits is invalid there and PCSX2 treats it as 9
   // (notes §4.2). By default we decode 11-bit DC precision as the standard says.
   bool dcPrecision11AsNine = false;
-  bool recordMacroblocks = false;  // fill macroblockTrace() for the timing model
+  bool recordMacroblocks = false;    // fill macroblockTrace() for the timing model
   const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
 };
 
@@ -35,9 +45,11 @@ class Decoder {
   explicit Decoder(DecoderOptions options = {});
 
   // Decodes every header and slice in `bytes` (normally one picture with the headers before it;
-  // see ipu/elementary_stream.hpp). With a pool, the slices of an MPEG-2 picture are decoded in
+  // see ipu/elementary_stream.hpp). With a runner, the slices of an MPEG-2 picture are decoded in
   // parallel; the result is bit-identical to the serial decode.
-  PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool* pool = nullptr);
+  PictureReport decode(std::span<const std::uint8_t> bytes, SliceRunner* runner = nullptr);
+  // The same on a kernel worker pool (defined in ipu/pool_runner.cpp, library vbim_ipu).
+  PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool& pool);
 
   const FrameStore& frame() const { return store_; }
   bool hasSequence() const { return haveSequence_; }
@@ -56,7 +68,7 @@ class Decoder {
     std::size_t end;
   };
   void beginPicture(PictureReport& report, std::size_t offset);
-  void finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, WorkerPool* pool);
+  void finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool);
   void handleExtension(BitReader& br, PictureReport& report, std::size_t offset);
 
   DecoderOptions options_;

@@ -16,7 +16,7 @@
 #define VBIM_IPU_SIMD_BASIS
 namespace vbim::ipu::simd_detail {
 struct Basis {
-  alignas(64) std::int32_t b[8][8];  // [k][n]
+  alignas(64) std::int32_t b[8][8];       // [k][n]
   alignas(64) std::int32_t toggle[8][8];  // [y][x]: B(7, y) * B(7, x), the F[7][7] = 1 term
   Basis() {
     static constexpr std::int32_t kW[8] = {23170, 22725, 21407, 19266, 16384, 12873, 8867, 4520};
@@ -158,8 +158,7 @@ void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMa
         }
       }
       const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(hn::Add(hn::Add(le, lo), lt))));
-      const V bottom =
-          hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(hn::Add(hn::Sub(le, lo), lb))));
+      const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(hn::Add(hn::Sub(le, lo), lb))));
       const V zero = hn::Zero(d), k255 = hn::Set(d, 255);
       hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(top, zero), k255)), d8, dst + y * stride + x0);
       hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(bottom, zero), k255)), d8, dst + (7 - y) * stride + x0);

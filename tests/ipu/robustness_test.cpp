@@ -232,7 +232,7 @@ TEST(IpuRobustness, SliceParallelDecodeIsBitIdentical) {
     for (const AccessUnit& au : splitAccessUnits(es)) {
       const auto bytes = std::span(es).subspan(au.offset, au.size);
       const PictureReport a = serial.decode(bytes);
-      const PictureReport b = parallel.decode(bytes, &pool);
+      const PictureReport b = parallel.decode(bytes, pool);
       EXPECT_EQ(a.issueCount, b.issueCount);
       EXPECT_EQ(a.macroblocksConcealed, b.macroblocksConcealed);
       EXPECT_EQ(serial.frame().y, parallel.frame().y);

@@ -81,7 +81,8 @@ TEST(IpuSimd, CscMatchesScalar) {
   forEachTarget([] {
     Lcg rng{11};
     for (int width : {1, 2, 7, 16, 33, 64, 100, 512}) {
-      for (CscThresholds th : {CscThresholds{}, CscThresholds{40, 100}, CscThresholds{0, 300}, CscThresholds{511, 511}}) {
+      for (CscThresholds th :
+           {CscThresholds{}, CscThresholds{40, 100}, CscThresholds{0, 300}, CscThresholds{511, 511}}) {
         std::vector<std::uint8_t> y(static_cast<std::size_t>(width)), cb((width + 1) / 2), cr((width + 1) / 2);
         for (auto& v : y) v = static_cast<std::uint8_t>(rng.below(256));
         for (auto& v : cb) v = static_cast<std::uint8_t>(rng.below(256));

@@ -41,7 +41,7 @@ std::string EncodeOptions::describe() const {
   if (dcPrecision) s += " dc" + std::to_string(8 + dcPrecision);
   if (customMatrix) s += " custom_matrix";
   if (interlacedDct) s += " field_dct";
-  static const char* const kNames[] = {" smooth", " busy", " noise", " interlaced", " lightmap"};
+  static const char* const kNames[] = {" smooth", " busy", " noise", " interlaced", " lightmap", " pattern"};
   s += kNames[static_cast<int>(content)];
   return s;
 }
@@ -69,6 +69,18 @@ std::vector<Yuv420Image> makeFrames(const EncodeOptions& o) {
             v = static_cast<int>(120 + 70 * std::sin((x + 3 * f) / 47.0) * std::cos(y / 61.0) +
                                  30 * std::sin((x + y) / 23.0 + f * 0.05));
             break;
+          case Content::kPattern: {  // a test card: bars, a checkerboard, rings, a ramp
+            const int dx = x - o.width / 2, dy = y - o.height / 2;
+            if (y < o.height / 3) {
+              v = 40 + 25 * ((x * 8 / (o.width + 1) + f) % 8);
+            } else if (y < 2 * o.height / 3) {
+              v = (((x + 2 * f) / 16 + y / 16) & 1) ? 200 : 50;
+              if ((dx * dx + dy * dy) / 300 % 4 == 0) v = 128;
+            } else {
+              v = 16 + (x * 219) / (o.width + 1);
+            }
+            break;
+          }
           default:
             v = static_cast<int>(rng.next() & 0xFF);
             break;
@@ -85,6 +97,11 @@ std::vector<Yuv420Image> makeFrames(const EncodeOptions& o) {
         } else if (o.content == Content::kLightmap) {
           img.cb[i] = static_cast<std::uint8_t>(118 + 8 * std::sin(x / 31.0));
           img.cr[i] = static_cast<std::uint8_t>(134 + 10 * std::cos(y / 27.0 + f * 0.03));
+        } else if (o.content == Content::kPattern) {
+          img.cb[i] = static_cast<std::uint8_t>(
+              y < img.chromaHeight() / 3 ? 60 + 20 * ((x * 8 / (img.chromaWidth() + 1)) % 8) : 128);
+          img.cr[i] = static_cast<std::uint8_t>(
+              y < img.chromaHeight() / 3 ? 200 - 18 * ((x * 8 / (img.chromaWidth() + 1)) % 8) : 120);
         } else if (o.content == Content::kBusy) {
           img.cb[i] = static_cast<std::uint8_t>(((x + y + f) & 4) ? 90 : 170);
           img.cr[i] = static_cast<std::uint8_t>(128 + ((x * 7 + y * 3) % 61) - 30);

@@ -10,7 +10,7 @@
 
 namespace vbim::ipu::testing {
 
-enum class Content { kSmooth, kBusy, kNoise, kInterlaced, kLightmap };
+enum class Content { kSmooth, kBusy, kNoise, kInterlaced, kLightmap, kPattern };
 
 struct EncodeOptions {
   int width = 64;
