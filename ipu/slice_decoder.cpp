@@ -49,7 +49,11 @@ class SliceDecoder {
   std::size_t offset_;
   const SliceOutput& out_;
   int dcPred_[3] = {128, 128, 128};
-  std::int32_t wq_[64];  // intra matrix x quantiser_scale, raster order
+  // Per scan position: the raster index, intra matrix x quantiser_scale at it, and its row bit
+  // (bits 0-7) and column bit (bits 8-15); looked up together once the run is known.
+  std::int32_t wq_[64];
+  std::uint8_t pos_[64];
+  std::uint16_t mask_[64];
   MacroblockCoefficients mb_;
 };
 
@@ -60,7 +64,12 @@ void SliceDecoder::setQuantiserScale(int code) {
   } else {
     scale = pp_.qScaleType ? kNonLinearQuantiserScale[code] : 2 * code;
   }
-  for (int i = 0; i < 64; ++i) wq_[i] = pp_.intraMatrix[i] * scale;
+  for (int i = 0; i < 64; ++i) {
+    const int pos = pp_.scan[i];
+    pos_[i] = static_cast<std::uint8_t>(pos);
+    wq_[i] = pp_.intraMatrix[pos] * scale;
+    mask_[i] = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
+  }
 }
 
 bool SliceDecoder::readAddressIncrement(int& inc) {
@@ -113,36 +122,36 @@ SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
   dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);
   blk[0] = static_cast<std::int16_t>(dc);
   unsigned parity = static_cast<unsigned>(dc);
-  unsigned rowMask = 1;
-  unsigned colMask = 1;
-  bool ac = false;
+  unsigned masks = 0;
 
   // AC coefficients (§7.2.2, §7.3, §7.4.2-7.4.3).
   const DctEntry* first = t_.dct[pp_.intraVlcFormat ? 1 : 0];
   const auto& sub = t_.dctSub[pp_.intraVlcFormat ? 1 : 0];
-  const std::uint8_t* scan = pp_.scan;
+  // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
+  // ends within 16 bits; the caller checks for overrun once per macroblock.
+  const bool mpeg1 = pp_.mpeg1;
   int i = 0;
   for (;;) {
-    const std::uint32_t bits16 = br_.peek(16);
-    DctEntry d = first[bits16 >> 8];
-    if (d.level == kDctSub) d = sub[d.run][(bits16 >> (8 - d.len)) & ((1u << d.len) - 1)];
-    if (d.len == 0) {
-      why = IssueKind::kBadVlc;
-      return Status::kError;
-    }
+    const std::uint32_t bits = br_.peek(24);
+    DctEntry d = first[bits >> 16];
+    if (d.level == kDctSub) d = sub[d.run][(bits >> (16 - d.len)) & ((1u << d.len) - 1)];
     int run;
-    int level;  // signed
+    int mag;
+    bool negative;
     if (d.level > 0) {
-      br_.skip(d.len);
+      // Code and sign bit together (len <= 16, so the sign is within the 24 bits peeked).
       run = d.run;
-      level = br_.readBit() ? -d.level : d.level;
+      mag = d.level;
+      negative = (bits >> (23 - d.len)) & 1;
+      br_.skip(d.len + 1);
     } else if (d.level == kDctEob) {
       br_.skip(d.len);
       break;
-    } else {  // escape
+    } else if (d.level == kDctEscape) {
       br_.skip(6);
       run = static_cast<int>(br_.read(6));
-      if (pp_.mpeg1) {
+      int level;
+      if (mpeg1) {
         level = br_.readSigned(8);
         if (level == 0) {
           level = static_cast<int>(br_.read(8));
@@ -152,35 +161,38 @@ SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
       } else {
         level = br_.readSigned(12);
       }
+      negative = level < 0;
+      mag = negative ? -level : level;
+    } else {
+      why = IssueKind::kBadVlc;
+      return Status::kError;
     }
     i += run + 1;
     if (i > 63) {
       why = IssueKind::kCoefficientOverrun;
       return Status::kError;
     }
-    if (br_.overrun()) {
-      why = IssueKind::kTruncatedSlice;
-      return Status::kError;
-    }
-    const int pos = scan[i];
-    const int mag = level < 0 ? -level : level;
+    const int pos = pos_[i];
     int v;
-    if (pp_.mpeg1) {
+    if (mpeg1) {
       // 11172-2 §2.4.4.1: (2 * level * quantizer_scale * W) / 16, then towards an odd value.
-      v = (mag * wq_[pos]) >> 3;
+      v = (mag * wq_[i]) >> 3;
       if ((v & 1) == 0 && v != 0) v -= 1;
     } else {
       // 13818-2 §7.4.2.3: (2 * QF * W * quantiser_scale) / 32, truncating towards zero.
-      v = (mag * wq_[pos]) >> 4;
+      v = (mag * wq_[i]) >> 4;
     }
-    if (level < 0) v = -v;
-    v = v < -2048 ? -2048 : (v > 2047 ? 2047 : v);  // §7.4.3 saturation
+    // §7.4.3 saturation to [-2048, 2047], applied to the magnitude before the sign.
+    const int limit = negative ? 2048 : 2047;
+    v = v > limit ? limit : v;
+    v = negative ? -v : v;
     blk[pos] = static_cast<std::int16_t>(v);
     parity ^= static_cast<unsigned>(v);
-    rowMask |= 1u << (pos >> 3);
-    colMask |= 1u << (pos & 7);
-    ac = true;
+    masks |= mask_[i];
   }
+  unsigned rowMask = 1u | (masks & 0xFF);
+  unsigned colMask = 1u | (masks >> 8);
+  const bool ac = masks != 0;
   // §7.4.4 mismatch control: if the sum of all coefficients is even, toggle the LSB of F[7][7].
   if (!pp_.mpeg1 && (parity & 1) == 0) {
     blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
