@@ -202,6 +202,12 @@ void CscRowImpl(const std::uint8_t* y, const std::uint8_t* cbUp, const std::uint
     const auto r = hn::ShiftRight<1>(hn::Add(hn::Add(lum, hn::MulHigh(cr, kRcr)), one));
     const auto g = hn::ShiftRight<1>(hn::Add(hn::Add(hn::Add(lum, hn::MulHigh(cr, kGcr)), hn::MulHigh(cb, kGcb)), one));
     const auto b = hn::ShiftRight<1>(hn::Add(hn::Add(lum, hn::MulHigh(cb, kBcb)), one));
+    if (th0 <= 0 && th1 <= 0) {
+      // No SETTH thresholds: alpha is 0x80 everywhere and the saturating narrow does the clamp.
+      hn::StoreInterleaved4(hn::DemoteTo(d8, r), hn::DemoteTo(d8, g), hn::DemoteTo(d8, b), hn::Set(d8, 0x80), d8,
+                            rgba + 4 * x);
+      continue;
+    }
     const auto zero = hn::Zero(d), k255 = hn::Set(d, 255);
     const auto rc = hn::Min(hn::Max(r, zero), k255), gc = hn::Min(hn::Max(g, zero), k255);
     const auto bc = hn::Min(hn::Max(b, zero), k255);
