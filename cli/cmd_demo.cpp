@@ -11,6 +11,7 @@
 
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
+#include "iop/fault_plan.hpp"
 
 namespace vbim::cli {
 
@@ -63,8 +64,13 @@ void addDemo(CLI::App& app) {
   auto* cmd = app.add_subcommand("demo", "Run the main job on built-in defaults and write everything to out/demo/");
   cmd->add_option("--out", r->out, "Output directory (replaced)")->capture_default_str();
   cmd->add_option("--duration", r->duration, "Simulated time")->capture_default_str();
+  static double seconds = 0.0;  // CLI11 writes here; lives as long as the app
+  cmd->add_option("--seconds", seconds, "Simulated seconds (the same as --duration Ns)")
+      ->check(CLI::Range(0.001, 86400.0))
+      ->each([r](const std::string& v) { r->duration = v + "s"; });
   cmd->callback([r] {
     r->disc = demoStream().string();
+    if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
     r->faultsText = kDemoFaults;
     std::cout << "vbim demo: " << r->disc << " with a 6 s drive stall at 0.2 s, a read error at LBA 2090 and a loop "
               << "wrap at 48.5 s\n";
