@@ -1,75 +1,87 @@
-// vbim demo: the README's main job. Until the pipeline exists (issues #7 and #9) it runs the
-// kernel's exercise model (runtime/shape_model.hpp) for 60 simulated seconds with a 500 ms stall
-// and writes its trace and waveform, so the end-to-end part that exists can be opened and looked at.
-#include <chrono>
+// vbim demo: the README's main job. Plays the committed sample stream streams/samples/day_clear.vbim
+// through the whole pipeline with a built-in fault plan (a long drive stall, a scratched sector, and
+// a run past the loop point so the stream wraps), writes everything `vbim play` writes into
+// out/demo/, and says what to open. Needs nothing downloaded.
+//
+// The stream is found next to the binary (../streams/samples or streams/samples) or in the source
+// tree this binary was built from (VBIM_SOURCE_DIR). A later step makes the demo author its own
+// stream from Technique A first: replace demoStream() with that.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "cli/command.hpp"
-#include "cli/output_dir.hpp"
-#include "runtime/shape_model.hpp"
-#include "runtime/trace.hpp"
+#include "cli/play_run.hpp"
+#include "iop/fault_plan.hpp"
 
 namespace vbim::cli {
 
 namespace {
 
-struct DemoOptions {
-  std::string out = "out/demo";
-  double seconds = 60.0;
-  bool force = true;  // the demo owns out/demo and replaces it
-};
+// The demo's faults, on the simulated clock (docs/fault-plans.md). The sample's whole 75 sectors fit
+// in the EE's buffers after a few seconds, so the stall starts early, during the spin-up, before the first frames
+// arrive.
+constexpr const char* kDemoFaults = R"(# vbim demo: built-in fault plan
+[[fault]]
+kind = "stall"          # the drive freezes before the stream has been read: the lightmap falls behind
+at = "200ms"
+duration = "6s"
 
-void runDemo(const DemoOptions& o) {
-  ShapeModelSettings s;
-  s.duration = fromSeconds(o.seconds);
-  Tracer tracer;
-  const auto wall0 = std::chrono::steady_clock::now();  // host time, for the summary only
-  const ShapeModelResult r = runShapeModel(s, &tracer);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+[[fault]]
+kind = "read_error"     # a scratched sector in the stream file: drive retries, then the ring's run-up retries
+lba = 2090              # file sector 42 (the bare file lies at LBA 2048)
+attempts = 300
+)";
 
-  OutputDir dir(o.out, o.force);
-  {
-    std::ofstream f(dir.path("trace.json"), std::ios::binary);
-    tracer.writeChromeJson(f);
+std::filesystem::path demoStream() {
+  namespace fs = std::filesystem;
+  const fs::path rel = fs::path("streams") / "samples" / "day_clear.vbim";
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (fs::path dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path()) {
+      if (fs::exists(dir / rel)) return dir / rel;
+    }
   }
-  {
-    std::ofstream f(dir.path("signals.vcd"), std::ios::binary);
-    tracer.writeVcd(f);
-  }
-  {
-    std::ofstream f(dir.path("summary.txt"), std::ios::binary);
-    f << "model: producer every 13.9 us -> FIFO depth 8 -> consumer 20 us/token, 59.94 Hz vsync\n"
-      << "fault: producer suspended " << toMs(s.stallFor) << " ms at " << toSeconds(s.stallAt) << " s\n"
-      << "simulated: " << toSeconds(r.end) << " s\n"
-      << "produced: " << r.produced << "\nconsumed: " << r.consumed << "\nvsyncs: " << r.vsyncs
-      << "\nstarved vsyncs: " << r.starvedVsyncs << "\nproducer blocked by a full FIFO: " << r.producerBlocked
-      << "\nscheduler events: " << r.events << "\n";
-  }
-  dir.commit();
-
-  std::cout << "vbim demo: the full pipeline is not built yet (issues #3-#9); ran the kernel model instead.\n"
-            << "  simulated " << toSeconds(r.end) << " s in " << wall << " s of host time (" << r.events << " events, "
-            << static_cast<double>(r.events) / wall / 1e6 << " M events/s)\n"
-            << "  consumed " << r.consumed << " tokens; " << r.starvedVsyncs << " of " << r.vsyncs
-            << " vsyncs saw no progress (the injected 500 ms stall)\n"
-            << "Open:\n"
-            << "  " << o.out << "/trace.json   in https://ui.perfetto.dev (busy spans, FIFO occupancy)\n"
-            << "  " << o.out << "/signals.vcd  in GTKWave\n"
-            << "  " << o.out << "/summary.txt\n";
+#ifdef VBIM_SOURCE_DIR
+  if (fs::exists(fs::path(VBIM_SOURCE_DIR) / rel)) return fs::path(VBIM_SOURCE_DIR) / rel;
+#endif
+  if (fs::exists(rel)) return rel;
+  throw Exit(2, "vbim demo: cannot find " + rel.string() +
+                    " next to the binary or in the source tree; run from the repository root or pass a stream to "
+                    "`vbim play`");
 }
 
 }  // namespace
 
 void addDemo(CLI::App& app) {
-  auto opts = std::make_shared<DemoOptions>();
+  auto r = std::make_shared<PlayRequest>();
+  r->out = "out/demo";
+  r->duration = "60s";         // past the 48-frame day's end at 48.5 s: one loop wrap
+  r->every = 600;              // about every 10 s
+  r->at = {"6s", "7s", "8s"};  // the catch-up after the stall
+  r->seed = 1;
+  r->force = true;  // the demo owns out/demo and replaces it
   auto* cmd = app.add_subcommand("demo", "Run the main job on built-in defaults and write everything to out/demo/");
-  cmd->add_option("--out", opts->out, "Output directory (replaced)")->capture_default_str();
-  cmd->add_option("--seconds", opts->seconds, "Simulated seconds")
+  cmd->add_option("--out", r->out, "Output directory (replaced)")->capture_default_str();
+  cmd->add_option("--duration", r->duration, "Simulated time")->capture_default_str();
+  static double seconds = 0.0;  // CLI11 writes here; lives as long as the app
+  cmd->add_option("--seconds", seconds, "Simulated seconds (the same as --duration Ns)")
       ->check(CLI::Range(0.001, 86400.0))
-      ->capture_default_str();
-  cmd->callback([opts] { runDemo(*opts); });
+      ->each([r](const std::string& v) { r->duration = v + "s"; });
+  cmd->callback([r] {
+    r->disc = demoStream().string();
+    if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
+    r->faultsText = kDemoFaults;
+    std::cout << "vbim demo: " << r->disc << " with a 6 s drive stall at 0.2 s, a read error at LBA 2090 and a loop "
+              << "wrap at 48.5 s\n";
+    std::cout << runPlay(*r, false);
+    std::cout << "Open:\n"
+              << "  " << r->out << "/trace.json    in https://ui.perfetto.dev (busy spans, ring occupancy, pop, lag)\n"
+              << "  " << r->out << "/signals.vcd   in GTKWave\n"
+              << "  " << r->out << "/stats.json    busy shares, ring occupancy, late/dropped/caught-up frames, damage\n"
+              << "  " << r->out << "/timeline.csv  one row per vsync (pop, lag, targets, ring banks)\n"
+              << "  " << r->out << "/frames/       lightmap and sky images (PNG)\n";
+  });
 }
 
 }  // namespace vbim::cli

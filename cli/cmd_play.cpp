@@ -1,11 +1,207 @@
+// vbim play: a disc through the whole pipeline on the simulated clock; writes images, hashes.txt,
+// stats.json, trace.json, signals.vcd and timeline.csv into --out (docs/player.md).
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include <OpenImageIO/imageio.h>
+
 #include "cli/command.hpp"
+#include "cli/output_dir.hpp"
+#include "cli/play_run.hpp"
+#include "gs/blend_simd.hpp"
+#include "gs/gs_error.hpp"
+#include "iop/file_disc.hpp"
+#include "ipu/simd/simd_kernels.hpp"
+#include "runtime/player/report.hpp"
+#include "runtime/player/scenario.hpp"
 
 namespace vbim::cli {
 
+namespace {
+
+Tick parseTime(const std::string& what, const std::string& text) {
+  try {
+    return iop::parseDuration(text);
+  } catch (const std::exception& e) {
+    throw Exit(2, what + " '" + text + "': " + e.what() + " (expected a time with a unit, e.g. 12.5s or 800ms)");
+  }
+}
+
+void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool exr) {
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path.string());
+  if (!out) throw Exit(1, path.string() + ": cannot create the image writer: " + OIIO::geterror());
+  OIIO::ImageSpec spec(img.width, img.height, 4, exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
+  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, img.pixels.data()) || !out->close())
+    throw Exit(1, path.string() + ": cannot write the image: " + out->geterror());
+}
+
+std::string policyName(const std::string& p) {
+  if (p.empty()) return "";
+  if (p == "blend") return "blend-through";
+  if (p == "skip") return "hard-skip";
+  if (p == "late") return "play-late";
+  throw Exit(2, "--policy '" + p + "': expected blend, skip or late");
+}
+
+}  // namespace
+
+std::string runPlay(const PlayRequest& r, bool progress) {
+  using namespace vbim::player;
+  // The disc: a bare stream file at kBareFileLba.
+  std::shared_ptr<iop::FileDisc> disc;
+  iop::DiscFile file;
+  try {
+    auto probe = std::make_unique<iop::FileDisc>(r.disc, kBareFileLba);
+    file = probe->file();
+    disc = std::make_shared<iop::FileDisc>(r.disc, kBareFileLba, kBareFileLba + file.sectors() + kBareFilePadSectors);
+  } catch (const iop::DiscError& e) {
+    throw Exit(2, e.what());
+  }
+  PlayerOptions o;
+  try {
+    if (!r.config.empty()) o.config = loadPlatformFile(r.config);
+  } catch (const ConfigError& e) {
+    throw Exit(2, e.what());
+  }
+  try {
+    if (!r.faults.empty()) {
+      o.faults = iop::FaultPlan::load(r.faults, disc.get());
+    } else if (!r.faultsText.empty()) {
+      o.faults = iop::FaultPlan::parse(r.faultsText, "<built-in fault plan>", disc.get());
+    }
+  } catch (const iop::FaultPlanError& e) {
+    throw Exit(2, e.what());
+  }
+  if (const std::string p = policyName(r.policy); !p.empty()) o.config.gs.catchup = p;
+  o.seed = r.seed;
+  o.duration = parseTime("--duration", r.duration);
+  if (o.duration <= 0) throw Exit(2, "--duration must be positive");
+  o.trace = r.trace;
+  o.kernels.blend = &gs::simd::kernels();
+  o.kernels.ipu = &ipu::simdKernels();
+  for (const std::string& b : r.branches) {
+    const auto eq = b.find('=');
+    if (eq == std::string::npos) throw Exit(2, "--branch '" + b + "': expected TIME=VARIANT, e.g. 12.5s=1");
+    o.branches.push_back(Branch{parseTime("--branch", b.substr(0, eq)), std::stoi(b.substr(eq + 1))});
+  }
+  std::set<Tick> atTimes;
+  for (const std::string& a : r.at) {
+    const Tick t = parseTime("--at", a);
+    if (t >= o.duration) {
+      throw Exit(2, "--at " + a + " is outside the run (0 s to " + std::to_string(toSeconds(o.duration)) +
+                        " s; see --duration)");
+    }
+    atTimes.insert(t);
+  }
+  if (r.format != "png" && r.format != "exr") throw Exit(2, "--format '" + r.format + "': expected png or exr");
+
+  std::unique_ptr<Player> player;
+  try {
+    player = std::make_unique<Player>(*disc, file, o);
+  } catch (const StreamProbeError& e) {
+    throw Exit(2, e.what());
+  } catch (const ConfigError& e) {
+    throw Exit(2, e.what());
+  } catch (const gs::GsError& e) {
+    throw Exit(2, std::string("platform config: ") + e.what());
+  }
+
+  OutputDir dir(r.out, r.force);
+  std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
+  std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
+  timeline << timelineHeader();
+  std::filesystem::create_directories(dir.path("frames"));
+  const bool exr = r.format == "exr";
+  std::int64_t images = 0;
+  auto nextAt = atTimes.begin();
+  player->setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
+    hashes << hashesLine(row);
+    timeline << timelineLine(row);
+    bool shoot = r.every > 0 && row.vsync % r.every == 0;
+    while (nextAt != atTimes.end() && *nextAt <= row.at) {
+      shoot = true;
+      ++nextAt;
+    }
+    if (!shoot) return;
+    char name[64];
+    std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
+    writeImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr);
+    if (sky != nullptr) writeImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr);
+    ++images;
+  });
+
+  const auto wall0 = std::chrono::steady_clock::now();  // host time: the summary only
+  const Tick step = fromMs(1'000);
+  for (Tick t = step;; t += step) {
+    player->runTo(std::min(t, o.duration));
+    if (progress) {
+      const int pct = static_cast<int>((100 * player->now()) / o.duration);
+      std::cout << "\r[" << std::string(static_cast<std::size_t>(pct / 5), '#')
+                << std::string(static_cast<std::size_t>(20 - pct / 5), ' ') << "] " << pct << "% "
+                << static_cast<long long>(toSeconds(player->now())) << " s" << std::flush;
+    }
+    if (t >= o.duration) break;
+  }
+  if (progress) std::cout << "\n";
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  hashes.close();
+  timeline.close();
+  {
+    std::ofstream f(dir.path("stats.json"), std::ios::binary);
+    writeStatsJson(*player, f);
+  }
+  if (r.trace) {
+    std::ofstream t(dir.path("trace.json"), std::ios::binary);
+    player->tracer().writeChromeJson(t);
+    std::ofstream v(dir.path("signals.vcd"), std::ios::binary);
+    player->tracer().writeVcd(v);
+  }
+  dir.commit();
+
+  const auto& c = player->pipeline().lightmap().counters();
+  const RunTotals& tot = player->totals();
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << "played " << toSeconds(o.duration) << " s of " << r.disc << " (" << tot.vsyncs << " vsyncs) in " << wall
+    << " s of host time (" << toSeconds(o.duration) / std::max(wall, 1e-9) << "x real time)\n"
+    << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
+    << c.framesCaughtUp << " caught up; " << c.loopWraps << " loop wrap(s), " << c.branches << " branch(es)\n"
+    << "  pop max " << tot.pop.value << " at " << toSeconds(tot.pop.at) << " s; lag max " << tot.lag.value;
+  if (tot.lag.vsync >= 0) s << " at " << toSeconds(tot.lag.at) << " s";
+  s << (player->hasReference() ? " (against a fault-free reference run)" : " (no faults: no reference needed)")
+    << "\n  ring underruns " << player->pipeline().ring().stats().underruns << ", drive retries "
+    << player->pipeline().drive().stats().retries << ", damaged/lost frames "
+    << player->pipeline().demux().counters().picturesDamaged + player->pipeline().demux().counters().framesLost
+    << ", images written " << images << "\n";
+  return s.str();
+}
+
 void addPlay(CLI::App& app) {
+  auto r = std::make_shared<PlayRequest>();
   auto* cmd = app.add_subcommand("play", "Play a VBIM disc through the whole pipeline on the simulated clock");
-  cmd->allow_extras();
-  cmd->callback([] { notYetAvailable("play", 7); });
+  cmd->add_option("disc", r->disc, "A VBIM stream file (a bare stream is a disc with one file)")->required();
+  cmd->add_option("--config", r->config, "Platform config (TOML; `vbim config --defaults` lists every key)");
+  cmd->add_option("--faults", r->faults, "Fault plan (TOML; docs/fault-plans.md)");
+  cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();
+  cmd->add_option("--duration", r->duration, "Simulated time to play (e.g. 60s)")->capture_default_str();
+  cmd->add_option("--policy", r->policy, "Catch-up policy: blend (default), skip or late");
+  cmd->add_option("--every", r->every, "Write the lightmap and sky every N vsyncs (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--at", r->at, "Write the images at these times (12.5s,30s,...)")->delimiter(',');
+  cmd->add_option("--format", r->format, "Image format: png or exr")->capture_default_str();
+  cmd->add_option("--branch", r->branches, "Switch to a variant at a time: 12.5s=1 (repeatable)");
+  cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
+  cmd->add_flag("!--no-trace", r->trace, "Skip trace.json and signals.vcd (they grow with the run)");
+  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
+  cmd->callback([r] { std::cout << runPlay(*r, isatty(STDOUT_FILENO) != 0); });
 }
 
 }  // namespace vbim::cli

@@ -3,11 +3,11 @@
 namespace vbim::cli {
 
 void describePlatform(ParamTable& t, PlatformParams& p) {
-  iop::describeParams(t, p.iop);
+  player::describeParams(t, p);
 }
 
 void validatePlatform(const PlatformParams& p) {
-  iop::validate(p.iop);
+  player::validate(p);
 }
 
 }  // namespace vbim::cli

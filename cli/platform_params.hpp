@@ -1,16 +1,15 @@
-// The platform config: every timing constant of every component, gathered in one ParamTable so a
-// single TOML file sets them and `vbim config` prints them with their sources. Components join as
-// their issues land; the player (issue #7) takes this over.
+// The platform config: every timing constant of every component (drive., ring., sif., ipu., gs.,
+// ee.), gathered in one ParamTable so a single TOML file sets them and `vbim config` prints them with
+// their sources. The struct itself lives with the player (runtime/player/platform_config.hpp), which
+// the test API shares; this header keeps the CLI's names.
 #pragma once
 
-#include "iop/iop_params.hpp"
 #include "runtime/params.hpp"
+#include "runtime/player/platform_config.hpp"
 
 namespace vbim::cli {
 
-struct PlatformParams {
-  iop::IopParams iop;
-};
+using PlatformParams = player::PlatformConfig;
 
 void describePlatform(ParamTable& t, PlatformParams& p);
 // Checks relations between parameters (after loading); throws ConfigError.

@@ -65,7 +65,8 @@ TEST(Cli, DemoWritesACompleteOutputDirectory) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "trace.json"));
   EXPECT_TRUE(fs::exists(out / "signals.vcd"));
-  EXPECT_TRUE(fs::exists(out / "summary.txt"));
+  EXPECT_TRUE(fs::exists(out / "stats.json"));
+  EXPECT_TRUE(fs::exists(out / "hashes.txt"));
   // No temporary directory left beside it.
   for (const auto& e : fs::directory_iterator(out.parent_path()))
     EXPECT_EQ(e.path().filename().string().find("." + out.filename().string() + ".tmp"), std::string::npos);

@@ -1,0 +1,33 @@
+// The body of `vbim play`, shared with `vbim demo`: one run of the player on a disc, every output
+// written into an OutputDir (complete or absent).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "iop/fault_plan.hpp"
+
+namespace vbim::cli {
+
+struct PlayRequest {
+  std::string disc;
+  std::string config;      // platform config TOML, or empty
+  std::string faults;      // fault plan TOML path, or empty
+  std::string faultsText;  // a fault plan given inline (the demo's built-in one), used if faults is empty
+  std::uint64_t seed = 1;
+  std::string duration = "60s";
+  std::string policy;  // blend|skip|late, or empty (the config's gs.catchup)
+  std::int64_t every = 0;
+  std::vector<std::string> at;
+  std::string format = "png";
+  std::vector<std::string> branches;  // "12.5s=1": switch to variant 1 at 12.5 s
+  bool force = false;
+  bool trace = true;
+  std::string out;
+};
+
+// Returns a one-paragraph summary; throws cli::Exit on bad input.
+std::string runPlay(const PlayRequest& r, bool progress);
+
+}  // namespace vbim::cli

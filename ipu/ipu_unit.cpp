@@ -1,0 +1,156 @@
+#include "ipu/ipu_unit.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace vbim::ipu {
+namespace {
+
+constexpr std::uint32_t kQwordsPerMacroblock = 64;  // RGB32: 16 x 16 x 4 bytes / 16 (notes §4.2)
+constexpr std::uint32_t kQwordsPerRow = 4;
+
+DecoderOptions withTrace(DecoderOptions o) {
+  o.recordMacroblocks = true;
+  return o;
+}
+
+}  // namespace
+
+IpuUnit::IpuUnit(Scheduler& s, const IpuTimingParams& p, Tracer* tracer, DecoderOptions options)
+    : s_(s),
+      p_(p),
+      tracer_(tracer && tracer->enabled() ? tracer : nullptr),
+      decoder_(withTrace(options)),
+      toIpuJobs_(s, 1, "ipu.toipu_jobs"),
+      coreJobs_(s, 1, "ipu.core_jobs"),
+      fromIpuJobs_(s, 1, "ipu.fromipu_jobs"),
+      // The internal bit buffer holds qwords taken from the FIFO ahead of the decoder.
+      in_(s, static_cast<std::size_t>(p.inFifoQwords + p.inBufferQwords), "ipu.in"),
+      out_(s, static_cast<std::size_t>(p.outFifoQwords), "ipu.out") {
+  if (tracer_) track_ = tracer_->track("ipu");
+  toIpu_ = &s_.spawn("ipu.toIPU", toIpuLoop(*this));
+  core_ = &s_.spawn("ipu", coreLoop(*this));
+  fromIpu_ = &s_.spawn("ipu.fromIPU", fromIpuLoop(*this));
+}
+
+Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
+  TimedPicture result;
+  result.started = s_.now();
+  result.report = decoder_.decode(bytes);
+  if (!result.report.produced) {
+    result.finished = s_.now();
+    co_return result;
+  }
+  const FrameStore& fs = decoder_.frame();
+  Job job;
+  job.mbWidth = fs.mbWidth;
+  const std::size_t mbs = static_cast<std::size_t>(fs.mbWidth) * fs.mbHeight;
+  convertToRgba32(fs, fs.mbWidth * 16, fs.mbHeight * 16, th, job.staged);
+  job.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
+  // Per macroblock (raster order): the qwords holding its last bit, and its bit count. Concealed
+  // macroblocks cost the base only and need no further input.
+  std::vector<std::uint32_t> endByte(mbs, 0);
+  job.bits.assign(mbs, 0);
+  for (const MacroblockBits& m : decoder_.macroblockTrace()) {
+    if (m.address < mbs) {
+      endByte[m.address] = m.endByte;
+      job.bits[m.address] = m.bits;
+    }
+  }
+  job.needQwords.resize(mbs);
+  std::uint32_t need = 0;
+  for (std::size_t i = 0; i < mbs; ++i) {
+    need = std::max(need, std::min(job.inQwords, (endByte[i] + 15) / 16));
+    job.needQwords[i] = need;
+  }
+  if (out.width != decoder_.width() || out.height != decoder_.height())
+    out = Rgba8Image(decoder_.width(), decoder_.height());
+  job.out = &out;
+  Event finished(s_);
+  job.finished = &finished;
+  co_await toIpuJobs_.push(&job);
+  co_await coreJobs_.push(&job);
+  co_await fromIpuJobs_.push(&job);
+  while (!job.done) co_await finished.wait();
+  result.finished = s_.now();
+  result.outputStalls = job.stalls;
+  co_return result;
+}
+
+Task<void> IpuUnit::toIpuLoop(IpuUnit& u) {
+  for (;;) {
+    Job* job = co_await u.toIpuJobs_.pop();
+    for (std::uint32_t q = 0; q < job->inQwords; ++q) {
+      co_await u.s_.delay(u.p_.toIpuCyclesPerQword);
+      co_await u.in_.push(q);
+    }
+  }
+}
+
+Task<void> IpuUnit::coreLoop(IpuUnit& u) {
+  for (;;) {
+    Job* job = co_await u.coreJobs_.pop();
+    co_await u.s_.delay(u.p_.commandStartCycles);
+    std::uint32_t pulled = 0;
+    std::uint32_t q = 0;
+    const std::size_t mbs = job->needQwords.size();
+    for (std::size_t i = 0; i < mbs; ++i) {
+      // The decoder consumes the macroblock's qwords while it works: the cost is spread over them,
+      // so the toIPU DMA refills the FIFO during the decode and only a slower DMA makes it wait.
+      const Tick begin = u.s_.now();
+      const Tick cost = u.p_.mbBaseCycles + u.p_.mbCyclesPerBit * job->bits[i];
+      const std::uint32_t k = job->needQwords[i] - pulled;
+      if (k == 0) co_await u.s_.delay(cost);
+      for (std::uint32_t j = 1; j <= k; ++j) {
+        co_await u.s_.delay(cost * j / k - cost * (j - 1) / k);
+        co_await u.in_.pop();
+        ++pulled;
+      }
+      const Tick decoded = u.s_.now();
+      if (u.tracer_) u.tracer_->span(u.track_, begin, decoded, "idec");
+      // CSC emits the macroblock row by row; each row's qwords wait for room in the output FIFO.
+      for (int row = 0; row < 16; ++row) {
+        co_await u.s_.delay(u.p_.cscCyclesPerMb * (row + 1) / 16 - u.p_.cscCyclesPerMb * row / 16);
+        const Tick ready = u.s_.now();
+        for (std::uint32_t k = 0; k < kQwordsPerRow; ++k) co_await u.out_.push(q++);
+        if (u.s_.now() != ready) {
+          ++job->stalls;
+          if (u.tracer_) u.tracer_->span(u.track_, ready, u.s_.now(), "out stall");
+        }
+      }
+      if (u.tracer_) u.tracer_->span(u.track_, decoded, u.s_.now(), "csc");
+    }
+    // Bytes after the last macroblock (stuffing, the next start code) are read and dropped.
+    while (pulled < job->inQwords) {
+      co_await u.in_.pop();
+      ++pulled;
+    }
+  }
+}
+
+Task<void> IpuUnit::fromIpuLoop(IpuUnit& u) {
+  for (;;) {
+    Job* job = co_await u.fromIpuJobs_.pop();
+    const std::uint32_t total = static_cast<std::uint32_t>(job->needQwords.size()) * kQwordsPerMacroblock;
+    for (std::uint32_t n = 0; n < total; ++n) {
+      const std::uint32_t q = co_await u.out_.pop();
+      co_await u.s_.delay(u.p_.fromIpuCyclesPerQword);
+      u.writeQword(*job, q);
+    }
+    job->done = true;
+    job->finished->notify();
+  }
+}
+
+void IpuUnit::writeQword(const Job& job, std::uint32_t q) {
+  const std::uint32_t mb = q / kQwordsPerMacroblock;
+  const std::uint32_t within = q % kQwordsPerMacroblock;
+  const int px = static_cast<int>(mb % job.mbWidth) * 16 + static_cast<int>(within % kQwordsPerRow) * 4;
+  const int py = static_cast<int>(mb / job.mbWidth) * 16 + static_cast<int>(within / kQwordsPerRow);
+  Rgba8Image& out = *job.out;
+  if (py >= out.height || px >= out.width) return;
+  const int n = std::min(4, out.width - px);
+  std::memcpy(out.row(py) + 4 * px, job.staged.row(py) + 4 * px, static_cast<std::size_t>(n) * 4);
+}
+
+}  // namespace vbim::ipu

@@ -1,0 +1,92 @@
+// The IPU on the simulated clock: three cooperating threads, as on the console.
+//
+//   "ipu.toIPU"   DMAC channel 4: picture bytes from EE memory into the 8-qword input FIFO
+//   "ipu"         IDEC: per macroblock, waits for its bits, then base + per-bit cycles (VLC, IQ,
+//                 IDCT), then CSC row by row, each row's 4 qwords pushed into the 8-qword output
+//                 FIFO (blocking when it is full: decode stalls when the output is not drained)
+//   "ipu.fromIPU" DMAC channel 3: output FIFO to EE memory, writing the pixels of each qword into
+//                 the caller's image when that qword lands
+//
+// The pixels come from the functional decoder (ipu/picture_decoder.hpp), computed on the host when
+// the command starts and released qword by qword at the modelled times. The player (issue #7)
+// calls `co_await unit.decode(bytes, image)`.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "ipu/csc.hpp"
+#include "ipu/picture_decoder.hpp"
+#include "ipu/timing_params.hpp"
+#include "runtime/event.hpp"
+#include "runtime/fifo.hpp"
+#include "runtime/image.hpp"
+#include "runtime/scheduler.hpp"
+#include "runtime/task.hpp"
+#include "runtime/trace.hpp"
+
+namespace vbim::ipu {
+
+struct TimedPicture {
+  PictureReport report;
+  Tick started = 0;               // command issued
+  Tick finished = 0;              // last output qword in memory
+  std::int64_t outputStalls = 0;  // CSC rows that waited for room in the output FIFO
+};
+
+class IpuUnit {
+ public:
+  IpuUnit(Scheduler& s, const IpuTimingParams& p, Tracer* tracer = nullptr, DecoderOptions options = {});
+  IpuUnit(const IpuUnit&) = delete;
+  IpuUnit& operator=(const IpuUnit&) = delete;
+
+  // Decodes one picture (see Decoder::decode for what `bytes` holds) to RGB32 with the SETTH
+  // thresholds; `out` is written while the fromIPU DMA runs and complete when this returns.
+  // One command at a time: callers serialise (as the EE does with IPU_CMD).
+  Task<TimedPicture> decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th = {});
+
+  // For fault injection: suspending this process stops the output drain (D_CTRL stall, or an EE
+  // that does not service the DMA), so the output FIFO fills and the decode stalls.
+  Process& fromIpuProcess() { return *fromIpu_; }
+  Process& toIpuProcess() { return *toIpu_; }
+  Process& coreProcess() { return *core_; }
+  const Decoder& decoder() const { return decoder_; }
+
+ private:
+  struct Job {
+    std::uint32_t inQwords = 0;
+    // Per macroblock in output order: input qwords needed before it can start, and its bits.
+    std::vector<std::uint32_t> needQwords;
+    std::vector<std::uint32_t> bits;
+    int mbWidth = 0;
+    Rgba8Image staged;  // the IPU's output, whole macroblocks
+    Rgba8Image* out = nullptr;
+    std::int64_t stalls = 0;
+    bool done = false;
+    Event* finished = nullptr;
+  };
+  static Task<void> toIpuLoop(IpuUnit& u);
+  static Task<void> coreLoop(IpuUnit& u);
+  static Task<void> fromIpuLoop(IpuUnit& u);
+  void writeQword(const Job& job, std::uint32_t q);
+
+  Scheduler& s_;
+  IpuTimingParams p_;
+  Tracer* tracer_;
+  Tracer::TrackId track_ = 0;
+  Tracer::CounterId inLevel_ = 0, outLevel_ = 0;
+  Decoder decoder_;
+  Fifo<Job*> toIpuJobs_;
+  Fifo<Job*> coreJobs_;
+  Fifo<Job*> fromIpuJobs_;
+  Fifo<std::uint32_t> in_;
+  Fifo<std::uint32_t> out_;
+  Process* toIpu_ = nullptr;
+  Process* core_ = nullptr;
+  Process* fromIpu_ = nullptr;
+};
+
+}  // namespace vbim::ipu

@@ -1,0 +1,88 @@
+// The IPU's picture decoder as a plain function of bytes: headers (sequence, GOP, picture and
+// their extensions, the SETIQ matrices), then every slice of the picture (IDEC), into a frame
+// store that persists between pictures for concealment. No timing here: ipu/ipu_unit.hpp puts
+// this on the simulated clock.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "ipu/decode_report.hpp"
+#include "ipu/frame_store.hpp"
+#include "ipu/headers.hpp"
+#include "ipu/slice_decoder.hpp"
+
+namespace vbim {
+class WorkerPool;
+}
+
+namespace vbim::ipu {
+
+// Runs fn(0) .. fn(count - 1), possibly on several host threads, and returns when all are done.
+// The decoder core stays free of the kernel; vbim::WorkerPool is adapted in ipu/pool_runner.cpp.
+class SliceRunner {
+ public:
+  virtual ~SliceRunner() = default;
+  virtual unsigned threads() const = 0;  // besides the caller
+  virtual void run(std::size_t count, const std::function<void(std::size_t)>& fn) = 0;
+};
+
+struct DecoderOptions {
+  int maxWidth = 4096;  // larger sizes are reported as absurd (MPEG-2 MP@HL is 1920x1152)
+  int maxHeight = 4096;
+  // The IPU's IDP field holds 8, 9 or 10 bits; 11 bits is invalid there and PCSX2 treats it as 9
+  // (notes §4.2). By default we decode 11-bit DC precision as the standard says.
+  bool dcPrecision11AsNine = false;
+  bool recordMacroblocks = false;    // fill macroblockTrace() for the timing model
+  const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
+};
+
+class Decoder {
+ public:
+  explicit Decoder(DecoderOptions options = {});
+
+  // Decodes every header and slice in `bytes` (normally one picture with the headers before it;
+  // see ipu/elementary_stream.hpp). With a runner, the slices of an MPEG-2 picture are decoded in
+  // parallel; the result is bit-identical to the serial decode.
+  PictureReport decode(std::span<const std::uint8_t> bytes, SliceRunner* runner = nullptr);
+  // The same on a kernel worker pool (defined in ipu/pool_runner.cpp, library vbim_ipu).
+  PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool& pool);
+
+  const FrameStore& frame() const { return store_; }
+  bool hasSequence() const { return haveSequence_; }
+  const SequenceHeader& sequence() const { return seq_; }
+  const PictureHeader& picture() const { return pic_; }
+  // Display size of the current sequence.
+  int width() const { return seq_.width; }
+  int height() const { return seq_.height; }
+  const std::vector<MacroblockBits>& macroblockTrace() const { return trace_; }
+
+ private:
+  struct Slice {
+    int code;
+    int row;
+    std::size_t begin;
+    std::size_t end;
+  };
+  void beginPicture(PictureReport& report, std::size_t offset);
+  void finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool);
+  void handleExtension(BitReader& br, PictureReport& report, std::size_t offset);
+
+  DecoderOptions options_;
+  SequenceHeader seq_;
+  PictureHeader pic_;
+  bool haveSequence_ = false;
+  bool pictureOpen_ = false;   // a picture header was seen and not finished
+  bool pictureValid_ = false;  // it can be decoded
+  bool sawSlice_ = false;
+  PictureParams params_;
+  FrameStore store_;
+  std::vector<Slice> slices_;
+  std::vector<std::uint8_t> decoded_;
+  std::vector<MacroblockBits> trace_;
+};
+
+}  // namespace vbim::ipu

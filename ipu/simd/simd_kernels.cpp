@@ -1,0 +1,273 @@
+#include "ipu/simd/simd_kernels.hpp"
+
+#include <cstring>
+#include <vector>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "ipu/simd/simd_kernels.cpp"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+
+#include "ipu/csc.hpp"
+
+// Basis of the 1-D transform as used by ipu/idct.cpp: B(k, n) = 2^14 for k = 0, else
+// W_j * sign with cos((2n+1) k pi / 16) = sign * cos(j pi / 16).
+#ifndef VBIM_IPU_SIMD_BASIS
+#define VBIM_IPU_SIMD_BASIS
+namespace vbim::ipu::simd_detail {
+struct Basis {
+  alignas(64) std::int32_t b[8][8];       // [k][n]
+  alignas(64) std::int32_t toggle[8][8];  // [y][x]: B(7, y) * B(7, x), the F[7][7] = 1 term
+  Basis() {
+    static constexpr std::int32_t kW[8] = {23170, 22725, 21407, 19266, 16384, 12873, 8867, 4520};
+    for (int k = 0; k < 8; ++k)
+      for (int n = 0; n < 8; ++n) {
+        if (k == 0) {
+          b[k][n] = 16384;
+          continue;
+        }
+        int m = ((2 * n + 1) * k) % 32;  // angle m pi / 16
+        if (m > 16) m = 32 - m;          // cos is even around 2 pi
+        b[k][n] = m < 8 ? kW[m] : (m == 8 ? 0 : -kW[16 - m]);
+      }
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) toggle[y][x] = b[7][y] * b[7][x];
+  }
+};
+inline const Basis& basis() {
+  static const Basis instance;
+  return instance;
+}
+}  // namespace vbim::ipu::simd_detail
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace vbim::ipu::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Low-frequency blocks (rows and columns below R and C, plus the flagged mismatch toggle): the
+// same arithmetic as IdctImpl with compile-time trip counts, so it unrolls into registers.
+template <int R, int C>
+HWY_INLINE void IdctLowImpl(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
+  const hn::CappedTag<std::int32_t, 8> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const std::size_t N = hn::Lanes(d);
+  const auto& B = simd_detail::basis().b;
+  const auto& T = simd_detail::basis().toggle;
+  using V = hn::Vec<decltype(d)>;
+  const std::int32_t sign = toggle ? block[63] : 0;
+  for (std::size_t x0 = 0; x0 < 8; x0 += N) {
+    V ch[R], cl[R];
+    for (int v = 0; v < R; ++v) {
+      V acc = hn::Mul(hn::Set(d, block[8 * v]), hn::LoadU(d, &B[0][x0]));
+      for (int u = 1; u < C; ++u) acc = hn::Add(acc, hn::Mul(hn::Set(d, block[8 * v + u]), hn::LoadU(d, &B[u][x0])));
+      ch[v] = hn::ShiftRight<14>(hn::Add(acc, hn::Set(d, 1 << 13)));
+      cl[v] = hn::Sub(acc, hn::ShiftLeft<14>(ch[v]));
+    }
+    const V zero = hn::Zero(d), k255 = hn::Set(d, 255);
+    for (int y = 0; y < 4; ++y) {
+      V he = hn::Set(d, 1 << 16), ho = zero, le = zero, lo = zero;
+      for (int v = 0; v < R; ++v) {
+        const V b = hn::Set(d, B[v][y]);
+        if (v & 1) {
+          ho = hn::Add(ho, hn::Mul(ch[v], b));
+          lo = hn::Add(lo, hn::Mul(cl[v], b));
+        } else {
+          he = hn::Add(he, hn::Mul(ch[v], b));
+          le = hn::Add(le, hn::Mul(cl[v], b));
+        }
+      }
+      V lt = hn::Add(le, lo), lb = hn::Sub(le, lo);
+      if (sign > 0) {
+        lt = hn::Add(lt, hn::LoadU(d, &T[y][x0]));
+        lb = hn::Add(lb, hn::LoadU(d, &T[7 - y][x0]));
+      } else if (sign < 0) {
+        lt = hn::Sub(lt, hn::LoadU(d, &T[y][x0]));
+        lb = hn::Sub(lb, hn::LoadU(d, &T[7 - y][x0]));
+      }
+      const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(lt)));
+      const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(lb)));
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(top, zero), k255)), d8, dst + y * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(bottom, zero), k255)), d8, dst + (7 - y) * stride + x0);
+    }
+  }
+}
+
+void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride);
+
+void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  const bool toggle = (rowMask & 0x100) != 0;
+  const unsigned rows = rowMask & 0xFF, cols = colMask & 0xFF;
+  if ((rows | cols) <= 0x3) return IdctLowImpl<2, 2>(block, toggle, dst, stride);
+  if ((rows | cols) <= 0xF) return IdctLowImpl<4, 4>(block, toggle, dst, stride);
+  IdctGeneralImpl(block, rowMask, colMask, dst, stride);
+}
+
+// Horizontal pass first, over the non-zero rows and columns only: c[v][x] = sum_u F[v][u] B(u, x),
+// exact in 32 bits (|c| < 2048 * 122,400 < 2^28). Vertical pass with c split as
+// ch * 2^14 + cl (cl in [-2^13, 2^13)) so both partial sums fit 32 bits:
+// out = (H + (L >> 14) + 2^16) >> 17 == floor((sum_v c B + 2^30) / 2^31), the scalar result (the
+// double sum is one exact integer, so the order of the passes does not matter).
+void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  const hn::CappedTag<std::int32_t, 8> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const std::size_t N = hn::Lanes(d);
+  const auto& B = simd_detail::basis().b;
+  // The mismatch toggle alone in row 7 and column 7 adds +-B(7,y) B(7,x) (< 2^30) to the sum; it
+  // goes into the low partial sum (|l| < 2^30 + 2^30 fits 32 bits).
+  const bool toggle = (rowMask & 0x100) != 0;
+  const std::int32_t toggleSign = toggle ? block[63] : 0;
+  int rows[8], cols[8];
+  int nr = 0, nc = 0;
+  for (int i = 0; i < 8; ++i) {
+    if (rowMask & (1u << i)) rows[nr++] = i;
+    if (colMask & (1u << i)) cols[nc++] = i;
+  }
+  using V = hn::Vec<decltype(d)>;
+  for (std::size_t x0 = 0; x0 < 8; x0 += N) {
+    V ch[8], cl[8];
+    for (int i = 0; i < nr; ++i) {
+      const std::int16_t* f = block + 8 * rows[i];
+      V acc = hn::Zero(d);
+      for (int j = 0; j < nc; ++j) {
+        const int u = cols[j];
+        acc = hn::Add(acc, hn::Mul(hn::Set(d, f[u]), hn::LoadU(d, &B[u][x0])));
+      }
+      ch[i] = hn::ShiftRight<14>(hn::Add(acc, hn::Set(d, 1 << 13)));
+      cl[i] = hn::Sub(acc, hn::ShiftLeft<14>(ch[i]));
+    }
+    // Rows y and 7 - y share the products: B(v, 7 - y) = (-1)^v B(v, y).
+    for (int y = 0; y < 4; ++y) {
+      V he = hn::Set(d, 1 << 16), ho = hn::Zero(d), le = hn::Zero(d), lo = hn::Zero(d);
+      V lt = hn::Zero(d), lb = hn::Zero(d);
+      if (toggle) {
+        const V t = hn::LoadU(d, &simd_detail::basis().toggle[y][x0]);
+        const V tb = hn::LoadU(d, &simd_detail::basis().toggle[7 - y][x0]);
+        lt = toggleSign > 0 ? t : hn::Neg(t);
+        lb = toggleSign > 0 ? tb : hn::Neg(tb);
+      }
+      for (int i = 0; i < nr; ++i) {
+        const int v = rows[i];
+        const V b = hn::Set(d, B[v][y]);
+        if (v & 1) {
+          ho = hn::Add(ho, hn::Mul(ch[i], b));
+          lo = hn::Add(lo, hn::Mul(cl[i], b));
+        } else {
+          he = hn::Add(he, hn::Mul(ch[i], b));
+          le = hn::Add(le, hn::Mul(cl[i], b));
+        }
+      }
+      const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(hn::Add(hn::Add(le, lo), lt))));
+      const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(hn::Add(hn::Sub(le, lo), lb))));
+      const V zero = hn::Zero(d), k255 = hn::Set(d, 255);
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(top, zero), k255)), d8, dst + y * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(bottom, zero), k255)), d8, dst + (7 - y) * stride + x0);
+    }
+  }
+}
+
+// Doubles every chroma sample (4:2:0 -> one sample per pixel) 16 at a time.
+void UpsampleImpl(const std::uint8_t* c, int n, std::uint8_t* out) {
+  int i = 0;
+#if HWY_TARGET != HWY_SCALAR
+  const hn::Full128<std::uint8_t> d;
+  for (; i + 16 <= n; i += 16) {
+    const auto v = hn::LoadU(d, c + i);
+    hn::StoreU(hn::InterleaveLower(d, v, v), d, out + 2 * i);
+    hn::StoreU(hn::InterleaveUpper(d, v, v), d, out + 2 * i + 16);
+  }
+#endif
+  for (; i < n; ++i) out[2 * i] = out[2 * i + 1] = c[i];
+}
+
+// One RGB32 line with the PS2 matrix in 16-bit lanes: (a << 4) * (b << 6) >> 16 == (a * b) >> 6
+// exactly for |a| < 2^11 and the coefficients below (all products are floor-shifted as in the
+// scalar code). Chroma is upsampled to full width first.
+void CscRowImpl(const std::uint8_t* y, const std::uint8_t* cbUp, const std::uint8_t* crUp, int width,
+                std::uint8_t* rgba, int th0, int th1) {
+  const hn::ScalableTag<std::int16_t> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const int N = static_cast<int>(hn::Lanes(d));
+  const auto kY = hn::Set(d, 0x95 << 6), kRcr = hn::Set(d, 0xCC << 6), kGcr = hn::Set(d, -0x68 << 6);
+  const auto kGcb = hn::Set(d, -0x32 << 6), kBcb = hn::Set(d, 0x102 << 6);
+  const auto c128 = hn::Set(d, 128), one = hn::Set(d, 1);
+  const auto vTh0 = hn::Set(d, static_cast<std::int16_t>(th0)), vTh1 = hn::Set(d, static_cast<std::int16_t>(th1));
+  const auto a80 = hn::Set(d, 0x80), a40 = hn::Set(d, 0x40);
+  int x = 0;
+  for (; x + N <= width; x += N) {
+    const auto yy = hn::PromoteTo(d, hn::SaturatedSub(hn::LoadU(d8, y + x), hn::Set(d8, 16)));
+    const auto cb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, cbUp + x)), c128));
+    const auto cr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, crUp + x)), c128));
+    const auto lum = hn::MulHigh(hn::ShiftLeft<4>(yy), kY);
+    const auto r = hn::ShiftRight<1>(hn::Add(hn::Add(lum, hn::MulHigh(cr, kRcr)), one));
+    const auto g = hn::ShiftRight<1>(hn::Add(hn::Add(hn::Add(lum, hn::MulHigh(cr, kGcr)), hn::MulHigh(cb, kGcb)), one));
+    const auto b = hn::ShiftRight<1>(hn::Add(hn::Add(lum, hn::MulHigh(cb, kBcb)), one));
+    if (th0 <= 0 && th1 <= 0) {
+      // No SETTH thresholds: alpha is 0x80 everywhere and the saturating narrow does the clamp.
+      hn::StoreInterleaved4(hn::DemoteTo(d8, r), hn::DemoteTo(d8, g), hn::DemoteTo(d8, b), hn::Set(d8, 0x80), d8,
+                            rgba + 4 * x);
+      continue;
+    }
+    const auto zero = hn::Zero(d), k255 = hn::Set(d, 255);
+    const auto rc = hn::Min(hn::Max(r, zero), k255), gc = hn::Min(hn::Max(g, zero), k255);
+    const auto bc = hn::Min(hn::Max(b, zero), k255);
+    // SETTH on the clamped values: all below TH0 -> 0; else all below TH1 -> alpha 0x40.
+    const auto m = hn::Max(hn::Max(rc, gc), bc);
+    const auto cleared = m < vTh0;
+    const auto alpha = hn::IfThenZeroElse(cleared, hn::IfThenElse(m < vTh1, a40, a80));
+    const auto r8 = hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, rc));
+    const auto g8 = hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, gc));
+    const auto b8 = hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, bc));
+    const auto a8 = hn::DemoteTo(d8, alpha);
+    hn::StoreInterleaved4(r8, g8, b8, a8, d8, rgba + 4 * x);
+  }
+  if (x < width) {
+    // The tail in scalar: chroma pointers shifted so that index (x >> 1) still lines up.
+    std::uint8_t cbT[2], crT[2];
+    for (; x < width; ++x) {
+      cbT[0] = cbUp[x];
+      crT[0] = crUp[x];
+      cscRowRgba32Scalar(y + x, cbT, crT, 1, rgba + 4 * x, CscThresholds{th0, th1});
+    }
+  }
+}
+
+}  // namespace vbim::ipu::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace vbim::ipu {
+
+HWY_EXPORT(IdctImpl);
+HWY_EXPORT(CscRowImpl);
+HWY_EXPORT(UpsampleImpl);
+
+void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  HWY_DYNAMIC_DISPATCH(IdctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+}
+
+void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+                       int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
+  thread_local std::vector<std::uint8_t> up;
+  const int half = (width + 1) / 2;
+  if (up.size() < static_cast<std::size_t>(4 * half)) up.resize(static_cast<std::size_t>(4 * half));
+  std::uint8_t* cbUp = up.data();
+  std::uint8_t* crUp = up.data() + 2 * half;
+  HWY_DYNAMIC_DISPATCH(UpsampleImpl)(cb, half, cbUp);
+  HWY_DYNAMIC_DISPATCH(UpsampleImpl)(cr, half, crUp);
+  for (int r = 0; r < rows; ++r)
+    HWY_DYNAMIC_DISPATCH(CscRowImpl)(y + r * yStride, cbUp, crUp, width, rgba + r * rgbaStride, th.th0, th.th1);
+}
+
+const Kernels& simdKernels() {
+  static const Kernels k{idctSimd, cscRowsRgba32Simd, "highway"};
+  return k;
+}
+
+const char* simdTargetName() {
+  const std::int64_t targets = hwy::SupportedTargets() & HWY_TARGETS;
+  return hwy::TargetName(targets & -targets);  // the best target has the lowest bit
+}
+
+}  // namespace vbim::ipu
+#endif

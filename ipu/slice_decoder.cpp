@@ -1,0 +1,350 @@
+#include "ipu/slice_decoder.hpp"
+
+#include <cstring>
+
+#include "ipu/bit_reader.hpp"
+#include "ipu/idct.hpp"
+#include "ipu/quant_tables.hpp"
+#include "ipu/vlc_tables.hpp"
+
+namespace vbim::ipu {
+namespace {
+
+// One macroblock's coefficients before reconstruction: 4 luma and 2 chroma blocks.
+struct alignas(32) MacroblockCoefficients {
+  std::int16_t block[6][64];
+  unsigned rowMask[6];
+  unsigned colMask[6];
+  bool acPresent[6];
+};
+
+class SliceDecoder {
+ public:
+  SliceDecoder(const PictureParams& pp, const std::uint8_t* begin, const std::uint8_t* end, std::size_t offset,
+               const SliceOutput& out)
+      : pp_(pp), t_(vlcTables()), br_(begin, end), offset_(offset), out_(out) {
+    std::memset(&mb_, 0, sizeof(mb_));
+  }
+
+  void run(int code);
+
+ private:
+  enum class Status { kOk, kError };
+
+  void issue(IssueKind kind, int mbX, int mbY) { out_.report->add(kind, offset_ + br_.bytePosition(), mbX, mbY); }
+  void setQuantiserScale(int code);
+  void resetDcPredictors() {
+    const int reset = pp_.mpeg1 ? 128 : (1 << (7 + pp_.intraDcPrecision));
+    dcPred_[0] = dcPred_[1] = dcPred_[2] = reset;
+  }
+  bool readAddressIncrement(int& inc);
+  bool skipConcealmentVectors();
+  Status parseBlock(int b, IssueKind& why);
+  void reconstruct(int mbX, int mbY, bool fieldDct);
+  void storeBlock(int b, std::uint8_t* dst, int stride);
+
+  const PictureParams& pp_;
+  const VlcTables& t_;
+  BitReader br_;
+  std::size_t offset_;
+  const SliceOutput& out_;
+  int dcPred_[3] = {128, 128, 128};
+  // Per scan position: the raster index, intra matrix x quantiser_scale at it, and its row bit
+  // (bits 0-7) and column bit (bits 8-15); looked up together once the run is known.
+  std::int32_t wq_[64];
+  std::uint8_t pos_[64];
+  std::uint16_t mask_[64];
+  MacroblockCoefficients mb_;
+};
+
+void SliceDecoder::setQuantiserScale(int code) {
+  int scale;
+  if (pp_.mpeg1) {
+    scale = code;
+  } else {
+    scale = pp_.qScaleType ? kNonLinearQuantiserScale[code] : 2 * code;
+  }
+  for (int i = 0; i < 64; ++i) {
+    const int pos = pp_.scan[i];
+    pos_[i] = static_cast<std::uint8_t>(pos);
+    wq_[i] = pp_.intraMatrix[pos] * scale;
+    mask_[i] = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
+  }
+}
+
+bool SliceDecoder::readAddressIncrement(int& inc) {
+  inc = 0;
+  for (;;) {
+    const VlcEntry e = t_.mbAddressIncrement[br_.peek(11)];
+    if (e.len == 0 || br_.overrun()) return false;
+    br_.skip(e.len);
+    if (e.value == kMbaEscape) {
+      inc += 33;
+    } else if (e.value != kMbaStuffing) {
+      inc += e.value;
+      return true;
+    }
+    // Escapes and stuffing are 11 bits each, so the loop ends at the slice's last byte.
+  }
+}
+
+// motion_vectors(0) + marker_bit of an intra macroblock with concealment_motion_vectors (§6.2.5.2).
+// The IPU does no motion compensation; the vectors are parsed and dropped.
+bool SliceDecoder::skipConcealmentVectors() {
+  if (pp_.fieldPicture) br_.skip(1);  // motion_vertical_field_select[0][0]
+  for (int t = 0; t < 2; ++t) {
+    const VlcEntry e = t_.motionCode[br_.peek(11)];
+    if (e.len == 0) return false;
+    br_.skip(e.len);
+    const int rSize = pp_.fCode[t] - 1;
+    if (e.value != 0 && rSize > 0) br_.skip(rSize);  // motion_residual
+  }
+  br_.skip(1);  // marker_bit
+  return !br_.overrun();
+}
+
+SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
+  std::int16_t* blk = mb_.block[b];
+  const int cc = b < 4 ? 0 : b - 3;
+  // DC coefficient (§7.2.1): size VLC, differential, prediction.
+  VlcEntry e = cc == 0 ? t_.dcSizeLuma[br_.peek(9)] : t_.dcSizeChroma[br_.peek(10)];
+  if (e.len == 0) {
+    why = IssueKind::kBadVlc;
+    return Status::kError;
+  }
+  br_.skip(e.len);
+  const int size = e.value;
+  if (size != 0) {
+    const int bits = static_cast<int>(br_.read(size));
+    dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
+  }
+  int dc = pp_.mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] << (3 - pp_.intraDcPrecision);
+  dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);
+  blk[0] = static_cast<std::int16_t>(dc);
+  unsigned parity = static_cast<unsigned>(dc);
+  unsigned masks = 0;
+
+  // AC coefficients (§7.2.2, §7.3, §7.4.2-7.4.3).
+  const DctEntry* first = t_.dct[pp_.intraVlcFormat ? 1 : 0];
+  const auto& sub = t_.dctSub[pp_.intraVlcFormat ? 1 : 0];
+  // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
+  // ends within 16 bits; the caller checks for overrun once per macroblock.
+  const bool mpeg1 = pp_.mpeg1;
+  int i = 0;
+  for (;;) {
+    const std::uint32_t bits = br_.peek(24);
+    DctEntry d = first[bits >> 16];
+    if (d.level == kDctSub) d = sub[d.run][(bits >> (16 - d.len)) & ((1u << d.len) - 1)];
+    int run;
+    int mag;
+    bool negative;
+    if (d.level > 0) {
+      // Code and sign bit together (len <= 16, so the sign is within the 24 bits peeked).
+      run = d.run;
+      mag = d.level;
+      negative = (bits >> (23 - d.len)) & 1;
+      br_.skip(d.len + 1);
+    } else if (d.level == kDctEob) {
+      br_.skip(d.len);
+      break;
+    } else if (d.level == kDctEscape) {
+      br_.skip(6);
+      run = static_cast<int>(br_.read(6));
+      int level;
+      if (mpeg1) {
+        level = br_.readSigned(8);
+        if (level == 0) {
+          level = static_cast<int>(br_.read(8));
+        } else if (level == -128) {
+          level = static_cast<int>(br_.read(8)) - 256;
+        }
+      } else {
+        level = br_.readSigned(12);
+      }
+      negative = level < 0;
+      mag = negative ? -level : level;
+    } else {
+      why = IssueKind::kBadVlc;
+      return Status::kError;
+    }
+    i += run + 1;
+    if (i > 63) {
+      why = IssueKind::kCoefficientOverrun;
+      return Status::kError;
+    }
+    const int pos = pos_[i];
+    int v;
+    if (mpeg1) {
+      // 11172-2 §2.4.4.1: (2 * level * quantizer_scale * W) / 16, then towards an odd value.
+      v = (mag * wq_[i]) >> 3;
+      if ((v & 1) == 0 && v != 0) v -= 1;
+    } else {
+      // 13818-2 §7.4.2.3: (2 * QF * W * quantiser_scale) / 32, truncating towards zero.
+      v = (mag * wq_[i]) >> 4;
+    }
+    // §7.4.3 saturation to [-2048, 2047], applied to the magnitude before the sign.
+    const int limit = negative ? 2048 : 2047;
+    v = v > limit ? limit : v;
+    v = negative ? -v : v;
+    blk[pos] = static_cast<std::int16_t>(v);
+    parity ^= static_cast<unsigned>(v);
+    masks |= mask_[i];
+  }
+  unsigned rowMask = 1u | (masks & 0xFF);
+  unsigned colMask = 1u | (masks >> 8);
+  const bool ac = masks != 0;
+  // §7.4.4 mismatch control: if the sum of all coefficients is even, toggle the LSB of F[7][7].
+  if (!pp_.mpeg1 && (parity & 1) == 0) {
+    blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
+    if (((rowMask | colMask) & 0x80) == 0) {
+      rowMask |= kIdctToggleOnly;  // F[7][7] = +-1 alone in its row and column
+    } else {
+      rowMask |= 0x80;
+      colMask |= 0x80;
+    }
+  }
+  mb_.rowMask[b] = rowMask;
+  mb_.colMask[b] = colMask;
+  mb_.acPresent[b] = ac;
+  return Status::kOk;
+}
+
+void SliceDecoder::storeBlock(int b, std::uint8_t* dst, int stride) {
+  std::int16_t* blk = mb_.block[b];
+  const unsigned rowMask = mb_.rowMask[b];
+  const int dc = blk[0];
+  // DC only, or DC that is a multiple of 8 plus only the mismatch toggle of F[7][7]: the exact
+  // transform is the constant dc / 8 (the toggle adds less than 0.25 everywhere), and idctScalar
+  // gives the same value (checked exhaustively in tests/ipu/idct_test.cpp).
+  const bool dcOnly = !mb_.acPresent[b] && (rowMask == 1 || (dc & 7) == 0);
+  if (dcOnly) {
+    const std::uint8_t v = idctDcValue(dc);
+    for (int yy = 0; yy < 8; ++yy) std::memset(dst + yy * stride, v, 8);
+  } else {
+    pp_.idct(blk, rowMask, mb_.colMask[b], dst, stride);
+  }
+  for (int r = 0; r < 8; ++r)
+    if (rowMask & (1u << r)) std::memset(blk + 8 * r, 0, 16);
+  blk[63] = 0;  // the mismatch toggle (kIdctToggleOnly) is not in the row mask
+}
+
+void SliceDecoder::reconstruct(int mbX, int mbY, bool fieldDct) {
+  std::uint8_t* y = pp_.y + static_cast<std::size_t>(mbY) * 16 * pp_.yStride + mbX * 16;
+  if (fieldDct) {
+    // §6.1.3 field DCT: blocks 0/1 hold the top field lines, 2/3 the bottom field lines.
+    for (int b = 0; b < 4; ++b) storeBlock(b, y + (b & 1) * 8 + (b >> 1) * pp_.yStride, 2 * pp_.yStride);
+  } else {
+    for (int b = 0; b < 4; ++b) storeBlock(b, y + (b & 1) * 8 + (b >> 1) * 8 * pp_.yStride, pp_.yStride);
+  }
+  const std::size_t c = static_cast<std::size_t>(mbY) * 8 * pp_.cStride + mbX * 8;
+  storeBlock(4, pp_.cb + c, pp_.cStride);
+  storeBlock(5, pp_.cr + c, pp_.cStride);
+}
+
+void SliceDecoder::run(int code) {
+  int row = code - 1;
+  if (pp_.tallPicture && !pp_.mpeg1) row += static_cast<int>(br_.read(3)) << 7;
+  if (row >= pp_.mbRows) {
+    issue(IssueKind::kBadSlicePosition, -1, row);
+    return;
+  }
+  int qsc = static_cast<int>(br_.read(5));
+  if (!pp_.mpeg1 && br_.peek(1)) {
+    br_.skip(9);  // intra_slice_flag, intra_slice, reserved_bits
+  }
+  while (br_.readBit()) {  // extra_bit_slice / extra_information_slice
+    br_.skip(8);
+    if (br_.overrun()) break;
+  }
+  if (br_.overrun() || qsc == 0) {
+    issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadHeader, -1, row);
+    return;
+  }
+  setQuantiserScale(qsc);
+  resetDcPredictors();
+
+  const int total = pp_.mbWidth * pp_.mbRows;
+  int address = row * pp_.mbWidth - 1;
+  bool firstMb = true;
+  std::size_t mbStart = 0;  // bit position where the current macroblock's bits began (slice start for the first)
+  for (;;) {
+    int inc = 0;
+    const int curX = address < 0 ? 0 : (address + 1) % pp_.mbWidth;
+    const int curY = address < 0 ? row : (address + 1) / pp_.mbWidth;
+    if (!readAddressIncrement(inc)) {
+      issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, curX, curY);
+      return;
+    }
+    if (!firstMb && inc > 1) {
+      // Skipped macroblocks are not allowed in intra pictures: they keep their previous value.
+      issue(IssueKind::kBadMacroblockAddress, curX, curY);
+      resetDcPredictors();
+    }
+    address += inc;
+    firstMb = false;
+    const int mbX = address % pp_.mbWidth;
+    const int mbY = address / pp_.mbWidth;
+    // MPEG-2 slices stay on their row (§6.1.2); MPEG-1 slices may run on until the picture ends.
+    if (address >= total || (!pp_.mpeg1 && mbY != row)) {
+      issue(IssueKind::kBadMacroblockAddress, mbX, mbY);
+      return;
+    }
+    const VlcEntry type = t_.intraMbType[br_.peek(2)];
+    if (type.len == 0) {
+      issue(IssueKind::kBadVlc, mbX, mbY);  // a P/B macroblock type or garbage
+      return;
+    }
+    br_.skip(type.len);
+    bool fieldDct = false;
+    if (pp_.fieldDctAllowed) fieldDct = br_.readBit();
+    if (fieldDct) ++out_.report->fieldDctMacroblocks;
+    if (type.value & 1) {
+      qsc = static_cast<int>(br_.read(5));
+      if (qsc == 0) {
+        issue(IssueKind::kBadHeader, mbX, mbY);
+        return;
+      }
+      setQuantiserScale(qsc);
+    }
+    if (pp_.concealmentMotionVectors && !skipConcealmentVectors()) {
+      issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, mbX, mbY);
+      return;
+    }
+    for (int b = 0; b < 6; ++b) {
+      IssueKind why = IssueKind::kBadVlc;
+      if (parseBlock(b, why) == Status::kError) {
+        if (br_.overrun()) why = IssueKind::kTruncatedSlice;
+        issue(why, mbX, mbY);
+        // Coefficients already parsed are dropped; the macroblock keeps its previous value.
+        std::memset(&mb_, 0, sizeof(mb_));
+        return;
+      }
+    }
+    if (br_.overrun()) {
+      issue(IssueKind::kTruncatedSlice, mbX, mbY);
+      return;
+    }
+    reconstruct(mbX, mbY, fieldDct);
+    (*out_.decoded)[static_cast<std::size_t>(address)] = 1;
+    const std::size_t pos = br_.position();
+    if (out_.trace) {
+      out_.trace->push_back(MacroblockBits{static_cast<std::uint32_t>(address),
+                                           static_cast<std::uint32_t>(pos - mbStart),
+                                           static_cast<std::uint32_t>(offset_ + (pos + 7) / 8)});
+    }
+    mbStart = pos;
+    // The slice ends where the next start code begins: 23 zero bits (§6.2.4 nextbits()). Past the
+    // slice's bytes the reader supplies zeros, so this also ends a slice cut short.
+    if (br_.peek(23) == 0) return;
+  }
+}
+
+}  // namespace
+
+void decodeSlice(const PictureParams& pp, int code, const std::uint8_t* begin, const std::uint8_t* end,
+                 std::size_t offset, const SliceOutput& out) {
+  SliceDecoder d(pp, begin, end, offset, out);
+  d.run(code);
+}
+
+}  // namespace vbim::ipu

@@ -1,0 +1,67 @@
+// The slice and macroblock layers of an intra picture (ISO/IEC 13818-2 §6.2.4-6.2.6, §7.2-7.5):
+// macroblock addressing, macroblock modes, DC prediction, AC run/level VLC, inverse quantisation
+// with saturation and mismatch control, the inverse DCT and the store into the frame. This is what
+// the IPU's IDEC command does for one slice (notes §4.2: DC prediction resets at slice start and
+// on skipped-macroblock increments; per-macroblock quantiser_scale_code updates are honoured).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "ipu/decode_report.hpp"
+#include "ipu/kernels.hpp"
+
+namespace vbim::ipu {
+
+// Everything a slice needs that is fixed for the picture.
+struct PictureParams {
+  bool mpeg1 = false;
+  IdctFn idct = nullptr;  // inverse DCT kernel (scalarKernels() or simdKernels())
+  int mbWidth = 0;
+  int mbRows = 0;            // macroblock rows of this picture (a field picture has half the frame's)
+  bool tallPicture = false;  // vertical_size > 2800: slices carry slice_vertical_position_extension
+  const std::uint8_t* scan = nullptr;
+  std::array<std::uint8_t, 64> intraMatrix{};  // raster order
+  int intraDcPrecision = 0;                    // 0..3
+  bool qScaleType = false;
+  bool intraVlcFormat = false;
+  bool fieldDctAllowed = false;  // frame picture with frame_pred_frame_dct = 0: dct_type present
+  bool concealmentMotionVectors = false;
+  bool fieldPicture = false;
+  int fCode[2] = {1, 1};  // forward f_code (horizontal, vertical) for concealment vectors
+  // Destination lines of this picture (a field picture starts on its field's first line and steps
+  // two frame lines).
+  std::uint8_t* y = nullptr;
+  std::uint8_t* cb = nullptr;
+  std::uint8_t* cr = nullptr;
+  int yStride = 0;
+  int cStride = 0;
+};
+
+// Where each decoded macroblock's bits ended, for the timing model.
+struct MacroblockBits {
+  std::uint32_t address;  // mbRow * mbWidth + mbColumn within the picture
+  std::uint32_t bits;     // bits of this macroblock (the first of a slice includes the slice header)
+  std::uint32_t endByte;  // offset in the decoded bytes just past its last bit (rounded up)
+};
+
+struct SliceOutput {
+  PictureReport* report = nullptr;
+  std::vector<std::uint8_t>* decoded = nullptr;  // per picture macroblock: 1 once decoded
+  std::vector<MacroblockBits>* trace = nullptr;  // optional
+};
+
+// Decodes one slice: `code` is its start code value (1..0xAF); [begin, end) are the bytes after the
+// start code up to the next start code; `offset` is begin's position in the caller's input (for
+// reports). Never reads outside [begin, end) and always terminates.
+void decodeSlice(const PictureParams& pp, int code, const std::uint8_t* begin, const std::uint8_t* end,
+                 std::size_t offset, const SliceOutput& out);
+
+// The row a slice starts on (slice_vertical_position - 1, without the extension).
+inline int sliceRow(int code) {
+  return code - 1;
+}
+
+}  // namespace vbim::ipu

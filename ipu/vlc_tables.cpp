@@ -1,0 +1,190 @@
+#include "ipu/vlc_tables.hpp"
+
+#include <cstddef>
+
+namespace vbim::ipu {
+namespace {
+
+// A code of the standard's tables: `len` bits, value `code` (MSB first), meaning a, b.
+struct Code {
+  std::uint8_t len;
+  std::uint16_t code;
+  std::int16_t a;
+  std::int16_t b;
+};
+
+// Table B.1 macroblock_address_increment.
+constexpr Code kB1[] = {
+    {1, 0x1, 1, 0},
+    {3, 0x3, 2, 0},
+    {3, 0x2, 3, 0},
+    {4, 0x3, 4, 0},
+    {4, 0x2, 5, 0},
+    {5, 0x3, 6, 0},
+    {5, 0x2, 7, 0},
+    {7, 0x7, 8, 0},
+    {7, 0x6, 9, 0},
+    {8, 0xB, 10, 0},
+    {8, 0xA, 11, 0},
+    {8, 0x9, 12, 0},
+    {8, 0x8, 13, 0},
+    {8, 0x7, 14, 0},
+    {8, 0x6, 15, 0},
+    {10, 0x17, 16, 0},
+    {10, 0x16, 17, 0},
+    {10, 0x15, 18, 0},
+    {10, 0x14, 19, 0},
+    {10, 0x13, 20, 0},
+    {10, 0x12, 21, 0},
+    {11, 0x23, 22, 0},
+    {11, 0x22, 23, 0},
+    {11, 0x21, 24, 0},
+    {11, 0x20, 25, 0},
+    {11, 0x1F, 26, 0},
+    {11, 0x1E, 27, 0},
+    {11, 0x1D, 28, 0},
+    {11, 0x1C, 29, 0},
+    {11, 0x1B, 30, 0},
+    {11, 0x1A, 31, 0},
+    {11, 0x19, 32, 0},
+    {11, 0x18, 33, 0},
+    {11, 0x08, kMbaEscape, 0},
+    {11, 0x0F, kMbaStuffing, 0},
+};
+
+// Table B.2 macroblock_type in I pictures: '1' intra, '01' intra + quant (value 1).
+constexpr Code kB2[] = {{1, 0x1, 0, 0}, {2, 0x1, 1, 0}};
+
+// Table B.10 motion_code, positive values; the last bit is the sign (1 = negative) except for 0.
+constexpr Code kB10[] = {
+    {1, 0x1, 0, 0},    {3, 0x2, 1, 0},    {4, 0x2, 2, 0},    {5, 0x2, 3, 0},    {7, 0x6, 4, 0},    {8, 0xA, 5, 0},
+    {8, 0x8, 6, 0},    {8, 0x6, 7, 0},    {10, 0x16, 8, 0},  {10, 0x14, 9, 0},  {10, 0x12, 10, 0}, {11, 0x22, 11, 0},
+    {11, 0x20, 12, 0}, {11, 0x1E, 13, 0}, {11, 0x1C, 14, 0}, {11, 0x1A, 15, 0}, {11, 0x18, 16, 0},
+};
+
+// Table B.12 dct_dc_size_luminance and B.13 dct_dc_size_chrominance.
+constexpr Code kB12[] = {{3, 0x4, 0, 0},  {2, 0x0, 1, 0},  {2, 0x1, 2, 0},    {3, 0x5, 3, 0},
+                         {3, 0x6, 4, 0},  {4, 0xE, 5, 0},  {5, 0x1E, 6, 0},   {6, 0x3E, 7, 0},
+                         {7, 0x7E, 8, 0}, {8, 0xFE, 9, 0}, {9, 0x1FE, 10, 0}, {9, 0x1FF, 11, 0}};
+constexpr Code kB13[] = {{2, 0x0, 0, 0},  {2, 0x1, 1, 0},   {2, 0x2, 2, 0},     {3, 0x6, 3, 0},
+                         {4, 0xE, 4, 0},  {5, 0x1E, 5, 0},  {6, 0x3E, 6, 0},    {7, 0x7E, 7, 0},
+                         {8, 0xFE, 8, 0}, {9, 0x1FE, 9, 0}, {10, 0x3FE, 10, 0}, {10, 0x3FF, 11, 0}};
+
+// Codes of length 12..16 (all starting '0000 000') shared by B.14 and B.15: run, level.
+#define VBIM_DCT_LONG_CODES                                                                                            \
+  {12, 0x10, 0, 11}, {12, 0x11, 8, 2}, {12, 0x12, 4, 3}, {12, 0x13, 0, 10}, {12, 0x14, 2, 4}, {12, 0x15, 7, 2},        \
+      {12, 0x16, 21, 1}, {12, 0x17, 20, 1}, {12, 0x18, 0, 9}, {12, 0x19, 19, 1}, {12, 0x1A, 18, 1}, {12, 0x1B, 1, 5},  \
+      {12, 0x1C, 3, 3}, {12, 0x1D, 0, 8}, {12, 0x1E, 6, 2}, {12, 0x1F, 17, 1}, {13, 0x10, 10, 2}, {13, 0x11, 9, 2},    \
+      {13, 0x12, 5, 3}, {13, 0x13, 3, 4}, {13, 0x14, 2, 5}, {13, 0x15, 1, 7}, {13, 0x16, 1, 6}, {13, 0x17, 0, 15},     \
+      {13, 0x18, 0, 14}, {13, 0x19, 0, 13}, {13, 0x1A, 0, 12}, {13, 0x1B, 26, 1}, {13, 0x1C, 25, 1},                   \
+      {13, 0x1D, 24, 1}, {13, 0x1E, 23, 1}, {13, 0x1F, 22, 1}, {14, 0x10, 0, 31}, {14, 0x11, 0, 30},                   \
+      {14, 0x12, 0, 29}, {14, 0x13, 0, 28}, {14, 0x14, 0, 27}, {14, 0x15, 0, 26}, {14, 0x16, 0, 25},                   \
+      {14, 0x17, 0, 24}, {14, 0x18, 0, 23}, {14, 0x19, 0, 22}, {14, 0x1A, 0, 21}, {14, 0x1B, 0, 20},                   \
+      {14, 0x1C, 0, 19}, {14, 0x1D, 0, 18}, {14, 0x1E, 0, 17}, {14, 0x1F, 0, 16}, {15, 0x10, 0, 40},                   \
+      {15, 0x11, 0, 39}, {15, 0x12, 0, 38}, {15, 0x13, 0, 37}, {15, 0x14, 0, 36}, {15, 0x15, 0, 35},                   \
+      {15, 0x16, 0, 34}, {15, 0x17, 0, 33}, {15, 0x18, 0, 32}, {15, 0x19, 1, 14}, {15, 0x1A, 1, 13},                   \
+      {15, 0x1B, 1, 12}, {15, 0x1C, 1, 11}, {15, 0x1D, 1, 10}, {15, 0x1E, 1, 9}, {15, 0x1F, 1, 8}, {16, 0x10, 1, 18},  \
+      {16, 0x11, 1, 17}, {16, 0x12, 1, 16}, {16, 0x13, 1, 15}, {16, 0x14, 6, 3}, {16, 0x15, 16, 2}, {16, 0x16, 15, 2}, \
+      {16, 0x17, 14, 2}, {16, 0x18, 13, 2}, {16, 0x19, 12, 2}, {16, 0x1A, 11, 2}, {16, 0x1B, 31, 1},                   \
+      {16, 0x1C, 30, 1}, {16, 0x1D, 29, 1}, {16, 0x1E, 28, 1}, {                                                       \
+    16, 0x1F, 27, 1                                                                                                    \
+  }
+
+// Table B.14 (DCT coefficients table zero) as used for intra AC coefficients ('11s' for run 0,
+// level 1; the '1s' form applies only to the first coefficient of non-intra blocks).
+constexpr Code kB14[] = {
+    {2, 0x2, 0, kDctEob},    {2, 0x3, 0, 1},   {3, 0x3, 1, 1},   {4, 0x4, 0, 2},      {4, 0x5, 2, 1},  {5, 0x5, 0, 3},
+    {5, 0x6, 4, 1},          {5, 0x7, 3, 1},   {6, 0x4, 7, 1},   {6, 0x5, 6, 1},      {6, 0x6, 1, 2},  {6, 0x7, 5, 1},
+    {6, 0x1, 0, kDctEscape}, {7, 0x4, 2, 2},   {7, 0x5, 9, 1},   {7, 0x6, 0, 4},      {7, 0x7, 8, 1},  {8, 0x20, 13, 1},
+    {8, 0x21, 0, 6},         {8, 0x22, 12, 1}, {8, 0x23, 11, 1}, {8, 0x24, 3, 2},     {8, 0x25, 1, 3}, {8, 0x26, 0, 5},
+    {8, 0x27, 10, 1},        {10, 0x8, 16, 1}, {10, 0x9, 5, 2},  {10, 0xA, 0, 7},     {10, 0xB, 2, 3}, {10, 0xC, 1, 4},
+    {10, 0xD, 15, 1},        {10, 0xE, 14, 1}, {10, 0xF, 4, 2},  VBIM_DCT_LONG_CODES,
+};
+
+// Table B.15 (DCT coefficients table one), intra_vlc_format = 1.
+constexpr Code kB15[] = {
+    {2, 0x2, 0, 1},   {3, 0x2, 1, 1},   {3, 0x6, 0, 2},   {4, 0x6, 0, kDctEob}, {4, 0x7, 0, 3},
+    {5, 0x5, 2, 1},   {5, 0x6, 1, 2},   {5, 0x7, 3, 1},   {5, 0x1C, 0, 4},      {5, 0x1D, 0, 5},
+    {6, 0x4, 0, 7},   {6, 0x5, 0, 6},   {6, 0x6, 4, 1},   {6, 0x7, 5, 1},       {6, 0x1, 0, kDctEscape},
+    {7, 0x4, 7, 1},   {7, 0x5, 8, 1},   {7, 0x6, 6, 1},   {7, 0x7, 2, 2},       {7, 0x78, 9, 1},
+    {7, 0x79, 1, 3},  {7, 0x7A, 10, 1}, {7, 0x7B, 0, 8},  {7, 0x7C, 0, 9},      {8, 0x20, 1, 5},
+    {8, 0x21, 11, 1}, {8, 0x22, 0, 11}, {8, 0x23, 0, 10}, {8, 0x24, 13, 1},     {8, 0x25, 12, 1},
+    {8, 0x26, 3, 2},  {8, 0x27, 1, 4},  {8, 0xFA, 0, 12}, {8, 0xFB, 0, 13},     {8, 0xFC, 2, 3},
+    {8, 0xFD, 4, 2},  {8, 0xFE, 0, 14}, {8, 0xFF, 0, 15}, {9, 0x4, 5, 2},       {9, 0x5, 14, 1},
+    {9, 0x7, 15, 1},  {10, 0xC, 2, 4},  {10, 0xD, 16, 1}, VBIM_DCT_LONG_CODES,
+};
+#undef VBIM_DCT_LONG_CODES
+
+// Fills a direct table of 2^bits entries: every index whose top `len` bits equal the code.
+template <std::size_t N, std::size_t M>
+void fillDirect(VlcEntry (&table)[N], int bits, const Code (&codes)[M]) {
+  for (auto& e : table) e = VlcEntry{0, 0};
+  for (const Code& c : codes) {
+    const int free = bits - c.len;
+    const std::size_t first = static_cast<std::size_t>(c.code) << free;
+    for (std::size_t i = 0; i < (std::size_t{1} << free); ++i) {
+      table[first + i] = VlcEntry{static_cast<std::int8_t>(c.a), c.len};
+    }
+  }
+}
+
+// B.10: the codes above end in the sign bit (0 = positive); the negative code has it set.
+void fillMotion(VlcEntry (&table)[1 << 11]) {
+  for (auto& e : table) e = VlcEntry{0, 0};
+  for (const Code& c : kB10) {
+    for (int s = 0; s < (c.a == 0 ? 1 : 2); ++s) {
+      const std::uint32_t code = static_cast<std::uint32_t>(c.code) | static_cast<std::uint32_t>(s);
+      const int free = 11 - c.len;
+      for (std::uint32_t i = 0; i < (1u << free); ++i) {
+        table[(code << free) + i] = VlcEntry{static_cast<std::int8_t>(s ? -c.a : c.a), c.len};
+      }
+    }
+  }
+}
+
+template <std::size_t M>
+void fillDct(DctEntry (&first)[256], DctEntry (&sub)[4][256], const Code (&codes)[M]) {
+  for (auto& e : first) e = DctEntry{0, 0, 0};
+  for (auto& t : sub)
+    for (auto& e : t) e = DctEntry{0, 0, 0};
+  // Codes longer than 8 bits all begin with '0000 00': prefixes 0..3 of the first byte get a
+  // second-level table on the bits after the first 8 (2, 4, 8 or 8 bits).
+  static constexpr int kSubBits[4] = {8, 4, 2, 2};
+  for (int p = 0; p < 4; ++p)
+    first[p] = DctEntry{static_cast<std::uint8_t>(p), static_cast<std::uint8_t>(kSubBits[p]), kDctSub};
+  for (const Code& c : codes) {
+    const DctEntry e{static_cast<std::uint8_t>(c.a), c.len, c.b};
+    if (c.len <= 8) {
+      const int free = 8 - c.len;
+      for (int i = 0; i < (1 << free); ++i) first[(c.code << free) + i] = e;
+    } else {
+      const int prefix = c.code >> (c.len - 8);
+      const int subBits = kSubBits[prefix];
+      const int rest = c.len - 8;
+      const int low = c.code & ((1 << rest) - 1);
+      const int free = subBits - rest;
+      for (int i = 0; i < (1 << free); ++i) sub[prefix][(low << free) + i] = e;
+    }
+  }
+}
+
+VlcTables build() {
+  VlcTables t{};
+  fillDirect(t.mbAddressIncrement, 11, kB1);
+  fillDirect(t.intraMbType, 2, kB2);
+  fillMotion(t.motionCode);
+  fillDirect(t.dcSizeLuma, 9, kB12);
+  fillDirect(t.dcSizeChroma, 10, kB13);
+  fillDct(t.dct[0], t.dctSub[0], kB14);
+  fillDct(t.dct[1], t.dctSub[1], kB15);
+  return t;
+}
+
+}  // namespace
+
+const VlcTables& vlcTables() {
+  static const VlcTables tables = build();
+  return tables;
+}
+
+}  // namespace vbim::ipu

@@ -1,0 +1,40 @@
+// libFuzzer target for the picture decoder: any bytes, as one access unit and split into access
+// units. The decoder must not crash, read out of bounds (ASan) or hang, and the Highway kernels
+// must give the same frame as the scalar reference. Built with -DVBIM_FUZZ=ON and clang;
+// scripts/fuzz-ipu.sh runs it for a bounded time from the seed corpus next to this file.
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <span>
+
+#include "ipu/csc.hpp"
+#include "ipu/elementary_stream.hpp"
+#include "ipu/picture_decoder.hpp"
+#include "ipu/simd/simd_kernels.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::span<const std::uint8_t> bytes(data, size);
+  vbim::ipu::DecoderOptions small;
+  small.maxWidth = 720;  // keeps each input's frame store and time bounded
+  small.maxHeight = 576;
+  small.recordMacroblocks = true;
+  vbim::ipu::DecoderOptions simd = small;
+  simd.kernels = &vbim::ipu::simdKernels();
+  vbim::ipu::Decoder scalar(small), fast(simd);
+  const vbim::ipu::PictureReport a = scalar.decode(bytes);
+  const vbim::ipu::PictureReport b = fast.decode(bytes);
+  if (a.issueCount != b.issueCount || scalar.frame().y != fast.frame().y || scalar.frame().cb != fast.frame().cb ||
+      scalar.frame().cr != fast.frame().cr)
+    std::abort();
+  if (a.produced && a.macroblocksDecoded + a.macroblocksConcealed != a.macroblocks) std::abort();
+  for (const vbim::ipu::AccessUnit& au : vbim::ipu::splitAccessUnits(bytes)) {
+    if (au.offset + au.size > size) std::abort();
+    scalar.decode(bytes.subspan(au.offset, au.size));
+  }
+  if (scalar.hasSequence() && !scalar.frame().empty()) {
+    vbim::Rgba8Image img;
+    vbim::ipu::convertToRgba32(scalar.frame(), scalar.frame().mbWidth * 16, scalar.frame().mbHeight * 16, {40, 90}, img,
+                               vbim::ipu::cscRowsRgba32Simd);
+  }
+  return 0;
+}

@@ -1,0 +1,134 @@
+// The IPU on the simulated clock: cost per macroblock, FIFOs and DMA back-pressure.
+#include "ipu/ipu_unit.hpp"
+
+#include <gtest/gtest.h>
+
+#include "ipu/elementary_stream.hpp"
+#include "tests/ipu/support/libav_mpeg.hpp"
+
+namespace vbim::ipu {
+namespace {
+
+std::vector<std::uint8_t> firstPicture() {
+  testing::EncodeOptions o;
+  o.width = 128;
+  o.height = 64;
+  o.frames = 1;
+  o.quantiser = 3;
+  o.content = testing::Content::kBusy;
+  std::vector<std::uint8_t> es = testing::encodeIntra(o);
+  const AccessUnit au = splitAccessUnits(es).at(0);
+  return {es.begin() + static_cast<std::ptrdiff_t>(au.offset),
+          es.begin() + static_cast<std::ptrdiff_t>(au.offset + au.size)};
+}
+
+struct TimedRun {
+  TimedPicture result;
+  Rgba8Image image;
+  std::vector<MacroblockBits> trace;
+};
+
+Task<void> decodeOnce(IpuUnit& unit, const std::vector<std::uint8_t>& bytes, TimedRun& run) {
+  run.result = co_await unit.decode(bytes, run.image);
+  run.trace = unit.decoder().macroblockTrace();
+}
+
+Task<void> suspendLater(Scheduler& s, Process& p, Tick at, Tick duration) {
+  co_await s.until(at);
+  s.suspendFor(p, duration);
+}
+
+TimedRun runWith(const IpuTimingParams& p, const std::vector<std::uint8_t>& bytes, Tick stallAt = -1,
+                 Tick stallFor = 0) {
+  Scheduler s;
+  Tracer tracer;
+  IpuUnit unit(s, p, &tracer);
+  TimedRun run;
+  s.spawn("player", decodeOnce(unit, bytes, run));
+  if (stallAt >= 0) s.spawn("fault", suspendLater(s, unit.fromIpuProcess(), stallAt, stallFor));
+  s.run();
+  return run;
+}
+
+TEST(IpuUnit, OutputEqualsTheFunctionalDecode) {
+  const std::vector<std::uint8_t> bytes = firstPicture();
+  const TimedRun run = runWith(IpuTimingParams{}, bytes);
+  ASSERT_TRUE(run.result.report.produced);
+  Decoder dec;
+  dec.decode(bytes);
+  Rgba8Image expected;
+  convertToRgba32(dec.frame(), dec.width(), dec.height(), {}, expected);
+  EXPECT_EQ(run.image.pixels, expected.pixels);
+  EXPECT_EQ(run.image.width, 128);
+  EXPECT_EQ(run.image.row(0)[3], 0x80);  // RGB32 alpha = 1.0
+}
+
+// Doubling base, per-bit and CSC cost moves the completion time by exactly one more sum of
+// per-macroblock costs: the DMA never limits at the default rates.
+TEST(IpuUnit, DoublingMacroblockCostMovesCompletionByItsSum) {
+  const std::vector<std::uint8_t> bytes = firstPicture();
+  IpuTimingParams p;
+  const TimedRun a = runWith(p, bytes);
+  IpuTimingParams p2 = p;
+  p2.mbBaseCycles *= 2;
+  p2.mbCyclesPerBit *= 2;
+  p2.cscCyclesPerMb *= 2;
+  const TimedRun b = runWith(p2, bytes);
+  ASSERT_EQ(a.trace.size(), 32u);
+  Tick sum = 0;
+  for (const MacroblockBits& m : a.trace) sum += p.mbBaseCycles + p.mbCyclesPerBit * m.bits + p.cscCyclesPerMb;
+  const Tick da = a.result.finished - a.result.started;
+  const Tick db = b.result.finished - b.result.started;
+  EXPECT_EQ(db - da, sum);
+  // And the whole time is command start + the sum + draining the last CSC row's 4 qwords.
+  EXPECT_EQ(da, p.commandStartCycles + sum + 4 * p.fromIpuCyclesPerQword);
+  EXPECT_EQ(a.result.outputStalls, 0);
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+}
+
+// The output FIFO is not drained for a while: decode stalls, and completion moves by the length
+// of the stall less the work the decoder can still do before it must push (at most one
+// macroblock's VLD/IDCT plus the rows that fit in the FIFO).
+TEST(IpuUnit, DecodeStallsWhenOutputIsNotDrained) {
+  const std::vector<std::uint8_t> bytes = firstPicture();
+  const TimedRun a = runWith(IpuTimingParams{}, bytes);
+  const Tick stall = 20'000;
+  const TimedRun b = runWith(IpuTimingParams{}, bytes, 5'000, stall);
+  const Tick delay = (b.result.finished - b.result.started) - (a.result.finished - a.result.started);
+  EXPECT_GT(b.result.outputStalls, 0);
+  EXPECT_LE(delay, stall);
+  Tick maxMb = 0;
+  const IpuTimingParams p;
+  for (const MacroblockBits& m : a.trace)
+    maxMb = std::max<Tick>(maxMb, p.mbBaseCycles + p.mbCyclesPerBit * m.bits + p.cscCyclesPerMb);
+  EXPECT_GE(delay, stall - maxMb);
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+}
+
+// A slow toIPU DMA starves the decoder: it cannot finish before the last input qword arrives.
+TEST(IpuUnit, SlowInputDmaBoundsDecode) {
+  const std::vector<std::uint8_t> bytes = firstPicture();
+  IpuTimingParams p;
+  p.toIpuCyclesPerQword = 400;
+  const TimedRun r = runWith(p, bytes);
+  const Tick qwords = static_cast<Tick>((bytes.size() + 15) / 16);
+  EXPECT_GE(r.result.finished - r.result.started, qwords * 400);
+  const TimedRun fast = runWith(IpuTimingParams{}, bytes);
+  EXPECT_GT(r.result.finished, fast.result.finished);
+}
+
+TEST(IpuUnit, ParamsAreRegisteredWithSources) {
+  ParamTable t;
+  IpuTimingParams p;
+  describeParams(t, p);
+  ASSERT_NE(t.find("ipu.mb_base_cycles"), nullptr);
+  for (const auto& param : t.params()) {
+    EXPECT_EQ(param.key.rfind("ipu.", 0), 0u) << param.key;
+    EXPECT_FALSE(param.source.empty()) << param.key;
+  }
+  t.loadToml("[ipu]\nmb_base_cycles = 800\n", "<test>");
+  EXPECT_EQ(p.mbBaseCycles, 800);
+}
+
+}  // namespace
+}  // namespace vbim::ipu

@@ -1,0 +1,268 @@
+// Bad input: corrupt VLC codes, truncated slices, missing headers, absurd sizes and unsupported
+// streams are concealed or refused with a report; the decoder never crashes or loops (these run
+// under ASan+UBSan in CI). Also: slice-parallel decode is bit-identical to the serial decode.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "ipu/csc.hpp"
+#include "ipu/elementary_stream.hpp"
+#include "ipu/picture_decoder.hpp"
+#include "runtime/worker_pool.hpp"
+#include "tests/ipu/support/libav_mpeg.hpp"
+
+namespace vbim::ipu {
+namespace {
+
+std::vector<std::uint8_t> stream(int frames = 3, bool mpeg1 = false) {
+  testing::EncodeOptions o;
+  o.width = 80;
+  o.height = 48;
+  o.frames = frames;
+  o.quantiser = 4;
+  o.mpeg1 = mpeg1;
+  o.content = testing::Content::kBusy;
+  return testing::encodeIntra(o);
+}
+
+std::span<const std::uint8_t> unit(const std::vector<std::uint8_t>& es, std::size_t i) {
+  const AccessUnit au = splitAccessUnits(es).at(i);
+  return std::span(es).subspan(au.offset, au.size);
+}
+
+bool hasIssue(const PictureReport& r, IssueKind k) {
+  return std::any_of(r.issues.begin(), r.issues.end(), [k](const DecodeIssue& i) { return i.kind == k; });
+}
+
+// Offset of the first byte of the n-th slice start code's payload.
+std::size_t slicePayload(std::span<const std::uint8_t> d, int n) {
+  for (std::size_t i = 0; i + 3 < d.size(); ++i)
+    if (d[i] == 0 && d[i + 1] == 0 && d[i + 2] == 1 && d[i + 3] >= 1 && d[i + 3] <= 0xAF && n-- == 0) return i + 4;
+  return d.size();
+}
+
+TEST(IpuRobustness, CleanStreamHasNoIssues) {
+  const auto es = stream();
+  Decoder dec;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const PictureReport r = dec.decode(unit(es, i));
+    EXPECT_TRUE(r.produced);
+    EXPECT_TRUE(r.clean()) << r.describe();
+    EXPECT_EQ(r.macroblocks, 15);
+    EXPECT_EQ(r.macroblocksConcealed, 0);
+  }
+}
+
+TEST(IpuRobustness, CorruptFirstPictureIsConcealedMidGrey) {
+  auto es = stream(1);
+  std::vector<std::uint8_t> bad(es.begin(), es.end());
+  const std::size_t p = slicePayload(bad, 0);
+  // Overwrite the first slice's macroblock data (after the 5-bit quantiser code) with zeros
+  // followed by ones: no valid macroblock_address_increment starts with eleven zeros.
+  bad[p] &= 0xF8;
+  bad[p + 1] = 0x00;
+  bad[p + 2] = 0x00;
+  Decoder dec;
+  const PictureReport r = dec.decode(bad);
+  ASSERT_TRUE(r.produced);
+  EXPECT_FALSE(r.clean());
+  EXPECT_EQ(r.macroblocksConcealed, 5);  // the whole first row (80 px = 5 macroblocks)
+  EXPECT_TRUE(hasIssue(r, IssueKind::kMissingMacroblocks));
+  const FrameStore& fs = dec.frame();
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 80; ++x) ASSERT_EQ(fs.y[static_cast<std::size_t>(y) * fs.lumaStride + x], 128);
+  EXPECT_EQ(fs.cb[0], 128);
+  EXPECT_EQ(fs.cr[0], 128);
+  // The issue names a place: the byte offset inside the bytes we gave, and the macroblock.
+  ASSERT_FALSE(r.issues.empty());
+  EXPECT_GE(r.issues[0].byteOffset, p);
+  EXPECT_LT(r.issues[0].byteOffset, p + 8);
+  EXPECT_EQ(r.issues[0].mbY, 0);
+}
+
+TEST(IpuRobustness, ConcealedMacroblocksKeepThePreviousPicture) {
+  const auto es = stream(2);
+  Decoder ref;
+  ref.decode(unit(es, 0));
+  const std::vector<std::uint8_t> first = ref.frame().y;
+  std::vector<std::uint8_t> second(unit(es, 1).begin(), unit(es, 1).end());
+  // Cut the second picture's second slice short: its tail must keep picture 0's pixels.
+  const std::size_t p = slicePayload(second, 1);
+  std::fill(second.begin() + static_cast<std::ptrdiff_t>(p) + 6, second.begin() + static_cast<std::ptrdiff_t>(p) + 40,
+            0xFF);
+  Decoder dec;
+  dec.decode(unit(es, 0));
+  const PictureReport r = dec.decode(second);
+  ASSERT_TRUE(r.produced);
+  EXPECT_GT(r.macroblocksConcealed, 0);
+  Decoder clean;
+  clean.decode(unit(es, 0));
+  clean.decode(unit(es, 1));
+  // Row 1 (luma lines 16..31): concealed macroblocks equal picture 0, decoded ones picture 1.
+  int kept = 0;
+  for (int mb = 0; mb < 5; ++mb) {
+    bool same = true;
+    for (int y = 16; y < 32; ++y)
+      for (int x = mb * 16; x < mb * 16 + 16; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * dec.frame().lumaStride + x;
+        same = same && dec.frame().y[i] == first[i];
+      }
+    kept += same;
+  }
+  EXPECT_EQ(kept, r.macroblocksConcealed);
+  // Row 0 and row 2 decode normally.
+  for (int y : {0, 40})
+    for (int x = 0; x < 80; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * dec.frame().lumaStride + x;
+      EXPECT_EQ(dec.frame().y[i], clean.frame().y[i]);
+    }
+}
+
+TEST(IpuRobustness, EveryTruncationIsSafe) {
+  const auto es = stream(2);
+  const auto pic = unit(es, 0);
+  for (std::size_t n = 0; n <= pic.size(); n += 7) {
+    Decoder dec;
+    const PictureReport r = dec.decode(pic.subspan(0, n));
+    if (r.produced) {
+      EXPECT_LE(r.macroblocksDecoded, r.macroblocks);
+    }
+  }
+}
+
+TEST(IpuRobustness, RandomBitFlipsAreConcealedAndReported) {
+  const auto es = stream(3);
+  std::uint32_t s = 12345;
+  int withIssues = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<std::uint8_t> bad = es;
+    for (int k = 0; k < 1 + trial % 5; ++k) {
+      s = s * 1664525u + 1013904223u;
+      const std::size_t pos = 20 + (s >> 8) % (bad.size() - 20);
+      bad[pos] ^= static_cast<std::uint8_t>(1u << (s & 7));
+    }
+    Decoder dec;
+    for (const AccessUnit& au : splitAccessUnits(bad)) {
+      const PictureReport r = dec.decode(std::span(bad).subspan(au.offset, au.size));
+      EXPECT_EQ(r.macroblocksDecoded + r.macroblocksConcealed, r.macroblocks);
+      withIssues += r.issueCount > 0;
+    }
+  }
+  EXPECT_GT(withIssues, 100);
+}
+
+TEST(IpuRobustness, MissingSequenceHeaderIsUndecodable) {
+  const auto es = stream(1);
+  std::vector<std::uint8_t> bad;
+  // Drop everything before the picture start code (sequence header, extensions, GOP).
+  for (std::size_t i = 0; i + 3 < es.size(); ++i)
+    if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0) {
+      bad.assign(es.begin() + static_cast<std::ptrdiff_t>(i), es.end());
+      break;
+    }
+  Decoder dec;
+  const PictureReport r = dec.decode(bad);
+  EXPECT_FALSE(r.produced);
+  EXPECT_TRUE(r.undecodable);
+  EXPECT_TRUE(hasIssue(r, IssueKind::kMissingSequenceHeader));
+  const PictureReport noPicture = dec.decode(std::span(bad).subspan(slicePayload(bad, 0) - 4));
+  EXPECT_TRUE(hasIssue(noPicture, IssueKind::kMissingPictureHeader));
+}
+
+// Patches the sequence extension's chroma_format (bits 13..14 after the extension start code).
+TEST(IpuRobustness, Chroma422IsUndecodable) {
+  auto es = stream(1);
+  for (std::size_t i = 0; i + 6 < es.size(); ++i)
+    if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0xB5 && (es[i + 4] >> 4) == 1) {
+      // byte i+5 bits: [profile low 4][progressive][chroma 2][h ext hi]
+      es[i + 5] = static_cast<std::uint8_t>((es[i + 5] & ~0x06) | (2 << 1));
+      break;
+    }
+  Decoder dec;
+  const PictureReport r = dec.decode(es);
+  EXPECT_TRUE(r.undecodable);
+  EXPECT_TRUE(hasIssue(r, IssueKind::kUnsupportedChromaFormat));
+}
+
+TEST(IpuRobustness, PredictedPictureIsUndecodable) {
+  testing::EncodeOptions o;
+  o.width = 64;
+  o.height = 32;
+  o.frames = 2;
+  o.gopSize = 12;  // I then P
+  const auto es = testing::encodeIntra(o);
+  Decoder dec;
+  EXPECT_TRUE(dec.decode(unit(es, 0)).clean());
+  const PictureReport r = dec.decode(unit(es, 1));
+  EXPECT_EQ(r.pictureCodingType, 2);
+  EXPECT_TRUE(r.undecodable);
+  EXPECT_FALSE(r.produced);
+  EXPECT_TRUE(hasIssue(r, IssueKind::kUnsupportedPictureType));
+}
+
+TEST(IpuRobustness, AbsurdSizeIsRefused) {
+  auto es = stream(1);
+  ASSERT_EQ(es[3], 0xB3);
+  DecoderOptions opt;
+  opt.maxWidth = 64;  // the stream is 80 wide
+  Decoder dec(opt);
+  const PictureReport r = dec.decode(es);
+  EXPECT_TRUE(r.undecodable);
+  EXPECT_TRUE(hasIssue(r, IssueKind::kAbsurdSize));
+  es[4] = es[5] = 0;
+  es[6] &= 0x0F;  // horizontal_size = 0, vertical_size = 48 & 0xFF...
+  Decoder dec2;
+  EXPECT_TRUE(dec2.decode(es).undecodable);
+}
+
+TEST(IpuRobustness, SliceParallelDecodeIsBitIdentical) {
+  testing::EncodeOptions o;
+  o.width = 160;
+  o.height = 144;
+  o.frames = 2;
+  o.quantiser = 2;
+  o.content = testing::Content::kNoise;
+  auto es = testing::encodeIntra(o);
+  WorkerPool pool(1);
+  for (int corrupt = 0; corrupt < 2; ++corrupt) {
+    if (corrupt) {
+      for (std::size_t i = 200; i < es.size(); i += 997) es[i] ^= 0x10;
+    }
+    Decoder serial, parallel;
+    for (const AccessUnit& au : splitAccessUnits(es)) {
+      const auto bytes = std::span(es).subspan(au.offset, au.size);
+      const PictureReport a = serial.decode(bytes);
+      const PictureReport b = parallel.decode(bytes, pool);
+      EXPECT_EQ(a.issueCount, b.issueCount);
+      EXPECT_EQ(a.macroblocksConcealed, b.macroblocksConcealed);
+      EXPECT_EQ(serial.frame().y, parallel.frame().y);
+      EXPECT_EQ(serial.frame().cb, parallel.frame().cb);
+      EXPECT_EQ(serial.frame().cr, parallel.frame().cr);
+    }
+  }
+}
+
+TEST(IpuRobustness, Mpeg1CorruptionIsSafe) {
+  auto es = stream(2, true);
+  for (std::size_t i = 60; i < es.size(); i += 101) es[i] = static_cast<std::uint8_t>(es[i] * 7 + 3);
+  Decoder dec;
+  for (const AccessUnit& au : splitAccessUnits(es)) dec.decode(std::span(es).subspan(au.offset, au.size));
+  SUCCEED();
+}
+
+TEST(IpuRobustness, ElementaryStreamSplitsIntoPictures) {
+  const auto es = stream(4);
+  const auto units = splitAccessUnits(es);
+  ASSERT_EQ(units.size(), 4u);
+  std::size_t total = 0;
+  for (const AccessUnit& u : units) {
+    EXPECT_EQ(u.offset, total);
+    total += u.size;
+    // Each unit starts with the sequence header libavcodec repeats for every intra GOP.
+    EXPECT_EQ(es[u.offset + 3], 0xB3);
+  }
+  EXPECT_EQ(total, es.size());
+}
+
+}  // namespace
+}  // namespace vbim::ipu
