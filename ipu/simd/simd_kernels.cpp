@@ -100,6 +100,8 @@ void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
   const unsigned rows = rowMask & 0xFF, cols = colMask & 0xFF;
   if ((rows | cols) <= 0x3) return IdctLowImpl<2, 2>(block, toggle, dst, stride);
   if ((rows | cols) <= 0xF) return IdctLowImpl<4, 4>(block, toggle, dst, stride);
+  if (__builtin_popcount(rows) + __builtin_popcount(cols) >= 10 && !toggle)
+    return IdctLowImpl<8, 8>(block, false, dst, stride);
   IdctGeneralImpl(block, rowMask, colMask, dst, stride);
 }
 
