@@ -231,4 +231,11 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
   return report;
 }
 
+PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
+  PictureReport r = decoder.decode(bytes);
+  if (r.produced)
+    convertToRgba32(decoder.frame(), decoder.width(), decoder.height(), th, out, decoder.kernels().cscRow);
+  return r;
+}
+
 }  // namespace vbim::ipu
