@@ -1,6 +1,7 @@
 #include "ipu/picture_decoder.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "ipu/quant_tables.hpp"
@@ -121,14 +122,28 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
     // MPEG-2 slices never leave their row, so contiguous row ranges are disjoint in the frame.
     std::vector<PictureReport> reports(jobs);
     std::vector<std::vector<MacroblockBits>> traces(jobs);
+    // Contiguous row ranges with about the same number of bytes each (busy rows cost more).
     const int rows = params_.mbRows;
-    pool->run(jobs, [&](std::size_t j) {
-      const int lo = static_cast<int>(rows * j / jobs);
-      const int hi = static_cast<int>(rows * (j + 1) / jobs);
-      SliceOutput out{&reports[j], &decoded_, options_.recordMacroblocks ? &traces[j] : nullptr};
+    std::vector<std::size_t> rowBytes(static_cast<std::size_t>(rows) + 1, 0);
+    std::size_t total = 0;
+    for (const Slice& s : slices_) {
+      rowBytes[static_cast<std::size_t>(std::min(s.row, rows))] += s.end - s.begin;
+      total += s.end - s.begin;
+    }
+    std::vector<int> firstRow(jobs + 1, rows + 1);
+    firstRow[0] = 0;
+    std::size_t acc = 0;
+    std::size_t j = 1;
+    for (int r = 0; r < rows && j < jobs; ++r) {
+      acc += rowBytes[static_cast<std::size_t>(r)];
+      if (acc * jobs >= total * j) firstRow[j++] = r + 1;
+    }
+    pool->run(jobs, [&](std::size_t k) {
+      const int lo = firstRow[k];
+      const int hi = k + 1 == jobs ? INT32_MAX : firstRow[k + 1];
+      SliceOutput out{&reports[k], &decoded_, options_.recordMacroblocks ? &traces[k] : nullptr};
       for (const Slice& s : slices_) {
-        const bool mine = (s.row >= lo && s.row < hi) || (j == jobs - 1 && s.row >= rows);
-        if (mine) decodeSlice(params_, s.code, d + s.begin, d + s.end, s.begin, out);
+        if (s.row >= lo && s.row < hi) decodeSlice(params_, s.code, d + s.begin, d + s.end, s.begin, out);
       }
     });
     for (std::size_t j = 0; j < jobs; ++j) {
