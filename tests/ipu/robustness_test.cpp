@@ -266,3 +266,30 @@ TEST(IpuRobustness, ElementaryStreamSplitsIntoPictures) {
 
 }  // namespace
 }  // namespace vbim::ipu
+
+namespace vbim::ipu {
+namespace {
+
+// The IPU's IDP field cannot express 11-bit DC precision; PCSX2 decodes such streams as 9-bit.
+// The option reproduces that (the picture comes out wrong, as it would there); by default the
+// standard's 11 bits are used.
+TEST(IpuRobustness, DcPrecision11CanBeTreatedAsNineLikePcsx2) {
+  testing::EncodeOptions o;
+  o.width = 48;
+  o.height = 32;
+  o.frames = 1;
+  o.dcPrecision = 3;
+  o.quantiser = 2;
+  const auto es = testing::encodeIntra(o);
+  Decoder standard;
+  DecoderOptions pcsx2;
+  pcsx2.dcPrecision11AsNine = true;
+  Decoder nine(pcsx2);
+  EXPECT_TRUE(standard.decode(es).clean());
+  EXPECT_TRUE(nine.decode(es).produced);
+  EXPECT_EQ(standard.picture().intraDcPrecision, 3);
+  EXPECT_NE(standard.frame().y, nine.frame().y);
+}
+
+}  // namespace
+}  // namespace vbim::ipu
