@@ -117,7 +117,10 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   }
   pictureValid_ = false;
   const std::uint8_t* d = bytes.data();
-  const std::size_t jobs = pool ? static_cast<std::size_t>(pool->threads()) + 1 : 1;
+  // Several row ranges per thread, so a worker that wakes late still finds work (the caller runs
+  // ranges too); ranges are contiguous and disjoint, so the bytes never depend on who ran what.
+  const std::size_t jobs =
+      pool && pool->threads() > 0 ? std::min<std::size_t>(slices_.size(), 4 * (pool->threads() + std::size_t{1})) : 1;
   if (jobs > 1 && !params_.mpeg1 && !params_.tallPicture && slices_.size() > 1) {
     // MPEG-2 slices never leave their row, so contiguous row ranges are disjoint in the frame.
     std::vector<PictureReport> reports(jobs);
