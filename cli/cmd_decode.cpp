@@ -18,6 +18,7 @@
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
+#include "ipu/simd/simd_kernels.hpp"
 #include "runtime/worker_pool.hpp"
 
 namespace vbim::cli {
@@ -176,7 +177,9 @@ void run(const Options& o) {
   for (const std::string& w : dm.warnings) std::cerr << "vbim decode: warning: " << w << "\n";
 
   OutputDir dir(o.outDir, o.force);
-  ipu::Decoder decoder;
+  ipu::DecoderOptions options;
+  options.kernels = &ipu::simdKernels();  // same bytes as the scalar reference, faster
+  ipu::Decoder decoder(options);
   std::unique_ptr<WorkerPool> pool;
   if (o.threads > 1) pool = std::make_unique<WorkerPool>(o.threads - 1);
   std::string where;
@@ -230,7 +233,7 @@ void run(const Options& o) {
       f.write(reinterpret_cast<const char*>(yuv.cr.data()), static_cast<std::streamsize>(yuv.cr.size()));
       if (!f) throw Exit(1, dir.path(name).string() + ": cannot write");
     } else {
-      ipu::convertToRgba32(decoder.frame(), w, h, ipu::CscThresholds{o.th0, o.th1}, rgba);
+      ipu::convertToRgba32(decoder.frame(), w, h, ipu::CscThresholds{o.th0, o.th1}, rgba, decoder.kernels().cscRow);
       // GS alpha 0x80 = 1.0: PNG alpha 255 = 2 * a (clamped), EXR alpha = a / 128.
       if (o.format == "png") {
         for (std::size_t i = 3; i < rgba.pixels.size(); i += 4)

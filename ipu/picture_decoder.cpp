@@ -1,6 +1,7 @@
 #include "ipu/picture_decoder.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "ipu/quant_tables.hpp"
@@ -116,19 +117,36 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   }
   pictureValid_ = false;
   const std::uint8_t* d = bytes.data();
-  const std::size_t jobs = pool ? static_cast<std::size_t>(pool->threads()) + 1 : 1;
+  // Several row ranges per thread, so a worker that wakes late still finds work (the caller runs
+  // ranges too); ranges are contiguous and disjoint, so the bytes never depend on who ran what.
+  const std::size_t jobs =
+      pool && pool->threads() > 0 ? std::min<std::size_t>(slices_.size(), 4 * (pool->threads() + std::size_t{1})) : 1;
   if (jobs > 1 && !params_.mpeg1 && !params_.tallPicture && slices_.size() > 1) {
     // MPEG-2 slices never leave their row, so contiguous row ranges are disjoint in the frame.
     std::vector<PictureReport> reports(jobs);
     std::vector<std::vector<MacroblockBits>> traces(jobs);
+    // Contiguous row ranges with about the same number of bytes each (busy rows cost more).
     const int rows = params_.mbRows;
-    pool->run(jobs, [&](std::size_t j) {
-      const int lo = static_cast<int>(rows * j / jobs);
-      const int hi = static_cast<int>(rows * (j + 1) / jobs);
-      SliceOutput out{&reports[j], &decoded_, options_.recordMacroblocks ? &traces[j] : nullptr};
+    std::vector<std::size_t> rowBytes(static_cast<std::size_t>(rows) + 1, 0);
+    std::size_t total = 0;
+    for (const Slice& s : slices_) {
+      rowBytes[static_cast<std::size_t>(std::min(s.row, rows))] += s.end - s.begin;
+      total += s.end - s.begin;
+    }
+    std::vector<int> firstRow(jobs + 1, rows + 1);
+    firstRow[0] = 0;
+    std::size_t acc = 0;
+    std::size_t j = 1;
+    for (int r = 0; r < rows && j < jobs; ++r) {
+      acc += rowBytes[static_cast<std::size_t>(r)];
+      if (acc * jobs >= total * j) firstRow[j++] = r + 1;
+    }
+    pool->run(jobs, [&](std::size_t k) {
+      const int lo = firstRow[k];
+      const int hi = k + 1 == jobs ? INT32_MAX : firstRow[k + 1];
+      SliceOutput out{&reports[k], &decoded_, options_.recordMacroblocks ? &traces[k] : nullptr};
       for (const Slice& s : slices_) {
-        const bool mine = (s.row >= lo && s.row < hi) || (j == jobs - 1 && s.row >= rows);
-        if (mine) decodeSlice(params_, s.code, d + s.begin, d + s.end, s.begin, out);
+        if (s.row >= lo && s.row < hi) decodeSlice(params_, s.code, d + s.begin, d + s.end, s.begin, out);
       }
     });
     for (std::size_t j = 0; j < jobs; ++j) {
@@ -229,6 +247,13 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
   }
   if (pictureOpen_) finishPicture(bytes, report, pool);
   return report;
+}
+
+PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
+  PictureReport r = decoder.decode(bytes);
+  if (r.produced)
+    convertToRgba32(decoder.frame(), decoder.width(), decoder.height(), th, out, decoder.kernels().cscRow);
+  return r;
 }
 
 }  // namespace vbim::ipu

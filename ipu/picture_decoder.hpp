@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "ipu/csc.hpp"
 #include "ipu/decode_report.hpp"
 #include "ipu/frame_store.hpp"
 #include "ipu/headers.hpp"
@@ -59,6 +60,7 @@ class Decoder {
   int width() const { return seq_.width; }
   int height() const { return seq_.height; }
   const std::vector<MacroblockBits>& macroblockTrace() const { return trace_; }
+  const Kernels& kernels() const { return options_.kernels ? *options_.kernels : scalarKernels(); }
 
  private:
   struct Slice {
@@ -84,5 +86,10 @@ class Decoder {
   std::vector<std::uint8_t> decoded_;
   std::vector<MacroblockBits> trace_;
 };
+
+// The player's one call: decodes one picture and, if one was produced, converts it to RGB32 (alpha
+// 0x80, SETTH thresholds) with the decoder's kernels. `out` is left unchanged otherwise.
+PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out,
+                           CscThresholds th = {});
 
 }  // namespace vbim::ipu

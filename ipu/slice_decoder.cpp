@@ -133,8 +133,11 @@ SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
   int i = 0;
   for (;;) {
     const std::uint32_t bits = br_.peek(24);
-    DctEntry d = first[bits >> 16];
-    if (d.level == kDctSub) d = sub[d.run][(bits >> (16 - d.len)) & ((1u << d.len) - 1)];
+    constexpr int kFirst = VlcTables::kDctFirstBits;
+    DctEntry d = first[bits >> (24 - kFirst)];
+    if (d.level == kDctSub) [[unlikely]] {
+      d = sub[d.run][(bits >> (24 - kFirst - d.len)) & ((1u << d.len) - 1)];
+    }
     int run;
     int mag;
     bool negative;

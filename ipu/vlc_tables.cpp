@@ -143,26 +143,31 @@ void fillMotion(VlcEntry (&table)[1 << 11]) {
 }
 
 template <std::size_t M>
-void fillDct(DctEntry (&first)[256], DctEntry (&sub)[4][256], const Code (&codes)[M]) {
+void fillDct(DctEntry (&first)[1 << VlcTables::kDctFirstBits], DctEntry (&sub)[8][64], const Code (&codes)[M]) {
+  constexpr int kFirst = VlcTables::kDctFirstBits;
   for (auto& e : first) e = DctEntry{0, 0, 0};
   for (auto& t : sub)
     for (auto& e : t) e = DctEntry{0, 0, 0};
-  // Codes longer than 8 bits all begin with '0000 00': prefixes 0..3 of the first byte get a
-  // second-level table on the bits after the first 8 (2, 4, 8 or 8 bits).
-  static constexpr int kSubBits[4] = {8, 4, 2, 2};
-  for (int p = 0; p < 4; ++p)
-    first[p] = DctEntry{static_cast<std::uint8_t>(p), static_cast<std::uint8_t>(kSubBits[p]), kDctSub};
+  // Codes longer than kFirst bits all begin with '0000 000' (first-level prefixes 0..7); each prefix
+  // gets a second-level table as wide as its longest code needs.
+  int subBits[8] = {};
+  for (const Code& c : codes)
+    if (c.len > kFirst) {
+      const int prefix = c.code >> (c.len - kFirst);
+      subBits[prefix] = subBits[prefix] > c.len - kFirst ? subBits[prefix] : c.len - kFirst;
+    }
+  for (int p = 0; p < 8; ++p)
+    if (subBits[p]) first[p] = DctEntry{static_cast<std::uint8_t>(p), static_cast<std::uint8_t>(subBits[p]), kDctSub};
   for (const Code& c : codes) {
     const DctEntry e{static_cast<std::uint8_t>(c.a), c.len, c.b};
-    if (c.len <= 8) {
-      const int free = 8 - c.len;
+    if (c.len <= kFirst) {
+      const int free = kFirst - c.len;
       for (int i = 0; i < (1 << free); ++i) first[(c.code << free) + i] = e;
     } else {
-      const int prefix = c.code >> (c.len - 8);
-      const int subBits = kSubBits[prefix];
-      const int rest = c.len - 8;
+      const int prefix = c.code >> (c.len - kFirst);
+      const int rest = c.len - kFirst;
       const int low = c.code & ((1 << rest) - 1);
-      const int free = subBits - rest;
+      const int free = subBits[prefix] - rest;
       for (int i = 0; i < (1 << free); ++i) sub[prefix][(low << free) + i] = e;
     }
   }

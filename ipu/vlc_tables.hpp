@@ -33,10 +33,12 @@ struct VlcTables {
   VlcEntry motionCode[1 << 11];          // B.10 including the sign bit, next 11 bits
   VlcEntry dcSizeLuma[1 << 9];           // B.12, next 9 bits
   VlcEntry dcSizeChroma[1 << 10];        // B.13, next 10 bits
-  // B.14 (table zero, intra AC) and B.15 (table one): first level on the next 8 bits; entries with
-  // level == kDctSub point (run = index) at a second-level table read on the following `len` bits.
-  DctEntry dct[2][256];
-  DctEntry dctSub[2][4][256];
+  // B.14 (table zero, intra AC) and B.15 (table one): first level on the next kDctFirstBits bits
+  // (every code up to 10 bits resolves there); entries with level == kDctSub point (run = index)
+  // at a second-level table read on the following `len` bits (codes of 12 to 16 bits).
+  static constexpr int kDctFirstBits = 10;
+  DctEntry dct[2][1 << kDctFirstBits];
+  DctEntry dctSub[2][8][64];
 };
 
 const VlcTables& vlcTables();

@@ -64,7 +64,7 @@ HWY_INLINE void IdctLowImpl(const std::int16_t* block, bool toggle, std::uint8_t
       ch[v] = hn::ShiftRight<14>(hn::Add(acc, hn::Set(d, 1 << 13)));
       cl[v] = hn::Sub(acc, hn::ShiftLeft<14>(ch[v]));
     }
-    const V zero = hn::Zero(d), k255 = hn::Set(d, 255);
+    const V zero = hn::Zero(d);
     for (int y = 0; y < 4; ++y) {
       V he = hn::Set(d, 1 << 16), ho = zero, le = zero, lo = zero;
       for (int v = 0; v < R; ++v) {
@@ -87,8 +87,8 @@ HWY_INLINE void IdctLowImpl(const std::int16_t* block, bool toggle, std::uint8_t
       }
       const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(lt)));
       const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(lb)));
-      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(top, zero), k255)), d8, dst + y * stride + x0);
-      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(bottom, zero), k255)), d8, dst + (7 - y) * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, top), d8, dst + y * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, bottom), d8, dst + (7 - y) * stride + x0);
     }
   }
 }
@@ -100,6 +100,8 @@ void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
   const unsigned rows = rowMask & 0xFF, cols = colMask & 0xFF;
   if ((rows | cols) <= 0x3) return IdctLowImpl<2, 2>(block, toggle, dst, stride);
   if ((rows | cols) <= 0xF) return IdctLowImpl<4, 4>(block, toggle, dst, stride);
+  if (__builtin_popcount(rows) + __builtin_popcount(cols) >= 10 && !toggle)
+    return IdctLowImpl<8, 8>(block, false, dst, stride);
   IdctGeneralImpl(block, rowMask, colMask, dst, stride);
 }
 
@@ -159,49 +161,70 @@ void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMa
       }
       const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(hn::Add(hn::Add(le, lo), lt))));
       const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(hn::Add(hn::Sub(le, lo), lb))));
-      const V zero = hn::Zero(d), k255 = hn::Set(d, 255);
-      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(top, zero), k255)), d8, dst + y * stride + x0);
-      hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(bottom, zero), k255)), d8, dst + (7 - y) * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, top), d8, dst + y * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, bottom), d8, dst + (7 - y) * stride + x0);
     }
   }
 }
 
-// Doubles every chroma sample (4:2:0 -> one sample per pixel) 16 at a time.
-void UpsampleImpl(const std::uint8_t* c, int n, std::uint8_t* out) {
+// The chroma terms of the PS2 matrix for one chroma line, in 16-bit lanes:
+// (a << 4) * (b << 6) >> 16 == (a * b) >> 6 exactly for |a| < 2^11 and the coefficients below (the
+// same floor shift as the scalar code). rc = Cr term of R, gc = both terms of G, bc = Cb term of B.
+void ChromaTermsImpl(const std::uint8_t* cb, const std::uint8_t* cr, int n, std::int16_t* rc, std::int16_t* gc,
+                     std::int16_t* bc) {
+  const hn::ScalableTag<std::int16_t> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const int N = static_cast<int>(hn::Lanes(d));
+  const auto kRcr = hn::Set(d, 0xCC << 6), kGcr = hn::Set(d, -0x68 << 6);
+  const auto kGcb = hn::Set(d, -0x32 << 6), kBcb = hn::Set(d, 0x102 << 6);
+  const auto c128 = hn::Set(d, 128);
+  int x = 0;
+  for (; x + N <= n; x += N) {
+    const auto vb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, cb + x)), c128));
+    const auto vr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, cr + x)), c128));
+    hn::StoreU(hn::MulHigh(vr, kRcr), d, rc + x);
+    hn::StoreU(hn::Add(hn::MulHigh(vr, kGcr), hn::MulHigh(vb, kGcb)), d, gc + x);
+    hn::StoreU(hn::MulHigh(vb, kBcb), d, bc + x);
+  }
+  for (; x < n; ++x) {
+    rc[x] = static_cast<std::int16_t>((0xCC * (cr[x] - 128)) >> 6);
+    gc[x] = static_cast<std::int16_t>(((-0x68 * (cr[x] - 128)) >> 6) + ((-0x32 * (cb[x] - 128)) >> 6));
+    bc[x] = static_cast<std::int16_t>((0x102 * (cb[x] - 128)) >> 6);
+  }
+}
+
+// Doubles every 16-bit term (one chroma sample covers two pixels), 8 at a time.
+void UpsampleTermsImpl(const std::int16_t* c, int n, std::int16_t* out) {
   int i = 0;
 #if HWY_TARGET != HWY_SCALAR
-  const hn::Full128<std::uint8_t> d;
-  for (; i + 16 <= n; i += 16) {
+  const hn::Full128<std::int16_t> d;
+  for (; i + 8 <= n; i += 8) {
     const auto v = hn::LoadU(d, c + i);
     hn::StoreU(hn::InterleaveLower(d, v, v), d, out + 2 * i);
-    hn::StoreU(hn::InterleaveUpper(d, v, v), d, out + 2 * i + 16);
+    hn::StoreU(hn::InterleaveUpper(d, v, v), d, out + 2 * i + 8);
   }
 #endif
   for (; i < n; ++i) out[2 * i] = out[2 * i + 1] = c[i];
 }
 
-// One RGB32 line with the PS2 matrix in 16-bit lanes: (a << 4) * (b << 6) >> 16 == (a * b) >> 6
-// exactly for |a| < 2^11 and the coefficients below (all products are floor-shifted as in the
-// scalar code). Chroma is upsampled to full width first.
-void CscRowImpl(const std::uint8_t* y, const std::uint8_t* cbUp, const std::uint8_t* crUp, int width,
-                std::uint8_t* rgba, int th0, int th1) {
+// One RGB32 line from luma and the full-resolution chroma terms: lum = (0x95 * max(0, Y - 16)) >> 6,
+// then (lum + term + 1) >> 1 clamped to 0..255; alpha 0x80; SETTH.
+void CscRowImpl(const std::uint8_t* y, const std::int16_t* rcUp, const std::int16_t* gcUp, const std::int16_t* bcUp,
+                int width, std::uint8_t* rgba, int th0, int th1) {
   const hn::ScalableTag<std::int16_t> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const int N = static_cast<int>(hn::Lanes(d));
-  const auto kY = hn::Set(d, 0x95 << 6), kRcr = hn::Set(d, 0xCC << 6), kGcr = hn::Set(d, -0x68 << 6);
-  const auto kGcb = hn::Set(d, -0x32 << 6), kBcb = hn::Set(d, 0x102 << 6);
-  const auto c128 = hn::Set(d, 128), one = hn::Set(d, 1);
+  const auto kY = hn::Set(d, 0x95 << 6);
+  const auto one = hn::Set(d, 1);
   const auto vTh0 = hn::Set(d, static_cast<std::int16_t>(th0)), vTh1 = hn::Set(d, static_cast<std::int16_t>(th1));
   const auto a80 = hn::Set(d, 0x80), a40 = hn::Set(d, 0x40);
   int x = 0;
   for (; x + N <= width; x += N) {
     const auto yy = hn::PromoteTo(d, hn::SaturatedSub(hn::LoadU(d8, y + x), hn::Set(d8, 16)));
-    const auto cb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, cbUp + x)), c128));
-    const auto cr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, crUp + x)), c128));
-    const auto lum = hn::MulHigh(hn::ShiftLeft<4>(yy), kY);
-    const auto r = hn::ShiftRight<1>(hn::Add(hn::Add(lum, hn::MulHigh(cr, kRcr)), one));
-    const auto g = hn::ShiftRight<1>(hn::Add(hn::Add(hn::Add(lum, hn::MulHigh(cr, kGcr)), hn::MulHigh(cb, kGcb)), one));
-    const auto b = hn::ShiftRight<1>(hn::Add(hn::Add(lum, hn::MulHigh(cb, kBcb)), one));
+    const auto lum = hn::Add(hn::MulHigh(hn::ShiftLeft<4>(yy), kY), one);
+    const auto r = hn::ShiftRight<1>(hn::Add(lum, hn::LoadU(d, rcUp + x)));
+    const auto g = hn::ShiftRight<1>(hn::Add(lum, hn::LoadU(d, gcUp + x)));
+    const auto b = hn::ShiftRight<1>(hn::Add(lum, hn::LoadU(d, bcUp + x)));
     if (th0 <= 0 && th1 <= 0) {
       // No SETTH thresholds: alpha is 0x80 everywhere and the saturating narrow does the clamp.
       hn::StoreInterleaved4(hn::DemoteTo(d8, r), hn::DemoteTo(d8, g), hn::DemoteTo(d8, b), hn::Set(d8, 0x80), d8,
@@ -215,19 +238,23 @@ void CscRowImpl(const std::uint8_t* y, const std::uint8_t* cbUp, const std::uint
     const auto m = hn::Max(hn::Max(rc, gc), bc);
     const auto cleared = m < vTh0;
     const auto alpha = hn::IfThenZeroElse(cleared, hn::IfThenElse(m < vTh1, a40, a80));
-    const auto r8 = hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, rc));
-    const auto g8 = hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, gc));
-    const auto b8 = hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, bc));
-    const auto a8 = hn::DemoteTo(d8, alpha);
-    hn::StoreInterleaved4(r8, g8, b8, a8, d8, rgba + 4 * x);
+    hn::StoreInterleaved4(hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, rc)),
+                          hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, gc)),
+                          hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, bc)), hn::DemoteTo(d8, alpha), d8, rgba + 4 * x);
   }
-  if (x < width) {
-    // The tail in scalar: chroma pointers shifted so that index (x >> 1) still lines up.
-    std::uint8_t cbT[2], crT[2];
-    for (; x < width; ++x) {
-      cbT[0] = cbUp[x];
-      crT[0] = crUp[x];
-      cscRowRgba32Scalar(y + x, cbT, crT, 1, rgba + 4 * x, CscThresholds{th0, th1});
+  for (; x < width; ++x) {
+    const int lum = ((0x95 * (y[x] > 16 ? y[x] - 16 : 0)) >> 6) + 1;
+    auto clamp = [](int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); };
+    const int r = clamp((lum + rcUp[x]) >> 1), g = clamp((lum + gcUp[x]) >> 1), b = clamp((lum + bcUp[x]) >> 1);
+    const int m = r > g ? (r > b ? r : b) : (g > b ? g : b);
+    std::uint8_t* o = rgba + 4 * x;
+    if (m < th0) {
+      o[0] = o[1] = o[2] = o[3] = 0;
+    } else {
+      o[0] = static_cast<std::uint8_t>(r);
+      o[1] = static_cast<std::uint8_t>(g);
+      o[2] = static_cast<std::uint8_t>(b);
+      o[3] = static_cast<std::uint8_t>(m < th1 ? 0x40 : 0x80);
     }
   }
 }
@@ -240,7 +267,8 @@ namespace vbim::ipu {
 
 HWY_EXPORT(IdctImpl);
 HWY_EXPORT(CscRowImpl);
-HWY_EXPORT(UpsampleImpl);
+HWY_EXPORT(ChromaTermsImpl);
+HWY_EXPORT(UpsampleTermsImpl);
 
 void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   HWY_DYNAMIC_DISPATCH(IdctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
@@ -248,15 +276,23 @@ void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
 
 void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                        int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
-  thread_local std::vector<std::uint8_t> up;
+  // The chroma terms once per chroma line, at half resolution, then doubled for the two luma lines.
+  thread_local std::vector<std::int16_t> buf;
   const int half = (width + 1) / 2;
-  if (up.size() < static_cast<std::size_t>(4 * half)) up.resize(static_cast<std::size_t>(4 * half));
-  std::uint8_t* cbUp = up.data();
-  std::uint8_t* crUp = up.data() + 2 * half;
-  HWY_DYNAMIC_DISPATCH(UpsampleImpl)(cb, half, cbUp);
-  HWY_DYNAMIC_DISPATCH(UpsampleImpl)(cr, half, crUp);
+  const std::size_t need = static_cast<std::size_t>(3 * half + 3 * 2 * half);
+  if (buf.size() < need) buf.resize(need);
+  std::int16_t* rc = buf.data();
+  std::int16_t* gc = rc + half;
+  std::int16_t* bc = gc + half;
+  std::int16_t* rcUp = bc + half;
+  std::int16_t* gcUp = rcUp + 2 * half;
+  std::int16_t* bcUp = gcUp + 2 * half;
+  HWY_DYNAMIC_DISPATCH(ChromaTermsImpl)(cb, cr, half, rc, gc, bc);
+  HWY_DYNAMIC_DISPATCH(UpsampleTermsImpl)(rc, half, rcUp);
+  HWY_DYNAMIC_DISPATCH(UpsampleTermsImpl)(gc, half, gcUp);
+  HWY_DYNAMIC_DISPATCH(UpsampleTermsImpl)(bc, half, bcUp);
   for (int r = 0; r < rows; ++r)
-    HWY_DYNAMIC_DISPATCH(CscRowImpl)(y + r * yStride, cbUp, crUp, width, rgba + r * rgbaStride, th.th0, th.th1);
+    HWY_DYNAMIC_DISPATCH(CscRowImpl)(y + r * yStride, rcUp, gcUp, bcUp, width, rgba + r * rgbaStride, th.th0, th.th1);
 }
 
 const Kernels& simdKernels() {

@@ -11,12 +11,12 @@
 namespace vbim::ipu {
 namespace {
 
-// IEEE 1180-1990 §3.2: the pseudo-random generator.
+// IEEE 1180-1990 §3.2: the pseudo-random generator (its `long` arithmetic is 32 bits, wrapping).
 class Ieee1180Random {
  public:
   int next(int lo, int hi) {  // uniformly in [-lo, hi]
-    randx_ = randx_ * 1103515245 + 12345;
-    const std::int64_t i = randx_ & 0x7ffffffe;
+    randx_ = randx_ * 1103515245u + 12345u;
+    const std::uint32_t i = randx_ & 0x7ffffffeu;
     double x = static_cast<double>(i) / static_cast<double>(0x7fffffff);
     x *= (lo + hi + 1);
     const int j = static_cast<int>(x);
@@ -24,9 +24,7 @@ class Ieee1180Random {
   }
 
  private:
-  std::int64_t randx_ = 1;  // the standard's `long` arithmetic, kept to 32 bits below
- public:
-  void wrap() { randx_ &= 0xFFFFFFFF; }
+  std::uint32_t randx_ = 1;
 };
 
 double c(int u) {
@@ -85,7 +83,6 @@ Stats runIeee1180(int lo, int hi, int sign, int blocks) {
     double pixels[64], coef[64], ref[64];
     for (int i = 0; i < 64; ++i) {
       pixels[i] = sign * rng.next(lo, hi);
-      rng.wrap();
     }
     forwardDct(pixels, coef);
     std::int16_t block[64];
@@ -173,7 +170,6 @@ TEST(IpuIdct, RowMaskSkipsOnlyZeroRows) {
         mask |= 1u << r;
         for (int x = 0; x < 8; ++x) block[8 * r + x] = static_cast<std::int16_t>(rng.next(300, 300));
       }
-      rng.wrap();
     }
     std::uint8_t a[64], b[64];
     idctScalar(block, mask, a, 8);

@@ -266,3 +266,75 @@ TEST(IpuRobustness, ElementaryStreamSplitsIntoPictures) {
 
 }  // namespace
 }  // namespace vbim::ipu
+
+namespace vbim::ipu {
+namespace {
+
+// The IPU's IDP field cannot express 11-bit DC precision; PCSX2 decodes such streams as 9-bit.
+// The option reproduces that (the picture comes out wrong, as it would there); by default the
+// standard's 11 bits are used.
+TEST(IpuRobustness, DcPrecision11CanBeTreatedAsNineLikePcsx2) {
+  testing::EncodeOptions o;
+  o.width = 48;
+  o.height = 32;
+  o.frames = 1;
+  o.dcPrecision = 3;
+  o.quantiser = 2;
+  const auto es = testing::encodeIntra(o);
+  Decoder standard;
+  DecoderOptions pcsx2;
+  pcsx2.dcPrecision11AsNine = true;
+  Decoder nine(pcsx2);
+  EXPECT_TRUE(standard.decode(es).clean());
+  EXPECT_TRUE(nine.decode(es).produced);
+  EXPECT_EQ(standard.picture().intraDcPrecision, 3);
+  EXPECT_NE(standard.frame().y, nine.frame().y);
+}
+
+}  // namespace
+}  // namespace vbim::ipu
+
+namespace vbim::ipu {
+namespace {
+
+// A field picture (picture_structure = top field) decodes into every other line of the frame
+// store; libavcodec's encoder writes frame pictures only, so the structure is patched in. Its
+// second macroblock row lies outside a field of this height and is reported.
+TEST(IpuRobustness, TopFieldPictureWritesEvenLinesOnly) {
+  testing::EncodeOptions o;
+  o.width = 32;
+  o.height = 32;
+  o.frames = 1;
+  o.content = testing::Content::kPattern;
+  auto es = testing::encodeIntra(o);
+  bool patched = false;
+  for (std::size_t i = 0; i + 7 < es.size(); ++i)
+    if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0xB5 && (es[i + 4] >> 4) == 8) {
+      es[i + 6] = static_cast<std::uint8_t>((es[i + 6] & ~0x03) | 0x01);  // picture_structure = 1
+      patched = true;
+      break;
+    }
+  ASSERT_TRUE(patched);
+  Decoder dec;
+  const PictureReport r = dec.decode(es);
+  ASSERT_TRUE(r.produced);
+  EXPECT_EQ(dec.picture().pictureStructure, 1);
+  EXPECT_EQ(r.macroblocks, 2);  // one field row of two macroblocks
+  EXPECT_EQ(r.macroblocksDecoded, 2);
+  EXPECT_TRUE(hasIssue(r, IssueKind::kBadSlicePosition));
+  const FrameStore& fs = dec.frame();
+  int evenChanged = 0;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const std::uint8_t v = fs.y[static_cast<std::size_t>(y) * fs.lumaStride + x];
+      if (y & 1) {
+        ASSERT_EQ(v, 128) << "odd line " << y << " belongs to the bottom field";
+      } else {
+        evenChanged += v != 128;
+      }
+    }
+  EXPECT_GT(evenChanged, 100);
+}
+
+}  // namespace
+}  // namespace vbim::ipu

@@ -1,0 +1,148 @@
+// `vbim decode` end to end: elementary and program streams in, image files out, and the exit
+// codes and messages for streams that cannot be decoded.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tests/ipu/support/libav_mpeg.hpp"
+
+namespace vbim::ipu {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+Result runTool(const std::string& args) {
+  const std::string cmd = std::string(VBIM_TOOL) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[512];
+  while (p && fgets(buf, sizeof buf, p)) out += buf;
+  const int status = p ? pclose(p) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+fs::path scratch() {
+  const fs::path d = fs::temp_directory_path() / ("vbim-ipu-cli-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+void writeFile(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
+  std::ofstream f(p, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::vector<std::uint8_t> stream(int w, int h, int frames, int gop = 1) {
+  testing::EncodeOptions o;
+  o.width = w;
+  o.height = h;
+  o.frames = frames;
+  o.gopSize = gop;
+  o.content = testing::Content::kPattern;
+  return testing::encodeIntra(o);
+}
+
+// A minimal MPEG-2 program stream: 2048-byte packs, each a pack header and one PES packet of
+// stream `id`, padded with a padding stream (0xBE) when the payload runs out.
+void appendPacks(std::vector<std::uint8_t>& ps, const std::vector<std::uint8_t>& es, int id) {
+  std::size_t pos = 0;
+  while (pos < es.size()) {
+    std::vector<std::uint8_t> pack = {0, 0, 1, 0xBA, 0x44, 0, 4, 0, 4, 1, 0x01, 0x89, 0xC3, 0xF8};
+    const std::size_t room = 2048 - pack.size() - 9;
+    const std::size_t n = std::min(room, es.size() - pos);
+    const std::size_t pesLen = 3 + n;
+    pack.insert(pack.end(), {0, 0, 1, static_cast<std::uint8_t>(id), static_cast<std::uint8_t>(pesLen >> 8),
+                             static_cast<std::uint8_t>(pesLen & 0xFF), 0x80, 0x00, 0x00});
+    pack.insert(pack.end(), es.begin() + static_cast<std::ptrdiff_t>(pos),
+                es.begin() + static_cast<std::ptrdiff_t>(pos + n));
+    pos += n;
+    if (pack.size() < 2048) {
+      const std::size_t pad = 2048 - pack.size() - 6;
+      pack.insert(pack.end(),
+                  {0, 0, 1, 0xBE, static_cast<std::uint8_t>(pad >> 8), static_cast<std::uint8_t>(pad & 0xFF)});
+      pack.insert(pack.end(), pad, 0xFF);
+    }
+    ps.insert(ps.end(), pack.begin(), pack.end());
+  }
+}
+
+TEST(IpuCli, DecodesAnElementaryStreamToPngAndYuv) {
+  const fs::path d = scratch();
+  writeFile(d / "a.m2v", stream(40, 24, 3));
+  Result r = runTool("decode " + (d / "a.m2v").string() + " --out " + (d / "png").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(d / "png" / "frame_00002.png")) << r.output;
+  r = runTool("decode " + (d / "a.m2v").string() + " --out " + (d / "yuv").string() + " --format yuv --threads 2");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(fs::file_size(d / "yuv" / "frame_00000.yuv"), 40u * 24 + 2 * 20 * 12);
+  fs::remove_all(d);
+}
+
+TEST(IpuCli, DecodesTheSecondVideoStreamOfAProgramStream) {
+  const fs::path d = scratch();
+  std::vector<std::uint8_t> ps;
+  appendPacks(ps, stream(40, 24, 2), 0xE0);
+  appendPacks(ps, stream(32, 16, 4), 0xE1);
+  writeFile(d / "v.vbim", ps);
+  Result r =
+      runTool("decode " + (d / "v.vbim").string() + " --out " + (d / "e1").string() + " --stream-id 0xE1 --format yuv");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(d / "e1" / "frame_00003.yuv")) << r.output;
+  EXPECT_EQ(fs::file_size(d / "e1" / "frame_00000.yuv"), 32u * 16 * 3 / 2);
+  r = runTool("decode " + (d / "v.vbim").string() + " --out " + (d / "e0").string() + " --format yuv");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(d / "e0" / "frame_00001.yuv"));
+  EXPECT_FALSE(fs::exists(d / "e0" / "frame_00002.yuv"));
+  fs::remove_all(d);
+}
+
+TEST(IpuCli, RefusesWhatCannotBeDecoded) {
+  const fs::path d = scratch();
+  // No sequence header anywhere: every 00 00 01 B3 is broken.
+  std::vector<std::uint8_t> es = stream(40, 24, 2);
+  for (std::size_t i = 0; i + 3 < es.size(); ++i)
+    if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0xB3) es[i + 3] = 0xB2;  // user data
+  writeFile(d / "noseq.m2v", es);
+  Result r = runTool("decode " + (d / "noseq.m2v").string() + " --out " + (d / "o1").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("no sequence header"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(d / "o1"));
+  writeFile(d / "p.m2v", stream(40, 24, 3, 12));
+  r = runTool("decode " + (d / "p.m2v").string() + " --out " + (d / "o2").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("not an intra picture"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("byte "), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(d / "o2"));
+  writeFile(d / "junk.bin", {1, 2, 3, 4, 5});
+  r = runTool("decode " + (d / "junk.bin").string() + " --out " + (d / "o3").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("byte 0"), std::string::npos) << r.output;
+  fs::remove_all(d);
+}
+
+TEST(IpuCli, ConcealsAndReportsCorruption) {
+  const fs::path d = scratch();
+  std::vector<std::uint8_t> es = stream(64, 48, 2);
+  for (std::size_t i = 120; i < es.size(); i += 211) es[i] ^= 0x24;
+  writeFile(d / "bad.m2v", es);
+  const Result r = runTool("decode " + (d / "bad.m2v").string() + " --out " + (d / "o").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("macroblock"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("concealed"), std::string::npos) << r.output;
+  const Result strict = runTool("decode " + (d / "bad.m2v").string() + " --out " + (d / "s").string() + " --strict");
+  EXPECT_EQ(strict.code, 1);
+  fs::remove_all(d);
+}
+
+}  // namespace
+}  // namespace vbim::ipu
