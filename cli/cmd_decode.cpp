@@ -53,7 +53,9 @@ bool startCodeAt(const std::vector<std::uint8_t>& d, std::size_t i) {
 }
 
 // A minimal MPEG-1/2 program stream reader (ISO/IEC 13818-1 §2.5.3): packs, system headers, PES
-// packets of one video stream. Issue #4's vbim::streams reader replaces it once merged.
+// packets of one video stream. `vbim decode` takes any program stream (MPEG-1 system streams, packs
+// of any size), while vbim::streams::Demuxer reads VBIM's one-pack-per-2048-byte-sector layout the
+// way the EE receives it; so this byte-level reader stays here, in the tool.
 Demuxed demuxProgramStream(const std::vector<std::uint8_t>& d, int wantStream, const std::string& name) {
   Demuxed out;
   std::size_t i = 0;
