@@ -98,6 +98,28 @@ TEST(Cli, ConfigCheckNamesFileLineAndKey) {
   fs::remove_all(dir);
 }
 
+TEST(Cli, EveryPlatformKeyIsDocumentedInTheTimingModel) {
+  const Result r = run("config --markdown");
+  ASSERT_EQ(r.code, 0) << r.output;
+  FILE* f = fopen(VBIM_SOURCE_DIR "/docs/timing-model.md", "r");
+  ASSERT_NE(f, nullptr);
+  std::string doc;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), f)) > 0) doc.append(buf.data(), n);
+  fclose(f);
+  std::size_t keys = 0;
+  std::size_t pos = 0;
+  while ((pos = r.output.find("| `", pos)) != std::string::npos) {
+    const std::size_t end = r.output.find('`', pos + 3);
+    const std::string key = r.output.substr(pos + 3, end - pos - 3);
+    EXPECT_NE(doc.find("`" + key + "`"), std::string::npos) << key << " is missing from docs/timing-model.md";
+    ++keys;
+    pos = end;
+  }
+  EXPECT_GT(keys, 50u);
+}
+
 TEST(Cli, DemoRejectsOutOfRangeSeconds) {
   const Result r = run("demo --seconds -1");
   EXPECT_NE(r.code, 0);
