@@ -84,20 +84,6 @@ std::string stem(const std::string& path) {
   return std::filesystem::path(path).stem().string();
 }
 
-std::shared_ptr<Stream> bareStream(const std::string& path) {
-  auto s = std::make_shared<Stream>();
-  s->label = stem(path);
-  try {
-    iop::FileDisc probe(path, player::kBareFileLba);
-    s->file = probe.file();
-    s->disc = std::make_shared<iop::FileDisc>(path, player::kBareFileLba,
-                                              player::kBareFileLba + s->file.sectors() + player::kBareFilePadSectors);
-  } catch (const iop::DiscError& e) {
-    throw Exit(2, e.what());
-  }
-  return s;
-}
-
 std::shared_ptr<Stream> memoryStream(std::string label, std::vector<std::uint8_t> bytes) {
   auto s = std::make_shared<Stream>();
   s->label = std::move(label);

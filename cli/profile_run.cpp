@@ -1,9 +1,28 @@
 #include "cli/profile_run.hpp"
 
+#include <filesystem>
+
+#include "cli/command.hpp"
 #include "gs/blend_simd.hpp"
+#include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "runtime/player/scenario.hpp"
 
 namespace vbim::cli::profile {
+
+std::shared_ptr<Stream> bareStream(const std::string& path) {
+  auto s = std::make_shared<Stream>();
+  s->label = std::filesystem::path(path).stem().string();
+  try {
+    iop::FileDisc probe(path, player::kBareFileLba);
+    s->file = probe.file();
+    s->disc = std::make_shared<iop::FileDisc>(path, player::kBareFileLba,
+                                              player::kBareFileLba + s->file.sectors() + player::kBareFilePadSectors);
+  } catch (const iop::DiscError& e) {
+    throw Exit(2, e.what());
+  }
+  return s;
+}
 
 CaseResult runCase(const Case& c, bool keepSeries) {
   player::PlayerOptions o;

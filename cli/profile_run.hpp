@@ -36,6 +36,10 @@ struct Stream {
   iop::DiscFile file;
 };
 
+// A bare stream file on a notional disc, as `vbim play` places it (throws cli::Exit for a file that
+// is missing or not whole sectors).
+std::shared_ptr<Stream> bareStream(const std::string& path);
+
 struct Case {
   const Stream* stream = nullptr;
   player::PlatformConfig config;  // ring size and catch-up policy already set
