@@ -39,8 +39,8 @@ class Canvas {
     p[2] = c[2];
   }
   void line(int x0, int y0, int x1, int y1, const Color& c, int thickness = 1) {
-    // Bresenham; a thick line is drawn again one pixel below.
-    for (int k = 0; k < thickness; ++k) {
+    // Bresenham; a thick line is drawn again above and below (centred).
+    for (int k = -(thickness - 1) / 2; k <= thickness / 2; ++k) {
       int ax = x0, ay = y0 + k;
       const int bx = x1, by = y1 + k;
       const int dx = std::abs(bx - ax), sx = ax < bx ? 1 : -1;
@@ -222,7 +222,8 @@ void drawPanel(Canvas& cv, const Panel& p, int top, int height, Range xr, int le
           cv.line(qx, qy, px, py, s.color, s.thickness);
         }
       }
-      if (s.markers) cv.box(px - 3, py - 3, px + 3, py + 3, s.color, true);
+      const int m = 3 + s.thickness / 2;
+      if (s.markers) cv.box(px - m, py - m, px + m, py + m, s.color, true);
     }
   }
 

@@ -24,7 +24,7 @@ struct Series {
   std::vector<double> x, y;
   bool step = false;     // hold each value until the next x (occupancy, counts)
   bool markers = false;  // draw a small box at every point (sparse data: the survivable-stall curve)
-  int thickness = 1;     // 1 or 2 pixels
+  int thickness = 1;     // pixels, centred on the line
 };
 
 struct RefLine {

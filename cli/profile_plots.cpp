@@ -220,7 +220,13 @@ plot::Figure stallFigure(const std::string& title, const std::vector<StallRow>& 
     lines[key].x.push_back(static_cast<double>(r.ring.bufmax));
     lines[key].y.push_back(toSeconds(*r.result.longest));
   }
-  for (const std::string& k : order) p.series.push_back(std::move(lines[k]));
+  // Lines that coincide (common: criteria and policies often agree) stay visible as nested
+  // stripes: the first drawn is the widest.
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    plot::Series& s = lines[order[i]];
+    s.thickness = 2 + 3 * static_cast<int>(order.size() - 1 - i);
+    p.series.push_back(std::move(s));
+  }
   f.panels.push_back(std::move(p));
   return f;
 }
