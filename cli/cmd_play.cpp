@@ -124,6 +124,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   player->setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
     hashes << hashesLine(row);
     timeline << timelineLine(row);
+    if (r.onRow) r.onRow(row);
     bool shoot = r.every > 0 && row.vsync % r.every == 0;
     while (nextAt != atTimes.end() && *nextAt <= row.at) {
       shoot = true;
@@ -163,6 +164,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     std::ofstream v(dir.path("signals.vcd"), std::ios::binary);
     player->tracer().writeVcd(v);
   }
+  if (r.beforeCommit) r.beforeCommit(dir);
   dir.commit();
 
   const auto& c = player->pipeline().lightmap().counters();

@@ -1,12 +1,271 @@
+// vbim profile: sweeps over ring size, stream (several discs, or one re-encoded at several
+// quantisers / bitrates), fault plans and catch-up policy; searches the longest drive stall each
+// ring size survives; writes sweep.csv, stall.csv, profile.json and plots/*.png into --out
+// (complete or absent). docs/player.md, "Profiling".
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
 #include "cli/command.hpp"
+#include "cli/output_dir.hpp"
+#include "cli/profile_plots.hpp"
+#include "cli/profile_run.hpp"
+#include "cli/profile_transcode.hpp"
+#include "gs/gs_error.hpp"
+#include "iop/file_disc.hpp"
+#include "iop/memory_disc.hpp"
+#include "runtime/player/scenario.hpp"
 
 namespace vbim::cli {
 
+namespace {
+
+using namespace vbim::cli::profile;
+
+struct ProfileRequest {
+  std::vector<std::string> discs;
+  std::string config;
+  std::vector<std::string> faults;
+  std::vector<std::string> rings{"4:8", "4:16", "4:32", "4:64", "5:160"};
+  std::vector<int> qscales;
+  std::vector<std::int64_t> bitrates;
+  std::vector<std::string> policies{"blend"};
+  std::uint64_t seed = 1;
+  std::string duration = "20s";
+  std::string stallAt = "3s";
+  std::string maxStall = "20s";
+  std::string resolution = "50ms";
+  std::string settle = "5s";
+  std::string popThreshold = "auto";
+  bool search = true;
+  bool force = false;
+  std::string out;
+};
+
+Tick parseTime(const std::string& what, const std::string& text) {
+  try {
+    return iop::parseDuration(text);
+  } catch (const std::exception& e) {
+    throw Exit(2, what + " '" + text + "': " + e.what() + " (expected a time with a unit, e.g. 12.5s or 800ms)");
+  }
+}
+
+std::string catchupName(const std::string& p) {
+  if (p == "blend") return "blend-through";
+  if (p == "skip") return "hard-skip";
+  if (p == "late") return "play-late";
+  throw Exit(2, "--policy '" + p + "': expected blend, skip or late");
+}
+
+RingSize parseRing(const std::string& text) {
+  const auto colon = text.find(':');
+  RingSize r;
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    std::size_t used = 0;
+    r.bankmax = std::stoll(text.substr(0, colon), &used);
+    if (used != colon) throw std::invalid_argument("bankmax");
+    r.bufmax = std::stoll(text.substr(colon + 1), &used);
+    if (used != text.size() - colon - 1) throw std::invalid_argument("bufmax");
+  } catch (const std::exception&) {
+    throw Exit(2, "--ring '" + text + "': expected BANKS:SECTORS (ring.bankmax:ring.bufmax_sectors), e.g. 4:32");
+  }
+  if (r.bankmax < 1 || r.bufmax < r.bankmax)
+    throw Exit(2, "--ring '" + text + "': needs at least one bank and one sector per bank");
+  return r;
+}
+
+std::string stem(const std::string& path) {
+  return std::filesystem::path(path).stem().string();
+}
+
+std::shared_ptr<Stream> memoryStream(std::string label, std::vector<std::uint8_t> bytes) {
+  auto s = std::make_shared<Stream>();
+  s->label = std::move(label);
+  const auto sectors = static_cast<std::int64_t>(bytes.size() / iop::kSectorBytes);
+  auto disc = std::make_shared<iop::MemoryDisc>(player::kBareFileLba + sectors + player::kBareFilePadSectors,
+                                                s->label + " (re-encoded in memory)");
+  disc->addFile(s->label + ".vbim", player::kBareFileLba, std::move(bytes));
+  s->file = *disc->find(s->label + ".vbim");
+  s->disc = std::move(disc);
+  return s;
+}
+
+std::string fixed(double v, int decimals) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(decimals);
+  s << v;
+  return s.str();
+}
+
+void runProfile(const ProfileRequest& r) {
+  const auto wall0 = std::chrono::steady_clock::now();  // host time: stdout only
+  // Streams: every disc as given, then the first one re-encoded at each quantiser and bitrate.
+  std::vector<std::shared_ptr<Stream>> streams;
+  for (const std::string& d : r.discs) streams.push_back(bareStream(d));
+  for (int q : r.qscales) {
+    if (q < 1 || q > 31) throw Exit(2, "--qscale " + std::to_string(q) + ": expected 1..31");
+    streams::EncoderSettings e;
+    e.qscale = q;
+    streams.push_back(memoryStream(stem(r.discs[0]) + "_q" + std::to_string(q), transcodeStream(r.discs[0], e)));
+  }
+  for (std::int64_t b : r.bitrates) {
+    if (b < 1 || b > streams::kDvdMaxVideoRate)
+      throw Exit(2, "--bitrate " + std::to_string(b) + ": expected 1..9800000 bit/s");
+    streams::EncoderSettings e;
+    e.bitrate = b;
+    streams.push_back(
+        memoryStream(stem(r.discs[0]) + "_" + std::to_string(b / 1000) + "kbps", transcodeStream(r.discs[0], e)));
+  }
+
+  player::PlatformConfig base;
+  try {
+    if (!r.config.empty()) base = player::loadPlatformFile(r.config);
+  } catch (const ConfigError& e) {
+    throw Exit(2, e.what());
+  }
+  std::vector<RingSize> rings;
+  for (const std::string& s : r.rings) rings.push_back(parseRing(s));
+  std::sort(rings.begin(), rings.end(), [](const RingSize& a, const RingSize& b) {
+    return a.bufmax != b.bufmax ? a.bufmax < b.bufmax : a.bankmax < b.bankmax;
+  });
+  std::vector<std::string> policies;
+  for (const std::string& p : r.policies) policies.push_back(catchupName(p));
+  // Fault plans: "none" first, then each file (parsed against the first stream's disc).
+  std::vector<std::pair<std::string, iop::FaultPlan>> plans{{"none", iop::FaultPlan{}}};
+  for (const std::string& f : r.faults) {
+    try {
+      plans.emplace_back(stem(f), iop::FaultPlan::load(f, streams[0]->disc.get()));
+    } catch (const iop::FaultPlanError& e) {
+      throw Exit(2, e.what());
+    }
+  }
+  const Tick duration = parseTime("--duration", r.duration);
+  if (duration <= 0) throw Exit(2, "--duration must be positive");
+  StallSearch search;
+  search.stallAt = parseTime("--stall-at", r.stallAt);
+  search.maxStall = parseTime("--max-stall", r.maxStall);
+  search.resolution = parseTime("--resolution", r.resolution);
+  search.settle = parseTime("--settle", r.settle);
+  if (r.popThreshold != "auto") {
+    try {
+      std::size_t used = 0;
+      search.popThreshold = std::stoi(r.popThreshold, &used);
+      if (used != r.popThreshold.size() || search.popThreshold < 0 || search.popThreshold > 255)
+        throw std::invalid_argument("range");
+    } catch (const std::exception&) {
+      throw Exit(2, "--pop-threshold '" + r.popThreshold + "': expected auto or 0..255");
+    }
+  }
+  if (search.maxStall <= 0 || search.resolution <= 0 || search.settle <= 0)
+    throw Exit(2, "--max-stall, --resolution and --settle must be positive");
+  if (search.maxStall / search.resolution > 100'000)
+    throw Exit(2, "--max-stall / --resolution is above 100000 steps: choose a coarser --resolution");
+
+  ProfileData data;
+  data.search = search;
+  auto makeCase = [&](const Stream& s, const RingSize& ring, const std::string& policy) {
+    Case c;
+    c.stream = &s;
+    c.config = base;
+    c.config.iop.ring.bankmax = ring.bankmax;
+    c.config.iop.ring.bufmax_sectors = ring.bufmax;
+    c.config.gs.catchup = policy;
+    c.seed = r.seed;
+    c.duration = duration;
+    return c;
+  };
+  try {
+    for (const auto& s : streams) {
+      for (const auto& [planName, plan] : plans) {
+        for (const std::string& policy : policies) {
+          for (const RingSize& ring : rings) {
+            Case c = makeCase(*s, ring, policy);
+            c.faults = plan;
+            SweepRun run{s->label, ring, planName, policy, runCase(c, true)};
+            std::cout << "sweep  " << s->label << "  ring " << ring.bankmax << ":" << ring.bufmax << "  faults "
+                      << planName << "  " << policy << ": late " << run.result.lightmap.framesLate << ", pop max "
+                      << run.result.pop.value << ", lag max " << run.result.totals.lag.value << "\n";
+            data.sweep.push_back(std::move(run));
+          }
+        }
+      }
+      if (!r.search) continue;
+      for (const std::string& policy : policies) {
+        for (const RingSize& ring : rings) {
+          for (Criterion crit : {Criterion::late, Criterion::pop}) {
+            const Case c = makeCase(*s, ring, policy);
+            StallRow row{s->label, ring, policy, crit, longestSurvivableStall(c, search, crit)};
+            std::cout << "stall  " << s->label << "  ring " << ring.bankmax << ":" << ring.bufmax << "  " << policy
+                      << "  " << toString(crit) << ": "
+                      << (row.result.longest
+                              ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
+                              : std::string("fails without a stall"))
+                      << " (" << row.result.runs << " runs)\n";
+            data.stalls.push_back(std::move(row));
+          }
+        }
+      }
+    }
+  } catch (const player::StreamProbeError& e) {
+    throw Exit(2, e.what());
+  } catch (const ConfigError& e) {
+    throw Exit(2, e.what());
+  } catch (const gs::GsError& e) {
+    throw Exit(2, std::string("platform config: ") + e.what());
+  }
+  for (const auto& s : streams) data.streamBytes.emplace_back(s->label, s->file.bytes);
+
+  OutputDir dir(r.out, r.force);
+  const std::vector<std::string> written = writeProfileOutputs(data, dir);
+  dir.commit();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  std::cout << "profiled " << data.sweep.size() << " sweep runs and " << data.stalls.size() << " stall searches in "
+            << fixed(wall, 1) << " s of host time\nOpen:\n";
+  for (const std::string& w : written) std::cout << "  " << (dir.finalPath() / w).string() << "\n";
+}
+
+}  // namespace
+
 void addProfile(CLI::App& app) {
+  auto r = std::make_shared<ProfileRequest>();
   auto* cmd =
       app.add_subcommand("profile", "Sweep ring size, bitrate, faults and policy; find the longest survivable stall");
-  cmd->allow_extras();
-  cmd->callback([] { notYetAvailable("profile", 7); });
+  cmd->add_option("disc", r->discs, "VBIM stream file(s); several discs are one sweep axis")->required();
+  cmd->add_option("--config", r->config, "Platform config (TOML) the sweep starts from");
+  cmd->add_option("--faults", r->faults,
+                  "Fault plan(s) to sweep (repeatable); a run without faults is always included");
+  cmd->add_option("--ring", r->rings, "Ring sizes BANKS:SECTORS (ring.bankmax:ring.bufmax_sectors)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--qscale", r->qscales, "Also sweep the first disc re-encoded at these quantisers (1..31)")
+      ->delimiter(',');
+  cmd->add_option("--bitrate", r->bitrates, "Also sweep the first disc re-encoded at these bitrates (bit/s)")
+      ->delimiter(',');
+  cmd->add_option("--policy", r->policies, "Catch-up policies: blend, skip, late")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();
+  cmd->add_option("--duration", r->duration, "Simulated time of each sweep run")->capture_default_str();
+  cmd->add_option("--stall-at", r->stallAt, "Stall search: when the stall starts")->capture_default_str();
+  cmd->add_option("--max-stall", r->maxStall, "Stall search: longest stall tried")->capture_default_str();
+  cmd->add_option("--resolution", r->resolution, "Stall search: bisection stops at this width")->capture_default_str();
+  cmd->add_option("--settle", r->settle, "Stall search: simulated time played after the stall ends")
+      ->capture_default_str();
+  cmd->add_option("--pop-threshold", r->popThreshold,
+                  "Stall search: largest pop (per-byte change per vsync) allowed, or auto (the "
+                  "configuration's own pop maximum without the stall)")
+      ->capture_default_str();
+  cmd->add_flag("!--no-search", r->search, "Skip the survivable-stall search");
+  cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
+  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
+  cmd->callback([r] { runProfile(*r); });
 }
 
 }  // namespace vbim::cli

@@ -3,10 +3,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "cli/output_dir.hpp"
 #include "iop/fault_plan.hpp"
+#include "runtime/player/player.hpp"
 
 namespace vbim::cli {
 
@@ -25,6 +28,10 @@ struct PlayRequest {
   bool force = false;
   bool trace = true;
   std::string out;
+  // Hooks for callers that add outputs (vbim demo's profile plots): every recorded vsync, and the
+  // output directory just before it is committed.
+  std::function<void(const player::VsyncRow&)> onRow;
+  std::function<void(const OutputDir&)> beforeCommit;
 };
 
 // Returns a one-paragraph summary; throws cli::Exit on bad input.

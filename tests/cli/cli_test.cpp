@@ -67,6 +67,8 @@ TEST(Cli, DemoWritesACompleteOutputDirectory) {
   EXPECT_TRUE(fs::exists(out / "signals.vcd"));
   EXPECT_TRUE(fs::exists(out / "stats.json"));
   EXPECT_TRUE(fs::exists(out / "hashes.txt"));
+  for (const char* plot : {"plots/occupancy.png", "plots/lag_pop.png", "plots/survivable_stall.png"})
+    EXPECT_TRUE(fs::exists(out / plot)) << plot;  // the profile pass (issue #7 item 10)
   // No temporary directory left beside it.
   for (const auto& e : fs::directory_iterator(out.parent_path()))
     EXPECT_EQ(e.path().filename().string().find("." + out.filename().string() + ".tmp"), std::string::npos);
