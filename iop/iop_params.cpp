@@ -40,9 +40,11 @@ void describeParams(ParamTable& t, DriveParams& p) {
 void describeParams(ParamTable& t, RingParams& p) {
   t.addInt("ring.bufmax_sectors", &p.bufmax_sectors, 1, 1024, "sectors",
            "assumption (notes §8): sceCdStInit bufmax 160 sectors = 320 KiB of the 2 MB IOP RAM");
-  t.addInt("ring.bankmax", &p.bankmax, 2, 512, "banks",
+  // At least 3: with 2 banks the driver's rules deadlock. The producer holds its bank while the next
+  // bank is the reader's, and the reader, having drained its bank, waits for the held one.
+  t.addInt("ring.bankmax", &p.bankmax, 3, 512, "banks",
            "assumption (notes §8): 5 banks of 32 sectors, about 30 ms of 1.6x reading each; SDK-ST keeps at most "
-           "bankmax - 1 visible");
+           "bankmax - 1 visible; at least 3, since 2 banks deadlock under SDK-ST's hold rule");
   t.addInt("ring.repoll_ms", &p.repoll_ms, 1, 10'000, "ms", "SDK-ST read-Full alarm 0x48000 IOP cycles = 8 ms");
   t.addInt("ring.issue_retry_ms", &p.issue_retry_ms, 1, 10'000, "ms",
            "SDK-ST alarm 0x708000 IOP cycles = 200 ms after sceCdRE fails (drive busy)");

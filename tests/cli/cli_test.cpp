@@ -122,6 +122,23 @@ TEST(Cli, EveryPlatformKeyIsDocumentedInTheTimingModel) {
   EXPECT_GT(keys, 50u);
 }
 
+TEST(Cli, ConfigRejectsATwoBankRing) {
+  // Two banks deadlock under the driver's hold rule (iop/iop_params.cpp), so the config refuses them.
+  const fs::path dir = scratch("twobanks");
+  fs::create_directories(dir);
+  const fs::path cfg = dir / "plat.toml";
+  {
+    FILE* f = fopen(cfg.c_str(), "w");
+    fputs("[ring]\nbankmax = 2\n", f);
+    fclose(f);
+  }
+  const Result r = run("config --check " + cfg.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find(cfg.string() + ":2: key 'ring.bankmax'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("outside the allowed range [3, 512]"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, DemoRejectsOutOfRangeSeconds) {
   const Result r = run("demo --seconds -1");
   EXPECT_NE(r.code, 0);
