@@ -42,6 +42,12 @@ class OsmesaContext : public GlContext {
       throw RenderError("no GL context available: OSMesaMakeCurrent failed");
     }
   }
+
+  void makeCurrent() override {
+    if (OSMesaGetCurrentContext() != ctx_ && !OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 4, 4)) {
+      throw RenderError("OSMesaMakeCurrent failed");
+    }
+  }
   ~OsmesaContext() override { OSMesaDestroyContext(ctx_); }
 
   std::string describe() const override {

@@ -17,6 +17,8 @@ class GlContext {
   virtual ~GlContext() = default;
   // "4.5 (Core Profile) Mesa 22.3.6 / llvmpipe (LLVM 15.0.6, 256 bits)"
   virtual std::string describe() const = 0;
+  // Makes this context current on the calling thread again (several renderers may share a thread).
+  virtual void makeCurrent() = 0;
 };
 
 // Makes a current context or throws RenderError saying why not.

@@ -41,6 +41,10 @@ void uploadSrgb(GLuint tex, const Rgba8Image& img) {
 }  // namespace
 
 struct Renderer::Gl {
+  // The GL objects below are deleted in this context.
+  ~Gl() {
+    if (context) context->makeCurrent();
+  }
   std::unique_ptr<GlContext> context;
   int width = 0, height = 0;
   RenderSettings settings;
@@ -198,6 +202,12 @@ const CameraPlacement& Renderer::camera() const {
   return gl_->camera;
 }
 
+std::vector<std::array<float, 3>> Renderer::objectPositions() const {
+  std::vector<std::array<float, 3>> out;
+  for (const PlacedObject& o : gl_->objects.objects) out.push_back({o.position[0], o.position[1], o.position[2]});
+  return out;
+}
+
 Rgba8Image Renderer::render(const Rgba8Image& lightmap, const Rgba8Image* sky, const FrameLight& light) {
   Gl& g = *gl_;
   const lighting::Terrain& t = *g.terrain;
@@ -209,6 +219,7 @@ Rgba8Image Renderer::render(const Rgba8Image& lightmap, const Rgba8Image* sky, c
       light.height != t.height) {
     throw RenderError("the frame's sun visibility does not match the terrain");
   }
+  g.context->makeCurrent();
   uploadSrgb(g.lightmapTex.id(), lightmap);
   if (sky != nullptr && sky->width > 0) {
     uploadSrgb(g.skyTex.id(), *sky);

@@ -13,7 +13,9 @@
 // The picture is deterministic: llvmpipe gives the same bytes for any LP_NUM_THREADS (tested).
 #pragma once
 
+#include <array>
 #include <memory>
+#include <vector>
 
 #include "lighting/float_image.hpp"
 #include "lighting/terrain.hpp"
@@ -47,6 +49,8 @@ class Renderer {
   const RenderStats& stats() const { return stats_; }
   std::string contextDescription() const;
   const CameraPlacement& camera() const;
+  // Where the objects stand (world metres); empty with settings.objects = false.
+  std::vector<std::array<float, 3>> objectPositions() const;
 
  private:
   struct Gl;
