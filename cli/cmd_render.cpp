@@ -1,11 +1,88 @@
+// vbim render: the frames a `vbim play` run saved, rendered as the terrain lit by the streamed
+// lightmap and sky with hemisphere-lit objects (render/), plus a contact sheet of the day and an
+// MPEG-4 video of the playback (docs/render.md).
+#include <unistd.h>
+
+#include <iostream>
+#include <memory>
+
 #include "cli/command.hpp"
+#include "cli/output_dir.hpp"
+#include "render/render_error.hpp"
+#include "render/render_run.hpp"
 
 namespace vbim::cli {
 
+namespace {
+
+struct RenderOptions {
+  std::string run, out, camera, terrain, albedo, lightingConfig;
+  render::RunRenderRequest req;
+  bool force = false;
+  bool noObjects = false;
+  bool noVideo = false;
+};
+
+void runRender(RenderOptions& o) {
+  using namespace vbim::render;
+  try {
+    if (!o.camera.empty()) o.req.settings.camera = parseCamera(o.camera);
+    if (!o.terrain.empty()) o.req.terrain.heightfield = o.terrain;
+    if (!o.albedo.empty()) o.req.terrain.albedo = o.albedo;
+    if (!o.lightingConfig.empty()) loadLightingConfig(o.lightingConfig, o.req.day);
+    o.req.settings.objects = !o.noObjects;
+    o.req.video = !o.noVideo;
+    const RunDir run = readRunDir(o.run);
+    OutputDir dir(o.out, o.force);
+    const bool tty = isatty(STDOUT_FILENO) != 0;
+    const RunRenderResult r = renderRun(run, o.req, dir.path(""), [tty](int done, int total) {
+      if (tty) std::cout << "\rrendering " << done << "/" << total << std::flush;
+    });
+    if (tty) std::cout << "\n";
+    dir.commit();
+    std::cout << "rendered " << r.frames << " frame(s) of " << o.run << " with " << r.context << " ("
+              << static_cast<int>(r.secondsPerFrame * 1000) << " ms/frame)\n"
+              << "  " << o.out << "/frames/render_NNNNNN.png\n"
+              << "  " << o.out << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
+    if (o.req.video) std::cout << "  " << o.out << "/playback.mp4\n";
+  } catch (const RenderError& e) {
+    throw Exit(2, "vbim render: " + std::string(e.what()));
+  }
+}
+
+}  // namespace
+
 void addRender(CLI::App& app) {
-  auto* cmd = app.add_subcommand("render", "Render the frames of a play run with OSMesa");
-  cmd->allow_extras();
-  cmd->callback([] { notYetAvailable("render", 9); });
+  auto o = std::make_shared<RenderOptions>();
+  auto* cmd =
+      app.add_subcommand("render", "Render the frames of a play run with OSMesa (pictures, contact sheet, video)");
+  cmd->add_option("run", o->run, "A `vbim play --every N --out RUN_DIR` directory")->required();
+  cmd->add_option("--out", o->out, "Output directory (written complete or not at all)")->required();
+  cmd->add_option("--camera", o->camera,
+                  "EX,EZ,EH,TX,TZ: eye east/south in metres, eye height above ground, target east/south "
+                  "(default: from the south-east valley towards the north-west mountains)");
+  cmd->add_option("--width", o->req.settings.width, "Picture width")->capture_default_str();
+  cmd->add_option("--height", o->req.settings.height, "Picture height")->capture_default_str();
+  cmd->add_option("--fov", o->req.settings.fovDeg, "Vertical field of view, degrees")->capture_default_str();
+  cmd->add_option("--exposure", o->req.settings.exposure, "Display scale on stream units")->capture_default_str();
+  cmd->add_option("--haze", o->req.settings.hazeDistance, "Haze distance in metres (0: 1.5 x the map)");
+  cmd->add_option("--lod-distance", o->req.settings.lodDistance, "Metres to the first LOD step (0: 1.5 patches)");
+  cmd->add_option("--terrain", o->terrain, "Heightfield the stream was authored from (default: the procedural one)");
+  cmd->add_option("--albedo", o->albedo, "Colour map of the heightfield's size");
+  cmd->add_option("--cell-size", o->req.terrain.cellSize, "Metres between heightfield samples")->capture_default_str();
+  cmd->add_option("--vertical-scale", o->req.terrain.verticalScale, "Heightfield metres at full scale")
+      ->capture_default_str();
+  cmd->add_option("--relief", o->req.terrain.procedural.reliefMetres, "Procedural terrain relief, metres")
+      ->capture_default_str();
+  cmd->add_option("--terrain-seed", o->req.terrain.procedural.seed, "Procedural terrain seed")->capture_default_str();
+  cmd->add_option("--lighting-config", o->lightingConfig,
+                  "lighting.* TOML the stream was authored with (default: the samples' 24-frame day)");
+  cmd->add_option("--loop-frame", o->req.loopFrame, "The stream's loop frame")->capture_default_str();
+  cmd->add_option("--fps", o->req.videoFps, "Video frame rate")->capture_default_str();
+  cmd->add_flag("--no-objects", o->noObjects, "Terrain and sky only");
+  cmd->add_flag("--no-video", o->noVideo, "Skip playback.mp4");
+  cmd->add_flag("--force", o->force, "Replace a non-empty output directory");
+  cmd->callback([o] { runRender(*o); });
 }
 
 }  // namespace vbim::cli

@@ -1,0 +1,166 @@
+#include "render/render_run.hpp"
+
+#include <chrono>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "render/contact_sheet.hpp"
+#include "render/image_file.hpp"
+#include "render/render_error.hpp"
+#include "render/renderer.hpp"
+#include "render/scene_lighting.hpp"
+#include "render/video_writer.hpp"
+#include "runtime/params.hpp"
+#include "streams/authoring/authoring_error.hpp"
+
+namespace vbim::render {
+
+RunRenderRequest::RunRenderRequest() {
+  terrain.cellSize = 20.0;
+  terrain.procedural.cellSize = 20.0;
+  terrain.procedural.size = 256;
+  day.frames = 24;
+  day.startHour = 0;
+  day.endHour = 24;
+  day.skyWidth = 128;
+}
+
+void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day) {
+  ParamTable table;
+  lighting::describeParams(table, day);
+  try {
+    table.loadTomlFile(path);
+  } catch (const ConfigError& e) {
+    throw RenderError(e.what());
+  }
+}
+
+namespace {
+
+Moment momentOf(const TimelineRow& r) {
+  return r.behind ? Moment::Stall : r.catchUp ? Moment::CatchUp : Moment::OnTime;
+}
+
+}  // namespace
+
+RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const std::filesystem::path& outDir,
+                          const RenderProgressFn& progress) {
+  namespace fs = std::filesystem;
+  RunRenderResult result;
+  const Rgba8Image first = readRgba8(run.frames.front().lightmap);
+
+  lighting::TerrainSource source = req.terrain;
+  if (source.heightfield.empty()) {
+    source.procedural.cellSize = source.cellSize;
+    if (req.proceduralSizeFromLightmap) {
+      if (first.width != first.height) {
+        throw RenderError(run.frames.front().lightmap.string() + ": the lightmap is " + std::to_string(first.width) +
+                          "x" + std::to_string(first.height) +
+                          " but the procedural terrain is square; give the terrain with --terrain");
+      }
+      source.procedural.size = first.width;
+    }
+  }
+  lighting::Terrain terrain;
+  try {
+    terrain = lighting::loadTerrain(source);
+  } catch (const streams::AuthoringError& e) {
+    throw RenderError(e.what());
+  }
+  const lighting::FloatImage albedo = terrain.albedo;
+  SceneLighting lighting(terrain, req.day, req.loopFrame);
+  Renderer renderer(lighting.terrain(), albedo, req.settings, req.contextFactory);
+  result.context = renderer.contextDescription();
+
+  fs::create_directories(outDir / "frames");
+  std::unique_ptr<VideoWriter> video;
+  if (req.video) {
+    result.video = outDir / "playback.mp4";
+    video = std::make_unique<VideoWriter>(result.video, req.settings.width - req.settings.width % 2,
+                                          req.settings.height - req.settings.height % 2, req.videoFps);
+  }
+
+  // Per-vsync state for the sheet.
+  std::vector<Moment> states;
+  if (!run.timeline.empty()) {
+    states.assign(static_cast<std::size_t>(run.timeline.rbegin()->first + 1), Moment::OnTime);
+    for (const auto& [v, row] : run.timeline) states[static_cast<std::size_t>(v)] = momentOf(row);
+  }
+  // Tiles: at most ~48 evenly spread over the frames.
+  const std::size_t n = run.frames.size();
+  const std::size_t tileStep = std::max<std::size_t>(1, (n + 47) / 48);
+
+  nlohmann::json framesJson = nlohmann::json::array();
+  std::vector<SheetTile> tiles;
+  std::int64_t previousTileVsync = -1;
+  double renderSeconds = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const RunFrame& f = run.frames[i];
+    const Rgba8Image lm = i == 0 ? first : readRgba8(f.lightmap);
+    std::optional<Rgba8Image> sky;
+    if (f.sky) sky = readRgba8(*f.sky);
+    // The frame the lightmap is showing or moving to; without a timeline, one frame per second.
+    std::int64_t seq = f.vsync / 60;
+    const auto row = run.timeline.find(f.vsync);
+    if (row != run.timeline.end()) seq = row->second.targetSeq;
+    const auto t0 = std::chrono::steady_clock::now();
+    FrameLight light = lighting.evaluate(seq, lm, sky ? &*sky : nullptr);
+    Rgba8Image picture = renderer.render(lm, sky ? &*sky : nullptr, light);
+    renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    char name[64];
+    std::snprintf(name, sizeof name, "render_%06lld.png", static_cast<long long>(f.vsync));
+    writePng(outDir / "frames" / name, picture);
+    if (video) {
+      if (picture.width % 2 != 0 || picture.height % 2 != 0) {
+        Rgba8Image even(video ? picture.width - picture.width % 2 : 0, picture.height - picture.height % 2);
+        for (int y = 0; y < even.height; ++y)
+          std::copy_n(picture.row(y), static_cast<std::size_t>(even.width) * 4, even.row(y));
+        video->add(even);
+      } else {
+        video->add(picture);
+      }
+    }
+    framesJson.push_back({{"vsync", f.vsync},
+                          {"seq", seq},
+                          {"hour", light.hour},
+                          {"stream_scale", light.streamScale},
+                          {"sun_irradiance", light.sunIrradiance},
+                          {"sky_irradiance", light.skyIrradiance},
+                          {"triangles", renderer.stats().trianglesDrawn}});
+    if (i % tileStep == 0 || i + 1 == n) {
+      Moment worst = Moment::OnTime;
+      for (auto it = run.timeline.upper_bound(previousTileVsync); it != run.timeline.end() && it->first <= f.vsync;
+           ++it)
+        worst = std::max(worst, momentOf(it->second));
+      tiles.push_back(SheetTile{f.vsync, downscale(picture, req.sheetThumbWidth), worst});
+      previousTileVsync = f.vsync;
+    }
+    if (progress) progress(static_cast<int>(i + 1), static_cast<int>(n));
+  }
+  if (video) video->finish();
+  result.sheet = outDir / "contact_sheet.png";
+  writePng(result.sheet, contactSheet(tiles, states, req.sheetColumns, req.sheetThumbWidth));
+  result.frames = static_cast<int>(n);
+  result.secondsPerFrame = renderSeconds / static_cast<double>(n);
+
+  const CameraPlacement& c = renderer.camera();
+  nlohmann::json doc = {{"run", run.path.string()},
+                        {"gl", result.context},
+                        {"size", {req.settings.width, req.settings.height}},
+                        {"camera", {c.eyeX, c.eyeZ, c.eyeHeight, c.targetX, c.targetZ}},
+                        {"terrain", source.heightfield.empty() ? "procedural" : source.heightfield},
+                        {"terrain_size", {terrain.width, terrain.height}},
+                        {"cell_size_m", terrain.cellSize},
+                        {"day",
+                         {{"frames", req.day.frames},
+                          {"start_hour", req.day.startHour},
+                          {"end_hour", req.day.endHour},
+                          {"latitude_deg", req.day.latitudeDeg},
+                          {"day_of_year", req.day.dayOfYear}}},
+                        {"frames", framesJson}};
+  std::ofstream(outDir / "render.json") << doc.dump(1) << "\n";
+  return result;
+}
+
+}  // namespace vbim::render

@@ -1,0 +1,63 @@
+// `vbim render` as a library call: every frame a play run saved, rendered, plus the day's contact
+// sheet and the video. Also what `vbim demo` and `vbim play --render` call (docs/render.md).
+//
+//   render::RunRenderRequest req;                         // procedural terrain, samples' day settings
+//   cli::OutputDir dir(out, force);                        // complete or absent
+//   render::RunRenderResult r = render::renderRun(render::readRunDir(runDir), req, dir.path(""),
+//                                                 [](int done, int total) { ... });
+//   dir.commit();
+//
+// Writes into `outDir` (which must exist): frames/render_NNNNNN.png (NNNNNN = the vsync),
+// contact_sheet.png, playback.mp4 (MPEG-4 Part 2), render.json (settings, camera, per-frame
+// hour, stream scale, sun visibility under the objects' site).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "lighting/authoring/technique_a_stream.hpp"
+#include "lighting/day_cycle.hpp"
+#include "render/camera.hpp"
+#include "render/gl_context.hpp"
+#include "render/run_dir.hpp"
+
+namespace vbim::render {
+
+struct RunRenderRequest {
+  RenderSettings settings;
+  // The run directory does not say which terrain and lighting made the stream, so they are given
+  // here. Default: the procedural terrain at the lightmap's size (20 m cells, as the samples) and
+  // the samples' day (24 frames from 0 h to 24 h, 45 deg N, 21 June; streams/samples/README.md).
+  lighting::TerrainSource terrain;
+  bool proceduralSizeFromLightmap = true;
+  lighting::DayCycleParams day;
+  int loopFrame = 0;
+  int videoFps = 10;
+  int sheetColumns = 6;
+  int sheetThumbWidth = 200;
+  bool video = true;
+  GlContextFactory contextFactory = defaultContextFactory();
+
+  RunRenderRequest();
+};
+
+// Loads `path` (TOML, lighting.* keys as `vbim config --defaults` lists them) into day; throws
+// RenderError with file:line:key.
+void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day);
+
+struct RunRenderResult {
+  int frames = 0;
+  std::filesystem::path sheet, video;
+  std::string context;         // GL version / renderer
+  double secondsPerFrame = 0;  // host time, rendering only
+};
+
+using RenderProgressFn = std::function<void(int done, int total)>;
+
+// Throws RenderError for any problem (no GL context, a missing or unreadable frame, a lightmap
+// that does not match the terrain, a camera outside the terrain).
+RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& request, const std::filesystem::path& outDir,
+                          const RenderProgressFn& progress = {});
+
+}  // namespace vbim::render

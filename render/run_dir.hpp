@@ -1,0 +1,39 @@
+// What a `vbim play ... --every N --out RUN_DIR` run left behind, as the renderer needs it:
+// frames/lightmap_NNNNNN.png (+ sky_NNNNNN.png), and timeline.csv (one row per vsync, docs/player.md).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <vector>
+
+namespace vbim::render {
+
+struct RunFrame {
+  std::int64_t vsync = 0;
+  std::filesystem::path lightmap;
+  std::optional<std::filesystem::path> sky;
+};
+
+struct TimelineRow {
+  double timeSeconds = 0;
+  std::int64_t targetSeq = 0;
+  int variant = 0;
+  bool behind = false;   // the lightmap is behind the frame due (a stall)
+  bool catchUp = false;  // the presenter is catching up
+  bool snapped = false;
+};
+
+struct RunDir {
+  std::filesystem::path path;
+  std::vector<RunFrame> frames;                  // by vsync
+  std::map<std::int64_t, TimelineRow> timeline;  // by vsync; empty if timeline.csv is missing
+  std::int64_t vsyncs = 0;                       // rows in timeline.csv
+};
+
+// Throws RenderError: not a directory, no frames/lightmap_*.png|exr, a timeline row that does not
+// parse (file:line and what was expected).
+RunDir readRunDir(const std::filesystem::path& dir);
+
+}  // namespace vbim::render

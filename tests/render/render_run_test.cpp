@@ -1,0 +1,124 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "render/contact_sheet.hpp"
+#include "render/image_file.hpp"
+#include "render/render_error.hpp"
+#include "render/render_run.hpp"
+#include "render_test_scene.hpp"
+
+namespace vbim::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path freshDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("vbim_render_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+RunRenderRequest smallRequest() {
+  RunRenderRequest r;
+  r.settings = test::smallSettings();
+  r.terrain.cellSize = 20;
+  r.day = test::smallDay();
+  r.videoFps = 2;
+  r.sheetThumbWidth = 48;
+  return r;
+}
+
+// A run directory as `vbim play --every 60` writes it: frames at vsync 0, 60, 120, and a timeline
+// with a stall between 60 and 120.
+fs::path fakeRun() {
+  const fs::path run = freshDir("run");
+  fs::create_directories(run / "frames");
+  for (int k = 0; k < 3; ++k) {
+    const test::StreamedFrame f = test::streamedFrame(10 + k);
+    char name[64];
+    std::snprintf(name, sizeof name, "%06d.png", k * 60);
+    writePng(run / "frames" / ("lightmap_" + std::string(name)), f.lightmap);
+    writePng(run / "frames" / ("sky_" + std::string(name)), f.sky);
+  }
+  std::ofstream t(run / "timeline.csv");
+  t << "vsync,time_s,hash,due_seq,target_seq,variant,fix,pop,behind,catch_up,snapped,sky_target_seq,sky_pop,lag,"
+       "sky_lag,ring_banks,gs_busy_ticks\n";
+  for (int v = 0; v <= 120; ++v) {
+    const bool behind = v > 70 && v < 90, catchUp = v >= 90 && v < 100;
+    t << v << "," << v / 60.0 << ",0," << 10 + v / 60 << "," << 10 + v / 60 << ",0,0,0," << behind << "," << catchUp
+      << ",0,-1,0,0,0,0,0\n";
+  }
+  return run;
+}
+
+TEST(RenderRun, WritesFramesSheetVideoAndSummary) {
+  const fs::path run = fakeRun();
+  const fs::path out = freshDir("out");
+  const RunDir dir = readRunDir(run);
+  ASSERT_EQ(dir.frames.size(), 3u);
+  EXPECT_EQ(dir.timeline.size(), 121u);
+  EXPECT_TRUE(dir.timeline.at(80).behind);
+  int calls = 0;
+  const RunRenderResult r = renderRun(dir, smallRequest(), out, [&](int, int) { ++calls; });
+  EXPECT_EQ(r.frames, 3);
+  EXPECT_EQ(calls, 3);
+  for (const char* f : {"frames/render_000000.png", "frames/render_000060.png", "frames/render_000120.png",
+                        "contact_sheet.png", "playback.mp4", "render.json"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  EXPECT_GT(fs::file_size(out / "playback.mp4"), 1000u);
+  // The tile of vsync 120 covers the stall: its frame is red.
+  const Rgba8Image sheet = readRgba8(out / "contact_sheet.png");
+  const int tile3x = 4 + 2 * (48 + 6 + 4);
+  const std::uint8_t* border = sheet.row(5) + (tile3x + 1) * 4;
+  EXPECT_EQ(border[0], 220);
+  EXPECT_EQ(border[1], 20);
+  const std::uint8_t* firstBorder = sheet.row(5) + (4 + 1) * 4;
+  EXPECT_EQ(firstBorder[0], 90) << "the first tile is on time";
+  fs::remove_all(run);
+  fs::remove_all(out);
+}
+
+TEST(RenderRun, RunWithoutFramesIsAClearError) {
+  const fs::path run = freshDir("empty");
+  std::ofstream(run / "timeline.csv") << "vsync,time_s\n";
+  try {
+    readRunDir(run);
+    FAIL() << "expected RenderError";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("no frames"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(readRunDir(run / "missing"), RenderError);
+  fs::remove_all(run);
+}
+
+TEST(RenderRun, BadTimelineRowNamesTheLine) {
+  const fs::path run = fakeRun();
+  std::ofstream(run / "timeline.csv", std::ios::app) << "121,oops\n";
+  try {
+    readRunDir(run);
+    FAIL() << "expected RenderError";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("timeline.csv:123"), std::string::npos) << e.what();
+  }
+  fs::remove_all(run);
+}
+
+TEST(RenderRun, NoContextFailsBeforeWriting) {
+  const fs::path run = fakeRun();
+  const fs::path out = freshDir("nocontext");
+  RunRenderRequest r = smallRequest();
+  r.contextFactory = []() -> std::unique_ptr<GlContext> { throw RenderError("no GL context available: test"); };
+  EXPECT_THROW(renderRun(readRunDir(run), r, out), RenderError);
+  EXPECT_FALSE(fs::exists(out / "frames"));
+  fs::remove_all(run);
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace vbim::render
