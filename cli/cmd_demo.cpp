@@ -1,21 +1,30 @@
-// vbim demo: the README's main job. Plays the committed sample stream streams/samples/day_clear.vbim
-// through the whole pipeline with a built-in fault plan (a long drive stall, a scratched sector, and
-// a run past the loop point so the stream wraps), writes everything `vbim play` writes into
-// out/demo/, and says what to open. Needs nothing downloaded.
-//
-// The stream is found next to the binary (../streams/samples or streams/samples) or in the source
-// tree this binary was built from (VBIM_SOURCE_DIR). A later step makes the demo author its own
-// stream from Technique A first: replace demoStream() with that.
+// vbim demo: the README's main job, on built-in defaults with nothing downloaded.
+//  1. Authors a day cycle from the procedural terrain with Technique A, exactly as the committed
+//     sample streams/samples/day_clear.vbim is made (the same `vbim author` recipe, run in-process).
+//  2. Plays it through the whole pipeline with a built-in fault plan (a long drive stall, a
+//     scratched sector, and a run past the loop point so the stream wraps), writing everything
+//     `vbim play` writes into out/demo/.
+//  3. Adds the profile plots (occupancy, lag and pop over time, the survivable-stall curve).
+//  4. Renders the saved frames with OSMesa: terrain, sky and hemisphere-lit objects, a contact sheet
+//     with the stall and catch-up marked, and a video.
+// Everything lands in out/demo/ together (complete or absent), and it says what to open.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+
+#include <unistd.h>
 
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
 #include "cli/profile_plots.hpp"
 #include "cli/profile_run.hpp"
 #include "iop/fault_plan.hpp"
+#include "render/render_error.hpp"
+#include "render/render_run.hpp"
+#include "render/run_dir.hpp"
+#include "streams/authoring/authoring_error.hpp"
 
 namespace vbim::cli {
 
@@ -36,23 +45,28 @@ lba = 2090              # file sector 42 (the bare file lies at LBA 2048)
 attempts = 300
 )";
 
-std::filesystem::path demoStream() {
-  namespace fs = std::filesystem;
-  const fs::path rel = fs::path("streams") / "samples" / "day_clear.vbim";
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    for (fs::path dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path()) {
-      if (fs::exists(dir / rel)) return dir / rel;
-    }
+// The sample's recipe (streams/samples/README.md): 256x256 lightmap + 128x64 sky, 24 frames from 0 h to
+// 24 h, one per game second. Run through the `vbim author` command itself so the demo's stream and
+// the committed sample cannot drift apart (a test checks they are byte-identical).
+const std::vector<std::string> kDemoAuthorArgs = {
+    "--procedural", "--size", "256", "--cell-size",   "20", "--sky-width",  "128", "--exposure",
+    "-1",           "--q",    "6",   "--frame-count", "24", "--start-hour", "0",   "--end-hour",
+    "24",           "--fps",  "1"};
+
+std::filesystem::path authorDemoStream(const std::filesystem::path& out) {
+  CLI::App app;
+  addAuthor(app);
+  std::vector<std::string> args = {"author"};
+  args.insert(args.end(), kDemoAuthorArgs.begin(), kDemoAuthorArgs.end());
+  args.push_back("--out");
+  args.push_back(out.string());
+  std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last-first
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw Exit(1, std::string("vbim demo: internal error in the authoring recipe: ") + e.what());
   }
-#ifdef VBIM_SOURCE_DIR
-  if (fs::exists(fs::path(VBIM_SOURCE_DIR) / rel)) return fs::path(VBIM_SOURCE_DIR) / rel;
-#endif
-  if (fs::exists(rel)) return rel;
-  throw Exit(2, "vbim demo: cannot find " + rel.string() +
-                    " next to the binary or in the source tree; run from the repository root or pass a stream to "
-                    "`vbim play`");
+  return out;
 }
 
 // The demo's profile pass: the occupancy, lag and pop of the demo run itself, and a small
@@ -123,7 +137,7 @@ void addDemo(CLI::App& app) {
   auto r = std::make_shared<PlayRequest>();
   r->out = "out/demo";
   r->duration = "60s";         // past the sample day's end: loop wraps (24 frames: at 24.5 s and 44.5 s)
-  r->every = 600;              // about every 10 s
+  r->every = 240;              // about every 4 s: a rendered day on the contact sheet
   r->at = {"6s", "7s", "8s"};  // the catch-up after the stall
   r->seed = 1;
   r->force = true;  // the demo owns out/demo and replaces it
@@ -135,17 +149,44 @@ void addDemo(CLI::App& app) {
       ->check(CLI::Range(0.001, 86400.0))
       ->each([r](const std::string& v) { r->duration = v + "s"; });
   cmd->callback([r] {
-    r->disc = demoStream().string();
+    namespace fs = std::filesystem;
+    // The authored stream goes beside the output first and into it with the rest at commit.
+    const fs::path out(r->out);
+    const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
+    fs::create_directories(parent);
+    const fs::path stream = parent / ("." + out.filename().string() + ".day-" + std::to_string(::getpid()) + ".vbim");
+    struct Cleanup {
+      fs::path p;
+      ~Cleanup() {
+        std::error_code ec;
+        fs::remove(p, ec);
+      }
+    } cleanup{stream};
+    std::cout << "vbim demo: authoring a day cycle from the procedural terrain (Technique A)\n";
+    authorDemoStream(stream);
+    r->disc = stream.string();
     if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
     r->faultsText = kDemoFaults;
-    std::cout << "vbim demo: " << r->disc << " with a 6 s drive stall at 0.2 s, a read error at LBA 2090 and loop "
-              << "wraps\n";
+    std::cout << "vbim demo: playing it with a 6 s drive stall at 0.2 s, a read error at LBA 2090 and loop wraps\n";
     auto prof = std::make_shared<DemoProfile>();
+    auto rendered = std::make_shared<render::RunRenderResult>();
     r->onRow = [prof](const player::VsyncRow& row) { prof->onRow(row); };
-    r->beforeCommit = [prof, r](const OutputDir& dir) { prof->write(r->disc, dir); };
+    r->beforeCommit = [prof, r, rendered, stream](const OutputDir& dir) {
+      prof->write(r->disc, dir);
+      std::error_code ec;
+      fs::copy_file(stream, dir.path("day.vbim"), fs::copy_options::overwrite_existing, ec);
+      if (ec) throw Exit(2, dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());
+      fs::create_directories(dir.path("render"));
+      try {
+        *rendered = render::renderRun(render::readRunDir(dir.path("")), render::RunRenderRequest{}, dir.path("render"),
+                                      [](int, int) {});
+      } catch (const render::RenderError& e) {
+        throw Exit(2, std::string("vbim demo: rendering failed: ") + e.what());
+      }
+    };
     std::cout << runPlay(*r, false);
     std::cout << "profile pass (plots, survivable-stall curve): " << static_cast<int>(prof->seconds() * 10) / 10.0
-              << " s of host time\n";
+              << " s of host time; rendered " << rendered->frames << " frames (" << rendered->context << ")\n";
     std::cout << "Open:\n"
               << "  " << r->out << "/trace.json    in https://ui.perfetto.dev (busy spans, ring occupancy, pop, lag)\n"
               << "  " << r->out << "/signals.vcd   in GTKWave\n"
@@ -155,7 +196,10 @@ void addDemo(CLI::App& app) {
               << "  " << r->out << "/plots/occupancy.png         stream ring occupancy over time\n"
               << "  " << r->out << "/plots/lag_pop.png           lag and pop over time\n"
               << "  " << r->out << "/plots/survivable_stall.png  longest stall survived against ring size "
-              << "(vbim profile sweeps more)\n";
+              << "(vbim profile sweeps more)\n"
+              << "  " << r->out << "/render/contact_sheet.png    the day, rendered, stall and catch-up marked\n"
+              << "  " << r->out << "/render/playback.mp4         the playback as video\n"
+              << "  " << r->out << "/day.vbim                    the authored stream (vbim info / vbim play it)\n";
   });
 }
 

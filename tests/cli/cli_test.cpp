@@ -34,6 +34,17 @@ fs::path scratch(const std::string& name) {
   return d;
 }
 
+std::string readAll(const fs::path& p) {
+  std::string data;
+  FILE* f = fopen(p.c_str(), "rb");
+  if (f == nullptr) return "<missing " + p.string() + ">";
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), f)) > 0) data.append(buf.data(), n);
+  fclose(f);
+  return data;
+}
+
 TEST(Cli, HelpListsSubcommands) {
   const Result r = run("--help");
   EXPECT_EQ(r.code, 0);
@@ -69,9 +80,16 @@ TEST(Cli, DemoWritesACompleteOutputDirectory) {
   EXPECT_TRUE(fs::exists(out / "hashes.txt"));
   for (const char* plot : {"plots/occupancy.png", "plots/lag_pop.png", "plots/survivable_stall.png"})
     EXPECT_TRUE(fs::exists(out / plot)) << plot;  // the profile pass (issue #7 item 10)
-  // No temporary directory left beside it.
-  for (const auto& e : fs::directory_iterator(out.parent_path()))
+  // Rendered pictures (issue #9 item 4).
+  for (const char* f : {"render/contact_sheet.png", "render/playback.mp4", "render/render.json"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  // The demo authors its own day with the committed sample's recipe: the same bytes.
+  EXPECT_EQ(readAll(out / "day.vbim"), readAll(fs::path(VBIM_SOURCE_DIR) / "streams/samples/day_clear.vbim"));
+  // No temporary directory or authored stream left beside it.
+  for (const auto& e : fs::directory_iterator(out.parent_path())) {
     EXPECT_EQ(e.path().filename().string().find("." + out.filename().string() + ".tmp"), std::string::npos);
+    EXPECT_EQ(e.path().filename().string().find("." + out.filename().string() + ".day-"), std::string::npos);
+  }
   EXPECT_NE(r.output.find("trace.json"), std::string::npos);
   fs::remove_all(out);
 }
