@@ -3,8 +3,10 @@
 // frames; and the bad inputs (heightfield problems, latitude, zero frames...): a message naming the
 // problem, a non-zero exit, and nothing under the output name (an old file there is left as it was).
 #include <gtest/gtest.h>
+
 #include <sys/wait.h>
 #include <unistd.h>
+#include "tests/support/run_command.hpp"
 
 #include <OpenImageIO/imageio.h>
 
@@ -38,25 +40,13 @@ struct Outcome {
 };
 
 Outcome run(const std::string& args) {
-  Outcome r;
-  FILE* p = ::popen((std::string(VBIM_BINARY) + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  const vbim::testing::CommandResult r = vbim::testing::runCommand(std::string(VBIM_BINARY) + " " + args);
+  return {r.status, r.output};
 }
 
 Outcome runTool(const std::string& cmd) {
-  Outcome r;
-  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  const vbim::testing::CommandResult r = vbim::testing::runCommand(cmd);
+  return {r.status, r.output};
 }
 
 fs::path dir() {

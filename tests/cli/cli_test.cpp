@@ -1,6 +1,8 @@
 // Runs the vbim binary as a user would and checks exit codes, messages and files.
 #include <gtest/gtest.h>
 
+#include "tests/support/run_command.hpp"
+
 #include <sys/wait.h>
 #include <array>
 #include <cstdio>
@@ -17,15 +19,8 @@ struct Result {
 };
 
 Result run(const std::string& args) {
-  const std::string cmd = std::string(VBIM_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return {-1, "popen failed"};
-  std::string out;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  const vbim::testing::CommandResult r = vbim::testing::runCommand(std::string(VBIM_BINARY) + " " + args);
+  return {r.status, r.output};
 }
 
 fs::path scratch(const std::string& name) {
@@ -35,14 +30,7 @@ fs::path scratch(const std::string& name) {
 }
 
 std::string readAll(const fs::path& p) {
-  std::string data;
-  FILE* f = fopen(p.c_str(), "rb");
-  if (f == nullptr) return "<missing " + p.string() + ">";
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), f)) > 0) data.append(buf.data(), n);
-  fclose(f);
-  return data;
+  return vbim::testing::readFileBytes(p);
 }
 
 TEST(Cli, HelpListsSubcommands) {
@@ -121,13 +109,7 @@ TEST(Cli, ConfigCheckNamesFileLineAndKey) {
 TEST(Cli, EveryPlatformKeyIsDocumentedInTheTimingModel) {
   const Result r = run("config --markdown");
   ASSERT_EQ(r.code, 0) << r.output;
-  FILE* f = fopen(VBIM_SOURCE_DIR "/docs/timing-model.md", "r");
-  ASSERT_NE(f, nullptr);
-  std::string doc;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), f)) > 0) doc.append(buf.data(), n);
-  fclose(f);
+  const std::string doc = readAll(VBIM_SOURCE_DIR "/docs/timing-model.md");
   std::size_t keys = 0;
   std::size_t pos = 0;
   while ((pos = r.output.find("| `", pos)) != std::string::npos) {

@@ -2,7 +2,9 @@
 // result, and the bad inputs of issue #4 (message naming the file and problem, non-zero exit, nothing
 // under the final name).
 #include <gtest/gtest.h>
+
 #include <sys/wait.h>
+#include "tests/support/run_command.hpp"
 
 #include <OpenImageIO/imageio.h>
 
@@ -24,14 +26,8 @@ struct Outcome {
 };
 
 Outcome run(const std::string& cmd) {
-  Outcome r;
-  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  const vbim::testing::CommandResult r = vbim::testing::runCommand(cmd);
+  return {r.status, r.output};
 }
 
 std::string vbim() {

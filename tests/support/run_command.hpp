@@ -1,0 +1,41 @@
+// Test support: run a command line (the vbim binary, ffprobe, ...) as a user would, and read files.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace vbim::testing {
+
+struct CommandResult {
+  int status = -1;     // exit status, or -1 if it did not exit normally
+  std::string output;  // stdout and stderr together
+};
+
+// Runs `cmd` through the shell with stderr folded into stdout.
+inline CommandResult runCommand(const std::string& cmd) {
+  CommandResult r;
+  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
+  if (p == nullptr) return r;
+  std::array<char, 4096> buf{};
+  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.output.append(buf.data(), n);
+  const int st = ::pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+// The whole file, or "<missing PATH>" so a comparison against it fails with a clear value.
+inline std::string readFileBytes(const std::filesystem::path& path) {
+  std::string data;
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return "<missing " + path.string() + ">";
+  std::array<char, 4096> buf{};
+  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), f)) > 0;) data.append(buf.data(), n);
+  std::fclose(f);
+  return data;
+}
+
+}  // namespace vbim::testing
