@@ -14,7 +14,7 @@
 #include <ctime>
 #include <memory>
 
-#include "bench/player/bench_stream.hpp"
+#include "streams/authoring/bench_stream.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/tiled_blender.hpp"
 #include "iop/memory_disc.hpp"

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/player/bench_stream.hpp"
+#include "streams/authoring/bench_stream.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define VBIM_ASAN 1

@@ -1,4 +1,4 @@
-#include "bench/player/bench_stream.hpp"
+#include "streams/authoring/bench_stream.hpp"
 
 #include "runtime/rng.hpp"
 #include "streams/authoring/stream_writer.hpp"
