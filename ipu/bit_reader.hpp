@@ -45,7 +45,7 @@ class BitReader {
  private:
   // Keeps at least 32 (normally 57..64) valid bits in the cache, zero bits past the end.
   void refill() {
-    if (end_ - p_ >= 8) {
+    if (end_ - p_ >= 8) [[likely]] {
       std::uint64_t v;
       std::memcpy(&v, p_, 8);
       v = __builtin_bswap64(v);
@@ -55,16 +55,35 @@ class BitReader {
       count_ += bytes * 8;
       return;
     }
-    while (count_ <= 56) {
+    const Tail t = refillTail(cache_, count_, p_, end_);
+    cache_ = t.cache;
+    count_ = t.count;
+    p_ = t.p;
+    pad_ += t.pad;
+  }
+
+  // The last few bytes, one at a time. State in and out by value, so a decoder that copies its
+  // reader into a local keeps it in registers (the address of the copy never escapes).
+  struct Tail {
+    std::uint64_t cache;
+    int count;
+    const std::uint8_t* p;
+    std::size_t pad;
+  };
+  [[gnu::noinline]] static Tail refillTail(std::uint64_t cache, int count, const std::uint8_t* p,
+                                           const std::uint8_t* end) {
+    std::size_t pad = 0;
+    while (count <= 56) {
       std::uint64_t b = 0;
-      if (p_ < end_) {
-        b = *p_++;
+      if (p < end) {
+        b = *p++;
       } else {
-        ++pad_;
+        ++pad;
       }
-      cache_ |= b << (56 - count_);
-      count_ += 8;
+      cache |= b << (56 - count);
+      count += 8;
     }
+    return Tail{cache, count, p, pad};
   }
 
   const std::uint8_t* begin_ = nullptr;
