@@ -21,6 +21,23 @@ class BitReader {
     count_ -= n;
     if (count_ < 32) refill();
   }
+  // skip() that tops the cache up after every call instead of when it runs low: no data-dependent
+  // branch (a refill every few codes is unpredictable), for the serial loop of AC codes.
+  void skipAndTopUp(int n) {
+    cache_ <<= n;
+    count_ -= n;
+    if (end_ - p_ >= 8) [[likely]] {
+      std::uint64_t v;
+      std::memcpy(&v, p_, 8);
+      v = __builtin_bswap64(v);
+      cache_ |= v >> count_;  // bits already in the cache are the same bits (OR is idempotent)
+      const int bytes = (63 - count_) >> 3;
+      p_ += bytes;
+      count_ += bytes * 8;
+    } else if (count_ < 32) {
+      refill();
+    }
+  }
   std::uint32_t read(int n) {
     const std::uint32_t v = peek(n);
     skip(n);

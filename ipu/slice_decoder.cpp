@@ -185,7 +185,7 @@ template <bool Mpeg1>
       }
     }
     // A run/level code with its sign in one entry.
-    br.skip(s.bits);
+    br.skipAndTopUp(s.bits);
     i += s.step;
     mag = s.level;
     negative = s.negative;
