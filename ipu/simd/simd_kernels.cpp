@@ -18,6 +18,12 @@ namespace vbim::ipu::simd_detail {
 struct Basis {
   alignas(64) std::int32_t b[8][8];       // [k][n]
   alignas(64) std::int32_t toggle[8][8];  // [y][x]: B(7, y) * B(7, x), the F[7][7] = 1 term
+  // Row pass by pairs of columns: [p][2x + j] = B(2p + j, x), as 16-bit lanes for a pairwise
+  // multiply-add against (F[v][2p], F[v][2p + 1]).
+  alignas(64) std::int16_t colPairs[4][16];
+  // Column pass by pairs of rows: [y][k] = B(va, y) in the low and B(vb, y) in the high 16 bits, for
+  // the row pairs (va, vb) = (0, 2), (4, 6), (1, 3), (5, 7) (even rows, then odd rows).
+  alignas(64) std::int32_t rowPairs[8][4];
   Basis() {
     static constexpr std::int32_t kW[8] = {23170, 22725, 21407, 19266, 16384, 12873, 8867, 4520};
     for (int k = 0; k < 8; ++k)
@@ -32,6 +38,16 @@ struct Basis {
       }
     for (int y = 0; y < 8; ++y)
       for (int x = 0; x < 8; ++x) toggle[y][x] = b[7][y] * b[7][x];
+    for (int p = 0; p < 4; ++p)
+      for (int x = 0; x < 8; ++x)
+        for (int j = 0; j < 2; ++j) colPairs[p][2 * x + j] = static_cast<std::int16_t>(b[2 * p + j][x]);
+    static constexpr int kPairs[4][2] = {{0, 2}, {4, 6}, {1, 3}, {5, 7}};
+    for (int y = 0; y < 8; ++y)
+      for (int k = 0; k < 4; ++k) {
+        const std::uint32_t lo = static_cast<std::uint16_t>(b[kPairs[k][0]][y]);
+        const std::uint32_t hi = static_cast<std::uint16_t>(b[kPairs[k][1]][y]);
+        rowPairs[y][k] = static_cast<std::int32_t>(lo | (hi << 16));
+      }
   }
 };
 inline const Basis& basis() {
@@ -45,38 +61,72 @@ HWY_BEFORE_NAMESPACE();
 namespace vbim::ipu::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Low-frequency blocks (rows and columns below R and C, plus the flagged mismatch toggle): the
-// same arithmetic as IdctImpl with compile-time trip counts, so it unrolls into registers.
-template <int R, int C>
-HWY_INLINE void IdctLowImpl(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
+#if HWY_TARGET != HWY_SCALAR
+// Rows below R and column pairs below CP (the rest are zero), with 16 x 16 -> 32-bit pairwise
+// multiply-adds (pmaddwd) in both passes. Row pass: c[v][x] = sum_u F[v][u] B(u, x), exact in 32
+// bits (|c| < 2048 * 122,426 < 2^28). c = ch * 2^14 + cl with |ch| < 2^14 and cl in [-2^13, 2^13),
+// so both halves fit 16-bit lanes for the column pass; H = sum ch B and L = sum cl B stay below
+// 2^31, and out = (H + (L >> 14) + 2^16) >> 17 == floor((sum_v c B + 2^30) / 2^31), the scalar
+// result. The mismatch toggle alone in row 7 / column 7 adds +-B(7, y) B(7, x) to L, unless the
+// block is read whole (R = 8, CP = 4), where F[7][7] is part of the sums.
+template <int R, int CP>
+HWY_INLINE void IdctMaddImpl(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
   const hn::CappedTag<std::int32_t, 8> d;
+  const hn::Repartition<std::int16_t, decltype(d)> d16;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
-  const auto& B = simd_detail::basis().b;
+  const auto& P = simd_detail::basis().colPairs;
+  const auto& Q = simd_detail::basis().rowPairs;
   const auto& T = simd_detail::basis().toggle;
   using V = hn::Vec<decltype(d)>;
-  const std::int32_t sign = toggle ? block[63] : 0;
+  const std::int32_t sign = (toggle && !(R == 8 && CP == 4)) ? block[63] : 0;
   for (std::size_t x0 = 0; x0 < 8; x0 += N) {
-    V ch[R], cl[R];
+    V ch[8], cl[8];
     for (int v = 0; v < R; ++v) {
-      V acc = hn::Mul(hn::Set(d, block[8 * v]), hn::LoadU(d, &B[0][x0]));
-      for (int u = 1; u < C; ++u) acc = hn::Add(acc, hn::Mul(hn::Set(d, block[8 * v + u]), hn::LoadU(d, &B[u][x0])));
+      V acc = hn::Zero(d), acc1 = hn::Zero(d);
+      for (int p = 0; p < CP; ++p) {
+        std::int32_t pair;
+        std::memcpy(&pair, block + 8 * v + 2 * p, 4);
+        acc = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, hn::Set(d, pair)), hn::LoadU(d16, &P[p][2 * x0]), acc,
+                                            acc1);
+      }
+      acc = hn::RearrangeToOddPlusEven(acc, acc1);
       ch[v] = hn::ShiftRight<14>(hn::Add(acc, hn::Set(d, 1 << 13)));
       cl[v] = hn::Sub(acc, hn::ShiftLeft<14>(ch[v]));
     }
-    const V zero = hn::Zero(d);
+    for (int v = R; v < 8; ++v) ch[v] = cl[v] = hn::Zero(d);
+    // Row pairs as 16-bit lanes: (c[va][x], c[vb][x]) in each 32-bit lane.
+    const V lowHalf = hn::Set(d, 0xFFFF);
+    auto pairUp = [&](const V* c, int va, int vb) {
+      return hn::BitCast(d16, hn::Or(hn::And(c[va], lowHalf), hn::ShiftLeft<16>(c[vb])));
+    };
+    static constexpr int kPairRows[4][2] = {{0, 2}, {1, 3}, {4, 6}, {5, 7}};
+    static constexpr int kPairIndex[4] = {0, 2, 1, 3};  // position of each in rowPairs[y]
+    hn::Vec<decltype(d16)> hp[4], lp[4];
+    // Row pairs (0, 2) and (1, 3) always; (4, 6) and (5, 7) only for R = 8.
+    constexpr int kUsed = R == 8 ? 4 : 2;
+    for (int k = 0; k < kUsed; ++k) {
+      hp[k] = pairUp(ch, kPairRows[k][0], kPairRows[k][1]);
+      lp[k] = pairUp(cl, kPairRows[k][0], kPairRows[k][1]);
+    }
     for (int y = 0; y < 4; ++y) {
-      V he = hn::Set(d, 1 << 16), ho = zero, le = zero, lo = zero;
-      for (int v = 0; v < R; ++v) {
-        const V b = hn::Set(d, B[v][y]);
-        if (v & 1) {
-          ho = hn::Add(ho, hn::Mul(ch[v], b));
-          lo = hn::Add(lo, hn::Mul(cl[v], b));
+      // Second accumulators: on x86 pmaddwd leaves them zero; other targets may put products there.
+      V he = hn::Set(d, 1 << 16), ho = hn::Zero(d), le = hn::Zero(d), lo = hn::Zero(d);
+      V he1 = hn::Zero(d), ho1 = hn::Zero(d), le1 = hn::Zero(d), lo1 = hn::Zero(d);
+      for (int k = 0; k < kUsed; ++k) {
+        const auto q = hn::BitCast(d16, hn::Set(d, Q[y][kPairIndex[k]]));
+        if (kPairRows[k][0] & 1) {
+          ho = hn::ReorderWidenMulAccumulate(d, hp[k], q, ho, ho1);
+          lo = hn::ReorderWidenMulAccumulate(d, lp[k], q, lo, lo1);
         } else {
-          he = hn::Add(he, hn::Mul(ch[v], b));
-          le = hn::Add(le, hn::Mul(cl[v], b));
+          he = hn::ReorderWidenMulAccumulate(d, hp[k], q, he, he1);
+          le = hn::ReorderWidenMulAccumulate(d, lp[k], q, le, le1);
         }
       }
+      he = hn::RearrangeToOddPlusEven(he, he1);
+      ho = hn::RearrangeToOddPlusEven(ho, ho1);
+      le = hn::RearrangeToOddPlusEven(le, le1);
+      lo = hn::RearrangeToOddPlusEven(lo, lo1);
       V lt = hn::Add(le, lo), lb = hn::Sub(le, lo);
       if (sign > 0) {
         lt = hn::Add(lt, hn::LoadU(d, &T[y][x0]));
@@ -93,79 +143,28 @@ HWY_INLINE void IdctLowImpl(const std::int16_t* block, bool toggle, std::uint8_t
   }
 }
 
-void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride);
+// The transform on the smallest rectangle of row pairs and column pairs holding every non-zero
+// coefficient (2, 4 or 8 rows; 2, 4 or 8 columns).
+template <int R>
+HWY_INLINE void IdctRows(const std::int16_t* block, unsigned cols, bool toggle, std::uint8_t* dst, int stride) {
+  if (cols <= 0x3) return IdctMaddImpl<R, 1>(block, toggle, dst, stride);
+  if (cols <= 0xF) return IdctMaddImpl<R, 2>(block, toggle, dst, stride);
+  IdctMaddImpl<R, 4>(block, toggle, dst, stride);
+}
 
 void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   const bool toggle = (rowMask & 0x100) != 0;
   const unsigned rows = rowMask & 0xFF, cols = colMask & 0xFF;
-  if ((rows | cols) <= 0x3) return IdctLowImpl<2, 2>(block, toggle, dst, stride);
-  if ((rows | cols) <= 0xF) return IdctLowImpl<4, 4>(block, toggle, dst, stride);
-  if (__builtin_popcount(rows) + __builtin_popcount(cols) >= 10 && !toggle)
-    return IdctLowImpl<8, 8>(block, false, dst, stride);
-  IdctGeneralImpl(block, rowMask, colMask, dst, stride);
+  if (rows <= 0x3) return IdctRows<2>(block, cols, toggle, dst, stride);
+  if (rows <= 0xF) return IdctRows<4>(block, cols, toggle, dst, stride);
+  IdctRows<8>(block, cols, toggle, dst, stride);
 }
-
-// Horizontal pass first, over the non-zero rows and columns only: c[v][x] = sum_u F[v][u] B(u, x),
-// exact in 32 bits (|c| < 2048 * 122,400 < 2^28). Vertical pass with c split as
-// ch * 2^14 + cl (cl in [-2^13, 2^13)) so both partial sums fit 32 bits:
-// out = (H + (L >> 14) + 2^16) >> 17 == floor((sum_v c B + 2^30) / 2^31), the scalar result (the
-// double sum is one exact integer, so the order of the passes does not matter).
-void IdctGeneralImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  const hn::CappedTag<std::int32_t, 8> d;
-  const hn::Rebind<std::uint8_t, decltype(d)> d8;
-  const std::size_t N = hn::Lanes(d);
-  const auto& B = simd_detail::basis().b;
-  // The mismatch toggle alone in row 7 and column 7 adds +-B(7,y) B(7,x) (< 2^30) to the sum; it
-  // goes into the low partial sum (|l| < 2^30 + 2^30 fits 32 bits).
-  const bool toggle = (rowMask & 0x100) != 0;
-  const std::int32_t toggleSign = toggle ? block[63] : 0;
-  int rows[8], cols[8];
-  int nr = 0, nc = 0;
-  for (int i = 0; i < 8; ++i) {
-    if (rowMask & (1u << i)) rows[nr++] = i;
-    if (colMask & (1u << i)) cols[nc++] = i;
-  }
-  using V = hn::Vec<decltype(d)>;
-  for (std::size_t x0 = 0; x0 < 8; x0 += N) {
-    V ch[8], cl[8];
-    for (int i = 0; i < nr; ++i) {
-      const std::int16_t* f = block + 8 * rows[i];
-      V acc = hn::Zero(d);
-      for (int j = 0; j < nc; ++j) {
-        const int u = cols[j];
-        acc = hn::Add(acc, hn::Mul(hn::Set(d, f[u]), hn::LoadU(d, &B[u][x0])));
-      }
-      ch[i] = hn::ShiftRight<14>(hn::Add(acc, hn::Set(d, 1 << 13)));
-      cl[i] = hn::Sub(acc, hn::ShiftLeft<14>(ch[i]));
-    }
-    // Rows y and 7 - y share the products: B(v, 7 - y) = (-1)^v B(v, y).
-    for (int y = 0; y < 4; ++y) {
-      V he = hn::Set(d, 1 << 16), ho = hn::Zero(d), le = hn::Zero(d), lo = hn::Zero(d);
-      V lt = hn::Zero(d), lb = hn::Zero(d);
-      if (toggle) {
-        const V t = hn::LoadU(d, &simd_detail::basis().toggle[y][x0]);
-        const V tb = hn::LoadU(d, &simd_detail::basis().toggle[7 - y][x0]);
-        lt = toggleSign > 0 ? t : hn::Neg(t);
-        lb = toggleSign > 0 ? tb : hn::Neg(tb);
-      }
-      for (int i = 0; i < nr; ++i) {
-        const int v = rows[i];
-        const V b = hn::Set(d, B[v][y]);
-        if (v & 1) {
-          ho = hn::Add(ho, hn::Mul(ch[i], b));
-          lo = hn::Add(lo, hn::Mul(cl[i], b));
-        } else {
-          he = hn::Add(he, hn::Mul(ch[i], b));
-          le = hn::Add(le, hn::Mul(cl[i], b));
-        }
-      }
-      const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(hn::Add(hn::Add(le, lo), lt))));
-      const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(hn::Add(hn::Sub(le, lo), lb))));
-      hn::StoreU(hn::DemoteTo(d8, top), d8, dst + y * stride + x0);
-      hn::StoreU(hn::DemoteTo(d8, bottom), d8, dst + (7 - y) * stride + x0);
-    }
-  }
+#else
+// One-lane fallback target: no 16-bit pairs in a 32-bit lane; the scalar reference.
+void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  scalarKernels().idct(block, rowMask, colMask, dst, stride);
 }
+#endif
 
 // The chroma terms of the PS2 matrix for one chroma line, in 16-bit lanes:
 // (a << 4) * (b << 6) >> 16 == (a * b) >> 6 exactly for |a| < 2^11 and the coefficients below (the

@@ -4,6 +4,8 @@
 
 #include <hwy/targets.h>
 
+#include <cmath>
+
 #include "ipu/elementary_stream.hpp"
 #include "ipu/idct.hpp"
 #include "ipu/picture_decoder.hpp"
@@ -74,6 +76,22 @@ TEST(IpuSimd, IdctMatchesScalar) {
       idctSimd(block, 0xFF, 0xFF, b, 8);
       for (int i = 0; i < 64; ++i) ASSERT_EQ(a[i], b[i]);
     }
+    // The largest sums the transform can see: for each output (x, y), every coefficient at the
+    // extreme with the sign of its basis product there (an overflow would flip the clamped pixel).
+    for (int y0 = 0; y0 < 8; ++y0)
+      for (int x0 = 0; x0 < 8; ++x0)
+        for (int s : {1, -1}) {
+          std::int16_t block[64];
+          for (int v = 0; v < 8; ++v)
+            for (int u = 0; u < 8; ++u) {
+              const double c = std::cos((2 * x0 + 1) * u * M_PI / 16) * std::cos((2 * y0 + 1) * v * M_PI / 16);
+              block[8 * v + u] = static_cast<std::int16_t>((c * s >= 0) ? 2047 : -2048);
+            }
+          std::uint8_t a[64], b[64];
+          idctScalar(block, 0xFF, a, 8);
+          idctSimd(block, 0xFF, 0xFF, b, 8);
+          for (int i = 0; i < 64; ++i) ASSERT_EQ(a[i], b[i]) << "x " << x0 << " y " << y0 << " sign " << s;
+        }
   });
 }
 
