@@ -16,16 +16,16 @@
 #define VBIM_IPU_SIMD_BASIS
 namespace vbim::ipu::simd_detail {
 struct Basis {
-  alignas(64) std::int32_t b[8][8];       // [k][n]
-  alignas(64) std::int32_t toggle[8][8];  // [y][x]: B(7, y) * B(7, x), the F[7][7] = 1 term
+  alignas(64) std::int32_t b[8][8]{};       // [k][n]
+  alignas(64) std::int32_t toggle[8][8]{};  // [y][x]: B(7, y) * B(7, x), the F[7][7] = 1 term
   // Row pass by pairs of columns: [p][2x + j] = B(2p + j, x), as 16-bit lanes for a pairwise
   // multiply-add against (F[v][2p], F[v][2p + 1]).
-  alignas(64) std::int16_t colPairs[4][16];
+  alignas(64) std::int16_t colPairs[4][16]{};
   // Column pass by pairs of rows: [y][k] = B(va, y) in the low and B(vb, y) in the high 16 bits, for
   // the row pairs (va, vb) = (0, 2), (4, 6), (1, 3), (5, 7) (even rows, then odd rows).
-  alignas(64) std::int32_t rowPairs[8][4];
-  Basis() {
-    static constexpr std::int32_t kW[8] = {23170, 22725, 21407, 19266, 16384, 12873, 8867, 4520};
+  alignas(64) std::int32_t rowPairs[8][4]{};
+  constexpr Basis() {
+    constexpr std::int32_t kW[8] = {23170, 22725, 21407, 19266, 16384, 12873, 8867, 4520};
     for (int k = 0; k < 8; ++k)
       for (int n = 0; n < 8; ++n) {
         if (k == 0) {
@@ -41,7 +41,7 @@ struct Basis {
     for (int p = 0; p < 4; ++p)
       for (int x = 0; x < 8; ++x)
         for (int j = 0; j < 2; ++j) colPairs[p][2 * x + j] = static_cast<std::int16_t>(b[2 * p + j][x]);
-    static constexpr int kPairs[4][2] = {{0, 2}, {4, 6}, {1, 3}, {5, 7}};
+    constexpr int kPairs[4][2] = {{0, 2}, {4, 6}, {1, 3}, {5, 7}};
     for (int y = 0; y < 8; ++y)
       for (int k = 0; k < 4; ++k) {
         const std::uint32_t lo = static_cast<std::uint16_t>(b[kPairs[k][0]][y]);
@@ -50,9 +50,10 @@ struct Basis {
       }
   }
 };
+// Built by the compiler: no guard check on every call of the hot kernels.
+inline constexpr Basis kBasis{};
 inline const Basis& basis() {
-  static const Basis instance;
-  return instance;
+  return kBasis;
 }
 }  // namespace vbim::ipu::simd_detail
 #endif
