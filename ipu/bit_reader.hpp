@@ -21,11 +21,10 @@ class BitReader {
     count_ -= n;
     if (count_ < 32) refill();
   }
-  // skip() that tops the cache up after every call instead of when it runs low: no data-dependent
-  // branch (a refill every few codes is unpredictable), for the serial loop of AC codes.
-  void skipAndTopUp(int n) {
-    cache_ <<= n;
-    count_ -= n;
+  // For the serial loop of AC codes: topUp() leaves at least 56 valid bits (the cache is refilled
+  // whole, no data-dependent branch), then skipUnchecked() consumes codes without looking at the
+  // count, as long as the caller keeps to that budget. peek(n) needs n <= the bits left.
+  void topUp() {
     if (end_ - p_ >= 8) [[likely]] {
       std::uint64_t v;
       std::memcpy(&v, p_, 8);
@@ -34,9 +33,13 @@ class BitReader {
       const int bytes = (63 - count_) >> 3;
       p_ += bytes;
       count_ += bytes * 8;
-    } else if (count_ < 32) {
+    } else {
       refill();
     }
+  }
+  void skipUnchecked(int n) {
+    cache_ <<= n;
+    count_ -= n;
   }
   std::uint32_t read(int n) {
     const std::uint32_t v = peek(n);
@@ -50,6 +53,8 @@ class BitReader {
     return static_cast<std::int32_t>(v << (32 - n)) >> (32 - n);
   }
 
+  // Valid bits in the cache (peek(n) needs n of them).
+  int bitsCached() const { return count_; }
   // Bits consumed since the start of the range.
   std::size_t position() const { return (static_cast<std::size_t>(p_ - begin_) + pad_) * 8 - count_; }
   std::size_t sizeBits() const { return static_cast<std::size_t>(end_ - begin_) * 8; }
@@ -60,7 +65,8 @@ class BitReader {
   std::size_t bytePosition() const { return position() / 8; }
 
  private:
-  // Keeps at least 32 (normally 57..64) valid bits in the cache, zero bits past the end.
+  // Keeps at least 32 (normally 57..64; at least 56 when called with fewer than 56) valid bits in
+  // the cache, zero bits past the end.
   void refill() {
     if (end_ - p_ >= 8) [[likely]] {
       std::uint64_t v;

@@ -148,52 +148,10 @@ template <bool Mpeg1>
   // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
   // ends within 16 bits; the caller checks for overrun once per macroblock.
   int i = 0;
-  for (;;) {
-    int mag;
-    int negative;
-    DctCodeEntry s = shortCodes[br.peek(VlcTables::kDctShortBits)];
-    if (s.level == 0) [[unlikely]] {
-      if (s.step == kDctKindLong) {
-        // 12..16 bits and the sign: seven zeros, so the next 17 bits are the index.
-        s = longCodes[br.peek(VlcTables::kDctLongBits)];
-      } else if (s.step == kDctKindEob) {
-        br.skip(s.bits);
-        break;
-      } else if (s.step == kDctKindEscape) {
-        // Escape: 6-bit run, then a 12-bit signed level (MPEG-1: 8 or 16 bits, 11172-2 §2.4.3.7).
-        br.skip(6);
-        const int run = static_cast<int>(br.read(6));
-        int level;
-        if (Mpeg1) {
-          level = br.readSigned(8);
-          if (level == 0) {
-            level = static_cast<int>(br.read(8));
-          } else if (level == -128) {
-            level = static_cast<int>(br.read(8)) - 256;
-          }
-        } else {
-          level = br.readSigned(12);
-        }
-        negative = level < 0;
-        mag = negative ? -level : level;
-        i += run + 1;
-        goto place;
-      }
-      if (s.level == 0) {
-        why = IssueKind::kBadVlc;
-        return Status::kError;
-      }
-    }
-    // A run/level code with its sign in one entry.
-    br.skipAndTopUp(s.bits);
-    i += s.step;
-    mag = s.level;
-    negative = s.negative;
-  place:
-    if (i > 63) [[unlikely]] {
-      why = IssueKind::kCoefficientOverrun;
-      return Status::kError;
-    }
+  // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
+  auto place = [&](int mag, int negative) {
+    if (i > 63) [[unlikely]]
+      return false;
     const ScanSlot& slot = scan_[i];
     int v;
     if (Mpeg1) {
@@ -212,7 +170,71 @@ template <bool Mpeg1>
     blk[slot.pos] = static_cast<std::int16_t>(v);
     parity ^= static_cast<unsigned>(v);
     masks |= slot.mask;
+    return true;
+  };
+  for (;;) {
+    br.topUp();  // at least 56 bits
+    // Up to four short codes (code and sign at most 11 bits each) need no look at the bit count.
+    DctCodeEntry s;
+    int k = 0;
+    for (; k < 4; ++k) {
+      s = shortCodes[br.peek(VlcTables::kDctShortBits)];
+      if (s.level == 0) [[unlikely]]
+        break;
+      br.skipUnchecked(s.bits);
+      i += s.step;
+      if (!place(s.level, s.negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return Status::kError;
+      }
+    }
+    if (k == 4) continue;
+    // Any other symbol; at least 56 - 3 * 11 = 23 bits are left.
+    if (s.step == kDctKindLong) {
+      // 12..16 bits and the sign: seven zeros, so the next 17 bits are the index.
+      s = longCodes[br.peek(VlcTables::kDctLongBits)];
+      if (s.level == 0) {
+        why = IssueKind::kBadVlc;
+        return Status::kError;
+      }
+      br.skipUnchecked(s.bits);
+      i += s.step;
+      if (!place(s.level, s.negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return Status::kError;
+      }
+    } else if (s.step == kDctKindEob) {
+      br.skipUnchecked(s.bits);
+      break;
+    } else if (s.step == kDctKindEscape) {
+      // Escape: 6-bit run, then a 12-bit signed level (MPEG-1: 8 or 16 bits, 11172-2 §2.4.3.7).
+      // skip() and read() refill as they go.
+      br.skip(6);
+      const int run = static_cast<int>(br.read(6));
+      int level;
+      if (Mpeg1) {
+        level = br.readSigned(8);
+        if (level == 0) {
+          level = static_cast<int>(br.read(8));
+        } else if (level == -128) {
+          level = static_cast<int>(br.read(8)) - 256;
+        }
+      } else {
+        level = br.readSigned(12);
+      }
+      const int negative = level < 0;
+      i += run + 1;
+      if (!place(negative ? -level : level, negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return Status::kError;
+      }
+    } else {
+      why = IssueKind::kBadVlc;
+      return Status::kError;
+    }
   }
+  // The callers' reads refill when the count is low; restore that invariant.
+  if (br.bitsCached() < 32) br.topUp();
   unsigned rowMask = 1u | (masks & 0xFF);
   unsigned colMask = 1u | (masks >> 8);
   const bool ac = masks != 0;
