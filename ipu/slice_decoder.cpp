@@ -368,7 +368,8 @@ void SliceDecoder::run(int code) {
       return;
     }
     reconstruct(mbX, mbY, fieldDct);
-    (*out_.decoded)[static_cast<std::size_t>(address)] = 1;
+    (*out_.decoded)[static_cast<std::size_t>(mbY) * static_cast<std::size_t>(out_.decodedStride) +
+                    static_cast<std::size_t>(mbX)] = 1;
     const std::size_t pos = br_.position();
     if (out_.trace) {
       out_.trace->push_back(MacroblockBits{static_cast<std::uint32_t>(address),
