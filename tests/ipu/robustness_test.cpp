@@ -151,6 +151,28 @@ TEST(IpuRobustness, RandomBitFlipsAreConcealedAndReported) {
   EXPECT_GT(withIssues, 100);
 }
 
+// Zero stuffing before start codes is allowed (ISO/IEC 13818-2 §5.3, next_start_code()); every
+// amount moves the start codes to every alignment of the decoder's word-wise start-code search.
+TEST(IpuRobustness, ZeroStuffingBeforeStartCodesChangesNothing) {
+  const auto es = stream(1);
+  Decoder clean;
+  ASSERT_TRUE(clean.decode(es).clean());
+  for (int stuffing = 1; stuffing <= 16; ++stuffing) {
+    std::vector<std::uint8_t> padded;
+    for (std::size_t i = 0; i < es.size(); ++i) {
+      if (i > 0 && i + 2 < es.size() && es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1)
+        padded.insert(padded.end(), static_cast<std::size_t>(stuffing), 0);
+      padded.push_back(es[i]);
+    }
+    Decoder dec;
+    const PictureReport r = dec.decode(padded);
+    EXPECT_TRUE(r.clean()) << "stuffing " << stuffing << ": " << r.describe();
+    EXPECT_EQ(r.macroblocksDecoded, 15);
+    EXPECT_EQ(dec.frame().y, clean.frame().y) << "stuffing " << stuffing;
+    EXPECT_EQ(dec.frame().cb, clean.frame().cb) << "stuffing " << stuffing;
+  }
+}
+
 TEST(IpuRobustness, MissingSequenceHeaderIsUndecodable) {
   const auto es = stream(1);
   std::vector<std::uint8_t> bad;
