@@ -1,7 +1,6 @@
 #include "ipu/simd/simd_kernels.hpp"
 
 #include <cstring>
-#include <vector>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "ipu/simd/simd_kernels.cpp"
@@ -167,94 +166,87 @@ void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
 }
 #endif
 
-// The chroma terms of the PS2 matrix for one chroma line, in 16-bit lanes:
-// (a << 4) * (b << 6) >> 16 == (a * b) >> 6 exactly for |a| < 2^11 and the coefficients below (the
-// same floor shift as the scalar code). rc = Cr term of R, gc = both terms of G, bc = Cb term of B.
-void ChromaTermsImpl(const std::uint8_t* cb, const std::uint8_t* cr, int n, std::int16_t* rc, std::int16_t* gc,
-                     std::int16_t* bc) {
-  const hn::ScalableTag<std::int16_t> d;
-  const hn::Rebind<std::uint8_t, decltype(d)> d8;
-  const int N = static_cast<int>(hn::Lanes(d));
-  const auto kRcr = hn::Set(d, 0xCC << 6), kGcr = hn::Set(d, -0x68 << 6);
-  const auto kGcb = hn::Set(d, -0x32 << 6), kBcb = hn::Set(d, 0x102 << 6);
-  const auto c128 = hn::Set(d, 128);
+// One chroma line's RGB32 rows (1 or 2 luma lines) with the PS2 matrix, in 16-bit lanes:
+// lum = (0x95 * max(0, Y - 16)) >> 6, then (lum + term + 1) >> 1 clamped to 0..255; alpha 0x80;
+// SETTH. The chroma terms are computed once per chroma sample, at half resolution, and doubled in
+// registers for the two pixels (and the two lines) they cover: (a << 4) * (b << 6) >> 16 ==
+// (a * b) >> 6 exactly for |a| < 2^11 and the coefficients below (the scalar code's floor shift).
+// rc = Cr term of R, gc = both terms of G, bc = Cb term of B.
+void CscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+                 int width, std::uint8_t* rgba, int rgbaStride, int th0, int th1) {
   int x = 0;
-  for (; x + N <= n; x += N) {
-    const auto vb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, cb + x)), c128));
-    const auto vr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(d8, cr + x)), c128));
-    hn::StoreU(hn::MulHigh(vr, kRcr), d, rc + x);
-    hn::StoreU(hn::Add(hn::MulHigh(vr, kGcr), hn::MulHigh(vb, kGcb)), d, gc + x);
-    hn::StoreU(hn::MulHigh(vb, kBcb), d, bc + x);
-  }
-  for (; x < n; ++x) {
-    rc[x] = static_cast<std::int16_t>((0xCC * (cr[x] - 128)) >> 6);
-    gc[x] = static_cast<std::int16_t>(((-0x68 * (cr[x] - 128)) >> 6) + ((-0x32 * (cb[x] - 128)) >> 6));
-    bc[x] = static_cast<std::int16_t>((0x102 * (cb[x] - 128)) >> 6);
-  }
-}
-
-// Doubles every 16-bit term (one chroma sample covers two pixels), 8 at a time.
-void UpsampleTermsImpl(const std::int16_t* c, int n, std::int16_t* out) {
-  int i = 0;
 #if HWY_TARGET != HWY_SCALAR
-  const hn::Full128<std::int16_t> d;
-  for (; i + 8 <= n; i += 8) {
-    const auto v = hn::LoadU(d, c + i);
-    hn::StoreU(hn::InterleaveLower(d, v, v), d, out + 2 * i);
-    hn::StoreU(hn::InterleaveUpper(d, v, v), d, out + 2 * i + 8);
-  }
-#endif
-  for (; i < n; ++i) out[2 * i] = out[2 * i + 1] = c[i];
-}
-
-// One RGB32 line from luma and the full-resolution chroma terms: lum = (0x95 * max(0, Y - 16)) >> 6,
-// then (lum + term + 1) >> 1 clamped to 0..255; alpha 0x80; SETTH.
-void CscRowImpl(const std::uint8_t* y, const std::int16_t* rcUp, const std::int16_t* gcUp, const std::int16_t* bcUp,
-                int width, std::uint8_t* rgba, int th0, int th1) {
   const hn::ScalableTag<std::int16_t> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const hn::Half<decltype(d)> dh;
+  const hn::Rebind<std::uint8_t, decltype(dh)> dh8;
+  const hn::Repartition<std::int32_t, decltype(d)> d32;
   const int N = static_cast<int>(hn::Lanes(d));
+  const auto kRcr = hn::Set(dh, 0xCC << 6), kGcr = hn::Set(dh, -0x68 << 6);
+  const auto kGcb = hn::Set(dh, -0x32 << 6), kBcb = hn::Set(dh, 0x102 << 6);
+  const auto c128 = hn::Set(dh, 128);
+  const auto lowHalf = hn::Set(d32, 0xFFFF);
+  // (t0, t1, ...) -> (t0, t0, t1, t1, ...): each term widened to 32 bits holds itself twice.
+  auto doubled = [&](hn::Vec<decltype(dh)> t) {
+    const auto w = hn::PromoteTo(d32, t);
+    return hn::BitCast(d, hn::Or(hn::And(w, lowHalf), hn::ShiftLeft<16>(w)));
+  };
   const auto kY = hn::Set(d, 0x95 << 6);
   const auto one = hn::Set(d, 1);
   const auto vTh0 = hn::Set(d, static_cast<std::int16_t>(th0)), vTh1 = hn::Set(d, static_cast<std::int16_t>(th1));
   const auto a80 = hn::Set(d, 0x80), a40 = hn::Set(d, 0x40);
-  int x = 0;
   for (; x + N <= width; x += N) {
-    const auto yy = hn::PromoteTo(d, hn::SaturatedSub(hn::LoadU(d8, y + x), hn::Set(d8, 16)));
-    const auto lum = hn::Add(hn::MulHigh(hn::ShiftLeft<4>(yy), kY), one);
-    const auto r = hn::ShiftRight<1>(hn::Add(lum, hn::LoadU(d, rcUp + x)));
-    const auto g = hn::ShiftRight<1>(hn::Add(lum, hn::LoadU(d, gcUp + x)));
-    const auto b = hn::ShiftRight<1>(hn::Add(lum, hn::LoadU(d, bcUp + x)));
-    if (th0 <= 0 && th1 <= 0) {
-      // No SETTH thresholds: alpha is 0x80 everywhere and the saturating narrow does the clamp.
-      hn::StoreInterleaved4(hn::DemoteTo(d8, r), hn::DemoteTo(d8, g), hn::DemoteTo(d8, b), hn::Set(d8, 0x80), d8,
-                            rgba + 4 * x);
-      continue;
+    const auto vb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(dh, hn::LoadU(dh8, cb + x / 2)), c128));
+    const auto vr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(dh, hn::LoadU(dh8, cr + x / 2)), c128));
+    const auto rTerm = doubled(hn::MulHigh(vr, kRcr));
+    const auto gTerm = doubled(hn::Add(hn::MulHigh(vr, kGcr), hn::MulHigh(vb, kGcb)));
+    const auto bTerm = doubled(hn::MulHigh(vb, kBcb));
+    for (int row = 0; row < rows; ++row) {
+      const std::uint8_t* yl = y + row * yStride;
+      std::uint8_t* out = rgba + row * rgbaStride + 4 * x;
+      const auto yy = hn::PromoteTo(d, hn::SaturatedSub(hn::LoadU(d8, yl + x), hn::Set(d8, 16)));
+      const auto lum = hn::Add(hn::MulHigh(hn::ShiftLeft<4>(yy), kY), one);
+      const auto r = hn::ShiftRight<1>(hn::Add(lum, rTerm));
+      const auto g = hn::ShiftRight<1>(hn::Add(lum, gTerm));
+      const auto b = hn::ShiftRight<1>(hn::Add(lum, bTerm));
+      if (th0 <= 0 && th1 <= 0) {
+        // No SETTH thresholds: alpha is 0x80 everywhere and the saturating narrow does the clamp.
+        hn::StoreInterleaved4(hn::DemoteTo(d8, r), hn::DemoteTo(d8, g), hn::DemoteTo(d8, b), hn::Set(d8, 0x80), d8,
+                              out);
+        continue;
+      }
+      const auto zero = hn::Zero(d), k255 = hn::Set(d, 255);
+      const auto rc = hn::Min(hn::Max(r, zero), k255), gc = hn::Min(hn::Max(g, zero), k255);
+      const auto bc = hn::Min(hn::Max(b, zero), k255);
+      // SETTH on the clamped values: all below TH0 -> 0; else all below TH1 -> alpha 0x40.
+      const auto m = hn::Max(hn::Max(rc, gc), bc);
+      const auto cleared = m < vTh0;
+      const auto alpha = hn::IfThenZeroElse(cleared, hn::IfThenElse(m < vTh1, a40, a80));
+      hn::StoreInterleaved4(hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, rc)),
+                            hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, gc)),
+                            hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, bc)), hn::DemoteTo(d8, alpha), d8, out);
     }
-    const auto zero = hn::Zero(d), k255 = hn::Set(d, 255);
-    const auto rc = hn::Min(hn::Max(r, zero), k255), gc = hn::Min(hn::Max(g, zero), k255);
-    const auto bc = hn::Min(hn::Max(b, zero), k255);
-    // SETTH on the clamped values: all below TH0 -> 0; else all below TH1 -> alpha 0x40.
-    const auto m = hn::Max(hn::Max(rc, gc), bc);
-    const auto cleared = m < vTh0;
-    const auto alpha = hn::IfThenZeroElse(cleared, hn::IfThenElse(m < vTh1, a40, a80));
-    hn::StoreInterleaved4(hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, rc)),
-                          hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, gc)),
-                          hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, bc)), hn::DemoteTo(d8, alpha), d8, rgba + 4 * x);
   }
+#endif
   for (; x < width; ++x) {
-    const int lum = ((0x95 * (y[x] > 16 ? y[x] - 16 : 0)) >> 6) + 1;
-    auto clamp = [](int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); };
-    const int r = clamp((lum + rcUp[x]) >> 1), g = clamp((lum + gcUp[x]) >> 1), b = clamp((lum + bcUp[x]) >> 1);
-    const int m = r > g ? (r > b ? r : b) : (g > b ? g : b);
-    std::uint8_t* o = rgba + 4 * x;
-    if (m < th0) {
-      o[0] = o[1] = o[2] = o[3] = 0;
-    } else {
-      o[0] = static_cast<std::uint8_t>(r);
-      o[1] = static_cast<std::uint8_t>(g);
-      o[2] = static_cast<std::uint8_t>(b);
-      o[3] = static_cast<std::uint8_t>(m < th1 ? 0x40 : 0x80);
+    const int cbv = cb[x >> 1] - 128, crv = cr[x >> 1] - 128;
+    const int rTerm = (0xCC * crv) >> 6, gTerm = ((-0x68 * crv) >> 6) + ((-0x32 * cbv) >> 6),
+              bTerm = (0x102 * cbv) >> 6;
+    for (int row = 0; row < rows; ++row) {
+      const std::uint8_t yv = y[row * yStride + x];
+      const int lum = ((0x95 * (yv > 16 ? yv - 16 : 0)) >> 6) + 1;
+      auto clamp = [](int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); };
+      const int r = clamp((lum + rTerm) >> 1), g = clamp((lum + gTerm) >> 1), b = clamp((lum + bTerm) >> 1);
+      const int m = r > g ? (r > b ? r : b) : (g > b ? g : b);
+      std::uint8_t* o = rgba + row * rgbaStride + 4 * x;
+      if (m < th0) {
+        o[0] = o[1] = o[2] = o[3] = 0;
+      } else {
+        o[0] = static_cast<std::uint8_t>(r);
+        o[1] = static_cast<std::uint8_t>(g);
+        o[2] = static_cast<std::uint8_t>(b);
+        o[3] = static_cast<std::uint8_t>(m < th1 ? 0x40 : 0x80);
+      }
     }
   }
 }
@@ -266,9 +258,7 @@ HWY_AFTER_NAMESPACE();
 namespace vbim::ipu {
 
 HWY_EXPORT(IdctImpl);
-HWY_EXPORT(CscRowImpl);
-HWY_EXPORT(ChromaTermsImpl);
-HWY_EXPORT(UpsampleTermsImpl);
+HWY_EXPORT(CscRowsImpl);
 
 void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   HWY_DYNAMIC_DISPATCH(IdctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
@@ -276,23 +266,7 @@ void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
 
 void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                        int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
-  // The chroma terms once per chroma line, at half resolution, then doubled for the two luma lines.
-  thread_local std::vector<std::int16_t> buf;
-  const int half = (width + 1) / 2;
-  const std::size_t need = static_cast<std::size_t>(3 * half + 3 * 2 * half);
-  if (buf.size() < need) buf.resize(need);
-  std::int16_t* rc = buf.data();
-  std::int16_t* gc = rc + half;
-  std::int16_t* bc = gc + half;
-  std::int16_t* rcUp = bc + half;
-  std::int16_t* gcUp = rcUp + 2 * half;
-  std::int16_t* bcUp = gcUp + 2 * half;
-  HWY_DYNAMIC_DISPATCH(ChromaTermsImpl)(cb, cr, half, rc, gc, bc);
-  HWY_DYNAMIC_DISPATCH(UpsampleTermsImpl)(rc, half, rcUp);
-  HWY_DYNAMIC_DISPATCH(UpsampleTermsImpl)(gc, half, gcUp);
-  HWY_DYNAMIC_DISPATCH(UpsampleTermsImpl)(bc, half, bcUp);
-  for (int r = 0; r < rows; ++r)
-    HWY_DYNAMIC_DISPATCH(CscRowImpl)(y + r * yStride, rcUp, gcUp, bcUp, width, rgba + r * rgbaStride, th.th0, th.th1);
+  HWY_DYNAMIC_DISPATCH(CscRowsImpl)(y, yStride, rows, cb, cr, width, rgba, rgbaStride, th.th0, th.th1);
 }
 
 const Kernels& simdKernels() {
