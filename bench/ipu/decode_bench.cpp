@@ -1,9 +1,9 @@
 // Single-thread decode of 512x512 intra MPEG-2 to RGBA: our IPU decoder against libavcodec
 // (threads = 1, swscale to RGBA) and libmpeg2 (its SIMD decoder and its RGB32 converter), on the
 // same bytes, for smooth lightmap-like content (content 4) and a busy test card (content 5) at
-// two quantisers. Counters: frames/s and
-// the ratio of the others' time per frame to ours (> 1: we are faster). Also slice-parallel
-// decode on 2 workers against 1.
+// two quantisers. Counters: frames/s (best round) and the ratio of the others' time per frame to
+// ours (> 1: we are faster; median of per-round ratios). Also slice-parallel decode on 2 workers
+// against 1 (wall clock and a two-core CPU-time model, see BM_SliceParallel).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
