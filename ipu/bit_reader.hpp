@@ -21,6 +21,26 @@ class BitReader {
     count_ -= n;
     if (count_ < 32) refill();
   }
+  // For the serial loop of AC codes: topUp() leaves at least 56 valid bits (the cache is refilled
+  // whole, no data-dependent branch), then skipUnchecked() consumes codes without looking at the
+  // count, as long as the caller keeps to that budget. peek(n) needs n <= the bits left.
+  void topUp() {
+    if (end_ - p_ >= 8) [[likely]] {
+      std::uint64_t v;
+      std::memcpy(&v, p_, 8);
+      v = __builtin_bswap64(v);
+      cache_ |= v >> count_;  // bits already in the cache are the same bits (OR is idempotent)
+      const int bytes = (63 - count_) >> 3;
+      p_ += bytes;
+      count_ += bytes * 8;
+    } else {
+      refill();
+    }
+  }
+  void skipUnchecked(int n) {
+    cache_ <<= n;
+    count_ -= n;
+  }
   std::uint32_t read(int n) {
     const std::uint32_t v = peek(n);
     skip(n);
@@ -33,6 +53,8 @@ class BitReader {
     return static_cast<std::int32_t>(v << (32 - n)) >> (32 - n);
   }
 
+  // Valid bits in the cache (peek(n) needs n of them).
+  int bitsCached() const { return count_; }
   // Bits consumed since the start of the range.
   std::size_t position() const { return (static_cast<std::size_t>(p_ - begin_) + pad_) * 8 - count_; }
   std::size_t sizeBits() const { return static_cast<std::size_t>(end_ - begin_) * 8; }
@@ -43,9 +65,10 @@ class BitReader {
   std::size_t bytePosition() const { return position() / 8; }
 
  private:
-  // Keeps at least 32 (normally 57..64) valid bits in the cache, zero bits past the end.
+  // Keeps at least 32 (normally 57..64; at least 56 when called with fewer than 56) valid bits in
+  // the cache, zero bits past the end.
   void refill() {
-    if (end_ - p_ >= 8) {
+    if (end_ - p_ >= 8) [[likely]] {
       std::uint64_t v;
       std::memcpy(&v, p_, 8);
       v = __builtin_bswap64(v);
@@ -55,16 +78,35 @@ class BitReader {
       count_ += bytes * 8;
       return;
     }
-    while (count_ <= 56) {
+    const Tail t = refillTail(cache_, count_, p_, end_);
+    cache_ = t.cache;
+    count_ = t.count;
+    p_ = t.p;
+    pad_ += t.pad;
+  }
+
+  // The last few bytes, one at a time. State in and out by value, so a decoder that copies its
+  // reader into a local keeps it in registers (the address of the copy never escapes).
+  struct Tail {
+    std::uint64_t cache;
+    int count;
+    const std::uint8_t* p;
+    std::size_t pad;
+  };
+  [[gnu::noinline]] static Tail refillTail(std::uint64_t cache, int count, const std::uint8_t* p,
+                                           const std::uint8_t* end) {
+    std::size_t pad = 0;
+    while (count <= 56) {
       std::uint64_t b = 0;
-      if (p_ < end_) {
-        b = *p_++;
+      if (p < end) {
+        b = *p++;
       } else {
-        ++pad_;
+        ++pad;
       }
-      cache_ |= b << (56 - count_);
-      count_ += 8;
+      cache |= b << (56 - count);
+      count += 8;
     }
+    return Tail{cache, count, p, pad};
   }
 
   const std::uint8_t* begin_ = nullptr;

@@ -1,6 +1,7 @@
 #include "ipu/picture_decoder.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <cstring>
 
@@ -9,16 +10,29 @@
 namespace vbim::ipu {
 namespace {
 
-// Position of the next start code prefix 00 00 01 at or after `from`, or n.
+// Position of the next start code prefix 00 00 01 at or after `from`, or n. Coded data holds
+// many 0x01 bytes but few pairs of zero bytes, so 14 bytes at a time are tested for a zero pair
+// (a SWAR test: no branch per byte, no library call per 0x01 byte) and only a pair is looked at.
 std::size_t findStartCode(const std::uint8_t* d, std::size_t n, std::size_t from) {
+  constexpr std::uint64_t k7F = 0x7F7F7F7F7F7F7F7Full;
+  // A zero byte whose successor in memory is zero too, among bytes 0..6 of the word at p.
+  auto zeroPairs = [](const std::uint8_t* p) {
+    std::uint64_t v;
+    std::memcpy(&v, p, 8);
+    const std::uint64_t zero = ~(((v & k7F) + k7F) | v | k7F);  // 0x80 in each zero byte
+    return std::endian::native == std::endian::little ? zero & (zero >> 8) : zero & (zero << 8);
+  };
   std::size_t i = from;
-  while (i + 2 < n) {
-    const void* hit = std::memchr(d + i + 2, 0x01, n - i - 2);
-    if (!hit) return n;
-    const std::size_t one = static_cast<std::size_t>(static_cast<const std::uint8_t*>(hit) - d);
-    if (d[one - 1] == 0 && d[one - 2] == 0) return one - 2;
-    i = one - 1;
+  // Words at i and i + 7: pairs starting at i .. i + 13, and the byte after each (up to i + 15).
+  while (i + 16 <= n) {
+    if ((zeroPairs(d + i) | zeroPairs(d + i + 7)) != 0) {
+      for (std::size_t k = 0; k < 14; ++k)
+        if (d[i + k] == 0 && d[i + k + 1] == 0 && d[i + k + 2] == 1) return i + k;
+    }
+    i += 14;
   }
+  for (; i + 2 < n; ++i)
+    if (d[i] == 0 && d[i + 1] == 0 && d[i + 2] == 1) return i;
   return n;
 }
 
@@ -105,7 +119,9 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
     p.cStride = store_.chromaStride;
   }
   report.macroblocks += p.mbWidth * p.mbRows;
-  decoded_.assign(static_cast<std::size_t>(p.mbWidth) * p.mbRows, 0);
+  // One row of flags per cache line multiple, so jobs on neighbouring rows never share a line.
+  decodedStride_ = (p.mbWidth + 63) / 64 * 64;
+  decoded_.assign(static_cast<std::size_t>(decodedStride_) * p.mbRows, 0);
   pictureValid_ = true;
 }
 
@@ -117,62 +133,79 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   }
   pictureValid_ = false;
   const std::uint8_t* d = bytes.data();
-  // Several row ranges per thread, so a worker that wakes late still finds work (the caller runs
-  // ranges too); ranges are contiguous and disjoint, so the bytes never depend on who ran what.
-  const std::size_t jobs =
-      pool && pool->threads() > 0 ? std::min<std::size_t>(slices_.size(), 4 * (pool->threads() + std::size_t{1})) : 1;
-  if (jobs > 1 && !params_.mpeg1 && !params_.tallPicture && slices_.size() > 1) {
-    // MPEG-2 slices never leave their row, so contiguous row ranges are disjoint in the frame.
-    std::vector<PictureReport> reports(jobs);
-    std::vector<std::vector<MacroblockBits>> traces(jobs);
-    // Contiguous row ranges with about the same number of bytes each (busy rows cost more).
-    const int rows = params_.mbRows;
-    std::vector<std::size_t> rowBytes(static_cast<std::size_t>(rows) + 1, 0);
-    std::size_t total = 0;
-    for (const Slice& s : slices_) {
-      rowBytes[static_cast<std::size_t>(std::min(s.row, rows))] += s.end - s.begin;
-      total += s.end - s.begin;
+  const bool parallel = pool && pool->threads() > 0 && !params_.mpeg1 && !params_.tallPicture && slices_.size() > 1;
+  if (parallel) {
+    // MPEG-2 slices never leave their row, so jobs of whole rows write disjoint parts of the frame
+    // and of decoded_ (rows padded to a cache line); reports and traces are merged in job order,
+    // so the result never depends on which thread ran which job. Slices in row order (stable: a
+    // later slice of the same row still overwrites an earlier one, as in the serial decode).
+    std::stable_sort(slices_.begin(), slices_.end(), [](const Slice& a, const Slice& b) { return a.row < b.row; });
+    // Guided job sizes by bytes (busy rows cost more): each job takes 1 / (2 * participants) of
+    // what is left, at least one row, so the first jobs are large (few hand-overs) and the last
+    // ones single rows (a thread that finishes early, or a worker that wakes late, still finds
+    // small work and both end together).
+    const std::size_t participants = pool->threads() + std::size_t{1};
+    std::size_t remaining = 0;
+    for (const Slice& sl : slices_) remaining += sl.end - sl.begin;
+    jobStarts_.clear();
+    std::size_t i = 0;
+    while (i < slices_.size()) {
+      jobStarts_.push_back(i);
+      const std::size_t target = std::max<std::size_t>(1, remaining / (2 * participants));
+      std::size_t taken = 0;
+      while (i < slices_.size() && taken < target) {
+        const int row = slices_[i].row;
+        while (i < slices_.size() && slices_[i].row == row) {  // whole rows only
+          taken += slices_[i].end - slices_[i].begin;
+          ++i;
+        }
+      }
+      remaining -= taken;
     }
-    std::vector<int> firstRow(jobs + 1, rows + 1);
-    firstRow[0] = 0;
-    std::size_t acc = 0;
-    std::size_t j = 1;
-    for (int r = 0; r < rows && j < jobs; ++r) {
-      acc += rowBytes[static_cast<std::size_t>(r)];
-      if (acc * jobs >= total * j) firstRow[j++] = r + 1;
+    jobStarts_.push_back(slices_.size());
+    const std::size_t jobs = jobStarts_.size() - 1;
+    if (jobResults_.size() < jobs) jobResults_.resize(jobs);
+    for (std::size_t k = 0; k < jobs; ++k) {
+      jobResults_[k].report = PictureReport{};
+      jobResults_[k].trace.clear();
     }
     pool->run(jobs, [&](std::size_t k) {
-      const int lo = firstRow[k];
-      const int hi = k + 1 == jobs ? INT32_MAX : firstRow[k + 1];
-      SliceOutput out{&reports[k], &decoded_, options_.recordMacroblocks ? &traces[k] : nullptr};
-      for (const Slice& s : slices_) {
-        if (s.row >= lo && s.row < hi) decodeSlice(params_, s.code, d + s.begin, d + s.end, s.begin, out);
+      JobResult& r = jobResults_[k];
+      SliceOutput out{&r.report, &decoded_, decodedStride_, options_.recordMacroblocks ? &r.trace : nullptr};
+      for (std::size_t j = jobStarts_[k]; j < jobStarts_[k + 1]; ++j) {
+        const Slice& sl = slices_[j];
+        decodeSlice(params_, sl.code, d + sl.begin, d + sl.end, sl.begin, out);
       }
     });
-    for (std::size_t j = 0; j < jobs; ++j) {
-      report.issueCount += reports[j].issueCount;
-      report.fieldDctMacroblocks += reports[j].fieldDctMacroblocks;
-      for (const DecodeIssue& i : reports[j].issues)
-        if (report.issues.size() < PictureReport::kMaxIssues) report.issues.push_back(i);
-      trace_.insert(trace_.end(), traces[j].begin(), traces[j].end());
+    for (std::size_t k = 0; k < jobs; ++k) {
+      const JobResult& r = jobResults_[k];
+      report.issueCount += r.report.issueCount;
+      report.fieldDctMacroblocks += r.report.fieldDctMacroblocks;
+      for (const DecodeIssue& issue : r.report.issues)
+        if (report.issues.size() < PictureReport::kMaxIssues) report.issues.push_back(issue);
+      trace_.insert(trace_.end(), r.trace.begin(), r.trace.end());
     }
   } else {
-    SliceOutput out{&report, &decoded_, options_.recordMacroblocks ? &trace_ : nullptr};
-    for (const Slice& s : slices_) decodeSlice(params_, s.code, d + s.begin, d + s.end, s.begin, out);
+    SliceOutput out{&report, &decoded_, decodedStride_, options_.recordMacroblocks ? &trace_ : nullptr};
+    for (const Slice& sl : slices_) decodeSlice(params_, sl.code, d + sl.begin, d + sl.end, sl.begin, out);
   }
   const std::size_t lastEnd = slices_.empty() ? 0 : slices_.back().end;
   slices_.clear();
   int done = 0;
   int firstMissing = -1;
-  for (std::size_t i = 0; i < decoded_.size(); ++i) {
-    if (decoded_[i]) {
-      ++done;
-    } else if (firstMissing < 0) {
-      firstMissing = static_cast<int>(i);
+  const int mbCount = params_.mbWidth * params_.mbRows;
+  for (int y = 0; y < params_.mbRows; ++y) {
+    const std::uint8_t* flags = decoded_.data() + static_cast<std::size_t>(y) * decodedStride_;
+    for (int x = 0; x < params_.mbWidth; ++x) {
+      if (flags[x]) {
+        ++done;
+      } else if (firstMissing < 0) {
+        firstMissing = y * params_.mbWidth + x;
+      }
     }
   }
   report.macroblocksDecoded += done;
-  const int missing = static_cast<int>(decoded_.size()) - done;
+  const int missing = mbCount - done;
   report.macroblocksConcealed += missing;
   if (missing > 0) {
     report.add(IssueKind::kMissingMacroblocks, lastEnd, firstMissing % params_.mbWidth, firstMissing / params_.mbWidth);

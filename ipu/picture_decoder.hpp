@@ -83,7 +83,16 @@ class Decoder {
   PictureParams params_;
   FrameStore store_;
   std::vector<Slice> slices_;
-  std::vector<std::uint8_t> decoded_;
+  std::vector<std::uint8_t> decoded_;  // per macroblock (row stride decodedStride_): 1 once decoded
+  int decodedStride_ = 0;
+  // Slice-parallel decode: first slice of each job (plus the end), and each job's own results on
+  // its own cache lines.
+  struct alignas(64) JobResult {
+    PictureReport report;
+    std::vector<MacroblockBits> trace;
+  };
+  std::vector<std::size_t> jobStarts_;
+  std::vector<JobResult> jobResults_;
   std::vector<MacroblockBits> trace_;
 };
 

@@ -39,7 +39,10 @@ class SliceDecoder {
   }
   bool readAddressIncrement(int& inc);
   bool skipConcealmentVectors();
-  Status parseBlock(int b, IssueKind& why);
+  template <bool Mpeg1>
+  Status parseBlocks(IssueKind& why);
+  template <bool Mpeg1>
+  Status parseBlock(BitReader& br, int b, IssueKind& why);
   void reconstruct(int mbX, int mbY, bool fieldDct);
   void storeBlock(int b, std::uint8_t* dst, int stride);
 
@@ -49,11 +52,14 @@ class SliceDecoder {
   std::size_t offset_;
   const SliceOutput& out_;
   int dcPred_[3] = {128, 128, 128};
-  // Per scan position: the raster index, intra matrix x quantiser_scale at it, and its row bit
-  // (bits 0-7) and column bit (bits 8-15); looked up together once the run is known.
-  std::int32_t wq_[64];
-  std::uint8_t pos_[64];
-  std::uint16_t mask_[64];
+  // Per scan position: intra matrix x quantiser_scale at it, its row bit (bits 0-7) and column bit
+  // (bits 8-15), and its raster index; one lookup once the run is known.
+  struct ScanSlot {
+    std::int32_t wq;
+    std::uint16_t mask;
+    std::uint8_t pos;
+  };
+  ScanSlot scan_[64];
   MacroblockCoefficients mb_;
 };
 
@@ -66,9 +72,9 @@ void SliceDecoder::setQuantiserScale(int code) {
   }
   for (int i = 0; i < 64; ++i) {
     const int pos = pp_.scan[i];
-    pos_[i] = static_cast<std::uint8_t>(pos);
-    wq_[i] = pp_.intraMatrix[pos] * scale;
-    mask_[i] = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
+    scan_[i].pos = static_cast<std::uint8_t>(pos);
+    scan_[i].wq = pp_.intraMatrix[pos] * scale;
+    scan_[i].mask = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
   }
 }
 
@@ -103,101 +109,137 @@ bool SliceDecoder::skipConcealmentVectors() {
   return !br_.overrun();
 }
 
-SliceDecoder::Status SliceDecoder::parseBlock(int b, IssueKind& why) {
+template <bool Mpeg1>
+SliceDecoder::Status SliceDecoder::parseBlocks(IssueKind& why) {
+  // The reader lives in registers for the six blocks (a member would be stored and reloaded after
+  // every coefficient, which puts a store-to-load round trip on the serial chain of codes).
+  BitReader br = br_;
+  Status status = Status::kOk;
+  for (int b = 0; b < 6 && status == Status::kOk; ++b) status = parseBlock<Mpeg1>(br, b, why);
+  br_ = br;
+  return status;
+}
+
+template <bool Mpeg1>
+[[gnu::always_inline]] inline SliceDecoder::Status SliceDecoder::parseBlock(BitReader& br, int b, IssueKind& why) {
   std::int16_t* blk = mb_.block[b];
   const int cc = b < 4 ? 0 : b - 3;
   // DC coefficient (§7.2.1): size VLC, differential, prediction.
-  VlcEntry e = cc == 0 ? t_.dcSizeLuma[br_.peek(9)] : t_.dcSizeChroma[br_.peek(10)];
+  VlcEntry e = cc == 0 ? t_.dcSizeLuma[br.peek(9)] : t_.dcSizeChroma[br.peek(10)];
   if (e.len == 0) {
     why = IssueKind::kBadVlc;
     return Status::kError;
   }
-  br_.skip(e.len);
+  br.skip(e.len);
   const int size = e.value;
   if (size != 0) {
-    const int bits = static_cast<int>(br_.read(size));
+    const int bits = static_cast<int>(br.read(size));
     dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
   }
-  int dc = pp_.mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] << (3 - pp_.intraDcPrecision);
+  int dc = Mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] << (3 - pp_.intraDcPrecision);
   dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);
   blk[0] = static_cast<std::int16_t>(dc);
   unsigned parity = static_cast<unsigned>(dc);
   unsigned masks = 0;
 
   // AC coefficients (§7.2.2, §7.3, §7.4.2-7.4.3).
-  const DctEntry* first = t_.dct[pp_.intraVlcFormat ? 1 : 0];
-  const auto& sub = t_.dctSub[pp_.intraVlcFormat ? 1 : 0];
+  const DctCodeEntry* shortCodes = t_.dctShort[pp_.intraVlcFormat ? 1 : 0];
+  const DctCodeEntry* longCodes = t_.dctLong;
   // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
   // ends within 16 bits; the caller checks for overrun once per macroblock.
-  const bool mpeg1 = pp_.mpeg1;
   int i = 0;
-  for (;;) {
-    const std::uint32_t bits = br_.peek(24);
-    constexpr int kFirst = VlcTables::kDctFirstBits;
-    DctEntry d = first[bits >> (24 - kFirst)];
-    if (d.level == kDctSub) [[unlikely]] {
-      d = sub[d.run][(bits >> (24 - kFirst - d.len)) & ((1u << d.len) - 1)];
+  // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
+  auto place = [&](int mag, int negative) {
+    if (i > 63) [[unlikely]]
+      return false;
+    const ScanSlot& slot = scan_[i];
+    int v;
+    if (Mpeg1) {
+      // 11172-2 §2.4.4.1: (2 * level * quantizer_scale * W) / 16, then towards an odd value.
+      v = (mag * slot.wq) >> 3;
+      if ((v & 1) == 0 && v != 0) v -= 1;
+    } else {
+      // 13818-2 §7.4.2.3: (2 * QF * W * quantiser_scale) / 32, truncating towards zero.
+      v = (mag * slot.wq) >> 4;
     }
-    int run;
-    int mag;
-    bool negative;
-    if (d.level > 0) {
-      // Code and sign bit together (len <= 16, so the sign is within the 24 bits peeked).
-      run = d.run;
-      mag = d.level;
-      negative = (bits >> (23 - d.len)) & 1;
-      br_.skip(d.len + 1);
-    } else if (d.level == kDctEob) {
-      br_.skip(d.len);
+    // §7.4.3 saturation to [-2048, 2047], applied to the magnitude before the sign.
+    const int signMask = -negative;
+    const int limit = 2047 - signMask;
+    v = v > limit ? limit : v;
+    v = (v ^ signMask) - signMask;
+    blk[slot.pos] = static_cast<std::int16_t>(v);
+    parity ^= static_cast<unsigned>(v);
+    masks |= slot.mask;
+    return true;
+  };
+  for (;;) {
+    br.topUp();  // at least 56 bits
+    // Up to four short codes (code and sign at most 11 bits each) need no look at the bit count.
+    DctCodeEntry s;
+    int k = 0;
+    for (; k < 4; ++k) {
+      s = shortCodes[br.peek(VlcTables::kDctShortBits)];
+      if (s.level == 0) [[unlikely]]
+        break;
+      br.skipUnchecked(s.bits);
+      i += s.step;
+      if (!place(s.level, s.negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return Status::kError;
+      }
+    }
+    if (k == 4) continue;
+    // Any other symbol; at least 56 - 3 * 11 = 23 bits are left.
+    if (s.step == kDctKindLong) {
+      // 12..16 bits and the sign: seven zeros, so the next 17 bits are the index.
+      s = longCodes[br.peek(VlcTables::kDctLongBits)];
+      if (s.level == 0) {
+        why = IssueKind::kBadVlc;
+        return Status::kError;
+      }
+      br.skipUnchecked(s.bits);
+      i += s.step;
+      if (!place(s.level, s.negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return Status::kError;
+      }
+    } else if (s.step == kDctKindEob) {
+      br.skipUnchecked(s.bits);
       break;
-    } else if (d.level == kDctEscape) {
-      br_.skip(6);
-      run = static_cast<int>(br_.read(6));
+    } else if (s.step == kDctKindEscape) {
+      // Escape: 6-bit run, then a 12-bit signed level (MPEG-1: 8 or 16 bits, 11172-2 §2.4.3.7).
+      // skip() and read() refill as they go.
+      br.skip(6);
+      const int run = static_cast<int>(br.read(6));
       int level;
-      if (mpeg1) {
-        level = br_.readSigned(8);
+      if (Mpeg1) {
+        level = br.readSigned(8);
         if (level == 0) {
-          level = static_cast<int>(br_.read(8));
+          level = static_cast<int>(br.read(8));
         } else if (level == -128) {
-          level = static_cast<int>(br_.read(8)) - 256;
+          level = static_cast<int>(br.read(8)) - 256;
         }
       } else {
-        level = br_.readSigned(12);
+        level = br.readSigned(12);
       }
-      negative = level < 0;
-      mag = negative ? -level : level;
+      const int negative = level < 0;
+      i += run + 1;
+      if (!place(negative ? -level : level, negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return Status::kError;
+      }
     } else {
       why = IssueKind::kBadVlc;
       return Status::kError;
     }
-    i += run + 1;
-    if (i > 63) {
-      why = IssueKind::kCoefficientOverrun;
-      return Status::kError;
-    }
-    const int pos = pos_[i];
-    int v;
-    if (mpeg1) {
-      // 11172-2 §2.4.4.1: (2 * level * quantizer_scale * W) / 16, then towards an odd value.
-      v = (mag * wq_[i]) >> 3;
-      if ((v & 1) == 0 && v != 0) v -= 1;
-    } else {
-      // 13818-2 §7.4.2.3: (2 * QF * W * quantiser_scale) / 32, truncating towards zero.
-      v = (mag * wq_[i]) >> 4;
-    }
-    // §7.4.3 saturation to [-2048, 2047], applied to the magnitude before the sign.
-    const int limit = negative ? 2048 : 2047;
-    v = v > limit ? limit : v;
-    v = negative ? -v : v;
-    blk[pos] = static_cast<std::int16_t>(v);
-    parity ^= static_cast<unsigned>(v);
-    masks |= mask_[i];
   }
+  // The callers' reads refill when the count is low; restore that invariant.
+  if (br.bitsCached() < 32) br.topUp();
   unsigned rowMask = 1u | (masks & 0xFF);
   unsigned colMask = 1u | (masks >> 8);
   const bool ac = masks != 0;
   // §7.4.4 mismatch control: if the sum of all coefficients is even, toggle the LSB of F[7][7].
-  if (!pp_.mpeg1 && (parity & 1) == 0) {
+  if (!Mpeg1 && (parity & 1) == 0) {
     blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
     if (((rowMask | colMask) & 0x80) == 0) {
       rowMask |= kIdctToggleOnly;  // F[7][7] = +-1 alone in its row and column
@@ -313,22 +355,21 @@ void SliceDecoder::run(int code) {
       issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, mbX, mbY);
       return;
     }
-    for (int b = 0; b < 6; ++b) {
-      IssueKind why = IssueKind::kBadVlc;
-      if (parseBlock(b, why) == Status::kError) {
-        if (br_.overrun()) why = IssueKind::kTruncatedSlice;
-        issue(why, mbX, mbY);
-        // Coefficients already parsed are dropped; the macroblock keeps its previous value.
-        std::memset(&mb_, 0, sizeof(mb_));
-        return;
-      }
+    IssueKind why = IssueKind::kBadVlc;
+    if ((pp_.mpeg1 ? parseBlocks<true>(why) : parseBlocks<false>(why)) == Status::kError) {
+      if (br_.overrun()) why = IssueKind::kTruncatedSlice;
+      issue(why, mbX, mbY);
+      // Coefficients already parsed are dropped; the macroblock keeps its previous value.
+      std::memset(&mb_, 0, sizeof(mb_));
+      return;
     }
     if (br_.overrun()) {
       issue(IssueKind::kTruncatedSlice, mbX, mbY);
       return;
     }
     reconstruct(mbX, mbY, fieldDct);
-    (*out_.decoded)[static_cast<std::size_t>(address)] = 1;
+    (*out_.decoded)[static_cast<std::size_t>(mbY) * static_cast<std::size_t>(out_.decodedStride) +
+                    static_cast<std::size_t>(mbX)] = 1;
     const std::size_t pos = br_.position();
     if (out_.trace) {
       out_.trace->push_back(MacroblockBits{static_cast<std::uint32_t>(address),

@@ -50,6 +50,7 @@ struct MacroblockBits {
 struct SliceOutput {
   PictureReport* report = nullptr;
   std::vector<std::uint8_t>* decoded = nullptr;  // per picture macroblock: 1 once decoded
+  int decodedStride = 0;                         // flags per macroblock row in `decoded`
   std::vector<MacroblockBits>* trace = nullptr;  // optional
 };
 

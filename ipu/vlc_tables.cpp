@@ -142,34 +142,40 @@ void fillMotion(VlcEntry (&table)[1 << 11]) {
   }
 }
 
-template <std::size_t M>
-void fillDct(DctEntry (&first)[1 << VlcTables::kDctFirstBits], DctEntry (&sub)[8][64], const Code (&codes)[M]) {
-  constexpr int kFirst = VlcTables::kDctFirstBits;
-  for (auto& e : first) e = DctEntry{0, 0, 0};
-  for (auto& t : sub)
-    for (auto& e : t) e = DctEntry{0, 0, 0};
-  // Codes longer than kFirst bits all begin with '0000 000' (first-level prefixes 0..7); each prefix
-  // gets a second-level table as wide as its longest code needs.
-  int subBits[8] = {};
-  for (const Code& c : codes)
-    if (c.len > kFirst) {
-      const int prefix = c.code >> (c.len - kFirst);
-      subBits[prefix] = subBits[prefix] > c.len - kFirst ? subBits[prefix] : c.len - kFirst;
-    }
-  for (int p = 0; p < 8; ++p)
-    if (subBits[p]) first[p] = DctEntry{static_cast<std::uint8_t>(p), static_cast<std::uint8_t>(subBits[p]), kDctSub};
+// Fills a direct table indexed by the next `bits` bits with the run/level codes of minLen..maxLen
+// bits, once per sign bit (index = code, sign, then don't-care bits).
+template <std::size_t N, std::size_t M>
+void fillDctCodes(DctCodeEntry (&table)[N], int bits, int minLen, int maxLen, const Code (&codes)[M]) {
   for (const Code& c : codes) {
-    const DctEntry e{static_cast<std::uint8_t>(c.a), c.len, c.b};
-    if (c.len <= kFirst) {
-      const int free = kFirst - c.len;
-      for (int i = 0; i < (1 << free); ++i) first[(c.code << free) + i] = e;
-    } else {
-      const int prefix = c.code >> (c.len - kFirst);
-      const int rest = c.len - kFirst;
-      const int low = c.code & ((1 << rest) - 1);
-      const int free = subBits[prefix] - rest;
-      for (int i = 0; i < (1 << free); ++i) sub[prefix][(low << free) + i] = e;
+    if (c.b <= 0 || c.len < minLen || c.len > maxLen) continue;
+    for (int s = 0; s < 2; ++s) {
+      const std::uint32_t code = (static_cast<std::uint32_t>(c.code) << 1) | static_cast<std::uint32_t>(s);
+      const int free = bits - (c.len + 1);
+      for (std::uint32_t i = 0; i < (1u << free); ++i) {
+        table[(code << free) + i] =
+            DctCodeEntry{static_cast<std::uint8_t>(c.len + 1), static_cast<std::uint8_t>(c.a + 1),
+                         static_cast<std::uint8_t>(c.b), static_cast<std::uint8_t>(s)};
+      }
     }
+  }
+}
+
+// The short table: run/level codes of up to kDctShortBits - 1 bits once per sign; EOB, escape
+// and the prefixes of the long codes marked by kind.
+template <std::size_t M>
+void fillDctShort(DctCodeEntry (&table)[1 << VlcTables::kDctShortBits], const Code (&codes)[M]) {
+  constexpr int kBits = VlcTables::kDctShortBits;
+  for (auto& e : table) e = DctCodeEntry{0, kDctKindInvalid, 0, 0};
+  fillDctCodes(table, kBits, 1, kBits - 1, codes);
+  for (const Code& c : codes) {
+    if (c.b != kDctEob && c.b != kDctEscape) continue;
+    const int free = kBits - c.len;
+    const std::uint8_t kind = c.b == kDctEob ? kDctKindEob : kDctKindEscape;
+    for (int i = 0; i < (1 << free); ++i) table[(c.code << free) + i] = DctCodeEntry{c.len, kind, 0, 0};
+  }
+  // Every code longer than kBits - 1 bits begins with seven zeros: indices below 2^(kBits - 7).
+  for (int i = 0; i < (1 << (kBits - 7)); ++i) {
+    if (table[i].bits == 0) table[i] = DctCodeEntry{0, kDctKindLong, 0, 0};
   }
 }
 
@@ -180,8 +186,11 @@ VlcTables build() {
   fillMotion(t.motionCode);
   fillDirect(t.dcSizeLuma, 9, kB12);
   fillDirect(t.dcSizeChroma, 10, kB13);
-  fillDct(t.dct[0], t.dctSub[0], kB14);
-  fillDct(t.dct[1], t.dctSub[1], kB15);
+  fillDctShort(t.dctShort[0], kB14);
+  fillDctShort(t.dctShort[1], kB15);
+  // The long codes are the same in both tables.
+  for (auto& e : t.dctLong) e = DctCodeEntry{0, kDctKindInvalid, 0, 0};
+  fillDctCodes(t.dctLong, VlcTables::kDctLongBits, VlcTables::kDctShortBits, 16, kB14);
   return t;
 }
 

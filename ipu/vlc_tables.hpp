@@ -12,15 +12,23 @@ struct VlcEntry {
   std::uint8_t len;
 };
 
-// DCT coefficient symbol (B.14 / B.15): run/level, or one of the specials. `len` excludes the sign.
-struct DctEntry {
-  std::uint8_t run;
-  std::uint8_t len;    // 0: invalid code
-  std::int16_t level;  // > 0 for run/level; kDctEob / kDctEscape / kDctSub for specials
-};
+// Meanings of the special DCT coefficient codes in the tables of B.14 / B.15 as data.
 inline constexpr std::int16_t kDctEob = -1;
 inline constexpr std::int16_t kDctEscape = -2;
-inline constexpr std::int16_t kDctSub = -3;  // first-level entry pointing at a second-level table
+
+// A run/level code of B.14 / B.15 together with its sign bit, for the hot AC loop: one load gives
+// everything needed to consume it and place the coefficient. level == 0 marks the other symbols
+// (`step` then holds their kind) in the short table.
+struct DctCodeEntry {
+  std::uint8_t bits;      // code + sign bits to consume (for kEob the code alone)
+  std::uint8_t step;      // run + 1: scan positions to advance; or the kind when level == 0
+  std::uint8_t level;     // magnitude 1..40; 0: not a run/level code of this table
+  std::uint8_t negative;  // 1 if the sign bit is set
+};
+inline constexpr std::uint8_t kDctKindInvalid = 0;
+inline constexpr std::uint8_t kDctKindEob = 1;
+inline constexpr std::uint8_t kDctKindEscape = 2;
+inline constexpr std::uint8_t kDctKindLong = 3;  // 12..16-bit code: look it up in dctLong
 
 // Special values of the macroblock address increment table (B.1).
 inline constexpr std::int8_t kMbaEscape = -1;    // '0000 0001 000': add 33
@@ -33,12 +41,15 @@ struct VlcTables {
   VlcEntry motionCode[1 << 11];          // B.10 including the sign bit, next 11 bits
   VlcEntry dcSizeLuma[1 << 9];           // B.12, next 9 bits
   VlcEntry dcSizeChroma[1 << 10];        // B.13, next 10 bits
-  // B.14 (table zero, intra AC) and B.15 (table one): first level on the next kDctFirstBits bits
-  // (every code up to 10 bits resolves there); entries with level == kDctSub point (run = index)
-  // at a second-level table read on the following `len` bits (codes of 12 to 16 bits).
-  static constexpr int kDctFirstBits = 10;
-  DctEntry dct[2][1 << kDctFirstBits];
-  DctEntry dctSub[2][8][64];
+  // B.14 (table zero, intra AC) and B.15 (table one), intra_vlc_format = 0 / 1.
+  // The run/level codes of up to kDctShortBits - 1 bits plus their sign, on the next kDctShortBits
+  // bits, and the kind of every other symbol (EOB, escape, long code, invalid).
+  static constexpr int kDctShortBits = 11;
+  DctCodeEntry dctShort[2][1 << kDctShortBits];
+  // The 12..16-bit codes (shared by both tables) plus their sign: they all begin with seven zero
+  // bits, so the next 17 bits, read as a number, are below 2^10 and index this table directly.
+  static constexpr int kDctLongBits = 17;
+  DctCodeEntry dctLong[1 << 10];
 };
 
 const VlcTables& vlcTables();

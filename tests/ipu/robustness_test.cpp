@@ -4,10 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+#include <utility>
 
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
+#include "ipu/spinning_slice_runner.hpp"
 #include "runtime/worker_pool.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 
@@ -151,6 +156,28 @@ TEST(IpuRobustness, RandomBitFlipsAreConcealedAndReported) {
   EXPECT_GT(withIssues, 100);
 }
 
+// Zero stuffing before start codes is allowed (ISO/IEC 13818-2 §5.3, next_start_code()); every
+// amount moves the start codes to every alignment of the decoder's word-wise start-code search.
+TEST(IpuRobustness, ZeroStuffingBeforeStartCodesChangesNothing) {
+  const auto es = stream(1);
+  Decoder clean;
+  ASSERT_TRUE(clean.decode(es).clean());
+  for (int stuffing = 1; stuffing <= 16; ++stuffing) {
+    std::vector<std::uint8_t> padded;
+    for (std::size_t i = 0; i < es.size(); ++i) {
+      if (i > 0 && i + 2 < es.size() && es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1)
+        padded.insert(padded.end(), static_cast<std::size_t>(stuffing), 0);
+      padded.push_back(es[i]);
+    }
+    Decoder dec;
+    const PictureReport r = dec.decode(padded);
+    EXPECT_TRUE(r.clean()) << "stuffing " << stuffing << ": " << r.describe();
+    EXPECT_EQ(r.macroblocksDecoded, 15);
+    EXPECT_EQ(dec.frame().y, clean.frame().y) << "stuffing " << stuffing;
+    EXPECT_EQ(dec.frame().cb, clean.frame().cb) << "stuffing " << stuffing;
+  }
+}
+
 TEST(IpuRobustness, MissingSequenceHeaderIsUndecodable) {
   const auto es = stream(1);
   std::vector<std::uint8_t> bad;
@@ -224,21 +251,48 @@ TEST(IpuRobustness, SliceParallelDecodeIsBitIdentical) {
   o.content = testing::Content::kNoise;
   auto es = testing::encodeIntra(o);
   WorkerPool pool(1);
+  SpinningSliceRunner spinner(1);
   for (int corrupt = 0; corrupt < 2; ++corrupt) {
     if (corrupt) {
       for (std::size_t i = 200; i < es.size(); i += 997) es[i] ^= 0x10;
     }
-    Decoder serial, parallel;
+    Decoder serial, parallel, spinning;
     for (const AccessUnit& au : splitAccessUnits(es)) {
       const auto bytes = std::span(es).subspan(au.offset, au.size);
       const PictureReport a = serial.decode(bytes);
       const PictureReport b = parallel.decode(bytes, pool);
-      EXPECT_EQ(a.issueCount, b.issueCount);
-      EXPECT_EQ(a.macroblocksConcealed, b.macroblocksConcealed);
-      EXPECT_EQ(serial.frame().y, parallel.frame().y);
-      EXPECT_EQ(serial.frame().cb, parallel.frame().cb);
-      EXPECT_EQ(serial.frame().cr, parallel.frame().cr);
+      const PictureReport c = spinning.decode(bytes, &spinner);
+      for (const auto& [r, d] : {std::pair{&b, &parallel}, std::pair{&c, &spinning}}) {
+        EXPECT_EQ(a.issueCount, r->issueCount);
+        EXPECT_EQ(a.macroblocksConcealed, r->macroblocksConcealed);
+        EXPECT_EQ(serial.frame().y, d->frame().y);
+        EXPECT_EQ(serial.frame().cb, d->frame().cb);
+        EXPECT_EQ(serial.frame().cr, d->frame().cr);
+      }
     }
+  }
+}
+
+// The spinning runner runs every job exactly once, batch after batch, with any thread count, and
+// passes a job's exception to the caller.
+TEST(IpuRobustness, SpinningRunnerRunsEveryJobOnce) {
+  for (unsigned threads : {0u, 1u, 3u}) {
+    SpinningSliceRunner runner(threads, std::chrono::microseconds(threads == 3 ? 0 : 200));
+    for (std::size_t count : {0u, 1u, 2u, 7u, 40u}) {
+      for (int batch = 0; batch < 20; ++batch) {
+        std::vector<std::atomic<int>> hits(count);
+        runner.run(count, [&](std::size_t k) { hits[k].fetch_add(1); });
+        for (std::size_t k = 0; k < count; ++k) ASSERT_EQ(hits[k].load(), 1) << threads << " " << count << " " << k;
+      }
+    }
+    EXPECT_THROW(runner.run(5,
+                            [](std::size_t k) {
+                              if (k == 3) throw std::runtime_error("job 3");
+                            }),
+                 std::runtime_error);
+    std::atomic<int> after{0};
+    runner.run(4, [&](std::size_t) { after.fetch_add(1); });
+    EXPECT_EQ(after.load(), 4);
   }
 }
 

@@ -4,6 +4,9 @@
 
 #include <hwy/targets.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "ipu/elementary_stream.hpp"
 #include "ipu/idct.hpp"
 #include "ipu/picture_decoder.hpp"
@@ -74,6 +77,22 @@ TEST(IpuSimd, IdctMatchesScalar) {
       idctSimd(block, 0xFF, 0xFF, b, 8);
       for (int i = 0; i < 64; ++i) ASSERT_EQ(a[i], b[i]);
     }
+    // The largest sums the transform can see: for each output (x, y), every coefficient at the
+    // extreme with the sign of its basis product there (an overflow would flip the clamped pixel).
+    for (int y0 = 0; y0 < 8; ++y0)
+      for (int x0 = 0; x0 < 8; ++x0)
+        for (int s : {1, -1}) {
+          std::int16_t block[64];
+          for (int v = 0; v < 8; ++v)
+            for (int u = 0; u < 8; ++u) {
+              const double c = std::cos((2 * x0 + 1) * u * M_PI / 16) * std::cos((2 * y0 + 1) * v * M_PI / 16);
+              block[8 * v + u] = static_cast<std::int16_t>((c * s >= 0) ? 2047 : -2048);
+            }
+          std::uint8_t a[64], b[64];
+          idctScalar(block, 0xFF, a, 8);
+          idctSimd(block, 0xFF, 0xFF, b, 8);
+          for (int i = 0; i < 64; ++i) ASSERT_EQ(a[i], b[i]) << "x " << x0 << " y " << y0 << " sign " << s;
+        }
   });
 }
 
@@ -83,14 +102,18 @@ TEST(IpuSimd, CscMatchesScalar) {
     for (int width : {1, 2, 7, 16, 33, 64, 100, 512}) {
       for (CscThresholds th :
            {CscThresholds{}, CscThresholds{40, 100}, CscThresholds{0, 300}, CscThresholds{511, 511}}) {
-        std::vector<std::uint8_t> y(static_cast<std::size_t>(width)), cb((width + 1) / 2), cr((width + 1) / 2);
+        // Two luma lines sharing one chroma line, as the frame conversion calls it.
+        std::vector<std::uint8_t> y(2 * static_cast<std::size_t>(width)), cb((width + 1) / 2), cr((width + 1) / 2);
         for (auto& v : y) v = static_cast<std::uint8_t>(rng.below(256));
         for (auto& v : cb) v = static_cast<std::uint8_t>(rng.below(256));
         for (auto& v : cr) v = static_cast<std::uint8_t>(rng.below(256));
-        std::vector<std::uint8_t> a(static_cast<std::size_t>(width) * 4), b(a.size());
-        cscRowRgba32Scalar(y.data(), cb.data(), cr.data(), width, a.data(), th);
-        cscRowsRgba32Simd(y.data(), 0, 1, cb.data(), cr.data(), width, b.data(), 0, th);
+        std::vector<std::uint8_t> a(2 * static_cast<std::size_t>(width) * 4), b(a.size()), one(a.size() / 2);
+        for (int line = 0; line < 2; ++line)
+          cscRowRgba32Scalar(y.data() + line * width, cb.data(), cr.data(), width, a.data() + line * width * 4, th);
+        cscRowsRgba32Simd(y.data(), width, 2, cb.data(), cr.data(), width, b.data(), width * 4, th);
         ASSERT_EQ(a, b) << "width " << width << " th " << th.th0 << "," << th.th1;
+        cscRowsRgba32Simd(y.data(), 0, 1, cb.data(), cr.data(), width, one.data(), 0, th);
+        ASSERT_TRUE(std::equal(one.begin(), one.end(), a.begin())) << "one line, width " << width;
       }
     }
     // Every Y against a sweep of chroma.
