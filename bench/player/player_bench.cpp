@@ -14,7 +14,6 @@
 #include <ctime>
 #include <memory>
 
-#include "streams/authoring/bench_stream.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/tiled_blender.hpp"
 #include "iop/memory_disc.hpp"
@@ -23,6 +22,7 @@
 #include "runtime/player/frame_hash.hpp"
 #include "runtime/player/player.hpp"
 #include "runtime/player/scenario.hpp"
+#include "streams/authoring/bench_stream.hpp"
 #include "streams/demuxer.hpp"
 
 namespace {
