@@ -67,14 +67,17 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   };
   // A lighting option is bound to the command line's copy of the field and copied over the
   // config file's value only when given. `field` names the field in any DayCycleParams.
+  // The functions stored in `o` point back at it through a plain pointer: capturing the shared_ptr
+  // would make `o` own itself and never be freed (LeakSanitizer).
+  TerrainAuthorOptions* self = o.get();
   auto param = [&](const std::string& flags, auto field, const std::string& help) {
     CLI::Option* opt = track(cmd->add_option(flags, field(o->params), help));
-    o->given.push_back({opt, Apply([o, field](DayCycleParams& dst) { field(dst) = field(o->params); })});
+    o->given.push_back({opt, Apply([self, field](DayCycleParams& dst) { field(dst) = field(self->params); })});
     return opt;
   };
   auto flag = [&](const std::string& flags, auto field, const std::string& help) {
     CLI::Option* opt = track(cmd->add_flag(flags, field(o->params), help));
-    o->given.push_back({opt, Apply([o, field](DayCycleParams& dst) { field(dst) = field(o->params); })});
+    o->given.push_back({opt, Apply([self, field](DayCycleParams& dst) { field(dst) = field(self->params); })});
   };
 #define VBIM_FIELD(member)          \
   [](DayCycleParams & q) -> auto& { \
@@ -115,7 +118,7 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   flag("--clouds", VBIM_FIELD(clouds.enabled), "Moving procedural cloud shadows");
   param("--cloud-coverage", VBIM_FIELD(clouds.coverage), "Cloud coverage 0..1")->default_val(p.clouds.coverage);
   CLI::Option* noMoon = track(cmd->add_flag("--no-moon", o->noMoon, "No moonlight at night"));
-  o->given.push_back({noMoon, Apply([o](DayCycleParams& dst) { dst.moon = !o->noMoon; })});
+  o->given.push_back({noMoon, Apply([self](DayCycleParams& dst) { dst.moon = !self->noMoon; })});
   param("--moon-irradiance", VBIM_FIELD(moonIrradiance), "Moonlight, normalised (1.0 = --exposure-klux)")
       ->default_val(p.moonIrradiance);
 #undef VBIM_FIELD

@@ -171,8 +171,11 @@ void addDemo(CLI::App& app) {
     auto prof = std::make_shared<DemoProfile>();
     auto rendered = std::make_shared<render::RunRenderResult>();
     r->onRow = [prof](const player::VsyncRow& row) { prof->onRow(row); };
-    r->beforeCommit = [prof, r, rendered, stream](const OutputDir& dir) {
-      prof->write(r->disc, dir);
+    // The hooks live in *r, so they reach it through a plain pointer: capturing the shared_ptr would
+    // make the request own itself (LeakSanitizer).
+    PlayRequest* req = r.get();
+    r->beforeCommit = [prof, req, rendered, stream](const OutputDir& dir) {
+      prof->write(req->disc, dir);
       std::error_code ec;
       fs::copy_file(stream, dir.path("day.vbim"), fs::copy_options::overwrite_existing, ec);
       if (ec) throw Exit(2, dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());
