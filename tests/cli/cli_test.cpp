@@ -95,11 +95,7 @@ TEST(Cli, ConfigCheckNamesFileLineAndKey) {
   const fs::path dir = scratch("config");
   fs::create_directories(dir);
   const fs::path bad = dir / "plat.toml";
-  {
-    FILE* f = fopen(bad.c_str(), "w");
-    fputs("[ring]\nbankmax = 5\nbanks = 3\n", f);
-    fclose(f);
-  }
+  ASSERT_TRUE(vbim::testing::writeTextFile(bad, "[ring]\nbankmax = 5\nbanks = 3\n"));
   const Result r = run("config --check " + bad.string());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find(bad.string() + ":3: key 'ring.banks': unknown key"), std::string::npos) << r.output;
@@ -127,11 +123,7 @@ TEST(Cli, ConfigRejectsATwoBankRing) {
   const fs::path dir = scratch("twobanks");
   fs::create_directories(dir);
   const fs::path cfg = dir / "plat.toml";
-  {
-    FILE* f = fopen(cfg.c_str(), "w");
-    fputs("[ring]\nbankmax = 2\n", f);
-    fclose(f);
-  }
+  ASSERT_TRUE(vbim::testing::writeTextFile(cfg, "[ring]\nbankmax = 2\n"));
   const Result r = run("config --check " + cfg.string());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find(cfg.string() + ":2: key 'ring.bankmax'"), std::string::npos) << r.output;

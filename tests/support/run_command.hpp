@@ -38,4 +38,12 @@ inline std::string readFileBytes(const std::filesystem::path& path) {
   return data;
 }
 
+// Writes `text` to `path` (a config or fault plan for a test); false if it cannot.
+inline bool writeTextFile(const std::filesystem::path& path, const std::string& text) {
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) return false;
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  return std::fclose(f) == 0 && ok;
+}
+
 }  // namespace vbim::testing
