@@ -2,7 +2,7 @@
 
 namespace vbim {
 
-WorkerPool::WorkerPool(unsigned threads) {
+WorkerPool::WorkerPool(unsigned threads, std::chrono::microseconds spin) : spin_(spin) {
   workers_.reserve(threads);
   for (unsigned i = 0; i < threads; ++i) workers_.emplace_back([this] { workerLoop(); });
 }
@@ -11,6 +11,7 @@ WorkerPool::~WorkerPool() {
   {
     std::lock_guard lock(mu_);
     stopping_ = true;
+    submissions_.fetch_add(1, std::memory_order_release);
   }
   work_.notify_all();
   for (auto& t : workers_) t.join();
@@ -25,6 +26,7 @@ std::shared_ptr<WorkerPool::Batch> WorkerPool::submit(std::size_t count, std::fu
   {
     std::lock_guard lock(mu_);
     queue_.push_back(b);
+    submissions_.fetch_add(1, std::memory_order_release);
   }
   work_.notify_all();
   return b;
@@ -50,8 +52,15 @@ bool WorkerPool::runOne(std::unique_lock<std::mutex>& lock) {
   }
   lock.lock();
   if (err && !b->error_) b->error_ = err;
-  if (++b->done_ == b->count_) done_.notify_all();
+  if (b->done_.fetch_add(1, std::memory_order_release) + 1 == b->count_) done_.notify_all();
   return true;
+}
+
+template <class Ready>
+void WorkerPool::poll(Ready&& ready) const {
+  if (spin_.count() <= 0) return;
+  const auto until = std::chrono::steady_clock::now() + spin_;
+  while (!ready() && std::chrono::steady_clock::now() < until) std::this_thread::yield();
 }
 
 void WorkerPool::workerLoop() {
@@ -59,7 +68,13 @@ void WorkerPool::workerLoop() {
   for (;;) {
     if (runOne(lock)) continue;
     if (stopping_) return;
-    work_.wait(lock);
+    // Nothing to take: poll for the next submission before sleeping (a condition variable with no
+    // sleeper costs the submitter no system call).
+    const std::uint64_t seen = submissions_.load(std::memory_order_relaxed);
+    lock.unlock();
+    poll([&] { return submissions_.load(std::memory_order_acquire) != seen; });
+    lock.lock();
+    work_.wait(lock, [&] { return submissions_.load(std::memory_order_relaxed) != seen; });
   }
 }
 
@@ -79,9 +94,14 @@ void WorkerPool::Batch::wait() {
     }
     lock.lock();
     if (err && !error_) error_ = err;
-    ++done_;
+    done_.fetch_add(1, std::memory_order_release);
   }
-  pool.done_.wait(lock, [this] { return done_ == count_; });
+  if (done_.load(std::memory_order_relaxed) != count_) {
+    lock.unlock();
+    pool.poll([this] { return done_.load(std::memory_order_acquire) == count_; });
+    lock.lock();
+  }
+  pool.done_.wait(lock, [this] { return done_.load(std::memory_order_relaxed) == count_; });
   if (error_) std::rethrow_exception(error_);
 }
 

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -44,6 +47,39 @@ TEST(WorkerPool, ManyBatchesInterleaved) {
   for (int k = 0; k < 50; ++k) batches.push_back(pool.submit(20, [&](std::size_t) { total.fetch_add(1); }));
   for (auto& b : batches) b->wait();
   EXPECT_EQ(total.load(), 1000);
+}
+
+// Back-to-back batches meet polling workers, batches after a pause meet sleeping ones; with any
+// spin time every index runs once.
+TEST(WorkerPool, PollingAndSleepingWorkersBothRunEveryIndexOnce) {
+  using std::chrono::microseconds;
+  for (const microseconds spin : {microseconds(0), microseconds(100), WorkerPool::kDefaultSpin}) {
+    WorkerPool pool(2, spin);
+    for (int batch = 0; batch < 40; ++batch) {
+      if (batch % 10 == 9) std::this_thread::sleep_for(microseconds(2000));  // past the spin: workers sleep
+      std::vector<std::atomic<int>> hits(batch % 7 + 1);
+      pool.parallelFor(hits.size(), [&](std::size_t i) { hits[i].fetch_add(1); });
+      for (const auto& h : hits) ASSERT_EQ(h.load(), 1) << spin.count() << " " << batch;
+    }
+  }
+}
+
+// A worker that went to sleep after its spin still wakes for the next batch: two items that each
+// wait for the other can only finish if the caller and the worker run them at the same time.
+TEST(WorkerPool, SleepingWorkerWakesForTheNextBatch) {
+  WorkerPool pool(1, std::chrono::microseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::mutex mu;
+  std::condition_variable cv;
+  int arrived = 0;
+  bool together = true;
+  pool.parallelFor(2, [&](std::size_t) {
+    std::unique_lock lock(mu);
+    ++arrived;
+    cv.notify_all();
+    if (!cv.wait_for(lock, std::chrono::seconds(10), [&] { return arrived == 2; })) together = false;
+  });
+  EXPECT_TRUE(together);
 }
 
 }  // namespace
