@@ -139,7 +139,8 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
     // and of decoded_ (rows padded to a cache line); reports and traces are merged in job order,
     // so the result never depends on which thread ran which job. Slices in row order (stable: a
     // later slice of the same row still overwrites an earlier one, as in the serial decode).
-    std::stable_sort(slices_.begin(), slices_.end(), [](const Slice& a, const Slice& b) { return a.row < b.row; });
+    auto byRow = [](const Slice& a, const Slice& b) { return a.row < b.row; };
+    if (!std::is_sorted(slices_.begin(), slices_.end(), byRow)) std::stable_sort(slices_.begin(), slices_.end(), byRow);
     // Guided job sizes by bytes (busy rows cost more): each job takes 1 / (2 * participants) of
     // what is left, at least one row, so the first jobs are large (few hand-overs) and the last
     // ones single rows (a thread that finishes early, or a worker that wakes late, still finds
@@ -196,13 +197,10 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   const int mbCount = params_.mbWidth * params_.mbRows;
   for (int y = 0; y < params_.mbRows; ++y) {
     const std::uint8_t* flags = decoded_.data() + static_cast<std::size_t>(y) * decodedStride_;
-    for (int x = 0; x < params_.mbWidth; ++x) {
-      if (flags[x]) {
-        ++done;
-      } else if (firstMissing < 0) {
-        firstMissing = y * params_.mbWidth + x;
-      }
-    }
+    const int rowDone = static_cast<int>(std::count(flags, flags + params_.mbWidth, std::uint8_t{1}));
+    done += rowDone;
+    if (rowDone < params_.mbWidth && firstMissing < 0)
+      firstMissing = y * params_.mbWidth + static_cast<int>(std::find(flags, flags + params_.mbWidth, 0) - flags);
   }
   report.macroblocksDecoded += done;
   const int missing = mbCount - done;

@@ -12,7 +12,6 @@
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
-#include "ipu/spinning_slice_runner.hpp"
 #include "runtime/worker_pool.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 
@@ -251,18 +250,18 @@ TEST(IpuRobustness, SliceParallelDecodeIsBitIdentical) {
   o.content = testing::Content::kNoise;
   auto es = testing::encodeIntra(o);
   WorkerPool pool(1);
-  SpinningSliceRunner spinner(1);
+  WorkerPool sleepy(3, std::chrono::microseconds(0));  // more threads than jobs of some pictures
   for (int corrupt = 0; corrupt < 2; ++corrupt) {
     if (corrupt) {
       for (std::size_t i = 200; i < es.size(); i += 997) es[i] ^= 0x10;
     }
-    Decoder serial, parallel, spinning;
+    Decoder serial, parallel, threeThreads;
     for (const AccessUnit& au : splitAccessUnits(es)) {
       const auto bytes = std::span(es).subspan(au.offset, au.size);
       const PictureReport a = serial.decode(bytes);
       const PictureReport b = parallel.decode(bytes, pool);
-      const PictureReport c = spinning.decode(bytes, &spinner);
-      for (const auto& [r, d] : {std::pair{&b, &parallel}, std::pair{&c, &spinning}}) {
+      const PictureReport c = threeThreads.decode(bytes, sleepy);
+      for (const auto& [r, d] : {std::pair{&b, &parallel}, std::pair{&c, &threeThreads}}) {
         EXPECT_EQ(a.issueCount, r->issueCount);
         EXPECT_EQ(a.macroblocksConcealed, r->macroblocksConcealed);
         EXPECT_EQ(serial.frame().y, d->frame().y);
@@ -270,29 +269,6 @@ TEST(IpuRobustness, SliceParallelDecodeIsBitIdentical) {
         EXPECT_EQ(serial.frame().cr, d->frame().cr);
       }
     }
-  }
-}
-
-// The spinning runner runs every job exactly once, batch after batch, with any thread count, and
-// passes a job's exception to the caller.
-TEST(IpuRobustness, SpinningRunnerRunsEveryJobOnce) {
-  for (unsigned threads : {0u, 1u, 3u}) {
-    SpinningSliceRunner runner(threads, std::chrono::microseconds(threads == 3 ? 0 : 200));
-    for (std::size_t count : {0u, 1u, 2u, 7u, 40u}) {
-      for (int batch = 0; batch < 20; ++batch) {
-        std::vector<std::atomic<int>> hits(count);
-        runner.run(count, [&](std::size_t k) { hits[k].fetch_add(1); });
-        for (std::size_t k = 0; k < count; ++k) ASSERT_EQ(hits[k].load(), 1) << threads << " " << count << " " << k;
-      }
-    }
-    EXPECT_THROW(runner.run(5,
-                            [](std::size_t k) {
-                              if (k == 3) throw std::runtime_error("job 3");
-                            }),
-                 std::runtime_error);
-    std::atomic<int> after{0};
-    runner.run(4, [&](std::size_t) { after.fetch_add(1); });
-    EXPECT_EQ(after.load(), 4);
   }
 }
 
