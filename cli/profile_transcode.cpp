@@ -12,6 +12,21 @@
 #include "streams/format.hpp"
 
 namespace vbim::cli::profile {
+namespace {
+
+// The container frame rate to re-encode at: the MPEG-2 frame rate whose period is the longest one
+// dividing the stream's PTS step (the writer may have stretched the step to a multiple of it, see
+// StreamWriter::containerStretch); 25 fps if none does.
+streams::Rational containerRate(std::uint32_t ptsPerFrame) {
+  constexpr streams::Rational kRates[] = {{24, 1}, {25, 1}, {30000, 1001}, {30, 1}, {50, 1}, {60, 1}};
+  for (const streams::Rational r : kRates) {
+    const std::uint64_t period = std::uint64_t{90'000} * r.den / r.num;
+    if (std::uint64_t{90'000} * r.den % r.num == 0 && ptsPerFrame % period == 0) return r;
+  }
+  return {25, 1};
+}
+
+}  // namespace
 
 std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, streams::EncoderSettings encoder) {
   std::ifstream in(path, std::ios::binary);
@@ -40,7 +55,7 @@ std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, str
   s.loopFrame = d.loopFrame;
   s.withSky = sky;
   s.encoder = encoder;
-  s.encoder.containerFps = streams::Rational{90'000, d.ptsPerFrame};
+  s.encoder.containerFps = containerRate(d.ptsPerFrame);
   try {
     streams::StreamWriter w(s);
     streams::Mpeg2Decoder dec;

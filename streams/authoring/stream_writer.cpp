@@ -5,6 +5,8 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <utility>
 
 #include "streams/authoring/authoring_error.hpp"
 #include "streams/authoring/ps_muxer.hpp"
@@ -18,7 +20,38 @@ struct StreamWriter::Encoders {
   PsMuxer mux;
   std::unique_ptr<Mpeg2Encoder> lightmap, sky;
   int lightmapStream = -1, skyStream = -1;
+  // Encoded pictures wait here until finish(), which knows the largest frame and so how far apart
+  // the frames must be in container time (containerStretch).
+  struct Pending {
+    AVPacket* packet;
+    int stream;
+  };
+  std::vector<Pending> pending;
+  Encoders() = default;
+  Encoders(const Encoders&) = delete;
+  Encoders& operator=(const Encoders&) = delete;
+  ~Encoders() {
+    for (Pending& p : pending) av_packet_free(&p.packet);
+  }
 };
+
+namespace {
+
+// How many container frame periods apart the frames must be so that the largest frame (lightmap
+// plus sky) fits into one spacing at the DVD mux rate with a fifth to spare (pack and PES headers
+// take ~2 %, the muxer's scheduling the rest). libavformat's MPEG-PS muxer sends packs at the mux
+// rate in container time; when the frames carry more bytes than that, it falls behind and the
+// stream whose buffer is larger runs ahead: measured on 64 noise frames of 512x512 + 256x128 at
+// 25 fps, the last sky picture landed 1,400 sectors (2.8 MB) after its lightmap picture, all of
+// which the EE demux had to hold. Container time is only a preview clock (the descriptor's game
+// rate drives playback), so it is stretched instead.
+std::uint32_t stretchFor(std::int64_t largestFrameBytes, std::uint32_t ptsPerFrame) {
+  const std::int64_t perPeriod = kDvdMuxRate / 8 * std::int64_t{ptsPerFrame} / kPtsHz;  // bytes
+  const std::int64_t usable = perPeriod * 4 / 5;
+  return static_cast<std::uint32_t>(std::max<std::int64_t>(1, (largestFrameBytes + usable - 1) / usable));
+}
+
+}  // namespace
 
 StreamWriter::StreamWriter(AuthorSettings s) : settings_(s) {
   const Rational c = s.encoder.containerFps;
@@ -115,13 +148,12 @@ void StreamWriter::addFrame(const Rgba8Image& lightmap, const Rgba8Image* sky) {
   if (sky) checkSize(*sky, "sky", skyW_, skyH_);
   if (!enc_) open();
   std::vector<AVPacket*> packets;
-  const AVRational tb = enc_->lightmap->context()->time_base;
   enc_->lightmap->encode(lightmap, framesTotal_, packets);
-  for (AVPacket* p : packets) enc_->mux.write(p, enc_->lightmapStream, tb);
+  for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->lightmapStream});
   packets.clear();
   if (sky) {
     enc_->sky->encode(*sky, framesTotal_, packets);
-    for (AVPacket* p : packets) enc_->mux.write(p, enc_->skyStream, tb);
+    for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->skyStream});
   }
   ++framesInVariant_;
   ++framesTotal_;
@@ -135,12 +167,27 @@ std::vector<std::uint8_t> StreamWriter::finish() {
   std::vector<AVPacket*> packets;
   const AVRational tb = enc_->lightmap->context()->time_base;
   enc_->lightmap->flush(packets);
-  for (AVPacket* p : packets) enc_->mux.write(p, enc_->lightmapStream, tb);
+  for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->lightmapStream});
   packets.clear();
   if (enc_->sky) {
     enc_->sky->flush(packets);
-    for (AVPacket* p : packets) enc_->mux.write(p, enc_->skyStream, tb);
+    for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->skyStream});
   }
+  // Frames (pts in container frames) as far apart as the largest one needs, then muxed in order.
+  std::map<std::int64_t, std::int64_t> frameBytes;
+  for (const auto& p : enc_->pending) frameBytes[p.packet->pts] += p.packet->size;
+  std::int64_t largest = 0;
+  for (const auto& [pts, bytes] : frameBytes) largest = std::max(largest, bytes);
+  stretch_ = stretchFor(largest, descriptor_.ptsPerFrame);
+  descriptor_.ptsPerFrame *= stretch_;
+  for (auto& p : enc_->pending) {
+    AVPacket* pkt = std::exchange(p.packet, nullptr);
+    if (pkt->pts != AV_NOPTS_VALUE) pkt->pts *= stretch_;
+    if (pkt->dts != AV_NOPTS_VALUE) pkt->dts *= stretch_;
+    pkt->duration *= stretch_;
+    enc_->mux.write(pkt, p.stream, tb);
+  }
+  enc_->pending.clear();
   const std::vector<std::uint8_t> muxed = enc_->mux.finish();
 
   // Read the muxed stream back, as a player would, to find where each picture landed.

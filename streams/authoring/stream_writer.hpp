@@ -57,6 +57,10 @@ class StreamWriter {
   const Descriptor& descriptor() const { return descriptor_; }
   // Largest quantiser the encoders used (above the requested one if the VBV forced re-quantising).
   int maxQscaleUsed() const;
+  // After finish(): how many container frame periods apart the frames were placed (1 unless the
+  // largest frame would not fit one period at the DVD mux rate; see stream_writer.cpp). The
+  // descriptor's ptsPerFrame includes it.
+  std::uint32_t containerStretch() const { return stretch_; }
 
  private:
   struct Encoders;
@@ -71,6 +75,7 @@ class StreamWriter {
   std::uint32_t framesTotal_ = 0;
   int lmW_ = 0, lmH_ = 0, skyW_ = 0, skyH_ = 0;
   bool finished_ = false;
+  std::uint32_t stretch_ = 1;
 };
 
 // Writes `bytes` to `path` under a temporary name in the same directory and renames it into place,

@@ -2,7 +2,11 @@
 // the default quality; every pack 2048 bytes; the index points at the right sectors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
+
 #include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/bench_stream.hpp"
 #include "streams/authoring/mpeg2_decoder.hpp"
 #include "streams/authoring/mpeg2_encoder.hpp"
 #include "streams/demuxer.hpp"
@@ -140,6 +144,28 @@ TEST(StreamsRoundTrip, AuthoringIsDeterministic) {
   w.beginVariant("clear");
   for (std::size_t i = 0; i < 3; ++i) w.addFrame(s.lightmaps[i], &s.skies[i]);
   EXPECT_EQ(w.finish(), s.bytes);
+}
+
+// Frames larger than the DVD mux rate carries in one 25 fps period (here ~200 KB of noise per
+// frame against ~50 KB) are spread in container time, so the muxer keeps each frame's lightmap and
+// sky pictures together: without that, the sky fell further behind every frame (330 sectors after
+// 16 frames, 1,400 after 64), and the EE demux had to hold everything in between.
+TEST(StreamsRoundTrip, LightmapAndSkyStayInStepWhenFramesExceedTheMuxRate) {
+  const auto bytes = vbim::bench::authorBenchStream(16, vbim::bench::BenchContent::noise, 1);
+  const StreamScan scan = scanStream(bytes);
+  ASSERT_TRUE(scan.descriptor);
+  const Descriptor& d = *scan.descriptor;
+  EXPECT_GT(d.ptsPerFrame, 3600u) << "the container time should have been stretched";
+  EXPECT_EQ(d.ptsPerFrame % 3600, 0u) << "by a whole number of 25 fps periods";
+  ASSERT_EQ(d.index.size(), 2u);
+  std::int64_t widest = 0;
+  for (std::uint32_t f = 0; f < d.totalFrames(); ++f) {
+    const std::int64_t lightmapEnd = d.index[0][f].sector + d.index[0][f].bytes / 2048;
+    const std::int64_t skyEnd = d.index[1][f].sector + d.index[1][f].bytes / 2048;
+    widest = std::max(widest, std::abs(lightmapEnd - skyEnd));
+  }
+  // One frame's two pictures are ~130 sectors together: their ends stay within that.
+  EXPECT_LT(widest, 150) << "frame pictures drifted apart in the mux";
 }
 
 TEST(StreamsRoundTrip, AFixedQuantiserIsHonouredAndCoarserMeansSmaller) {
