@@ -156,8 +156,7 @@ void runAuthor(const AuthorOptions& o) {
 }  // namespace
 
 void addAuthor(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "author", "Author a VBIM stream (MPEG-2 PS, 2048-byte packs) from image sequences or Technique A");
+  auto* cmd = app.add_subcommand(kAuthorCommand.name, kAuthorCommand.summary);
   auto o = std::make_shared<AuthorOptions>();
   cmd->add_option("--frames", o->frames, "Lightmap frames, e.g. 'dir/lightmap_%04d.exr' (any OpenImageIO format)");
   cmd->add_option("--sky", o->sky, "Sky dome frames, e.g. 'dir/sky_%04d.exr' (same numbering as --frames)");

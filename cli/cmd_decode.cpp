@@ -11,14 +11,13 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "runtime/image_file.hpp"
 #include "runtime/worker_pool.hpp"
 
 namespace vbim::cli {
@@ -134,15 +133,6 @@ std::vector<std::uint8_t> readFile(const std::string& path) {
   return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
 }
 
-void writeImage(const std::filesystem::path& path, int w, int h, int channels, OIIO::TypeDesc stored, const void* data,
-                OIIO::TypeDesc given) {
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path.string());
-  if (!out) throw Exit(1, path.string() + ": cannot create the image writer: " + OIIO::geterror());
-  OIIO::ImageSpec spec(w, h, channels, stored);
-  if (!out->open(path.string(), spec) || !out->write_image(given, data) || !out->close())
-    throw Exit(1, path.string() + ": cannot write the image: " + out->geterror());
-}
-
 struct Options {
   std::string input;
   std::string outDir;
@@ -240,12 +230,12 @@ void run(const Options& o) {
       if (o.format == "png") {
         for (std::size_t i = 3; i < rgba.pixels.size(); i += 4)
           rgba.pixels[i] = static_cast<std::uint8_t>(rgba.pixels[i] >= 0x80 ? 255 : rgba.pixels[i] * 2);
-        writeImage(dir.path(name), w, h, 4, OIIO::TypeDesc::UINT8, rgba.pixels.data(), OIIO::TypeDesc::UINT8);
+        writePng(dir.path(name), w, h, rgba.pixels.data());
       } else {
         floats.resize(rgba.pixels.size());
         for (std::size_t i = 0; i < rgba.pixels.size(); ++i)
           floats[i] = (i % 4 == 3) ? rgba.pixels[i] / 128.0f : rgba.pixels[i] / 255.0f;
-        writeImage(dir.path(name), w, h, 4, OIIO::TypeDesc::HALF, floats.data(), OIIO::TypeDesc::FLOAT);
+        writeExr(dir.path(name), w, h, floats.data());
       }
     }
     ++pictures;

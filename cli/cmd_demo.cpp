@@ -141,7 +141,7 @@ void addDemo(CLI::App& app) {
   r->at = {"6s", "7s", "8s"};  // the catch-up after the stall
   r->seed = 1;
   r->force = true;  // the demo owns out/demo and replaces it
-  auto* cmd = app.add_subcommand("demo", "Run the main job on built-in defaults and write everything to out/demo/");
+  auto* cmd = app.add_subcommand(kDemoCommand.name, kDemoCommand.summary);
   cmd->add_option("--out", r->out, "Output directory (replaced)")->capture_default_str();
   cmd->add_option("--duration", r->duration, "Simulated time")->capture_default_str();
   static double seconds = 0.0;  // CLI11 writes here; lives as long as the app

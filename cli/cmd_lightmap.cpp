@@ -176,7 +176,7 @@ void run(LightmapOptions& o, const std::vector<std::pair<CLI::Option*, std::func
 }  // namespace
 
 void addLightmap(CLI::App& app) {
-  auto* cmd = app.add_subcommand("lightmap", "Generate day/night terrain lightmaps and sky domes with Technique A");
+  auto* cmd = app.add_subcommand(kLightmapCommand.name, kLightmapCommand.summary);
   auto o = std::make_shared<LightmapOptions>();
   const DayCycleParams& p = o->params;  // defaults shown in --help
   using Apply = std::function<void(DayCycleParams&)>;

@@ -10,8 +10,6 @@
 #include <set>
 #include <sstream>
 
-#include <OpenImageIO/imageio.h>
-
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/play_run.hpp"
@@ -19,6 +17,7 @@
 #include "gs/gs_error.hpp"
 #include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "runtime/image_file.hpp"
 #include "runtime/player/report.hpp"
 #include "runtime/player/scenario.hpp"
 
@@ -35,11 +34,14 @@ Tick parseTime(const std::string& what, const std::string& text) {
 }
 
 void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool exr) {
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path.string());
-  if (!out) throw Exit(1, path.string() + ": cannot create the image writer: " + OIIO::geterror());
-  OIIO::ImageSpec spec(img.width, img.height, 4, exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
-  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, img.pixels.data()) || !out->close())
-    throw Exit(1, path.string() + ": cannot write the image: " + out->geterror());
+  try {
+    if (!exr) return writePng(path, img.width, img.height, img.pixels.data());
+    std::vector<float> scaled(img.pixels.size());  // 8-bit texels as 0..1 (alpha 0x80 = 0.502)
+    for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = static_cast<float>(img.pixels[i]) / 255.0f;
+    writeExr(path, img.width, img.height, scaled.data());
+  } catch (const ImageFileError& e) {
+    throw Exit(1, e.what());
+  }
 }
 
 std::string policyName(const std::string& p) {

@@ -235,8 +235,7 @@ void runProfile(const ProfileRequest& r) {
 
 void addProfile(CLI::App& app) {
   auto r = std::make_shared<ProfileRequest>();
-  auto* cmd =
-      app.add_subcommand("profile", "Sweep ring size, bitrate, faults and policy; find the longest survivable stall");
+  auto* cmd = app.add_subcommand(kProfileCommand.name, kProfileCommand.summary);
   cmd->add_option("disc", r->discs, "VBIM stream file(s); several discs are one sweep axis")->required();
   cmd->add_option("--config", r->config, "Platform config (TOML) the sweep starts from");
   cmd->add_option("--faults", r->faults,

@@ -54,8 +54,7 @@ void runRender(RenderOptions& o) {
 
 void addRender(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
-  auto* cmd =
-      app.add_subcommand("render", "Render the frames of a play run with OSMesa (pictures, contact sheet, video)");
+  auto* cmd = app.add_subcommand(kRenderCommand.name, kRenderCommand.summary);
   cmd->add_option("run", o->run, "A `vbim play --every N --out RUN_DIR` directory")->required();
   cmd->add_option("--out", o->out, "Output directory (written complete or not at all)")->required();
   cmd->add_option("--camera", o->camera,

@@ -1,6 +1,13 @@
 // Shared by the vbim subcommands: each cmd_*.cpp registers one subcommand on the app.
+//
+// Two programs: `vbim` holds the commands that play and inspect (play, info, decode, config) and
+// links only the model and small libraries, so playback stays small (issue #7: under 64 MB); the
+// commands that author, render and plot (demo, author, lightmap, render, profile) need
+// OpenImageIO, FFmpeg and Mesa and live in `vbim-full` (which has every command), installed
+// beside it. `vbim` hands those commands over by exec, so users always type `vbim ...`.
 #pragma once
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +29,31 @@ class Exit : public std::runtime_error {
 [[noreturn]] inline void notYetAvailable(const std::string& name, int issue) {
   throw Exit(3, "vbim " + name + ": not yet available (tracked in issue #" + std::to_string(issue) + ")");
 }
+
+// A subcommand's name and one-line summary, shared by its registration and by `vbim --help`.
+struct CommandInfo {
+  const char* name;
+  const char* summary;
+};
+
+inline constexpr CommandInfo kDemoCommand{"demo",
+                                          "Run the main job on built-in defaults and write everything to out/demo/"};
+inline constexpr CommandInfo kAuthorCommand{
+    "author", "Author a VBIM stream (MPEG-2 PS, 2048-byte packs) from image sequences or Technique A"};
+inline constexpr CommandInfo kLightmapCommand{"lightmap",
+                                              "Generate day/night terrain lightmaps and sky domes with Technique A"};
+inline constexpr CommandInfo kRenderCommand{
+    "render", "Render the frames of a play run with OSMesa (pictures, contact sheet, video)"};
+inline constexpr CommandInfo kProfileCommand{
+    "profile", "Sweep ring size, bitrate, faults and policy; find the longest survivable stall"};
+// The commands only `vbim-full` has.
+inline constexpr std::array kFullOnlyCommands{kDemoCommand, kAuthorCommand, kLightmapCommand, kRenderCommand,
+                                              kProfileCommand};
+
+// The tool's name, description and version (both programs).
+void configureApp(CLI::App& app);
+// Parses and runs; every error becomes a message on stderr and a non-zero status.
+int runApp(CLI::App& app, int argc, char** argv);
 
 void addDemo(CLI::App& app);
 void addPlay(CLI::App& app);

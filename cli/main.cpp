@@ -1,60 +1,55 @@
 // vbim: the command-line tool. Thin: parses arguments, wires files to the model.
-#include <cstdio>
-#include <exception>
+//
+// This program links the model and small libraries only (so `vbim play` stays small); the commands
+// that need OpenImageIO, FFmpeg or Mesa are run by `vbim-full`, beside this program, with the same
+// arguments (see cli/command.hpp).
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
+#include <string>
+#include <system_error>
 
 #include "cli/command.hpp"
 
 namespace {
 
-int runVbim(int argc, char** argv) {
-  CLI::App app{
-      "vbim: a simulator of the PlayStation 2 video-based illumination map pipeline\n"
-      "(DVD -> IOP stream ring -> SIF -> EE demux -> IPU decode -> GS blend, on a simulated clock)"};
-  app.set_version_flag("--version", "vbim 0.1.0");
-  app.require_subcommand(1);
-  app.fallthrough(false);
-  vbim::cli::addDemo(app);
-  vbim::cli::addPlay(app);
-  vbim::cli::addProfile(app);
-  vbim::cli::addAuthor(app);
-  vbim::cli::addInfo(app);
-  vbim::cli::addDecode(app);
-  vbim::cli::addLightmap(app);
-  vbim::cli::addRender(app);
-  vbim::cli::addConfig(app);
-  // A first word that is neither an option nor a subcommand gets a plain answer.
-  if (argc > 1 && argv[1][0] != '-') {
-    bool known = false;
-    for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == argv[1];
-    if (!known) {
-      std::cerr << "vbim: unknown subcommand '" << argv[1] << "'\n\n" << app.help();
-      return 2;
-    }
-  }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() != 0) {
-      std::cerr << "vbim: " << e.what() << "\n\n" << app.help() << std::flush;
-      return 2;
-    }
-    return app.exit(e);
-  } catch (const vbim::cli::Exit& e) {
-    std::cerr << e.what() << "\n";
-    return e.code();
-  } catch (const std::exception& e) {
-    std::cerr << "vbim: error: " << e.what() << "\n";
+// Replaces this process with vbim-full from this program's directory; returns only on failure.
+int runFullTool(char** argv) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) {
+    std::cerr << "vbim: cannot find this program's directory (/proc/self/exe: " << ec.message()
+              << "), so cannot run vbim-full for '" << argv[1] << "'\n";
     return 1;
   }
-  return 0;
+  const std::filesystem::path full = self.parent_path() / "vbim-full";
+  execv(full.c_str(), argv);
+  const int err = errno;
+  std::cerr << "vbim: '" << argv[1] << "' is run by vbim-full, expected at " << full.string() << ": "
+            << std::strerror(err) << " (build it with scripts/build.sh, or install it beside vbim)\n";
+  return 1;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
-    return runVbim(argc, argv);
+    if (argc > 1)
+      for (const vbim::cli::CommandInfo& c : vbim::cli::kFullOnlyCommands)
+        if (std::string(argv[1]) == c.name) return runFullTool(argv);
+    CLI::App app;
+    vbim::cli::configureApp(app);
+    vbim::cli::addPlay(app);
+    vbim::cli::addInfo(app);
+    vbim::cli::addDecode(app);
+    vbim::cli::addConfig(app);
+    // Listed in --help like the others; never parsed here (handed over above).
+    for (const vbim::cli::CommandInfo& c : vbim::cli::kFullOnlyCommands)
+      app.add_subcommand(c.name, c.summary)->group("Subcommands run by vbim-full");
+    return vbim::cli::runApp(app, argc, argv);
   } catch (...) {
     std::cerr << "vbim: internal error\n";
     return 1;

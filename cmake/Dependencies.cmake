@@ -32,6 +32,9 @@ vbim_require_pkgconfig(LIBISO9660 "libiso9660-dev libcdio-dev" libiso9660 libcdi
 vbim_require_pkgconfig(OSMESA libosmesa6-dev osmesa)
 vbim_require_pkgconfig(HWY libhwy-dev libhwy)
 vbim_require_config(glm libglm-dev)
+# Image output of the lean `vbim` tool (runtime/image_file.*): small libraries, not OpenImageIO.
+vbim_require_pkgconfig(PNG libpng-dev libpng)
+vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
 
 # OpenImageIO through pkg-config: Debian 12's CMake config lists /usr/include/opencv4 and the
 # openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step

@@ -10,7 +10,11 @@
 namespace vbim::render {
 
 Rgba8Image readRgba8(const std::filesystem::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
+  // The colour channels as stored: OpenImageIO would otherwise multiply them by alpha (the play
+  // frames carry the GS alpha 0x80, about one half).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path.string(), &config);
   if (!in) throw RenderError(path.string() + ": cannot open the image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.nchannels < 3 || spec.width <= 0 || spec.height <= 0) {

@@ -11,7 +11,8 @@ PACKAGES=(
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # media around the model: images, encoding, the comparison decoders, ffprobe
-  libopenimageio-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
+  libopenimageio-dev libpng-dev libopenexr-dev
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libmpeg2-4-dev
   # disc images
   libiso9660-dev libcdio-dev xorriso

@@ -40,6 +40,32 @@ TEST(Cli, HelpListsSubcommands) {
     EXPECT_NE(r.output.find(sub), std::string::npos) << sub;
 }
 
+// The commands of vbim-full are handed over with their arguments and exit status: their help is
+// theirs, and their errors come back as they are.
+TEST(Cli, FullToolCommandsAreHandedOverWithArgumentsAndStatus) {
+  const Result help = run("render --help");
+  EXPECT_EQ(help.code, 0) << help.output;
+  EXPECT_NE(help.output.find("vbim play --every N --out RUN_DIR"), std::string::npos) << help.output;
+  const Result bad = run("profile some.vbim --out somewhere --bogus");
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--bogus"), std::string::npos) << bad.output;
+}
+
+// Without vbim-full beside it, vbim says where it looked; its own commands still work.
+TEST(Cli, AMissingFullToolIsNamed) {
+  const fs::path dir = scratch("alone");
+  fs::create_directories(dir);
+  fs::copy_file(VBIM_BINARY, dir / "vbim");
+  const auto alone = vbim::testing::runCommand((dir / "vbim").string() + " render somewhere --out x");
+  EXPECT_EQ(alone.status, 1) << alone.output;
+  EXPECT_NE(alone.output.find("'render' is run by vbim-full, expected at " + (dir / "vbim-full").string()),
+            std::string::npos)
+      << alone.output;
+  const auto config = vbim::testing::runCommand((dir / "vbim").string() + " config");
+  EXPECT_EQ(config.status, 0) << config.output;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, UnknownSubcommandIsAnErrorWithUsage) {
   const Result r = run("frobnicate");
   EXPECT_EQ(r.code, 2);
