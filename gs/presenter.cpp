@@ -237,6 +237,11 @@ Task<void> Presenter::present(std::int64_t vsync) {
 Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord& rec) {
   const int w = lightmap_.width;
   const int h = lightmap_.height;
+  if (opt_.gs != nullptr) {
+    const Tick asked = sched_.now();
+    co_await opt_.gs->acquire();
+    rec.gsWait = sched_.now() - asked;
+  }
   const Tick start = sched_.now();
   const std::uint64_t id =
       (static_cast<std::uint64_t>(target_.seq) << 16) ^ static_cast<std::uint64_t>(target_.variant);
@@ -263,6 +268,7 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
   }
   rec.gsBusy = sched_.now() - start;
   counters_.gsBusy += rec.gsBusy;
+  if (opt_.gs != nullptr) opt_.gs->release();
 }
 
 void Presenter::trace(const VsyncRecord& rec) {

@@ -36,6 +36,7 @@
 #include "gs/vram.hpp"
 #include "runtime/event.hpp"
 #include "runtime/scheduler.hpp"
+#include "runtime/serial_unit.hpp"
 #include "runtime/trace.hpp"
 #include "runtime/vsync.hpp"
 
@@ -61,6 +62,7 @@ struct VsyncRecord {
   bool catchUp = false;  // blended toward a frame that arrived after it was due
   bool snapped = false;  // copied in (first frame, or hard skip)
   Tick gsBusy = 0;       // simulated GS time spent at this vsync
+  Tick gsWait = 0;       // time waiting for a shared GS (PresenterOptions::gs) busy with another presenter
 };
 
 struct PresenterCounters {
@@ -92,6 +94,9 @@ struct PresenterOptions {
   // Called after every vsync with its record and the lightmap as it now is (a frame sink: the
   // player writes lightmap frames from here; tests check invariants).
   std::function<void(const VsyncRecord&, const Rgba8Image&)> onVsync;
+  // The GS this presenter draws on, shared with the other presenters of the same console (one GIF,
+  // one drawing engine: their work of a vsync runs one after the other). Null: a GS of its own.
+  SerialUnit* gs = nullptr;
 };
 
 class Presenter {

@@ -27,9 +27,10 @@ ipu::DecoderOptions decoderOptions(const Kernels& k) {
   return o;
 }
 
-gs::PresenterOptions presenterOptions(Tick t0, const Kernels& k, Tracer* tracer, std::string name) {
+gs::PresenterOptions presenterOptions(Tick t0, const Kernels& k, Tracer* tracer, std::string name, SerialUnit& gs) {
   gs::PresenterOptions o;
   o.t0 = t0;
+  o.gs = &gs;
   o.kernels = k.blend;
   o.tracer = tracer;
   o.name = std::move(name);
@@ -56,14 +57,16 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ProbedStream& st
       lmCompressed_(s, static_cast<std::size_t>(config.ee.compressed_frames)),
       skyCompressed_(s, static_cast<std::size_t>(config.ee.compressed_frames)),
       demux_(s, ring_, stream, timeline_, config.ee, {&lmCompressed_, &skyCompressed_}, work_, tracer_),
-      ipu_(s, config.ipu, tracer_, decoderOptions(kernels)) {
+      ipu_(s, config.ipu, tracer_, decoderOptions(kernels)),
+      gs_(s) {
   const auto depth = static_cast<std::size_t>(config.ee.decoded_frames);
   lmFrames_ = std::make_unique<DecodedFrames>(s, streamInfos(stream, stream.lightmapIndex), depth, *this);
-  lightmap_ = std::make_unique<gs::Presenter>(s, *lmFrames_, config.gs, presenterOptions(t0_, kernels, tracer_, "gs"));
+  lightmap_ =
+      std::make_unique<gs::Presenter>(s, *lmFrames_, config.gs, presenterOptions(t0_, kernels, tracer_, "gs", gs_));
   if (stream.skyIndex >= 0) {
     skyFrames_ = std::make_unique<DecodedFrames>(s, streamInfos(stream, stream.skyIndex), depth, *this);
-    sky_ =
-        std::make_unique<gs::Presenter>(s, *skyFrames_, config.gs, presenterOptions(t0_, kernels, tracer_, "gs.sky"));
+    sky_ = std::make_unique<gs::Presenter>(s, *skyFrames_, config.gs,
+                                           presenterOptions(t0_, kernels, tracer_, "gs.sky", gs_));
   }
   if (faults != nullptr) iop::applyFaults(s, drive_, *faults, Rng(seed).fork("faults"));
 }

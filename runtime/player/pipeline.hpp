@@ -29,6 +29,7 @@
 #include "runtime/player/timeline.hpp"
 #include "runtime/rng.hpp"
 #include "runtime/scheduler.hpp"
+#include "runtime/serial_unit.hpp"
 #include "runtime/trace.hpp"
 
 namespace vbim::player {
@@ -65,6 +66,7 @@ class Pipeline : public DecodedFrames::BranchSink {
 
   gs::Presenter& lightmap() { return *lightmap_; }
   gs::Presenter* sky() { return sky_.get(); }
+  const SerialUnit& gsUnit() const { return gs_; }
   const iop::Drive& drive() const { return drive_; }
   const iop::StreamRing& ring() const { return ring_; }
   const iop::SifChannel& sif() const { return sif_; }
@@ -98,6 +100,7 @@ class Pipeline : public DecodedFrames::BranchSink {
   ipu::IpuUnit ipu_;
   std::unique_ptr<DecodedFrames> lmFrames_;
   std::unique_ptr<DecodedFrames> skyFrames_;
+  SerialUnit gs_;  // the one GS both presenters draw on
   std::unique_ptr<gs::Presenter> lightmap_;
   std::unique_ptr<gs::Presenter> sky_;
   std::uint64_t generation_ = 0;

@@ -157,7 +157,9 @@ void writeStatsJson(const Player& player, std::ostream& out) {
       {"decode_sky_ticks_mean", skyPics ? dc.perStream[1] / skyPics : 0},
       {"decode_ticks_max", dc.maxPerPicture},
       {"gs_ticks_per_vsync_mean", lmc.vsyncs ? gsBusy / lmc.vsyncs : 0},
-      {"gs_ticks_per_new_frame_mean", lmc.framesShown ? gsBusy / std::max<std::int64_t>(1, lmc.framesShown) : 0}};
+      {"gs_ticks_per_new_frame_mean", lmc.framesShown ? gsBusy / std::max<std::int64_t>(1, lmc.framesShown) : 0},
+      // Time a presenter waited for the GS while the other one drew (they share one GS).
+      {"gs_wait_ticks_per_vsync_mean", lmc.vsyncs ? p.gsUnit().waited() / lmc.vsyncs : 0}};
   j["sustained_bytes_per_s"] =
       elapsed > 0 ? static_cast<std::int64_t>((static_cast<__int128>(dm.bytes) * kBusHz) / elapsed) : 0;
   j["decoded_pictures"] = dc.pictures;

@@ -191,5 +191,49 @@ TEST(Presenter, GsWorkLongerThanAVsyncLosesVsyncs) {
   EXPECT_EQ(pr.counters().vsyncs + pr.counters().missedVsyncs, 12);
 }
 
+// Two presenters on one GS (the lightmap and the sky of a console): at every vsync the second
+// waits while the first draws, so their work never overlaps and the second's wait is the first's
+// work; the pixels are those each would draw alone.
+TEST(Presenter, PresentersSharingOneGsDrawOneAfterTheOther) {
+  GsParams p;
+  p.uploadMode = "strips";  // GS work at every vsync
+  Scheduler s;
+  SerialUnit gs(s);
+  ScriptedFrameSource lmSource({stream("clear")}, wave, onTime());
+  ScriptedFrameSource skySource(
+      {stream("sky", 300, 64, 32)}, [](int v, std::int64_t k) { return waveSized(v, k, 64, 32); }, onTime());
+  PresenterOptions shared;
+  shared.gs = &gs;
+  shared.name = "gs";
+  Presenter lightmap(s, lmSource, p, shared);
+  shared.name = "gs.sky";
+  Presenter sky(s, skySource, p, shared);
+  s.spawn("gs", lightmap.run(fromMs(300)));
+  s.spawn("gs.sky", sky.run(fromMs(300)));
+  s.runUntil(fromMs(300));
+
+  Scheduler alone;
+  ScriptedFrameSource skyAloneSource(
+      {stream("sky", 300, 64, 32)}, [](int v, std::int64_t k) { return waveSized(v, k, 64, 32); }, onTime());
+  Presenter skyAlone(alone, skyAloneSource, p);
+  alone.spawn("gs.sky", skyAlone.run(fromMs(300)));
+  alone.runUntil(fromMs(300));
+
+  ASSERT_EQ(lightmap.history().size(), sky.history().size());
+  ASSERT_FALSE(sky.history().empty());
+  Tick waited = 0;
+  for (std::size_t n = 0; n < sky.history().size(); ++n) {
+    const VsyncRecord& a = lightmap.history()[n];
+    const VsyncRecord& b = sky.history()[n];
+    ASSERT_GT(a.gsBusy, 0) << n;
+    EXPECT_EQ(a.gsWait, 0) << n;         // the lightmap asks first (spawned first)
+    EXPECT_EQ(b.gsWait, a.gsBusy) << n;  // the sky draws when the lightmap is done
+    EXPECT_EQ(b.gsBusy, skyAlone.history()[n].gsBusy) << n;
+    waited += b.gsWait;
+  }
+  EXPECT_EQ(gs.waited(), waited);
+  EXPECT_EQ(sky.lightmap().pixels, skyAlone.lightmap().pixels);
+}
+
 }  // namespace
 }  // namespace vbim::gs
