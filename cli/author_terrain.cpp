@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cli/command.hpp"
+#include "cli/lighting_options.hpp"
 #include "runtime/params.hpp"
 #include "streams/authoring/authoring_error.hpp"
 
@@ -26,8 +27,7 @@ DayCycleParams baseParams(const TerrainAuthorOptions& o) {
     lighting::describeParams(table, params);
     table.loadTomlFile(o.lightingConfig);
   }
-  for (const auto& [opt, apply] : o.given)
-    if (opt->count() > 0) apply(params);
+  applyGivenLightingOptions(o.given, params);
   return params;
 }
 
@@ -57,32 +57,12 @@ std::vector<lighting::WeatherVariant> parseWeather(const std::string& list, cons
 }  // namespace
 
 void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o) {
-  using Apply = std::function<void(DayCycleParams&)>;
-  const DayCycleParams& p = o->params;  // defaults shown in --help
   const std::string group = "Technique A (--terrain FILE or --procedural)";
   auto track = [&](CLI::Option* opt) {
     opt->group(group);
     o->options.push_back(opt);
     return opt;
   };
-  // A lighting option is bound to the command line's copy of the field and copied over the
-  // config file's value only when given. `field` names the field in any DayCycleParams.
-  // The functions stored in `o` point back at it through a plain pointer: capturing the shared_ptr
-  // would make `o` own itself and never be freed (LeakSanitizer).
-  TerrainAuthorOptions* self = o.get();
-  auto param = [&](const std::string& flags, auto field, const std::string& help) {
-    CLI::Option* opt = track(cmd->add_option(flags, field(o->params), help));
-    o->given.push_back({opt, Apply([self, field](DayCycleParams& dst) { field(dst) = field(self->params); })});
-    return opt;
-  };
-  auto flag = [&](const std::string& flags, auto field, const std::string& help) {
-    CLI::Option* opt = track(cmd->add_flag(flags, field(o->params), help));
-    o->given.push_back({opt, Apply([self, field](DayCycleParams& dst) { field(dst) = field(self->params); })});
-  };
-#define VBIM_FIELD(member)          \
-  [](DayCycleParams & q) -> auto& { \
-    return q.member;                \
-  }
   track(cmd->add_option("--terrain", o->terrain.heightfield,
                         "Heightfield (single-channel 16-bit PNG, TIFF, EXR...); sides multiples of 16"));
   track(cmd->add_flag("--procedural", o->procedural,
@@ -99,29 +79,10 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   track(cmd->add_option("--seed", o->terrain.procedural.seed, "Procedural terrain seed")->default_val(1));
   track(cmd->add_option("--relief", o->terrain.procedural.reliefMetres, "Procedural terrain relief in metres")
             ->default_val(900.0));
-  param("--latitude", VBIM_FIELD(latitudeDeg), "Latitude in degrees, -90..90")->default_val(p.latitudeDeg);
-  param("--day", VBIM_FIELD(dayOfYear), "Day of the year, 1..366")->default_val(p.dayOfYear);
-  param("--start-hour", VBIM_FIELD(startHour), "Local solar time of the first frame")->default_val(p.startHour);
-  param("--end-hour", VBIM_FIELD(endHour), "Local solar time of the last frame (0 to 24 loops a day)")
-      ->default_val(p.endHour);
-  param("--frame-count", VBIM_FIELD(frames), "Frames per variant")->default_val(p.frames);
-  param("--sun-diameter", VBIM_FIELD(sunDiameterDeg), "Sun's angular diameter in degrees (larger = softer shadows)")
-      ->default_val(p.sunDiameterDeg);
-  flag("--exact-disc", VBIM_FIELD(exactDisc), "Occlude the sun by visible disc area (not the linear ramp)");
-  param("--turbidity", VBIM_FIELD(turbidity), "Atmospheric turbidity (Preetham; 2-6)")->default_val(p.turbidity);
-  param("--sky-patches", VBIM_FIELD(skyPatches), "Sky patches, 1..8")->default_val(p.skyPatches);
-  param("--exposure-klux", VBIM_FIELD(exposureKlux), "Irradiance in klux that maps to 1.0")
-      ->default_val(p.exposureKlux);
-  flag("--multiply-albedo", VBIM_FIELD(multiplyAlbedo), "Multiply the lightmap by the colour map (as the article)");
-  param("--sky-width", VBIM_FIELD(skyWidth), "Sky dome width, multiple of 32 (height = width / 2)")
-      ->default_val(p.skyWidth);
-  flag("--clouds", VBIM_FIELD(clouds.enabled), "Moving procedural cloud shadows");
-  param("--cloud-coverage", VBIM_FIELD(clouds.coverage), "Cloud coverage 0..1")->default_val(p.clouds.coverage);
-  CLI::Option* noMoon = track(cmd->add_flag("--no-moon", o->noMoon, "No moonlight at night"));
-  o->given.push_back({noMoon, Apply([self](DayCycleParams& dst) { dst.moon = !self->noMoon; })});
-  param("--moon-irradiance", VBIM_FIELD(moonIrradiance), "Moonlight, normalised (1.0 = --exposure-klux)")
-      ->default_val(p.moonIrradiance);
-#undef VBIM_FIELD
+  // The plain pointer inside the stored functions (not the shared_ptr) keeps `o` from owning
+  // itself, which LeakSanitizer would report.
+  addLightingOptions(cmd, o->params, o->noMoon, o->given, LightingOptionNames{"--frame-count", "--exposure-klux"},
+                     [&](CLI::Option* opt) { track(opt); });
   track(cmd->add_option("--lighting-config", o->lightingConfig,
                         "TOML file of lighting.* keys (command-line options win)"));
   track(cmd->add_option("--weather", o->weather,

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/author_common.hpp"
+#include "cli/lighting_options.hpp"
 #include "lighting/authoring/technique_a_stream.hpp"
 
 namespace vbim::cli {
@@ -20,9 +21,8 @@ struct TerrainAuthorOptions {
   bool procedural = false, noMoon = false;
   std::string lightingConfig, weather = "clear";
   unsigned threads = 2;
-  lighting::DayCycleParams params;  // values given on the command line
-  // Lighting options: each copies its value over the config file's only when it was given.
-  std::vector<std::pair<CLI::Option*, std::function<void(lighting::DayCycleParams&)>>> given;
+  lighting::DayCycleParams params;    // values given on the command line
+  LightingOverrides given;            // lighting options: each overrides the config file's value when given
   std::vector<CLI::Option*> options;  // every option of this source, to tell whether it was chosen
 };
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/lighting_options.hpp"
 #include "cli/output_dir.hpp"
 #include "lighting/day_cycle.hpp"
 #include "lighting/errors.hpp"
@@ -120,7 +121,7 @@ void writeDebugStatic(const DayCycleGenerator& g, const DebugLayers& d, const Ou
   }
 }
 
-void run(LightmapOptions& o, const std::vector<std::pair<CLI::Option*, std::function<void(DayCycleParams&)>>>& given) {
+void run(LightmapOptions& o, const LightingOverrides& given) {
   const DebugLayers debug = parseDebug(o.debug);
   if (o.format != "png" && o.format != "exr" && o.format != "both") {
     throw Exit(2, "vbim lightmap: --format must be png, exr or both");
@@ -131,9 +132,7 @@ void run(LightmapOptions& o, const std::vector<std::pair<CLI::Option*, std::func
     describeParams(table, params);
     table.loadTomlFile(o.config);
   }
-  for (const auto& [opt, apply] : given) {
-    if (opt->count() > 0) apply(params);
-  }
+  applyGivenLightingOptions(given, params);
   validateParams(params);  // before any heavy work or output
   FloatImage cloudTexture;
   if (!o.cloudTexture.empty()) {
@@ -178,24 +177,7 @@ void run(LightmapOptions& o, const std::vector<std::pair<CLI::Option*, std::func
 void addLightmap(CLI::App& app) {
   auto* cmd = app.add_subcommand(kLightmapCommand.name, kLightmapCommand.summary);
   auto o = std::make_shared<LightmapOptions>();
-  const DayCycleParams& p = o->params;  // defaults shown in --help
-  using Apply = std::function<void(DayCycleParams&)>;
-  auto given = std::make_shared<std::vector<std::pair<CLI::Option*, Apply>>>();
-  // A parameter option is bound to the command line's copy of the field; `given` copies it over the
-  // config file's value only when the option was given. `field` names the field in any params.
-  auto param = [&](const std::string& flags, auto field, const std::string& help) {
-    CLI::Option* opt = cmd->add_option(flags, field(o->params), help);
-    given->push_back({opt, [o, field](DayCycleParams& dst) { field(dst) = field(o->params); }});
-    return opt;
-  };
-  auto flag = [&](const std::string& flags, auto field, const std::string& help) {
-    CLI::Option* opt = cmd->add_flag(flags, field(o->params), help);
-    given->push_back({opt, [o, field](DayCycleParams& dst) { field(dst) = field(o->params); }});
-  };
-#define VBIM_FIELD(member)          \
-  [](DayCycleParams & q) -> auto& { \
-    return q.member;                \
-  }
+  auto given = std::make_shared<LightingOverrides>();
   cmd->add_option("--terrain", o->terrain,
                   "Heightfield (single-channel; 16-bit PNG, TIFF, EXR...). Default: built-in procedural terrain");
   cmd->add_option("--albedo", o->albedo,
@@ -207,34 +189,14 @@ void addLightmap(CLI::App& app) {
   cmd->add_option("--size", o->size, "Procedural terrain size in texels")->default_val(512);
   cmd->add_option("--seed", o->seed, "Procedural terrain seed")->default_val(1);
   cmd->add_option("--relief", o->relief, "Procedural terrain relief in metres")->default_val(900.0);
-  param("--latitude", VBIM_FIELD(latitudeDeg), "Latitude in degrees, -90..90")->default_val(p.latitudeDeg);
-  param("--day", VBIM_FIELD(dayOfYear), "Day of the year, 1..366")->default_val(p.dayOfYear);
-  param("--start-hour", VBIM_FIELD(startHour), "Local solar time of the first frame")->default_val(p.startHour);
-  param("--end-hour", VBIM_FIELD(endHour), "Local solar time of the last frame (0 to 24 loops a day)")
-      ->default_val(p.endHour);
-  param("--frames", VBIM_FIELD(frames), "Number of frames")->default_val(p.frames);
-  param("--sun-diameter", VBIM_FIELD(sunDiameterDeg), "Sun's angular diameter in degrees (larger = softer shadows)")
-      ->default_val(p.sunDiameterDeg);
-  flag("--exact-disc", VBIM_FIELD(exactDisc),
-       "Occlude the sun by visible disc area instead of the article's linear ramp");
-  param("--turbidity", VBIM_FIELD(turbidity), "Atmospheric turbidity (Preetham; 2-6)")->default_val(p.turbidity);
-  param("--sky-patches", VBIM_FIELD(skyPatches), "Sky patches, 1..8")->default_val(p.skyPatches);
-  param("--exposure", VBIM_FIELD(exposureKlux), "Irradiance in klux that maps to 1.0")->default_val(p.exposureKlux);
-  flag("--multiply-albedo", VBIM_FIELD(multiplyAlbedo),
-       "Multiply the lightmap by the colour map (as the article does)");
-  param("--sky-width", VBIM_FIELD(skyWidth), "Sky dome image width (height = width / 2)")->default_val(p.skyWidth);
-  flag("--clouds", VBIM_FIELD(clouds.enabled), "Moving procedural cloud shadows");
-  param("--cloud-coverage", VBIM_FIELD(clouds.coverage), "Cloud coverage 0..1")->default_val(p.clouds.coverage);
   cmd->add_option("--cloud-texture", o->cloudTexture, "Single-channel cloud density texture (implies --clouds)");
-  CLI::Option* noMoon = cmd->add_flag("--no-moon", o->noMoon, "No moonlight at night");
-  given->push_back({noMoon, [o](DayCycleParams& dst) { dst.moon = !o->noMoon; }});
+  addLightingOptions(cmd, o->params, o->noMoon, *given, LightingOptionNames{}, [](CLI::Option*) {});
   cmd->add_option("--config", o->config, "TOML file of lighting.* parameters (command-line values win)");
   cmd->add_option("--format", o->format, "png, exr or both")->default_val("png");
   cmd->add_option("--debug", o->debug, "Extra layers: horizons, sky (factor K), shadow (sun mask), or all");
   cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")->default_val(2);
   cmd->add_option("--out", o->out, "Output directory (complete or absent)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing non-empty output directory");
-#undef VBIM_FIELD
   cmd->callback([o, given] {
     try {
       run(*o, *given);
