@@ -21,10 +21,7 @@ void addLightingOptions(CLI::App* cmd, DayCycleParams& cli, bool& noMoon, Lighti
   auto flag = [&](const std::string& flags, auto field, const std::string& help) {
     bind(cmd->add_flag(flags, field(cli), help), field);
   };
-#define VBIM_FIELD(member)          \
-  [](DayCycleParams & q) -> auto& { \
-    return q.member;                \
-  }
+#define VBIM_FIELD(member) ([](DayCycleParams & q) -> auto& { return q.member; })
   param("--latitude", VBIM_FIELD(latitudeDeg), "Latitude in degrees, -90..90")->default_val(defaults.latitudeDeg);
   param("--day", VBIM_FIELD(dayOfYear), "Day of the year, 1..366")->default_val(defaults.dayOfYear);
   param("--start-hour", VBIM_FIELD(startHour), "Local solar time of the first frame")->default_val(defaults.startHour);

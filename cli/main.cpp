@@ -37,9 +37,11 @@ int runFullTool(char** argv) {
 
 int main(int argc, char** argv) {
   try {
-    if (argc > 1)
-      for (const vbim::cli::CommandInfo& c : vbim::cli::kFullOnlyCommands)
+    if (argc > 1) {
+      for (const vbim::cli::CommandInfo& c : vbim::cli::kFullOnlyCommands) {
         if (std::string(argv[1]) == c.name) return runFullTool(argv);
+      }
+    }
     CLI::App app;
     vbim::cli::configureApp(app);
     vbim::cli::addPlay(app);

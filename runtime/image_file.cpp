@@ -11,9 +11,10 @@ namespace vbim {
 namespace {
 
 void checkSize(const std::filesystem::path& path, int width, int height) {
-  if (width <= 0 || height <= 0)
+  if (width <= 0 || height <= 0) {
     throw ImageFileError(path.string() + ": cannot write a " + std::to_string(width) + "x" + std::to_string(height) +
                          " image (expected a positive size)");
+  }
 }
 
 }  // namespace
