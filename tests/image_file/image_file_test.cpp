@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch() {
-  const fs::path d = fs::temp_directory_path() / ("vbim_image_file_" + std::to_string(::getpid()));
+  fs::path d = fs::temp_directory_path() / ("vbim_image_file_" + std::to_string(::getpid()));
   fs::create_directories(d);
   return d;
 }
