@@ -123,6 +123,13 @@ Task<void> EeDemux::route(streams::Picture& pic) {
     const bool otherStarved = active(o) && buffers_[static_cast<std::size_t>(o)]->empty() &&
                               (theirs < ours || (theirs == ours && o == kLightmap));
     if (otherStarved) {
+      // Stored beyond the depth, within the stream's share of EE RAM; past it the picture is
+      // dropped (its frame lost, as with damage) so memory stays bounded however the file is muxed.
+      if (out.bytes() + pic.data.size() > static_cast<std::size_t>(p_.compressed_budget_kib) * 1024) {
+        ++c_.overBudget;
+        ++c_.framesLost;
+        co_return;
+      }
       ++c_.overDepth;
       break;
     }

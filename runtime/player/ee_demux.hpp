@@ -47,8 +47,9 @@ struct DemuxCounters {
   std::int64_t picturesUnidentified = 0;  // assembled but not at an indexed position
   std::int64_t framesLost = 0;            // needed frames that never arrived (damage)
   std::int64_t streamErrors = 0;          // defects the reader reported
-  std::int64_t overDepth = 0;  // pictures stored beyond ee.compressed_frames (one stream ran ahead in the mux)
-  Tick busy = 0;               // EE time spent parsing and copying
+  std::int64_t overDepth = 0;   // pictures stored beyond ee.compressed_frames (one stream ran ahead in the mux)
+  std::int64_t overBudget = 0;  // pictures dropped: ee.compressed_budget_kib was full (their frames lost)
+  Tick busy = 0;                // EE time spent parsing and copying
 };
 
 class EeDemux {

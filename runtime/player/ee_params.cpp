@@ -18,6 +18,10 @@ void describeParams(ParamTable& t, EeParams& p) {
            "assumption: a quadword memcpy from cached to uncached EE RAM, 4 cycles per 16 bytes");
   t.addInt("ee.compressed_frames", &p.compressed_frames, 1, 64, "pictures",
            "seeds: one complete picture waits in the compressed frame buffer while the next loads; 2 per stream");
+  t.addInt("ee.compressed_budget_kib", &p.compressed_budget_kib, 1, 32 * 1'024, "KiB",
+           "assumption: 4 MiB of the EE's 32 MiB per stream for compressed pictures, including those stored "
+           "beyond ee.compressed_frames while the other stream is behind in the mux; a picture that would exceed "
+           "it is dropped and its frame counted lost");
   t.addInt("ee.decoded_frames", &p.decoded_frames, 1, 64, "frames",
            "assumption: double-buffered decoded frames per stream (the shown target and the next one)");
   t.addInt("ee.decode_setup_cycles", &p.decode_setup_cycles, 0, 10'000'000, "EE cycles",

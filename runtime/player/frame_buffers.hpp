@@ -32,25 +32,32 @@ class CompressedBuffer {
   std::size_t size() const { return q_.size(); }
   const CompressedPicture& front() const { return q_.front(); }
   void push(CompressedPicture p) {
+    bytes_ += p.data.size();
     q_.push_back(std::move(p));
     filled_.notify();
   }
   CompressedPicture pop() {
     CompressedPicture p = std::move(q_.front());
     q_.pop_front();
+    bytes_ -= p.data.size();
     room_.notify();
     return p;
   }
   // Drops every picture with seq >= from.
   void dropFrom(std::int64_t from) {
-    while (!q_.empty() && q_.back().seq >= from) q_.pop_back();
+    while (!q_.empty() && q_.back().seq >= from) {
+      bytes_ -= q_.back().data.size();
+      q_.pop_back();
+    }
     room_.notify();
   }
+  std::size_t bytes() const { return bytes_; }  // of the pictures held
   Event& room() { return room_; }
   Event& filled() { return filled_; }
 
  private:
   std::size_t depth_;
+  std::size_t bytes_ = 0;
   std::deque<CompressedPicture> q_;
   Event room_;
   Event filled_;

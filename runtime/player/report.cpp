@@ -136,7 +136,8 @@ void writeStatsJson(const Player& player, std::ostream& out) {
                 {"loop_seeks", dm.loopSeeks},
                 {"pictures_loaded", dm.picturesLoaded},
                 {"pictures_ignored", dm.picturesIgnored},
-                {"pictures_over_buffer_depth", dm.overDepth}};
+                {"pictures_over_buffer_depth", dm.overDepth},
+                {"pictures_over_budget", dm.overBudget}};
   j["damage"] = {{"stream_errors", dm.streamErrors},
                  {"bad_sectors", rd.badSectors},
                  {"pictures_dropped_by_reader", rd.droppedPictures},

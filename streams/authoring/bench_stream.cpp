@@ -18,8 +18,9 @@ Rgba8Image noiseImage(int w, int h, Rng& rng) {
 
 }  // namespace
 
-std::vector<std::uint8_t> authorBenchStream(int frames, BenchContent content, int qscale) {
+std::vector<std::uint8_t> authorBenchStream(int frames, BenchContent content, int qscale, bool stretchContainerTime) {
   streams::AuthorSettings s;
+  s.stretchContainerTime = stretchContainerTime;
   s.gameFps = streams::Rational{1, 2};  // 2 s of game time per stream frame
   s.encoder.qscale = qscale;
   streams::StreamWriter w(s);

@@ -13,7 +13,9 @@ namespace vbim::bench {
 
 enum class BenchContent { syntheticDay, noise };
 
-// A finished VBIM stream (2048-byte packs) of `frames` frames.
-std::vector<std::uint8_t> authorBenchStream(int frames, BenchContent content, int qscale = 3);
+// A finished VBIM stream (2048-byte packs) of `frames` frames. stretchContainerTime = false makes a
+// stream whose lightmap and sky drift apart in the file when the frames are large (noise).
+std::vector<std::uint8_t> authorBenchStream(int frames, BenchContent content, int qscale = 3,
+                                            bool stretchContainerTime = true);
 
 }  // namespace vbim::bench

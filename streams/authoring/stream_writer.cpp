@@ -178,7 +178,7 @@ std::vector<std::uint8_t> StreamWriter::finish() {
   for (const auto& p : enc_->pending) frameBytes[p.packet->pts] += p.packet->size;
   std::int64_t largest = 0;
   for (const auto& [pts, bytes] : frameBytes) largest = std::max(largest, bytes);
-  stretch_ = stretchFor(largest, descriptor_.ptsPerFrame);
+  stretch_ = settings_.stretchContainerTime ? stretchFor(largest, descriptor_.ptsPerFrame) : 1;
   descriptor_.ptsPerFrame *= stretch_;
   for (auto& p : enc_->pending) {
     AVPacket* pkt = std::exchange(p.packet, nullptr);

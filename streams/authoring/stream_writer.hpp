@@ -32,6 +32,9 @@ struct AuthorSettings {
   std::uint32_t loopFrame = 0;  // frame playback returns to after the last one
   EncoderSettings encoder;      // quantiser or bitrate, container frame rate
   bool withSky = true;          // every frame has a sky picture (stream 0xE1)
+  // Space large frames out in container time so the muxer keeps the streams in step (see
+  // containerStretch()); false keeps the container frame rate exact and lets them drift.
+  bool stretchContainerTime = true;
 };
 
 // Largest frame side: MPEG-2 horizontal/vertical_size without extension bits is 12 bits.
