@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "ipu/headers.hpp"
+#include "ipu/start_code.hpp"
 
 namespace vbim::ipu {
 
@@ -13,8 +14,7 @@ std::vector<AccessUnit> splitAccessUnits(std::span<const std::uint8_t> es) {
   std::size_t unitBegin = 0;
   bool sawPicture = false;
   std::size_t headerStart = SIZE_MAX;  // first sequence/GOP header after the current picture's data
-  for (std::size_t i = 0; i + 3 < n; ++i) {
-    if (d[i] != 0 || d[i + 1] != 0 || d[i + 2] != 1) continue;
+  for (std::size_t i = findStartCode(d, n, 0); i + 3 < n; i = findStartCode(d, n, i + 3)) {
     const std::uint8_t code = d[i + 3];
     if (code == kPictureStartCode) {
       if (sawPicture) {
@@ -27,7 +27,6 @@ std::vector<AccessUnit> splitAccessUnits(std::span<const std::uint8_t> es) {
     } else if (code == kSequenceHeaderCode || code == kGroupStartCode) {
       if (sawPicture && headerStart == SIZE_MAX) headerStart = i;
     }
-    i += 2;
   }
   if (n > unitBegin) units.push_back({unitBegin, n - unitBegin});
   return units;

@@ -8,10 +8,12 @@
 #include <chrono>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
+#include "ipu/start_code.hpp"
 #include "runtime/worker_pool.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 
@@ -239,6 +241,32 @@ TEST(IpuRobustness, AbsurdSizeIsRefused) {
   es[6] &= 0x0F;  // horizontal_size = 0, vertical_size = 48 & 0xFF...
   Decoder dec2;
   EXPECT_TRUE(dec2.decode(es).undecodable);
+}
+
+// The start-code scan against its definition on buffers dense with near misses (00 01, 00 00 00,
+// 00 00 at the end), from every start offset, at every length up to 300 bytes.
+TEST(IpuRobustness, StartCodeScanFindsTheFirstPrefix) {
+  auto naive = [](const std::vector<std::uint8_t>& d, std::size_t from) {
+    for (std::size_t i = from; i + 2 < d.size(); ++i)
+      if (d[i] == 0 && d[i + 1] == 0 && d[i + 2] == 1) return i;
+    return d.size();
+  };
+  std::uint32_t state = 11;
+  auto below = [&](std::uint32_t n) {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) % n;
+  };
+  for (int t = 0; t < 600; ++t) {
+    std::vector<std::uint8_t> d(below(300));
+    const std::uint32_t density = 2 + below(40);  // 1 in `density` bytes is 00, as many 01
+    for (auto& b : d) {
+      const std::uint32_t r = below(2 * density);
+      b = static_cast<std::uint8_t>(r == 0 ? 0 : (r == 1 ? 1 : 2 + below(254)));
+    }
+    for (std::size_t from = 0; from <= d.size() + 1; ++from)
+      ASSERT_EQ(findStartCode(d.data(), d.size(), from), from <= d.size() ? naive(d, from) : d.size())
+          << t << " " << from;
+  }
 }
 
 TEST(IpuRobustness, SliceParallelDecodeIsBitIdentical) {
