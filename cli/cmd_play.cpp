@@ -35,10 +35,13 @@ Tick parseTime(const std::string& what, const std::string& text) {
 
 void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool exr) {
   try {
-    if (!exr) return writePng(path, img.width, img.height, img.pixels.data());
-    std::vector<float> scaled(img.pixels.size());  // 8-bit texels as 0..1 (alpha 0x80 = 0.502)
-    for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = static_cast<float>(img.pixels[i]) / 255.0f;
-    writeExr(path, img.width, img.height, scaled.data());
+    if (exr) {
+      std::vector<float> scaled(img.pixels.size());  // 8-bit texels as 0..1 (alpha 0x80 = 0.502)
+      for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = static_cast<float>(img.pixels[i]) / 255.0f;
+      writeExr(path, img.width, img.height, scaled.data());
+    } else {
+      writePng(path, img.width, img.height, img.pixels.data());
+    }
   } catch (const ImageFileError& e) {
     throw Exit(1, e.what());
   }

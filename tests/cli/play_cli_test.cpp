@@ -1,0 +1,139 @@
+// `vbim play` as a user runs it (issue #7 item 3 and its bad input): the files of a run, pictures
+// that hold exactly the texels the hashes were taken of, repeatable output, and clear refusals.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "runtime/image.hpp"
+#include "runtime/player/frame_hash.hpp"
+#include "tests/support/run_command.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vbim::testing::runCommand;
+
+const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("vbim_play_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+vbim::testing::CommandResult play(const std::string& args) {
+  return runCommand(std::string(VBIM_BINARY) + " play " + args);
+}
+
+// The bytes as stored (OpenImageIO would otherwise multiply the colours by alpha).
+vbim::Rgba8Image readPng(const fs::path& p) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(p.string(), &config);
+  if (!in) return {};
+  vbim::Rgba8Image img(in->spec().width, in->spec().height);
+  if (in->spec().nchannels != 4 || !in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, img.pixels.data())) return {};
+  return img;
+}
+
+// hashes.txt: "vsync seconds hash" per line.
+std::vector<std::string> hashColumn(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> out;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream f(line);
+    std::string vsync, seconds, hash;
+    f >> vsync >> seconds >> hash;
+    out.push_back(hash);
+  }
+  return out;
+}
+
+TEST(PlayCli, WritesEveryFileAndPicturesMatchTheirHashes) {
+  const fs::path out = scratch("run");
+  const auto r = play(kSample + " --duration 10s --every 120 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"hashes.txt", "stats.json", "trace.json", "signals.vcd", "timeline.csv"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  const std::vector<std::string> hashes = hashColumn(out / "hashes.txt");
+  ASSERT_EQ(hashes.size(), 600u);  // 10 s at 59.94 Hz
+  for (int vsync : {0, 120, 240, 360, 480}) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06d.png", vsync);
+    const vbim::Rgba8Image lightmap = readPng(out / "frames" / (std::string("lightmap_") + name));
+    const vbim::Rgba8Image sky = readPng(out / "frames" / (std::string("sky_") + name));
+    ASSERT_GT(lightmap.width, 0) << vsync;
+    ASSERT_GT(sky.width, 0) << vsync;
+    EXPECT_EQ(vbim::player::hashHex(vbim::player::frameHash(lightmap, &sky)), hashes[static_cast<std::size_t>(vsync)])
+        << "the pictures of vsync " << vsync << " are not the texels that were hashed";
+  }
+  fs::remove_all(out);
+}
+
+TEST(PlayCli, SameRunSameBytes) {
+  const fs::path a = scratch("a"), b = scratch("b");
+  ASSERT_EQ(play(kSample + " --duration 6s --seed 3 --out " + a.string()).status, 0);
+  ASSERT_EQ(play(kSample + " --duration 6s --seed 3 --out " + b.string()).status, 0);
+  for (const char* f : {"hashes.txt", "trace.json", "signals.vcd", "timeline.csv"})
+    EXPECT_EQ(vbim::testing::readFileBytes(a / f), vbim::testing::readFileBytes(b / f)) << f;
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
+TEST(PlayCli, ExrFramesAreWritten) {
+  const fs::path out = scratch("exr");
+  const auto r = play(kSample + " --duration 2s --at 1s --format exr --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  auto in = OIIO::ImageInput::open((out / "frames" / "lightmap_000060.exr").string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().nchannels, 4);
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::HALF);
+  fs::remove_all(out);
+}
+
+struct Refusal {
+  std::string args;      // after "vbim play"
+  std::string expected;  // in the message
+};
+
+TEST(PlayCli, BadInputIsRefusedClearlyAndLeavesNoOutput) {
+  const fs::path dir = scratch("bad");
+  fs::create_directories(dir);
+  std::ofstream(dir / "not.vbim") << "x";
+  std::ofstream(dir / "bad.toml") << "ring.bankmax = \"x\"\n";
+  const fs::path full = dir / "full";
+  fs::create_directories(full);
+  std::ofstream(full / "keep.txt") << "mine";
+  const std::string out = " --out " + (dir / "out").string();
+  const std::vector<Refusal> cases = {
+      {kSample + " --duration 10s --at 12s" + out, "--at 12s is outside the run"},
+      {(dir / "not.vbim").string() + " --duration 2s" + out, "not.vbim"},
+      {kSample + " --config " + (dir / "bad.toml").string() + " --duration 2s" + out, "bad.toml:1: key 'ring.bankmax'"},
+      {kSample + " --policy bogus --duration 2s" + out, "--policy 'bogus'"},
+      {kSample + " --duration 2s --out " + full.string(), "exists and is not empty (use --force"},
+      {(dir / "missing.vbim").string() + " --duration 2s" + out, "missing.vbim"},
+  };
+  for (const Refusal& c : cases) {
+    const auto r = play(c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out")) << c.args;
+  }
+  EXPECT_TRUE(fs::is_regular_file(full / "keep.txt"));
+  // --force replaces it.
+  const auto forced = play(kSample + " --duration 2s --force --out " + full.string());
+  EXPECT_EQ(forced.status, 0) << forced.output;
+  EXPECT_FALSE(fs::exists(full / "keep.txt"));
+  EXPECT_TRUE(fs::is_regular_file(full / "hashes.txt"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
