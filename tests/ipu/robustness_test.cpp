@@ -269,6 +269,42 @@ TEST(IpuRobustness, StartCodeScanFindsTheFirstPrefix) {
   }
 }
 
+// A slice for a row that was already decoded, after the later rows (here picture 2's first row
+// appended to picture 1): the serial decode lets it overwrite that row; the parallel one, which
+// hands out rows during the scan, must decode it after the others and give the same bytes.
+TEST(IpuRobustness, ARowRevisitedLateOverwritesAsInTheSerialDecode) {
+  testing::EncodeOptions o;
+  o.width = 160;
+  o.height = 144;
+  o.frames = 2;
+  o.quantiser = 3;
+  o.content = testing::Content::kNoise;
+  const auto es = testing::encodeIntra(o);
+  const auto units = splitAccessUnits(es);
+  ASSERT_EQ(units.size(), 2u);
+  const auto second = std::span(es).subspan(units[1].offset, units[1].size);
+  const std::size_t sliceAt = findStartCode(second.data(), second.size(), 0);
+  std::size_t first = sliceAt;
+  while (first < second.size() && second[first + 3] != 0x01)
+    first = findStartCode(second.data(), second.size(), first + 3);
+  ASSERT_LT(first, second.size()) << "no slice of row 0 in picture 2";
+  const std::size_t end = findStartCode(second.data(), second.size(), first + 3);
+  std::vector<std::uint8_t> picture(es.begin() + static_cast<std::ptrdiff_t>(units[0].offset),
+                                    es.begin() + static_cast<std::ptrdiff_t>(units[0].offset + units[0].size));
+  picture.insert(picture.end(), second.begin() + static_cast<std::ptrdiff_t>(first),
+                 second.begin() + static_cast<std::ptrdiff_t>(end));
+  Decoder serial, parallel, plain;
+  WorkerPool pool(1);
+  const PictureReport a = serial.decode(picture);
+  const PictureReport b = parallel.decode(picture, pool);
+  plain.decode(std::span(es).subspan(units[0].offset, units[0].size));
+  EXPECT_EQ(a.issueCount, b.issueCount);
+  EXPECT_EQ(serial.frame().y, parallel.frame().y);
+  EXPECT_EQ(serial.frame().cb, parallel.frame().cb);
+  EXPECT_EQ(serial.frame().cr, parallel.frame().cr);
+  EXPECT_NE(serial.frame().y, plain.frame().y) << "the appended slice should have changed row 0";
+}
+
 TEST(IpuRobustness, SliceParallelDecodeIsBitIdentical) {
   testing::EncodeOptions o;
   o.width = 160;
