@@ -17,6 +17,13 @@ void configureApp(CLI::App& app) {
   app.fallthrough(false);
 }
 
+void addCoreCommands(CLI::App& app) {
+  addPlay(app);
+  addInfo(app);
+  addDecode(app);
+  addConfig(app);
+}
+
 int runApp(CLI::App& app, int argc, char** argv) {
   // A first word that is neither an option nor a subcommand gets a plain answer.
   if (argc > 1 && argv[1][0] != '-') {

@@ -25,11 +25,6 @@ class Exit : public std::runtime_error {
   int code_;
 };
 
-// For subcommands whose issue is still open: says so and exits non-zero; never pretends to work.
-[[noreturn]] inline void notYetAvailable(const std::string& name, int issue) {
-  throw Exit(3, "vbim " + name + ": not yet available (tracked in issue #" + std::to_string(issue) + ")");
-}
-
 // A subcommand's name and one-line summary, shared by its registration and by `vbim --help`.
 struct CommandInfo {
   const char* name;
@@ -54,6 +49,8 @@ inline constexpr std::array kFullOnlyCommands{kDemoCommand, kAuthorCommand, kLig
 void configureApp(CLI::App& app);
 // Parses and runs; every error becomes a message on stderr and a non-zero status.
 int runApp(CLI::App& app, int argc, char** argv);
+// The commands both programs have: play, info, decode, config.
+void addCoreCommands(CLI::App& app);
 
 void addDemo(CLI::App& app);
 void addPlay(CLI::App& app);

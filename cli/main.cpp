@@ -44,10 +44,7 @@ int main(int argc, char** argv) {
     }
     CLI::App app;
     vbim::cli::configureApp(app);
-    vbim::cli::addPlay(app);
-    vbim::cli::addInfo(app);
-    vbim::cli::addDecode(app);
-    vbim::cli::addConfig(app);
+    vbim::cli::addCoreCommands(app);
     // Listed in --help like the others; never parsed here (handed over above).
     for (const vbim::cli::CommandInfo& c : vbim::cli::kFullOnlyCommands)
       app.add_subcommand(c.name, c.summary)->group("Subcommands run by vbim-full");

@@ -9,14 +9,11 @@ int main(int argc, char** argv) {
     CLI::App app;
     vbim::cli::configureApp(app);
     vbim::cli::addDemo(app);
-    vbim::cli::addPlay(app);
+    vbim::cli::addCoreCommands(app);
     vbim::cli::addProfile(app);
     vbim::cli::addAuthor(app);
-    vbim::cli::addInfo(app);
-    vbim::cli::addDecode(app);
     vbim::cli::addLightmap(app);
     vbim::cli::addRender(app);
-    vbim::cli::addConfig(app);
     return vbim::cli::runApp(app, argc, argv);
   } catch (...) {
     std::cerr << "vbim: internal error\n";

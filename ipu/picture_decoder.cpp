@@ -1,130 +1,14 @@
 #include "ipu/picture_decoder.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
-#include <thread>
 
 #include "ipu/quant_tables.hpp"
 #include "ipu/start_code.hpp"
 
 namespace vbim::ipu {
 
-// Streaming slice-parallel decode: while the caller is still finding the slices of a picture, the
-// runner's threads decode the rows already found. The caller closes a group (the slices of one
-// macroblock row, rows strictly increasing) as soon as the next row starts and publishes it; every
-// participant claims groups in order with an atomic cursor and waits (yielding) for the next one
-// until the scan is done; the caller then joins in. Slices after a row that goes backwards (or past
-// the reserved capacity, which is never reallocated while others read it) are decoded serially
-// after the join, in stream order, so a later slice of a row still overwrites an earlier one as in
-// the serial decode. Results are merged in group order: the same bytes as the serial decode.
-struct Decoder::Streaming {
-  bool active = false;
-  bool stopped = false;  // later slices go to `tail`
-  int lastRow = -1;
-  std::size_t groups = 0;  // groups closed (caller side)
-  std::vector<std::size_t> groupStart;
-  std::vector<Slice> tail;
-  const std::uint8_t* bytes = nullptr;
-  const Slice* slices = nullptr;  // slices_.data(), stable while streaming
-  SliceRunner* runner = nullptr;
-  std::function<void()> participant;
-  std::atomic<std::size_t> published{0};
-  std::atomic<std::size_t> cursor{0};
-  std::atomic<bool> scanDone{false};
-};
-
-Decoder::Decoder(DecoderOptions options) : options_(options), streaming_(std::make_unique<Streaming>()) {
-  streaming_->participant = [this] { decodeGroups(); };
-}
-Decoder::~Decoder() = default;
-void Decoder::startStreaming(const std::uint8_t* bytes, SliceRunner* pool) {
-  Streaming& st = *streaming_;
-  st.active = false;
-  if (pool == nullptr || pool->threads() == 0 || params_.mpeg1 || params_.tallPicture) return;
-  const auto rows = static_cast<std::size_t>(params_.mbRows);
-  slices_.clear();
-  slices_.reserve(std::max(slices_.capacity(), 2 * rows + 16));
-  st.groupStart.assign(rows + 2, 0);
-  if (jobResults_.size() < rows + 1) jobResults_.resize(rows + 1);
-  st.stopped = false;
-  st.lastRow = -1;
-  st.groups = 0;
-  st.tail.clear();
-  st.bytes = bytes;
-  st.slices = slices_.data();
-  st.runner = pool;
-  st.published.store(0, std::memory_order_relaxed);
-  st.cursor.store(0, std::memory_order_relaxed);
-  st.scanDone.store(false, std::memory_order_relaxed);
-  st.active = pool->startEach(st.participant);  // the threads start after everything above is set
-}
-
-// Closes the open group (the slices since the last boundary) and publishes it.
-void Decoder::closeGroup() {
-  Streaming& st = *streaming_;
-  if (slices_.size() == st.groupStart[st.groups]) return;
-  st.groupStart[st.groups + 1] = slices_.size();
-  ++st.groups;
-  st.published.store(st.groups, std::memory_order_release);
-}
-
-void Decoder::addSlice(const Slice& slice) {
-  Streaming& st = *streaming_;
-  if (!st.stopped && (slice.row < st.lastRow || slices_.size() == slices_.capacity())) {
-    closeGroup();
-    st.stopped = true;
-  }
-  if (st.stopped) {
-    st.tail.push_back(slice);
-    return;
-  }
-  if (slice.row != st.lastRow) closeGroup();
-  st.lastRow = slice.row;
-  slices_.push_back(slice);
-}
-
-void Decoder::decodeGroups() {
-  Streaming& st = *streaming_;
-  for (;;) {
-    const std::size_t g = st.cursor.fetch_add(1, std::memory_order_relaxed);
-    for (;;) {
-      if (g < st.published.load(std::memory_order_acquire)) break;
-      if (st.scanDone.load(std::memory_order_acquire)) {
-        if (g < st.published.load(std::memory_order_acquire)) break;
-        return;
-      }
-      std::this_thread::yield();
-    }
-    JobResult& r = jobResults_[g];
-    r.report = PictureReport{};
-    r.trace.clear();
-    SliceOutput out{&r.report, &decoded_, decodedStride_, options_.recordMacroblocks ? &r.trace : nullptr};
-    for (std::size_t j = st.groupStart[g]; j < st.groupStart[g + 1]; ++j) {
-      const Slice& sl = st.slices[j];
-      decodeSlice(params_, sl.code, st.bytes + sl.begin, st.bytes + sl.end, sl.begin, out);
-    }
-  }
-}
-
-void Decoder::finishStreaming(PictureReport& report) {
-  Streaming& st = *streaming_;
-  if (!st.stopped) closeGroup();
-  st.scanDone.store(true, std::memory_order_release);
-  decodeGroups();  // the caller takes part
-  st.runner->join();
-  st.active = false;
-  for (std::size_t g = 0; g < st.groups; ++g) {
-    const JobResult& r = jobResults_[g];
-    report.issueCount += r.report.issueCount;
-    report.fieldDctMacroblocks += r.report.fieldDctMacroblocks;
-    for (const DecodeIssue& issue : r.report.issues)
-      if (report.issues.size() < PictureReport::kMaxIssues) report.issues.push_back(issue);
-    trace_.insert(trace_.end(), r.trace.begin(), r.trace.end());
-  }
-  SliceOutput out{&report, &decoded_, decodedStride_, options_.recordMacroblocks ? &trace_ : nullptr};
-  for (const Slice& sl : st.tail) decodeSlice(params_, sl.code, st.bytes + sl.begin, st.bytes + sl.end, sl.begin, out);
-}
+Decoder::Decoder(DecoderOptions options) : options_(options) {}
 
 void Decoder::handleExtension(BitReader& br, PictureReport& report, std::size_t offset) {
   const int id = static_cast<int>(br.read(4));
@@ -219,14 +103,8 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   }
   pictureValid_ = false;
   const std::uint8_t* d = bytes.data();
-  const bool streamed = streaming_->active;
-  const bool parallel =
-      !streamed && pool && pool->threads() > 0 && !params_.mpeg1 && !params_.tallPicture && slices_.size() > 1;
-  std::size_t lastEnd = slices_.empty() ? 0 : slices_.back().end;
-  if (streamed) {
-    if (!streaming_->tail.empty()) lastEnd = streaming_->tail.back().end;
-    finishStreaming(report);
-  } else if (parallel) {
+  const bool parallel = pool && pool->threads() > 0 && !params_.mpeg1 && !params_.tallPicture && slices_.size() > 1;
+  if (parallel) {
     // MPEG-2 slices never leave their row, so jobs of whole rows write disjoint parts of the frame
     // and of decoded_ (rows padded to a cache line); reports and traces are merged in job order,
     // so the result never depends on which thread ran which job. Slices in row order (stable: a
@@ -282,6 +160,7 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
     SliceOutput out{&report, &decoded_, decodedStride_, options_.recordMacroblocks ? &trace_ : nullptr};
     for (const Slice& sl : slices_) decodeSlice(params_, sl.code, d + sl.begin, d + sl.end, sl.begin, out);
   }
+  const std::size_t lastEnd = slices_.empty() ? 0 : slices_.back().end;
   slices_.clear();
   int done = 0;
   int firstMissing = -1;
@@ -322,16 +201,11 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
         if (!sawSlice_) {
           sawSlice_ = true;
           beginPicture(report, pos);
-          if (pictureValid_) startStreaming(d, pool);
         }
         if (pictureValid_) {
           int row = code - 1;
           if (params_.tallPicture && !params_.mpeg1) row += static_cast<int>(br.peek(3)) << 7;
-          if (streaming_->active) {
-            addSlice(Slice{code, row, payload, next});
-          } else {
-            slices_.push_back(Slice{code, row, payload, next});
-          }
+          slices_.push_back(Slice{code, row, payload, next});
         }
       }
     } else {

@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -30,14 +29,6 @@ class SliceRunner {
   virtual ~SliceRunner() = default;
   virtual unsigned threads() const = 0;  // besides the caller
   virtual void run(std::size_t count, const std::function<void(std::size_t)>& fn) = 0;
-  // Optional: runs fn once on each of threads() host threads and returns at once; join() waits
-  // for them. With it the decoder hands out rows while it is still finding the picture's slices
-  // (the scan is the serial part). Default: not supported (returns false; run() is used).
-  virtual bool startEach(const std::function<void()>& fn) {
-    (void)fn;
-    return false;
-  }
-  virtual void join() {}
 };
 
 struct DecoderOptions {
@@ -53,10 +44,6 @@ struct DecoderOptions {
 class Decoder {
  public:
   explicit Decoder(DecoderOptions options = {});
-  ~Decoder();
-  // Not copied or moved: the streaming state's function refers to this decoder.
-  Decoder(const Decoder&) = delete;
-  Decoder& operator=(const Decoder&) = delete;
 
   // Decodes every header and slice in `bytes` (normally one picture with the headers before it;
   // see ipu/elementary_stream.hpp). With a runner, the slices of an MPEG-2 picture are decoded in
@@ -82,13 +69,7 @@ class Decoder {
     std::size_t begin;
     std::size_t end;
   };
-  struct Streaming;  // rows handed out during the scan (picture_decoder.cpp)
   void beginPicture(PictureReport& report, std::size_t offset);
-  void startStreaming(const std::uint8_t* bytes, SliceRunner* pool);
-  void addSlice(const Slice& slice);
-  void closeGroup();
-  void decodeGroups();  // what each participant runs: claims published rows until the scan is done
-  void finishStreaming(PictureReport& report);
   void finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool);
   void handleExtension(BitReader& br, PictureReport& report, std::size_t offset);
 
@@ -112,7 +93,6 @@ class Decoder {
   };
   std::vector<std::size_t> jobStarts_;
   std::vector<JobResult> jobResults_;
-  std::unique_ptr<Streaming> streaming_;  // a pointer keeps Decoder movable (atomics inside)
   std::vector<MacroblockBits> trace_;
 };
 

@@ -1,6 +1,4 @@
 // Slice-parallel decode on the kernel's worker pool.
-#include <memory>
-
 #include "ipu/picture_decoder.hpp"
 #include "runtime/worker_pool.hpp"
 
@@ -12,18 +10,9 @@ class PoolRunner final : public SliceRunner {
   explicit PoolRunner(WorkerPool& pool) : pool_(pool) {}
   unsigned threads() const override { return pool_.threads(); }
   void run(std::size_t count, const std::function<void(std::size_t)>& fn) override { pool_.parallelFor(count, fn); }
-  bool startEach(const std::function<void()>& fn) override {
-    batch_ = pool_.submit(pool_.threads(), [&fn](std::size_t) { fn(); });  // fn outlives the batch
-    return true;
-  }
-  void join() override {
-    if (batch_) batch_->wait();
-    batch_.reset();
-  }
 
  private:
   WorkerPool& pool_;
-  std::shared_ptr<WorkerPool::Batch> batch_;
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "render/gl_program.hpp"
 
+#include <string>
 #include <vector>
 
 #include "render/render_error.hpp"
@@ -8,6 +9,16 @@ namespace vbim::render {
 
 namespace {
 
+// The info log of a shader or a program (the two GL calls differ only in name).
+template <class GetIv, class GetLog>
+std::string infoLog(GLuint id, GetIv getIv, GetLog getLog) {
+  GLint len = 0;
+  getIv(id, GL_INFO_LOG_LENGTH, &len);
+  std::vector<char> log(static_cast<std::size_t>(len) + 1, '\0');
+  getLog(id, len, nullptr, log.data());
+  return log.data();
+}
+
 GLuint compile(const std::string& name, GLenum type, const char* source) {
   const GLuint s = glCreateShader(type);
   glShaderSource(s, 1, &source, nullptr);
@@ -15,13 +26,9 @@ GLuint compile(const std::string& name, GLenum type, const char* source) {
   GLint ok = 0;
   glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    GLint len = 0;
-    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-    std::vector<char> log(static_cast<std::size_t>(len) + 1, '\0');
-    glGetShaderInfoLog(s, len, nullptr, log.data());
+    const std::string log = infoLog(s, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(s);
-    throw RenderError(name + (type == GL_VERTEX_SHADER ? " vertex" : " fragment") +
-                      " shader does not compile: " + log.data());
+    throw RenderError(name + (type == GL_VERTEX_SHADER ? " vertex" : " fragment") + " shader does not compile: " + log);
   }
   return s;
 }
@@ -46,13 +53,10 @@ GlProgram::GlProgram(const std::string& name, const char* vertexSource, const ch
   GLint ok = 0;
   glGetProgramiv(id_, GL_LINK_STATUS, &ok);
   if (!ok) {
-    GLint len = 0;
-    glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
-    std::vector<char> log(static_cast<std::size_t>(len) + 1, '\0');
-    glGetProgramInfoLog(id_, len, nullptr, log.data());
+    const std::string log = infoLog(id_, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(id_);
     id_ = 0;
-    throw RenderError(name + " shader does not link: " + log.data());
+    throw RenderError(name + " shader does not link: " + log);
   }
 }
 

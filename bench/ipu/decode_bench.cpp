@@ -261,8 +261,6 @@ double makespan2(const std::vector<double>& jobs) {
 //   two-core makespan of the jobs' measured run times), per picture: what two dedicated cores
 //   give, including the split's balance and the parallel path's own work (start-code scan, job
 //   hand-over, merging), without the neighbours. Not included: the worker's wake-up latency.
-//   It times the batch path (all slices found, then guided jobs): the timed runner does not offer
-//   startEach, which the pool uses to hand out rows during the scan.
 // Also parallel_cpu_overhead: all CPU time of the parallel decode over the serial one.
 void BM_SliceParallel(benchmark::State& state) {
   constexpr int kLoops = 2;

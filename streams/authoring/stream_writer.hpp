@@ -8,7 +8,8 @@
 //   writeStreamFile("day.vbim", w.finish());
 //
 // Each frame is converted to YCbCr 4:2:0, encoded as an intra MPEG-2 picture (stream 0xE0 lightmap,
-// 0xE1 sky) and muxed into 2048-byte packs. Variants follow one another on one timeline. finish()
+// 0xE1 sky); finish() muxes them into 2048-byte packs, frames spaced in container time so the two
+// streams stay in step (containerStretch()). Variants follow one another on one timeline. finish()
 // reads the muxed stream back with the Demuxer to build the descriptor index and puts the descriptor
 // packs in front. The whole stream is held in memory until then (about 40 KiB per frame pair at
 // 720x576).

@@ -271,7 +271,7 @@ TEST(IpuRobustness, StartCodeScanFindsTheFirstPrefix) {
 
 // A slice for a row that was already decoded, after the later rows (here picture 2's first row
 // appended to picture 1): the serial decode lets it overwrite that row; the parallel one, which
-// hands out rows during the scan, must decode it after the others and give the same bytes.
+// groups slices into whole rows, must keep that order and give the same bytes.
 TEST(IpuRobustness, ARowRevisitedLateOverwritesAsInTheSerialDecode) {
   testing::EncodeOptions o;
   o.width = 160;
