@@ -41,13 +41,18 @@ void cscRowsRgba32Scalar(const std::uint8_t* y, int yStride, int rows, const std
 }
 
 void convertToRgba32(const FrameStore& fs, int width, int height, CscThresholds th, Rgba8Image& out, CscRowFn row) {
-  if (!row) row = cscRowsRgba32Scalar;
   if (out.width != width || out.height != height) out = Rgba8Image(width, height);
-  for (int yy = 0; yy < height; yy += 2) {
+  convertLinesToRgba32(fs, 0, height, th, out, row);
+}
+
+void convertLinesToRgba32(const FrameStore& fs, int y0, int y1, CscThresholds th, Rgba8Image& out, CscRowFn row) {
+  if (!row) row = cscRowsRgba32Scalar;
+  const int height = y1 < out.height ? y1 : out.height;
+  for (int yy = y0; yy < height; yy += 2) {
     const std::uint8_t* yl = fs.y.data() + static_cast<std::size_t>(yy) * fs.lumaStride;
     const std::size_t c = static_cast<std::size_t>(yy >> 1) * fs.chromaStride;
-    row(yl, fs.lumaStride, height - yy >= 2 ? 2 : 1, fs.cb.data() + c, fs.cr.data() + c, width, out.row(yy), width * 4,
-        th);
+    row(yl, fs.lumaStride, height - yy >= 2 ? 2 : 1, fs.cb.data() + c, fs.cr.data() + c, out.width, out.row(yy),
+        out.width * 4, th);
   }
 }
 

@@ -47,6 +47,10 @@ inline Rgb ipuYcbcrToRgb(int y, int cb, int cr) {
 // (default: the scalar reference).
 void convertToRgba32(const FrameStore& fs, int width, int height, CscThresholds th, Rgba8Image& out,
                      CscRowFn row = nullptr);
+// Lines [y0, y1) of `out` (already sized; y0 even, y1 clipped to out.height), the same bytes as
+// convertToRgba32 gives there: a decoder converts each macroblock row while it is still in cache.
+void convertLinesToRgba32(const FrameStore& fs, int y0, int y1, CscThresholds th, Rgba8Image& out,
+                          CscRowFn row = nullptr);
 // RGB16 (OFM = 1): bits 0-4 R, 5-9 G, 10-14 B, 15 alpha (set where the RGB32 alpha was 0x40).
 void convertToRgb16(const FrameStore& fs, int width, int height, CscThresholds th, bool dither,
                     std::vector<std::uint16_t>& out);

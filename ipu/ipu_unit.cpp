@@ -36,16 +36,15 @@ IpuUnit::IpuUnit(Scheduler& s, const IpuTimingParams& p, Tracer* tracer, Decoder
 Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
   TimedPicture result;
   result.started = s_.now();
-  result.report = decoder_.decode(bytes);
+  Job job;
+  result.report = decoder_.decode(bytes, nullptr, RgbaOutput{&job.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();
     co_return result;
   }
   const FrameStore& fs = decoder_.frame();
-  Job job;
   job.mbWidth = fs.mbWidth;
   const std::size_t mbs = static_cast<std::size_t>(fs.mbWidth) * fs.mbHeight;
-  convertToRgba32(fs, fs.mbWidth * 16, fs.mbHeight * 16, th, job.staged, decoder_.kernels().cscRow);
   job.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
   // Per macroblock (raster order): the qwords holding its last bit, and its bit count. Concealed
   // macroblocks cost the base only and need no further input.

@@ -95,21 +95,49 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   pictureValid_ = true;
 }
 
-void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool) {
+void Decoder::convertLines(int y0, int y1, const RgbaOutput& rgba) const {
+  if (y0 < y1) convertLinesToRgba32(store_, y0, y1, rgba.thresholds, *rgba.image, kernels().cscRow);
+}
+
+void Decoder::decodeSlices(std::span<const std::uint8_t> bytes, std::size_t first, std::size_t last,
+                           const SliceOutput& out, const RgbaOutput* rgba) {
+  for (std::size_t j = first; j < last; ++j) {
+    const Slice& sl = slices_[j];
+    decodeSlice(params_, sl.code, bytes.data() + sl.begin, bytes.data() + sl.end, sl.begin, out);
+  }
+  if (rgba && first < last) convertLines(16 * slices_[first].row, 16 * slices_[last - 1].row + 16, *rgba);
+}
+
+void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool,
+                            const RgbaOutput* rgba) {
   pictureOpen_ = false;
   if (!pictureValid_) {
     slices_.clear();
     return;
   }
   pictureValid_ = false;
-  const std::uint8_t* d = bytes.data();
-  const bool parallel = pool && pool->threads() > 0 && !params_.mpeg1 && !params_.tallPicture && slices_.size() > 1;
+  // MPEG-2 slices never leave their row, so rows can be decoded (and converted) in any order and on
+  // any thread; an MPEG-1 slice may run on into the next rows.
+  const bool independentRows = !params_.mpeg1 && !params_.tallPicture;
+  const bool parallel = pool && pool->threads() > 0 && independentRows && slices_.size() > 1;
+  auto byRow = [](const Slice& a, const Slice& b) { return a.row < b.row; };
+  if (rgba) {
+    Rgba8Image& img = *rgba->image;
+    const int w = rgba->wholeMacroblocks ? store_.mbWidth * 16 : seq_.width;
+    const int h = rgba->wholeMacroblocks ? store_.mbHeight * 16 : seq_.height;
+    if (img.width != w || img.height != h) img = Rgba8Image(w, h);
+  }
+  // On the parallel path each job converts its rows once it has decoded them, so the conversion is
+  // split with the decode. Per job, not per row: a row's RGBA (32 KiB at 512 wide) would push the
+  // VLC tables out of L1 before every row (measured 12 % slower single-threaded), so the serial
+  // path converts the whole picture after it. A field picture fills every other line of the frame,
+  // which is converted after it.
+  const bool convertInJobs = rgba && parallel && !params_.fieldPicture;
   if (parallel) {
-    // MPEG-2 slices never leave their row, so jobs of whole rows write disjoint parts of the frame
-    // and of decoded_ (rows padded to a cache line); reports and traces are merged in job order,
-    // so the result never depends on which thread ran which job. Slices in row order (stable: a
-    // later slice of the same row still overwrites an earlier one, as in the serial decode).
-    auto byRow = [](const Slice& a, const Slice& b) { return a.row < b.row; };
+    // Jobs of whole rows write disjoint parts of the frame, of the image and of decoded_ (rows
+    // padded to a cache line); reports and traces are merged in job order, so the result never
+    // depends on which thread ran which job. Slices in row order (stable: a later slice of the
+    // same row still overwrites an earlier one, as in the serial decode).
     if (!std::is_sorted(slices_.begin(), slices_.end(), byRow)) std::stable_sort(slices_.begin(), slices_.end(), byRow);
     // Guided job sizes by bytes (busy rows cost more): each job takes 1 / (2 * participants) of
     // what is left, at least one row, so the first jobs are large (few hand-overs) and the last
@@ -143,10 +171,7 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
     pool->run(jobs, [&](std::size_t k) {
       JobResult& r = jobResults_[k];
       SliceOutput out{&r.report, &decoded_, decodedStride_, options_.recordMacroblocks ? &r.trace : nullptr};
-      for (std::size_t j = jobStarts_[k]; j < jobStarts_[k + 1]; ++j) {
-        const Slice& sl = slices_[j];
-        decodeSlice(params_, sl.code, d + sl.begin, d + sl.end, sl.begin, out);
-      }
+      decodeSlices(bytes, jobStarts_[k], jobStarts_[k + 1], out, convertInJobs ? rgba : nullptr);
     });
     for (std::size_t k = 0; k < jobs; ++k) {
       const JobResult& r = jobResults_[k];
@@ -158,7 +183,18 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
     }
   } else {
     SliceOutput out{&report, &decoded_, decodedStride_, options_.recordMacroblocks ? &trace_ : nullptr};
-    for (const Slice& sl : slices_) decodeSlice(params_, sl.code, d + sl.begin, d + sl.end, sl.begin, out);
+    decodeSlices(bytes, 0, slices_.size(), out, nullptr);
+  }
+  if (rgba) {
+    // The lines no job converted: the rows between the jobs' rows (no slice reached them), or all.
+    int line = 0;
+    if (convertInJobs) {
+      for (std::size_t k = 0; k + 1 < jobStarts_.size(); ++k) {
+        convertLines(line, 16 * slices_[jobStarts_[k]].row, *rgba);
+        line = std::max(line, 16 * slices_[jobStarts_[k + 1] - 1].row + 16);
+      }
+    }
+    convertLines(line, rgba->image->height, *rgba);
   }
   const std::size_t lastEnd = slices_.empty() ? 0 : slices_.back().end;
   slices_.clear();
@@ -182,6 +218,11 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
 }
 
 PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* pool) {
+  return decode(bytes, pool, RgbaOutput{});
+}
+
+PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* pool, const RgbaOutput& rgbaOutput) {
+  const RgbaOutput* rgba = rgbaOutput.image ? &rgbaOutput : nullptr;
   PictureReport report;
   trace_.clear();
   const std::uint8_t* d = bytes.data();
@@ -211,7 +252,7 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
     } else {
       switch (code) {
         case kPictureStartCode: {
-          if (pictureOpen_) finishPicture(bytes, report, pool);
+          if (pictureOpen_) finishPicture(bytes, report, pool, rgba);
           PictureHeader p;
           if (parsePictureHeader(br, p)) {
             pic_ = p;
@@ -223,7 +264,7 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
           break;
         }
         case kSequenceHeaderCode: {
-          if (pictureOpen_) finishPicture(bytes, report, pool);
+          if (pictureOpen_) finishPicture(bytes, report, pool, rgba);
           SequenceHeader s;
           if (parseSequenceHeader(br, s)) {
             seq_ = s;
@@ -238,7 +279,7 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
           break;
         case kGroupStartCode:
         case kSequenceEndCode:
-          if (pictureOpen_) finishPicture(bytes, report, pool);
+          if (pictureOpen_) finishPicture(bytes, report, pool, rgba);
           break;
         default:  // user data, sequence error, system start codes: skipped
           break;
@@ -246,15 +287,13 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
     }
     pos = next;
   }
-  if (pictureOpen_) finishPicture(bytes, report, pool);
+  if (pictureOpen_) finishPicture(bytes, report, pool, rgba);
   return report;
 }
 
-PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
-  PictureReport r = decoder.decode(bytes);
-  if (r.produced)
-    convertToRgba32(decoder.frame(), decoder.width(), decoder.height(), th, out, decoder.kernels().cscRow);
-  return r;
+PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th,
+                           SliceRunner* runner) {
+  return decoder.decode(bytes, runner, RgbaOutput{&out, th});
 }
 
 }  // namespace vbim::ipu

@@ -41,6 +41,15 @@ struct DecoderOptions {
   const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
 };
 
+// RGB32 output written by the decode itself (alpha 0x80, SETTH thresholds): after each picture the
+// image holds the conversion of the frame store. With a runner, each job of a frame picture
+// converts the rows it decoded, so the conversion is split across the threads with the decode.
+struct RgbaOutput {
+  Rgba8Image* image = nullptr;
+  CscThresholds thresholds;
+  bool wholeMacroblocks = false;  // the padded store's size (the IPU's output) instead of the display size
+};
+
 class Decoder {
  public:
   explicit Decoder(DecoderOptions options = {});
@@ -49,6 +58,8 @@ class Decoder {
   // see ipu/elementary_stream.hpp). With a runner, the slices of an MPEG-2 picture are decoded in
   // parallel; the result is bit-identical to the serial decode.
   PictureReport decode(std::span<const std::uint8_t> bytes, SliceRunner* runner = nullptr);
+  // The same, also converting to RGB32 into rgba.image (left unchanged if no picture is produced).
+  PictureReport decode(std::span<const std::uint8_t> bytes, SliceRunner* runner, const RgbaOutput& rgba);
   // The same on a kernel worker pool (defined in ipu/pool_runner.cpp, library vbim_ipu).
   PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool& pool);
 
@@ -70,8 +81,13 @@ class Decoder {
     std::size_t end;
   };
   void beginPicture(PictureReport& report, std::size_t offset);
-  void finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool);
+  void finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool,
+                     const RgbaOutput* rgba);
   void handleExtension(BitReader& br, PictureReport& report, std::size_t offset);
+  // Decodes slices_[first, last); with `rgba`, then converts the lines of their rows (first to last).
+  void decodeSlices(std::span<const std::uint8_t> bytes, std::size_t first, std::size_t last, const SliceOutput& out,
+                    const RgbaOutput* rgba);
+  void convertLines(int y0, int y1, const RgbaOutput& rgba) const;  // lines [y0, y1), clipped to the image
 
   DecoderOptions options_;
   SequenceHeader seq_;
@@ -96,9 +112,12 @@ class Decoder {
   std::vector<MacroblockBits> trace_;
 };
 
-// The player's one call: decodes one picture and, if one was produced, converts it to RGB32 (alpha
-// 0x80, SETTH thresholds) with the decoder's kernels. `out` is left unchanged otherwise.
+// Decodes one picture and, if one was produced, converts it to RGB32 (alpha 0x80, SETTH
+// thresholds, display size) with the decoder's kernels. `out` is left unchanged otherwise.
 PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out,
+                           CscThresholds th = {}, SliceRunner* runner = nullptr);
+// The same, slice-parallel on a kernel worker pool (ipu/pool_runner.cpp).
+PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out, WorkerPool& pool,
                            CscThresholds th = {});
 
 }  // namespace vbim::ipu

@@ -22,4 +22,10 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, WorkerPool& p
   return decode(bytes, &runner);
 }
 
+PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out, WorkerPool& pool,
+                           CscThresholds th) {
+  PoolRunner runner(pool);
+  return decodeToRgba(decoder, bytes, out, th, &runner);
+}
+
 }  // namespace vbim::ipu

@@ -71,16 +71,10 @@ vbim::ipu::DecoderOptions simdOptions() {
 struct Ours {
   vbim::ipu::Decoder dec{simdOptions()};
   vbim::Rgba8Image rgba;
-  vbim::WorkerPool* pool = nullptr;
   std::uint64_t run(const Clip& c) {
     std::uint64_t sum = 0;
     for (const auto& au : c.units) {
-      if (pool) {
-        dec.decode(std::span(c.es).subspan(au.offset, au.size), *pool);
-      } else {
-        dec.decode(std::span(c.es).subspan(au.offset, au.size));
-      }
-      vbim::ipu::convertToRgba32(dec.frame(), dec.width(), dec.height(), {}, rgba, vbim::ipu::cscRowsRgba32Simd);
+      vbim::ipu::decodeToRgba(dec, std::span(c.es).subspan(au.offset, au.size), rgba);
       sum += rgba.pixels[rgba.pixels.size() / 2];
     }
     return sum;
@@ -244,11 +238,13 @@ double makespan2(const std::vector<double>& jobs) {
   return std::max(a, b);
 }
 
-// Slice-parallel decode (decode only, the part the pool splits) on 2 workers (the caller and one
-// pool thread) against 1, as when a stream is decoded: each round decodes the clip kLoops times
-// (kLoops * kFrames pictures back to back) serially, then on the pool, then on a pool that never
-// polls (spin 0), after a pause that lets the pool threads fall asleep (so the serial decode has
-// the machine to itself, and each parallel run pays one wake-up, as at the start of a stream).
+// Slice-parallel decode on 2 workers (the caller and one pool thread) against 1, as when a stream
+// is decoded, in two forms: decode only (rgba:0, the YCbCr frame store; the strict measure, as the
+// colour conversion splits perfectly) and decode to RGBA (rgba:1, what the player asks for; each
+// macroblock row is converted by the thread that decoded it). Each round decodes the clip kLoops
+// times (kLoops * kFrames pictures back to back) serially, then on the pool, then on a pool that
+// never polls (spin 0), after a pause that lets the pool threads fall asleep (so the serial decode
+// has the machine to itself, and each parallel run pays one wake-up, as at the start of a stream).
 // Ratios, medians over the rounds:
 // - speedup_wall: serial wall time over the parallel one on vbim::WorkerPool (default spin).
 // - speedup_wall_nospin: the same on a pool whose threads sleep between pictures: why it spins.
@@ -265,26 +261,31 @@ double makespan2(const std::vector<double>& jobs) {
 void BM_SliceParallel(benchmark::State& state) {
   constexpr int kLoops = 2;
   const Clip& c = clip(static_cast<Content>(state.range(0)), static_cast<int>(state.range(1)));
+  const bool toRgba = state.range(2) != 0;
   vbim::WorkerPool pool(1);
   vbim::WorkerPool sleepingPool(1, std::chrono::microseconds(0));
   TimedRunner runner(pool);
-  vbim::ipu::Decoder serial{simdOptions()}, parallel{simdOptions()}, sleeping{simdOptions()};
-  auto decodeAll = [&](vbim::ipu::Decoder& d, vbim::WorkerPool* p) {
+  struct Lane {
+    vbim::ipu::Decoder dec{simdOptions()};
+    vbim::Rgba8Image rgba;
+  };
+  auto decodeOne = [toRgba](Lane& l, std::span<const std::uint8_t> bytes, vbim::WorkerPool* p) {
+    if (toRgba) {
+      p ? vbim::ipu::decodeToRgba(l.dec, bytes, l.rgba, *p) : vbim::ipu::decodeToRgba(l.dec, bytes, l.rgba);
+    } else {
+      p ? l.dec.decode(bytes, *p) : l.dec.decode(bytes);
+    }
+  };
+  Lane serial, parallel, sleeping;
+  auto decodeAll = [&](Lane& l, vbim::WorkerPool* p) {
     for (int loop = 0; loop < kLoops; ++loop)
-      for (const auto& au : c.units) {
-        const auto bytes = std::span(c.es).subspan(au.offset, au.size);
-        if (p) {
-          d.decode(bytes, *p);
-        } else {
-          d.decode(bytes);
-        }
-      }
+      for (const auto& au : c.units) decodeOne(l, std::span(c.es).subspan(au.offset, au.size), p);
   };
   auto seconds = [](std::chrono::steady_clock::time_point since) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
   };
   auto letPoolsSleep = [] { std::this_thread::sleep_for(2 * vbim::WorkerPool::kDefaultSpin); };
-  vbim::ipu::Decoder independent[2] = {vbim::ipu::Decoder{simdOptions()}, vbim::ipu::Decoder{simdOptions()}};
+  Lane independent[2];
   // Two serial decoders at once; returns their mean wall time.
   auto twoAtOnce = [&] {
     std::latch start(2);
@@ -331,8 +332,13 @@ void BM_SliceParallel(benchmark::State& state) {
     jobs = 0;
     for (int loop = 0; loop < kLoops; ++loop)
       for (const auto& au : c.units) {
+        const auto bytes = std::span(c.es).subspan(au.offset, au.size);
         t0 = cpuSeconds();
-        parallel.decode(std::span(c.es).subspan(au.offset, au.size), &runner);
+        if (toRgba) {
+          vbim::ipu::decodeToRgba(parallel.dec, bytes, parallel.rgba, {}, &runner);
+        } else {
+          parallel.dec.decode(bytes, &runner);
+        }
         const double callerCpu = cpuSeconds() - t0;
         double callerJobs = 0, allJobs = 0;
         for (std::size_t k = 0; k < runner.jobCpu.size(); ++k) {
@@ -354,17 +360,18 @@ void BM_SliceParallel(benchmark::State& state) {
   state.counters["speedup_cpu"] = median(cpu);
   state.counters["parallel_cpu_overhead"] = median(overhead);
   state.counters["jobs_per_picture"] = jobs;
-  state.counters["identical"] =
-      serial.frame().y == parallel.frame().y && serial.frame().cb == parallel.frame().cb &&
-              serial.frame().cr == parallel.frame().cr && serial.frame().y == sleeping.frame().y &&
-              serial.frame().cb == sleeping.frame().cb && serial.frame().cr == sleeping.frame().cr
-          ? 1
-          : 0;
+  auto same = [](const Lane& a, const Lane& b) {
+    return a.dec.frame().y == b.dec.frame().y && a.dec.frame().cb == b.dec.frame().cb &&
+           a.dec.frame().cr == b.dec.frame().cr && a.rgba.pixels == b.rgba.pixels;
+  };
+  state.counters["identical"] = same(serial, parallel) && same(serial, sleeping) ? 1 : 0;
 }
 BENCHMARK(BM_SliceParallel)
-    ->ArgNames({"content", "q"})
-    ->Args({static_cast<int>(Content::kLightmap), 5})
-    ->Args({static_cast<int>(Content::kPattern), 2})
+    ->ArgNames({"content", "q", "rgba"})
+    ->Args({static_cast<int>(Content::kLightmap), 5, 0})
+    ->Args({static_cast<int>(Content::kPattern), 2, 0})
+    ->Args({static_cast<int>(Content::kLightmap), 5, 1})
+    ->Args({static_cast<int>(Content::kPattern), 2, 1})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.5)
     ->UseRealTime();
