@@ -1,7 +1,6 @@
 // `vbim decode` end to end: elementary and program streams in, image files out, and the exit
 // codes and messages for streams that cannot be decoded.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,6 +9,7 @@
 #include <string>
 
 #include "tests/ipu/support/libav_mpeg.hpp"
+#include "tests/support/run_command.hpp"
 
 namespace vbim::ipu {
 namespace {
@@ -22,13 +22,8 @@ struct Result {
 };
 
 Result runTool(const std::string& args) {
-  const std::string cmd = std::string(VBIM_TOOL) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[512];
-  while (p && fgets(buf, sizeof buf, p)) out += buf;
-  const int status = p ? pclose(p) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  const vbim::testing::CommandResult r = vbim::testing::runCommand(std::string(VBIM_TOOL) + " " + args);
+  return {r.status, r.output};
 }
 
 fs::path scratch() {
@@ -103,6 +98,50 @@ TEST(IpuCli, DecodesTheSecondVideoStreamOfAProgramStream) {
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(d / "e0" / "frame_00001.yuv"));
   EXPECT_FALSE(fs::exists(d / "e0" / "frame_00002.yuv"));
+  fs::remove_all(d);
+}
+
+// Program streams as Debian's ffmpeg muxes them (an MPEG-2 program stream, -f vob, and an MPEG-1
+// system stream, -f mpeg), from elementary streams of each: every picture of the program stream
+// decodes to the same bytes as the elementary stream it was muxed from.
+TEST(IpuCli, DecodesWhatFfmpegMuxesLikeItsElementaryStream) {
+  const fs::path d = scratch();
+  for (const bool mpeg1 : {false, true}) {
+    SCOPED_TRACE(mpeg1 ? "MPEG-1 system stream" : "MPEG-2 program stream");
+    testing::EncodeOptions o;
+    o.width = 48;
+    o.height = 32;
+    o.frames = 3;
+    o.mpeg1 = mpeg1;
+    o.content = testing::Content::kPattern;
+    const fs::path es = d / (mpeg1 ? "a.m1v" : "a.m2v");
+    const fs::path ps = d / "a.mpg";
+    writeFile(es, testing::encodeIntra(o));
+    const std::string mux = std::string("ffmpeg -v error -nostdin -y -f mpegvideo") + " -i " + es.string() +
+                            " -c copy -f " + (mpeg1 ? "mpeg " : "vob ") + ps.string();
+    const vbim::testing::CommandResult muxed = vbim::testing::runCommand(mux);
+    ASSERT_EQ(muxed.status, 0) << mux << "\n"
+                               << muxed.output << "\n(ffmpeg comes with Debian's ffmpeg package: scripts/setup.sh)";
+    for (const fs::path& in : {es, ps}) {
+      const Result r =
+          runTool("decode " + in.string() + " --out " + (d / in.filename()).string() + ".out --format yuv");
+      ASSERT_EQ(r.code, 0) << r.output;
+      EXPECT_NE(r.output.find(mpeg1 ? "MPEG-1" : "MPEG-2"), std::string::npos) << r.output;
+    }
+    for (int i = 0; i < 4; ++i) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%05d.yuv", i);
+      const fs::path fromEs = d / (es.filename().string() + ".out") / name;
+      const fs::path fromPs = d / "a.mpg.out" / name;
+      EXPECT_EQ(fs::exists(fromEs), i < 3) << fromEs;
+      EXPECT_EQ(fs::exists(fromPs), i < 3) << fromPs;
+      if (i < 3) {
+        EXPECT_EQ(vbim::testing::readFileBytes(fromEs), vbim::testing::readFileBytes(fromPs)) << name;
+      }
+    }
+    fs::remove_all(d / "a.mpg.out");
+    fs::remove_all(d / (es.filename().string() + ".out"));
+  }
   fs::remove_all(d);
 }
 
