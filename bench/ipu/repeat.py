@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""Runs bench_ipu_decode several times and summarises its counters over the runs.
+
+One run of the bench already interleaves the decoders it compares and reports medians of
+per-round ratios; the spread that is left comes from the host (a virtual machine whose neighbours
+come and go), so a figure worth quoting is the median over several runs with its range.
+
+    bench/ipu/repeat.py [--runs N] [--bench build/bench/ipu/bench_ipu_decode] [--filter REGEX]
+
+Prints one Markdown table per benchmark family: median (min-max) over the runs of each counter.
+"""
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+
+COUNTERS = {
+    "BM_DecodeToRgba": ["ours_fps", "libavcodec_fps", "libmpeg2_fps", "x_libavcodec", "x_libmpeg2", "x_faster"],
+    "BM_SliceParallel": ["speedup_wall", "ceiling", "efficiency", "speedup_cpu", "speedup_wall_nospin", "identical"],
+}
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--runs", type=int, default=8)
+    ap.add_argument("--bench", default="build/bench/ipu/bench_ipu_decode")
+    ap.add_argument("--filter", default=".")
+    args = ap.parse_args()
+    if args.runs < 1:
+        ap.error("--runs must be at least 1")
+
+    values: dict[str, dict[str, list[float]]] = {}
+    for run in range(args.runs):
+        try:
+            out = subprocess.run([args.bench, "--benchmark_format=json", f"--benchmark_filter={args.filter}"],
+                                 check=True, capture_output=True, text=True).stdout
+        except (OSError, subprocess.CalledProcessError) as e:
+            print(f"repeat.py: {args.bench}: {e}", file=sys.stderr)
+            return 1
+        for b in json.loads(out)["benchmarks"]:
+            case = values.setdefault(b["name"], {})
+            for key, v in b.items():
+                if isinstance(v, (int, float)):
+                    case.setdefault(key, []).append(float(v))
+        print(f"run {run + 1}/{args.runs} done", file=sys.stderr)
+
+    def cell(vs: list[float]) -> str:
+        fmt = (lambda x: f"{x:,.0f}") if max(vs) >= 100 else (lambda x: f"{x:.2f}")
+        return f"{fmt(statistics.median(vs))} ({fmt(min(vs))}-{fmt(max(vs))})"
+
+    print(f"Medians over {args.runs} runs (min-max):")
+    for family, counters in COUNTERS.items():
+        cases = [name for name in values if name.startswith(family + "/")]
+        if not cases:
+            continue
+        print(f"\n| {family} | " + " | ".join(counters) + " |")
+        print("|---|" + "---:|" * len(counters))
+        for name in cases:
+            label = "/".join(p for p in name.split("/")[1:] if not p.startswith(("min_time", "real_time")))
+            print(f"| {label} | " + " | ".join(cell(values[name][c]) if c in values[name] else "" for c in counters)
+                  + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
