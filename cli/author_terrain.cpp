@@ -123,7 +123,8 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   const streams::Descriptor& d = stream.descriptor;
   std::cout << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
             << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width
-            << "x" << d.streams[0].height << ", sky " << d.streams[1].width << "x" << d.streams[1].height << "\n";
+            << "x" << d.streams[0].height << ", sky " << d.streams[1].width << "x" << d.streams[1].height << "\n"
+            << containerStretchNote(stream.containerStretch, s.stream.encoder.containerFps);
 }
 
 }  // namespace vbim::cli

@@ -64,6 +64,7 @@ void runAuthor(const AuthorOptions& o) {
 
   av_log_set_level(AV_LOG_ERROR);
   std::vector<std::uint8_t> bytes;
+  std::string stretchNote;
   if (!o.synthetic.empty()) {
     if (!o.frames.empty() || !o.variants.empty())
       throw Exit(2, "vbim author: --synthetic replaces --frames and --variant; give one or the other");
@@ -94,6 +95,7 @@ void runAuthor(const AuthorOptions& o) {
     }
     progress.end();
     bytes = writer.finish();
+    stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
   } else {
     if (o.frames.empty())
       throw Exit(2,
@@ -148,9 +150,10 @@ void runAuthor(const AuthorOptions& o) {
     }
     progress.end();
     bytes = writer.finish();
+    stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
   }
   writeStreamFile(o.out, bytes);
-  std::cout << o.out << ": " << bytes.size() / 2048 << " sectors (" << bytes.size() << " bytes)\n";
+  std::cout << o.out << ": " << bytes.size() / 2048 << " sectors (" << bytes.size() << " bytes)\n" << stretchNote;
 }
 
 }  // namespace

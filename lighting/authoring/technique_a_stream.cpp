@@ -173,6 +173,7 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
   out.bytes = writer.finish();
   out.descriptor = writer.descriptor();
   out.maxQscaleUsed = writer.maxQscaleUsed();
+  out.containerStretch = writer.containerStretch();
   return out;
 }
 

@@ -85,6 +85,7 @@ struct AuthoredStream {
   std::vector<std::uint8_t> bytes;  // the whole stream, 2048-byte packs
   streams::Descriptor descriptor;
   int maxQscaleUsed = 0;
+  std::uint32_t containerStretch = 1;  // StreamWriter::containerStretch()
 };
 
 // Loads (or builds) the terrain, with its albedo. Throws streams::AuthoringError.

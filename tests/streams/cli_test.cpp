@@ -9,6 +9,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "streams/authoring/synthetic_day.hpp"
@@ -41,6 +43,21 @@ void writePng(const fs::path& path, int w, int h, int seed) {
       for (int c = 0; c < 3; ++c)
         px[(static_cast<std::size_t>(y) * w + x) * 3 + c] =
             static_cast<std::uint8_t>((x * 3 + y * 2 + c * 40 + seed * 9) & 0xFF);
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out);
+  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+  ASSERT_TRUE(out->open(path.string(), spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
+  out->close();
+}
+
+// Uniform noise: the heaviest content for the encoder.
+void writeNoisePng(const fs::path& path, int w, int h, std::uint32_t seed) {
+  std::vector<std::uint8_t> px(static_cast<std::size_t>(w) * h * 3);
+  for (std::uint8_t& v : px) {
+    seed = seed * 1664525u + 1013904223u;
+    v = static_cast<std::uint8_t>(seed >> 24);
+  }
   auto out = OIIO::ImageOutput::create(path.string());
   ASSERT_TRUE(out);
   OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
@@ -99,6 +116,8 @@ Outcome* StreamsCli::authored_ = nullptr;
 
 TEST_F(StreamsCli, AuthorWritesTheStreamAndInfoDescribesIt) {
   ASSERT_EQ(authored_->status, 0) << authored_->out;
+  EXPECT_EQ(authored_->out.find("container time"), std::string::npos) << "light frames need no spacing\n"
+                                                                      << authored_->out;
   const Outcome info = run(vbim() + " info --json " + stream().string());
   ASSERT_EQ(info.status, 0) << info.out;
   const auto j = nlohmann::json::parse(info.out);
@@ -150,6 +169,27 @@ TEST_F(StreamsCli, FfprobeListsExactlyTwoVideoStreamsOfIntraPictures) {
   EXPECT_EQ(other, 0) << frames.out;
   const Outcome decode = run("ffmpeg -v error -nostdin -i " + stream().string() + " -map 0 -f null -");
   EXPECT_EQ(decode.status, 0) << decode.out;
+}
+
+// Frames heavier than the DVD mux rate sends in one container period (here ~400 KB of noise at
+// q 1 against ~50 KB per 25 fps period) are spaced whole periods apart: vbim author says by how
+// many, and vbim info's PTS step agrees.
+TEST(StreamsCliStretch, AuthorSaysWhenItSpacesHeavyFramesApart) {
+  TempDir dir;
+  writeNoisePng(dir / "lm_0000.png", 512, 512, 1);
+  writeNoisePng(dir / "lm_0001.png", 512, 512, 2);
+  const fs::path out = dir / "noise.vbim";
+  const Outcome r =
+      run(vbim() + " author --frames " + (dir / "lm_%04d.png").string() + " --fps 1 --q 1 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::size_t at = r.out.find("container time: frames ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const int periods = std::atoi(r.out.c_str() + at + std::strlen("container time: frames "));
+  EXPECT_GT(periods, 1) << r.out;
+  EXPECT_NE(r.out.find("periods apart"), std::string::npos) << r.out;
+  const Outcome info = run(vbim() + " info --json " + out.string());
+  ASSERT_EQ(info.status, 0) << info.out;
+  EXPECT_EQ(nlohmann::json::parse(info.out)["descriptor"]["pts_per_frame"], 3600 * periods);
 }
 
 TEST(StreamsCliBadInput, InfoRejectsAWrongFormatFileAndNamesIt) {
