@@ -44,9 +44,10 @@ std::vector<std::uint8_t> withoutRows(std::span<const std::uint8_t> unit, const 
     const std::size_t next = findStartCode(unit.data(), unit.size(), pos + 3);
     const int code = pos + 3 < unit.size() ? unit[pos + 3] : 0;
     const bool slice = code >= 1 && code <= 0xAF;
-    if (!slice || !rows.count(code - 1))
+    if (!slice || !rows.count(code - 1)) {
       out.insert(out.end(), unit.begin() + static_cast<std::ptrdiff_t>(pos),
                  unit.begin() + static_cast<std::ptrdiff_t>(next));
+    }
     pos = next;
   }
   return out;
@@ -192,11 +193,12 @@ TEST(IpuRgbaOutput, Mpeg1IsConvertedAfterTheSerialDecode) {
 TEST(IpuRgbaOutput, FieldPictureConvertsTheWholeFrame) {
   auto es = encode(32, 32, 1);
   bool patched = false;
-  for (std::size_t i = 0; i + 7 < es.size() && !patched; ++i)
+  for (std::size_t i = 0; i + 7 < es.size() && !patched; ++i) {
     if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0xB5 && (es[i + 4] >> 4) == 8) {
       es[i + 6] = static_cast<std::uint8_t>((es[i + 6] & ~0x03) | 0x01);  // picture_structure = 1
       patched = true;
     }
+  }
   ASSERT_TRUE(patched);
   ThreeWays t;
   t.decode(es, "top field");
@@ -214,7 +216,7 @@ TEST(IpuRgbaOutput, AnUndecodablePictureLeavesTheImageAlone) {
   const PictureReport r = decodeToRgba(dec, std::span(es).subspan(afterSeq), image);  // no sequence header
   EXPECT_FALSE(r.produced);
   EXPECT_EQ(image.width, 3);
-  EXPECT_EQ(image.pixels, std::vector<std::uint8_t>(3 * 2 * 4, 7));
+  EXPECT_EQ(image.pixels, std::vector<std::uint8_t>(std::size_t{24}, 7));
 }
 
 }  // namespace
