@@ -36,6 +36,15 @@ std::string vbim() {
   return VBIM_BINARY;
 }
 
+void writeRgb8(const fs::path& path, int w, int h, const std::vector<std::uint8_t>& px) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out);
+  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+  ASSERT_TRUE(out->open(path.string(), spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
+  out->close();
+}
+
 void writePng(const fs::path& path, int w, int h, int seed) {
   std::vector<std::uint8_t> px(static_cast<std::size_t>(w) * h * 3);
   for (int y = 0; y < h; ++y)
@@ -43,12 +52,7 @@ void writePng(const fs::path& path, int w, int h, int seed) {
       for (int c = 0; c < 3; ++c)
         px[(static_cast<std::size_t>(y) * w + x) * 3 + c] =
             static_cast<std::uint8_t>((x * 3 + y * 2 + c * 40 + seed * 9) & 0xFF);
-  auto out = OIIO::ImageOutput::create(path.string());
-  ASSERT_TRUE(out);
-  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-  ASSERT_TRUE(out->open(path.string(), spec));
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
-  out->close();
+  writeRgb8(path, w, h, px);
 }
 
 // Uniform noise: the heaviest content for the encoder.
@@ -58,12 +62,7 @@ void writeNoisePng(const fs::path& path, int w, int h, std::uint32_t seed) {
     seed = seed * 1664525u + 1013904223u;
     v = static_cast<std::uint8_t>(seed >> 24);
   }
-  auto out = OIIO::ImageOutput::create(path.string());
-  ASSERT_TRUE(out);
-  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-  ASSERT_TRUE(out->open(path.string(), spec));
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
-  out->close();
+  writeRgb8(path, w, h, px);
 }
 
 void writeExr(const fs::path& path, const FloatRgbImage& img) {
