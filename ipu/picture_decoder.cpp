@@ -50,6 +50,10 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   const int mbw = (seq_.width + 15) / 16;
   const int mbh = (!seq_.mpeg2 || seq_.progressiveSequence) ? (seq_.height + 15) / 16 : 2 * ((seq_.height + 31) / 32);
   if (store_.mbWidth != mbw || store_.mbHeight != mbh) store_.reset(mbw, mbh);
+  // Fixed for this picture: a sequence extension among its slices may change seq_ (the size
+  // extension bits), but not the store the slices write into.
+  frameWidth_ = seq_.width;
+  frameHeight_ = seq_.height;
 
   PictureParams& p = params_;
   p = PictureParams{};
@@ -123,8 +127,8 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   auto byRow = [](const Slice& a, const Slice& b) { return a.row < b.row; };
   if (rgba) {
     Rgba8Image& img = *rgba->image;
-    const int w = rgba->wholeMacroblocks ? store_.mbWidth * 16 : seq_.width;
-    const int h = rgba->wholeMacroblocks ? store_.mbHeight * 16 : seq_.height;
+    const int w = rgba->wholeMacroblocks ? store_.mbWidth * 16 : frameWidth_;
+    const int h = rgba->wholeMacroblocks ? store_.mbHeight * 16 : frameHeight_;
     if (img.width != w || img.height != h) img = Rgba8Image(w, h);
   }
   // On the parallel path each job converts its rows once it has decoded them, so the conversion is

@@ -67,9 +67,11 @@ class Decoder {
   bool hasSequence() const { return haveSequence_; }
   const SequenceHeader& sequence() const { return seq_; }
   const PictureHeader& picture() const { return pic_; }
-  // Display size of the current sequence.
-  int width() const { return seq_.width; }
-  int height() const { return seq_.height; }
+  // Display size of the picture last decoded into frame() (0 before the first). A sequence header
+  // or extension read after it may announce another size (sequence().width): frame() is only
+  // resized, and so only cropped to the new size, when a picture of that sequence is decoded.
+  int width() const { return frameWidth_; }
+  int height() const { return frameHeight_; }
   const std::vector<MacroblockBits>& macroblockTrace() const { return trace_; }
   const Kernels& kernels() const { return options_.kernels ? *options_.kernels : scalarKernels(); }
 
@@ -98,6 +100,8 @@ class Decoder {
   bool sawSlice_ = false;
   PictureParams params_;
   FrameStore store_;
+  int frameWidth_ = 0;  // display size of the picture the store holds
+  int frameHeight_ = 0;
   std::vector<Slice> slices_;
   std::vector<std::uint8_t> decoded_;  // per macroblock (row stride decodedStride_): 1 once decoded
   int decodedStride_ = 0;

@@ -179,6 +179,44 @@ TEST(IpuRobustness, ZeroStuffingBeforeStartCodesChangesNothing) {
   }
 }
 
+// A sequence extension among a picture's slices whose size extension bits make the sequence 4096
+// pixels wider (found by the fuzzer): the picture was decoded into a 2-macroblock-wide store, so
+// width() and the RGBA output keep the size it was decoded at; cropping the store to the new
+// sequence size read far past its end.
+TEST(IpuRobustness, SizeChangedInsideAPictureDoesNotOutgrowTheStore) {
+  testing::EncodeOptions o;
+  o.width = 32;
+  o.height = 32;
+  o.frames = 1;
+  o.content = testing::Content::kPattern;
+  const auto es = testing::encodeIntra(o);
+  const std::size_t ext = findStartCode(es.data(), es.size(), 4);
+  ASSERT_EQ(es[ext + 3], 0xB5);
+  ASSERT_EQ(es[ext + 4] >> 4, 1) << "sequence extension expected after the sequence header";
+  std::vector<std::uint8_t> wider(es.begin() + static_cast<std::ptrdiff_t>(ext),
+                                  es.begin() + static_cast<std::ptrdiff_t>(ext + 10));
+  wider[6] |= 0x80;  // horizontal_size_extension = 01: width + 4096
+  std::vector<std::uint8_t> bytes = es;
+  const std::size_t secondSlice = slicePayload(bytes, 1) - 4;
+  ASSERT_LT(secondSlice, bytes.size());
+  bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(secondSlice), wider.begin(), wider.end());
+  for (const bool parallel : {false, true}) {
+    SCOPED_TRACE(parallel ? "on a pool" : "serial");
+    Decoder dec;
+    WorkerPool pool(1);
+    Rgba8Image rgba;
+    const PictureReport r = parallel ? decodeToRgba(dec, bytes, rgba, pool) : decodeToRgba(dec, bytes, rgba);
+    ASSERT_TRUE(r.produced);
+    EXPECT_EQ(dec.sequence().width, 32 + 4096);
+    EXPECT_EQ(dec.width(), 32);
+    EXPECT_EQ(dec.height(), 32);
+    EXPECT_EQ(rgba.width, 32);
+    Rgba8Image reference;
+    convertToRgba32(dec.frame(), dec.width(), dec.height(), {}, reference);
+    EXPECT_EQ(rgba.pixels, reference.pixels);
+  }
+}
+
 TEST(IpuRobustness, MissingSequenceHeaderIsUndecodable) {
   const auto es = stream(1);
   std::vector<std::uint8_t> bad;

@@ -1,7 +1,7 @@
 // libFuzzer target for the picture decoder: any bytes, as one access unit and split into access
-// units. The decoder must not crash, read out of bounds (ASan) or hang, and the Highway kernels
-// must give the same frame as the scalar reference. Built with -DVBIM_FUZZ=ON and clang;
-// scripts/fuzz-ipu.sh runs it for a bounded time from the seed corpus next to this file.
+// units. The decoder must not crash, read out of bounds (ASan) or hang, the Highway kernels must
+// give the same frame as the scalar reference, and the slice-parallel path the same frame and RGBA. Built with
+// -DVBIM_FUZZ=ON and clang; scripts/fuzz-ipu.sh runs it for a bounded time from the seed corpus next to this file.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -41,11 +41,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (a.issueCount != b.issueCount || scalar.frame().y != fast.frame().y || scalar.frame().cb != fast.frame().cb ||
       scalar.frame().cr != fast.frame().cr)
     std::abort();
+  // The split decode also writes RGB32 itself (each job converts its rows, the rest after them):
+  // it must equal the conversion of the store it left.
   ReverseRunner reverse;
-  const vbim::ipu::PictureReport c = split.decode(bytes, &reverse);
+  vbim::Rgba8Image splitRgba;
+  const vbim::ipu::PictureReport c = vbim::ipu::decodeToRgba(split, bytes, splitRgba, {40, 90}, &reverse);
   if (c.issueCount != a.issueCount || c.macroblocksDecoded != a.macroblocksDecoded ||
       split.frame().y != fast.frame().y || split.frame().cb != fast.frame().cb || split.frame().cr != fast.frame().cr)
     std::abort();
+  if (c.produced) {
+    vbim::Rgba8Image expected;
+    vbim::ipu::convertToRgba32(split.frame(), splitRgba.width, splitRgba.height, {40, 90}, expected);
+    if (expected.pixels != splitRgba.pixels) std::abort();
+  }
   if (a.produced && a.macroblocksDecoded + a.macroblocksConcealed != a.macroblocks) std::abort();
   for (const vbim::ipu::AccessUnit& au : vbim::ipu::splitAccessUnits(bytes)) {
     if (au.offset + au.size > size) std::abort();
