@@ -48,7 +48,7 @@ inline Rgb ipuYcbcrToRgb(int y, int cb, int cr) {
 void convertToRgba32(const FrameStore& fs, int width, int height, CscThresholds th, Rgba8Image& out,
                      CscRowFn row = nullptr);
 // Lines [y0, y1) of `out` (already sized; y0 even, y1 clipped to out.height), the same bytes as
-// convertToRgba32 gives there: a decoder converts each macroblock row while it is still in cache.
+// convertToRgba32 gives there: the slice-parallel decode converts each job's rows on its thread.
 void convertLinesToRgba32(const FrameStore& fs, int y0, int y1, CscThresholds th, Rgba8Image& out,
                           CscRowFn row = nullptr);
 // RGB16 (OFM = 1): bits 0-4 R, 5-9 G, 10-14 B, 15 alpha (set where the RGB32 alpha was 0x40).
