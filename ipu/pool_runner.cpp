@@ -1,30 +1,26 @@
 // Slice-parallel decode on the kernel's worker pool.
-#include "ipu/picture_decoder.hpp"
+#include "ipu/pool_runner.hpp"
+
 #include "runtime/worker_pool.hpp"
 
 namespace vbim::ipu {
-namespace {
 
-class PoolRunner final : public SliceRunner {
- public:
-  explicit PoolRunner(WorkerPool& pool) : pool_(pool) {}
-  unsigned threads() const override { return pool_.threads(); }
-  void run(std::size_t count, const std::function<void(std::size_t)>& fn) override { pool_.parallelFor(count, fn); }
+unsigned PoolSliceRunner::threads() const {
+  return pool_.threads();
+}
 
- private:
-  WorkerPool& pool_;
-};
-
-}  // namespace
+void PoolSliceRunner::run(std::size_t count, const std::function<void(std::size_t)>& fn) {
+  pool_.parallelFor(count, fn);
+}
 
 PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, WorkerPool& pool) {
-  PoolRunner runner(pool);
+  PoolSliceRunner runner(pool);
   return decode(bytes, &runner);
 }
 
 PictureReport decodeToRgba(Decoder& decoder, std::span<const std::uint8_t> bytes, Rgba8Image& out, WorkerPool& pool,
                            CscThresholds th) {
-  PoolRunner runner(pool);
+  PoolSliceRunner runner(pool);
   return decodeToRgba(decoder, bytes, out, th, &runner);
 }
 

@@ -13,6 +13,7 @@
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
+#include "ipu/pool_runner.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "ipu/start_code.hpp"
 #include "runtime/worker_pool.hpp"
@@ -104,12 +105,7 @@ class ThreeWays {
   PictureReport decodeOnPool(Decoder& dec, std::span<const std::uint8_t> bytes, WorkerPool& pool,
                              const RgbaOutput& target) {
     if (!target.wholeMacroblocks) return decodeToRgba(dec, bytes, *target.image, pool, target.thresholds);
-    struct Runner final : SliceRunner {
-      explicit Runner(WorkerPool& p) : pool(p) {}
-      unsigned threads() const override { return pool.threads(); }
-      void run(std::size_t n, const std::function<void(std::size_t)>& fn) override { pool.parallelFor(n, fn); }
-      WorkerPool& pool;
-    } runner(pool);
+    PoolSliceRunner runner(pool);
     return dec.decode(bytes, &runner, target);
   }
   struct Lane {
