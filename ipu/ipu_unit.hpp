@@ -77,7 +77,6 @@ class IpuUnit {
   IpuTimingParams p_;
   Tracer* tracer_;
   Tracer::TrackId track_ = 0;
-  Tracer::CounterId inLevel_ = 0, outLevel_ = 0;
   Decoder decoder_;
   Fifo<Job*> toIpuJobs_;
   Fifo<Job*> coreJobs_;
