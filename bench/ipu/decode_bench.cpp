@@ -240,8 +240,8 @@ double makespan2(const std::vector<double>& jobs) {
 
 // Slice-parallel decode on 2 workers (the caller and one pool thread) against 1, as when a stream
 // is decoded, in two forms: decode only (rgba:0, the YCbCr frame store; the strict measure, as the
-// colour conversion splits perfectly) and decode to RGBA (rgba:1, what the player asks for; each
-// macroblock row is converted by the thread that decoded it). Each round decodes the clip kLoops
+// colour conversion splits perfectly) and decode to RGBA (rgba:1, decodeToRgba on the pool: each
+// job's rows are converted by the thread that decoded them). Each round decodes the clip kLoops
 // times (kLoops * kFrames pictures back to back) serially, then on the pool, then on a pool that
 // never polls (spin 0), after a pause that lets the pool threads fall asleep (so the serial decode
 // has the machine to itself, and each parallel run pays one wake-up, as at the start of a stream).
