@@ -1,7 +1,9 @@
 // libFuzzer target for the picture decoder: any bytes, as one access unit and split into access
-// units. The decoder must not crash, read out of bounds (ASan) or hang, the Highway kernels must
-// give the same frame as the scalar reference, and the slice-parallel path the same frame and RGBA. Built with
-// -DVBIM_FUZZ=ON and clang; scripts/fuzz-ipu.sh runs it for a bounded time from the seed corpus next to this file.
+// units. The decoder must not crash, read out of bounds (ASan) or hang; the Highway kernels must
+// give the same frame as the scalar reference; the slice-parallel path the same frame, and an RGBA
+// image of the decoded picture's size equal to the conversion of that frame. Built with
+// -DVBIM_FUZZ=ON and clang; scripts/fuzz-ipu.sh runs it for a bounded time from the seed corpus
+// next to this file.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -50,6 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       split.frame().y != fast.frame().y || split.frame().cb != fast.frame().cb || split.frame().cr != fast.frame().cr)
     std::abort();
   if (c.produced) {
+    if (splitRgba.width != split.width() || splitRgba.height != split.height()) std::abort();
     vbim::Rgba8Image expected;
     vbim::ipu::convertToRgba32(split.frame(), splitRgba.width, splitRgba.height, {40, 90}, expected);
     if (expected.pixels != splitRgba.pixels) std::abort();
