@@ -6,6 +6,7 @@
 
 #include "cli/command.hpp"
 #include "cli/lighting_options.hpp"
+#include "config/params_toml.hpp"
 #include "runtime/params.hpp"
 #include "streams/authoring/authoring_error.hpp"
 
@@ -25,7 +26,7 @@ DayCycleParams baseParams(const TerrainAuthorOptions& o) {
   if (!o.lightingConfig.empty()) {
     ParamTable table;
     lighting::describeParams(table, params);
-    table.loadTomlFile(o.lightingConfig);
+    config::applyTomlFile(table, o.lightingConfig);
   }
   applyGivenLightingOptions(o.given, params);
   return params;
@@ -47,7 +48,7 @@ std::vector<lighting::WeatherVariant> parseWeather(const std::string& list, cons
     lighting::WeatherVariant v{item.substr(0, eq), base};
     ParamTable table;
     lighting::describeParams(table, v.params);
-    table.loadTomlFile(item.substr(eq + 1));
+    config::applyTomlFile(table, item.substr(eq + 1));
     out.push_back(std::move(v));
   }
   if (out.empty()) throw Exit(2, "vbim author: --weather names no variant");

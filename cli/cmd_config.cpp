@@ -4,6 +4,8 @@
 
 #include "cli/command.hpp"
 #include "cli/platform_params.hpp"
+#include "config/fault_plan_toml.hpp"
+#include "config/params_toml.hpp"
 #include "iop/fault_plan.hpp"
 
 namespace vbim::cli {
@@ -23,11 +25,11 @@ void runConfig(const ConfigOptions& o) {
   describePlatform(table, params);
   try {
     if (!o.check.empty()) {
-      table.loadTomlFile(o.check);
+      config::applyTomlFile(table, o.check);
       validatePlatform(params);
     }
     if (!o.faults.empty()) {
-      const iop::FaultPlan plan = iop::FaultPlan::load(o.faults);
+      const iop::FaultPlan plan = config::loadFaultPlan(o.faults);
       std::cerr << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
     }
   } catch (const ConfigError& e) {

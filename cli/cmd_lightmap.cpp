@@ -14,6 +14,7 @@
 #include "cli/command.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/output_dir.hpp"
+#include "config/params_toml.hpp"
 #include "lighting/day_cycle.hpp"
 #include "lighting/errors.hpp"
 #include "lighting/fixed_angle.hpp"
@@ -130,7 +131,7 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
   if (!o.config.empty()) {
     ParamTable table;
     describeParams(table, params);
-    table.loadTomlFile(o.config);
+    config::applyTomlFile(table, o.config);
   }
   applyGivenLightingOptions(given, params);
   validateParams(params);  // before any heavy work or output

@@ -13,13 +13,15 @@
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/play_run.hpp"
+#include "config/fault_plan_toml.hpp"
+#include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/gs_error.hpp"
 #include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "player/report.hpp"
+#include "player/scenario.hpp"
 #include "runtime/image_file.hpp"
-#include "runtime/player/report.hpp"
-#include "runtime/player/scenario.hpp"
 
 namespace vbim::cli {
 
@@ -71,15 +73,15 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   }
   PlayerOptions o;
   try {
-    if (!r.config.empty()) o.config = loadPlatformFile(r.config);
+    if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   }
   try {
     if (!r.faults.empty()) {
-      o.faults = iop::FaultPlan::load(r.faults, disc.get());
+      o.faults = config::loadFaultPlan(r.faults, disc.get());
     } else if (!r.faultsText.empty()) {
-      o.faults = iop::FaultPlan::parse(r.faultsText, "<built-in fault plan>", disc.get());
+      o.faults = config::parseFaultPlan(r.faultsText, "<built-in fault plan>", disc.get());
     }
   } catch (const iop::FaultPlanError& e) {
     throw Exit(2, e.what());
@@ -110,7 +112,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::unique_ptr<Player> player;
   try {
     player = std::make_unique<Player>(*disc, file, o);
-  } catch (const StreamProbeError& e) {
+  } catch (const ee::StreamProbeError& e) {
     throw Exit(2, e.what());
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());

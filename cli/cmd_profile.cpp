@@ -16,10 +16,12 @@
 #include "cli/profile_plots.hpp"
 #include "cli/profile_run.hpp"
 #include "cli/profile_transcode.hpp"
+#include "config/fault_plan_toml.hpp"
+#include "config/platform_config.hpp"
 #include "gs/gs_error.hpp"
 #include "iop/file_disc.hpp"
 #include "iop/memory_disc.hpp"
-#include "runtime/player/scenario.hpp"
+#include "player/scenario.hpp"
 
 namespace vbim::cli {
 
@@ -126,7 +128,7 @@ void runProfile(const ProfileRequest& r) {
 
   player::PlatformConfig base;
   try {
-    if (!r.config.empty()) base = player::loadPlatformFile(r.config);
+    if (!r.config.empty()) base = config::loadPlatformFile(r.config);
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   }
@@ -141,7 +143,7 @@ void runProfile(const ProfileRequest& r) {
   std::vector<std::pair<std::string, iop::FaultPlan>> plans{{"none", iop::FaultPlan{}}};
   for (const std::string& f : r.faults) {
     try {
-      plans.emplace_back(stem(f), iop::FaultPlan::load(f, streams[0]->disc.get()));
+      plans.emplace_back(stem(f), config::loadFaultPlan(f, streams[0]->disc.get()));
     } catch (const iop::FaultPlanError& e) {
       throw Exit(2, e.what());
     }
@@ -213,7 +215,7 @@ void runProfile(const ProfileRequest& r) {
         }
       }
     }
-  } catch (const player::StreamProbeError& e) {
+  } catch (const ee::StreamProbeError& e) {
     throw Exit(2, e.what());
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());

@@ -1,11 +1,11 @@
 // The platform config: every timing constant of every component (drive., ring., sif., ipu., gs.,
 // ee.), gathered in one ParamTable so a single TOML file sets them and `vbim config` prints them with
-// their sources. The struct itself lives with the player (runtime/player/platform_config.hpp), which
+// their sources. The struct itself lives with the player (player/platform_config.hpp), which
 // the test API shares; this header keeps the CLI's names.
 #pragma once
 
+#include "player/platform_config.hpp"
 #include "runtime/params.hpp"
-#include "runtime/player/platform_config.hpp"
 
 namespace vbim::cli {
 

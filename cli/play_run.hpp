@@ -9,7 +9,7 @@
 
 #include "cli/output_dir.hpp"
 #include "iop/fault_plan.hpp"
-#include "runtime/player/player.hpp"
+#include "player/player.hpp"
 
 namespace vbim::cli {
 

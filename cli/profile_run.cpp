@@ -6,7 +6,7 @@
 #include "gs/blend_simd.hpp"
 #include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "runtime/player/scenario.hpp"
+#include "player/scenario.hpp"
 
 namespace vbim::cli::profile {
 

@@ -25,7 +25,7 @@
 
 #include "iop/fault_plan.hpp"
 #include "iop/sector_source.hpp"
-#include "runtime/player/player.hpp"
+#include "player/player.hpp"
 
 namespace vbim::cli::profile {
 

@@ -2,7 +2,7 @@
 # scripts/setup.sh installs all of them.
 
 find_package(PkgConfig QUIET)
-if(NOT PKG_CONFIG_FOUND)
+if(NOT PKG_CONFIG_FOUND AND NOT VBIM_MODEL_ONLY)
   message(FATAL_ERROR "pkg-config not found: apt-get install pkg-config (or run scripts/setup.sh)")
 endif()
 
@@ -22,24 +22,27 @@ macro(vbim_require_pkgconfig prefix debpkgs)
   endif()
 endmacro()
 
-vbim_require_config(CLI11 libcli11-dev)
-vbim_require_config(nlohmann_json nlohmann-json3-dev)
-vbim_require_pkgconfig(TOMLPP libtomlplusplus-dev tomlplusplus)
-vbim_require_pkgconfig(LIBAV "libavcodec-dev libavformat-dev libavutil-dev libswscale-dev"
-                       libavformat libavcodec libavutil libswscale)
-vbim_require_pkgconfig(LIBMPEG2 libmpeg2-4-dev libmpeg2 libmpeg2convert)
-vbim_require_pkgconfig(LIBISO9660 "libiso9660-dev libcdio-dev" libiso9660 libcdio)
-vbim_require_pkgconfig(OSMESA libosmesa6-dev osmesa)
-vbim_require_pkgconfig(HWY libhwy-dev libhwy)
-vbim_require_config(glm libglm-dev)
-# Image output of the lean `vbim` tool (runtime/image_file.*): small libraries, not OpenImageIO.
-vbim_require_pkgconfig(PNG libpng-dev libpng)
-vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
+# The model needs none of these: a model-only build skips them (VBIM_MODEL_ONLY).
+if(NOT VBIM_MODEL_ONLY)
+  vbim_require_config(CLI11 libcli11-dev)
+  vbim_require_config(nlohmann_json nlohmann-json3-dev)
+  vbim_require_pkgconfig(TOMLPP libtomlplusplus-dev tomlplusplus)
+  vbim_require_pkgconfig(LIBAV "libavcodec-dev libavformat-dev libavutil-dev libswscale-dev"
+                         libavformat libavcodec libavutil libswscale)
+  vbim_require_pkgconfig(LIBMPEG2 libmpeg2-4-dev libmpeg2 libmpeg2convert)
+  vbim_require_pkgconfig(LIBISO9660 "libiso9660-dev libcdio-dev" libiso9660 libcdio)
+  vbim_require_pkgconfig(OSMESA libosmesa6-dev osmesa)
+  vbim_require_pkgconfig(HWY libhwy-dev libhwy)
+  vbim_require_config(glm libglm-dev)
+  # Image output of the lean `vbim` tool (runtime/image_file.*): small libraries, not OpenImageIO.
+  vbim_require_pkgconfig(PNG libpng-dev libpng)
+  vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
 
-# OpenImageIO through pkg-config: Debian 12's CMake config lists /usr/include/opencv4 and the
-# openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step
-# fails (notes/dependencies.md, pitfall 1).
-vbim_require_pkgconfig(OIIO libopenimageio-dev OpenImageIO)
+  # OpenImageIO through pkg-config: Debian 12's CMake config lists /usr/include/opencv4 and the
+  # openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step
+  # fails (notes/dependencies.md, pitfall 1).
+  vbim_require_pkgconfig(OIIO libopenimageio-dev OpenImageIO)
+endif()
 
 if(VBIM_BUILD_TESTS)
   find_package(GTest QUIET)
@@ -48,7 +51,7 @@ if(VBIM_BUILD_TESTS)
   endif()
   include(GoogleTest)
 endif()
-if(VBIM_BUILD_BENCH)
+if(VBIM_BUILD_BENCH AND NOT VBIM_MODEL_ONLY)
   vbim_require_config(benchmark libbenchmark-dev)
 endif()
 find_package(Threads REQUIRED)

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "iop/iop_params.hpp"
+#include "iop/params.hpp"
 #include "iop/sector_source.hpp"
 #include "runtime/event.hpp"
 #include "runtime/rng.hpp"

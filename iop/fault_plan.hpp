@@ -1,5 +1,6 @@
 // Fault plans: timed events that disturb the drive, on the simulated clock and nowhere else.
-// TOML, one [[fault]] table per event, `kind` naming what it is (docs/fault-plans.md):
+// Written as TOML (read by config/fault_plan_toml.hpp), one [[fault]] table per event, `kind` naming what it is
+// (docs/fault-plans.md):
 //   stall         at, duration                      the drive freezes
 //   read_error    lba, attempts [, from]            the sector fails its next N read attempts
 //   seek_away     at, lba | file, sectors           another file is read (level data, audio)
@@ -50,9 +51,7 @@ struct FaultPlan {
   std::string origin;
   std::vector<Fault> faults;
 
-  // Parses a plan. `disc` (optional) resolves `file = "..."` and checks LBAs against the disc.
-  static FaultPlan parse(std::string_view text, const std::string& origin, const SectorSource* disc = nullptr);
-  static FaultPlan load(const std::string& path, const SectorSource* disc = nullptr);
+  // Parsed from TOML by config/fault_plan_toml.hpp; the model sees only this plain list.
 };
 
 const char* toString(Fault::Kind k);

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "iop/iop_params.hpp"
+#include "iop/params.hpp"
 #include "runtime/scheduler.hpp"
 #include "runtime/trace.hpp"
 

@@ -23,7 +23,7 @@
 
 #include "iop/cd_errors.hpp"
 #include "iop/drive.hpp"
-#include "iop/iop_params.hpp"
+#include "iop/params.hpp"
 #include "iop/sif.hpp"
 #include "runtime/event.hpp"
 #include "runtime/scheduler.hpp"

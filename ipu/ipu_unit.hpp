@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "ipu/csc.hpp"
+#include "ipu/params.hpp"
 #include "ipu/picture_decoder.hpp"
-#include "ipu/timing_params.hpp"
 #include "runtime/event.hpp"
 #include "runtime/fifo.hpp"
 #include "runtime/image.hpp"

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/params_toml.hpp"
 #include "render/contact_sheet.hpp"
 #include "render/image_file.hpp"
 #include "render/render_error.hpp"
@@ -30,7 +31,7 @@ void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day) 
   ParamTable table;
   lighting::describeParams(table, day);
   try {
-    table.loadTomlFile(path);
+    config::applyTomlFile(table, path);
   } catch (const ConfigError& e) {
     throw RenderError(e.what());
   }

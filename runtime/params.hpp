@@ -1,7 +1,8 @@
 // Named, documented, range-checked parameters: every timing constant of the model is one of these,
-// bound to a field of a component's plain settings struct. A platform config (TOML) sets them by
-// dotted key ("drive.full_seek_ms"); unknown keys and out-of-range values are rejected with the
-// file, line and key. The same table prints the defaults and their sources for docs/.
+// bound to a field of a component's plain settings struct. A platform config (TOML, read by
+// config/params_toml.hpp) sets them by dotted key ("drive.full_seek_ms"); unknown keys and
+// out-of-range values are rejected with the file, line and key. The same table prints the defaults
+// and their sources for docs/.
 #pragma once
 
 #include <cstdint>
@@ -40,10 +41,6 @@ class ParamTable {
 
   const std::vector<Param>& params() const { return params_; }
   const Param* find(std::string_view key) const;
-
-  // Applies a TOML document. `origin` names it in errors (a path or "<string>").
-  void loadToml(std::string_view text, const std::string& origin);
-  void loadTomlFile(const std::string& path);
 
   // Writes every parameter with its current value as a commented TOML file.
   void writeToml(std::ostream& out) const;

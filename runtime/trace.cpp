@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <ostream>
 
-#include <nlohmann/json.hpp>
+#include "runtime/json.hpp"
 
 namespace vbim {
 
@@ -138,14 +138,14 @@ void Tracer::writeChromeJson(std::ostream& out) const {
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     sep();
     out << R"({"name":"thread_name","ph":"M","pid":1,"tid":)" << i + 1 << R"(,"args":{"name":)"
-        << nlohmann::json(tracks_[i]).dump() << "}}";
+        << json::quote(tracks_[i]) << "}}";
     sep();
     out << R"({"name":"thread_sort_index","ph":"M","pid":1,"tid":)" << i + 1 << R"(,"args":{"sort_index":)" << i
         << "}}";
   }
   std::vector<std::string> quoted;
   quoted.reserve(labels_.size());
-  for (const auto& l : labels_) quoted.push_back(nlohmann::json(l).dump());
+  for (const auto& l : labels_) quoted.push_back(json::quote(l));
   for (const Span& s : spans_) {
     sep();
     if (s.instant) {
@@ -158,7 +158,7 @@ void Tracer::writeChromeJson(std::ostream& out) const {
   }
   for (const Sample& s : samples_) {
     sep();
-    out << R"({"name":)" << nlohmann::json(counters_[s.counter]).dump() << R"(,"ph":"C","pid":1,"ts":)" << micros(s.t)
+    out << R"({"name":)" << json::quote(counters_[s.counter]) << R"(,"ph":"C","pid":1,"ts":)" << micros(s.t)
         << R"(,"args":{"value":)" << s.v << "}}";
   }
   out << "\n]}\n";

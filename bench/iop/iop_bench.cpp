@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "config/fault_plan_toml.hpp"
 #include "iop/drive.hpp"
 #include "iop/fault_plan.hpp"
 #include "iop/memory_disc.hpp"
@@ -40,11 +41,11 @@ void streamSeconds(benchmark::State& state, bool faults) {
     StreamRing ring(s, drive, sif, p.ring);
     if (faults) {
       applyFaults(s, drive,
-                  FaultPlan::parse("[[fault]]\nkind = \"random_stall\"\nfrom = \"0s\"\nduration = \"60s\"\n"
-                                   "mean_interval = \"2s\"\nstall = \"200ms\"\n"
-                                   "[[fault]]\nkind = \"random_error\"\nfrom = \"0s\"\nduration = \"60s\"\n"
-                                   "per_million = 1000\n",
-                                   "bench"),
+                  config::parseFaultPlan("[[fault]]\nkind = \"random_stall\"\nfrom = \"0s\"\nduration = \"60s\"\n"
+                                         "mean_interval = \"2s\"\nstall = \"200ms\"\n"
+                                         "[[fault]]\nkind = \"random_error\"\nfrom = \"0s\"\nduration = \"60s\"\n"
+                                         "per_million = 1000\n",
+                                         "bench"),
                   Rng(2));
     }
     s.spawn("start", startRing(ring));

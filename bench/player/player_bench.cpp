@@ -15,14 +15,15 @@
 #include <ctime>
 #include <memory>
 
+#include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/tiled_blender.hpp"
 #include "iop/memory_disc.hpp"
 #include "ipu/ipu_unit.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "runtime/player/frame_hash.hpp"
-#include "runtime/player/player.hpp"
-#include "runtime/player/scenario.hpp"
+#include "player/frame_hash.hpp"
+#include "player/player.hpp"
+#include "player/scenario.hpp"
 #include "streams/authoring/bench_stream.hpp"
 #include "streams/demuxer.hpp"
 
@@ -72,7 +73,7 @@ player::Kernels kernels(bool simd) {
 // texture: upload in strips through a small staging area (the seed's in-place blend) and size the
 // sky texture to the stream's 256x128.
 player::PlatformConfig benchConfig() {
-  return player::loadPlatformToml("gs.upload_mode = \"strips\"\ngs.sky_height = 128\n", "<bench config>");
+  return config::loadPlatformToml("gs.upload_mode = \"strips\"\ngs.sky_height = 128\n", "<bench config>");
 }
 
 // Host seconds per unit of work, each measured alone.

@@ -145,7 +145,7 @@ TEST(Cli, EveryPlatformKeyIsDocumentedInTheTimingModel) {
 }
 
 TEST(Cli, ConfigRejectsATwoBankRing) {
-  // Two banks deadlock under the driver's hold rule (iop/iop_params.cpp), so the config refuses them.
+  // Two banks deadlock under the driver's hold rule (iop/params.cpp), so the config refuses them.
   const fs::path dir = scratch("twobanks");
   fs::create_directories(dir);
   const fs::path cfg = dir / "plat.toml";

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "player/frame_hash.hpp"
 #include "runtime/image.hpp"
-#include "runtime/player/frame_hash.hpp"
 #include "tests/support/run_command.hpp"
 
 namespace {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "config/params_toml.hpp"
 #include "gs/params.hpp"
 #include "runtime/params.hpp"
 
@@ -27,12 +28,12 @@ TEST(GsTiming, ParamsLoadFromTomlAndRejectBadValues) {
   ParamTable table;
   GsParams p;
   describeParams(table, p);
-  table.loadToml("[gs]\nfix = 96\ncatchup = \"hard-skip\"\nupload_mode = \"strips\"\n", "<test>");
+  config::applyToml(table, "[gs]\nfix = 96\ncatchup = \"hard-skip\"\nupload_mode = \"strips\"\n", "<test>");
   EXPECT_EQ(p.fix, 96);
   EXPECT_EQ(p.catchup, "hard-skip");
   EXPECT_EQ(p.uploadMode, "strips");
-  EXPECT_THROW(table.loadToml("[gs]\nfix = 256\n", "<test>"), ConfigError);
-  EXPECT_THROW(table.loadToml("[gs]\ncatchup = \"rewind\"\n", "<test>"), ConfigError);
+  EXPECT_THROW(config::applyToml(table, "[gs]\nfix = 256\n", "<test>"), ConfigError);
+  EXPECT_THROW(config::applyToml(table, "[gs]\ncatchup = \"rewind\"\n", "<test>"), ConfigError);
   for (const auto& param : table.params()) {
     EXPECT_EQ(param.key.rfind("gs.", 0), 0u) << param.key;
     EXPECT_FALSE(param.source.empty()) << param.key;

@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "config/fault_plan_toml.hpp"
 #include "iop/cd_errors.hpp"
 #include "iop/fault_plan.hpp"
 #include "tests/iop/iop_fixture.hpp"
@@ -288,7 +289,7 @@ std::string scenarioTrace(std::uint64_t seed) {
   Rig r;
   r.seed = seed;
   r.build();
-  const FaultPlan plan = FaultPlan::parse(R"(
+  const FaultPlan plan = config::parseFaultPlan(R"(
 [[fault]]
 kind = "random_stall"
 from = "0.5s"
@@ -313,7 +314,7 @@ duration = "1s"
 share = 30
 lba = 1500000
 )",
-                                          "<scenario>", r.disc.get());
+                                                "<scenario>", r.disc.get());
   applyFaults(r.s, *r.drive, plan, Rng(seed).fork("faults"));
   r.s.spawn("start", starter(*r.ring, 50'000));
   std::vector<Call> calls;

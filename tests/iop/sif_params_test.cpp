@@ -5,7 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "iop/iop_params.hpp"
+#include "config/params_toml.hpp"
+#include "iop/params.hpp"
 #include "iop/sif.hpp"
 #include "runtime/scheduler.hpp"
 
@@ -36,18 +37,18 @@ TEST(IopParams, DefaultsAndTomlErrors) {
   IopParams p;
   ParamTable t;
   describeParams(t, p);
-  t.loadToml("[drive]\nspindle = \"clv\"\nfull_seek_us = 150000\n[sif]\nsetup_us = 10\n", "platform.toml");
+  config::applyToml(t, "[drive]\nspindle = \"clv\"\nfull_seek_us = 150000\n[sif]\nsetup_us = 10\n", "platform.toml");
   EXPECT_EQ(p.drive.spindle, "clv");
   EXPECT_EQ(p.drive.full_seek_us, 150'000);
   EXPECT_EQ(p.sif.setup_us, 10);
   try {
-    t.loadToml("[drive]\nfull_seek_us = -1\n", "platform.toml");
+    config::applyToml(t, "[drive]\nfull_seek_us = -1\n", "platform.toml");
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("platform.toml:2: key 'drive.full_seek_us'"), std::string::npos) << e.what();
   }
   try {
-    t.loadToml("[ring]\nbanks = 4\n", "platform.toml");
+    config::applyToml(t, "[ring]\nbanks = 4\n", "platform.toml");
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("platform.toml:2: key 'ring.banks': unknown key"), std::string::npos);

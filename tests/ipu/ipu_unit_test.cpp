@@ -1,5 +1,6 @@
 // The IPU on the simulated clock: cost per macroblock, FIFOs and DMA back-pressure.
 #include "ipu/ipu_unit.hpp"
+#include "config/params_toml.hpp"
 
 #include <gtest/gtest.h>
 
@@ -126,7 +127,7 @@ TEST(IpuUnit, ParamsAreRegisteredWithSources) {
     EXPECT_EQ(param.key.rfind("ipu.", 0), 0u) << param.key;
     EXPECT_FALSE(param.source.empty()) << param.key;
   }
-  t.loadToml("[ipu]\nmb_base_cycles = 800\n", "<test>");
+  config::applyToml(t, "[ipu]\nmb_base_cycles = 800\n", "<test>");
   EXPECT_EQ(p.mbBaseCycles, 800);
 }
 

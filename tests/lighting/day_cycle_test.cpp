@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "config/params_toml.hpp"
 #include "lighting/azimuth_sweep.hpp"
 #include "lighting/day_cycle.hpp"
 #include "lighting/errors.hpp"
@@ -251,11 +252,12 @@ TEST(Params, DescribeParamsLoadsToml) {
   DayCycleParams p;
   ParamTable table;
   describeParams(table, p);
-  table.loadToml("[lighting]\nlatitude_deg = -33.9\nframes = 48\n[lighting.clouds]\nenabled = true\n", "<test>");
+  config::applyToml(table, "[lighting]\nlatitude_deg = -33.9\nframes = 48\n[lighting.clouds]\nenabled = true\n",
+                    "<test>");
   EXPECT_DOUBLE_EQ(p.latitudeDeg, -33.9);
   EXPECT_EQ(p.frames, 48);
   EXPECT_TRUE(p.clouds.enabled);
-  EXPECT_THROW(table.loadToml("[lighting]\nlatitude_deg = 120\n", "<test>"), ConfigError);
+  EXPECT_THROW(config::applyToml(table, "[lighting]\nlatitude_deg = 120\n", "<test>"), ConfigError);
 }
 
 }  // namespace

@@ -10,7 +10,8 @@
 #include <fstream>
 #include <string>
 
-#include "runtime/player/scenario.hpp"
+#include "config/platform_config.hpp"
+#include "player/scenario.hpp"
 #include "streams/authoring/bench_stream.hpp"
 #include "streams/stream_stats.hpp"
 
@@ -38,14 +39,15 @@ class DemuxBudget : public ::testing::Test {
 
   static std::unique_ptr<player::Run> play(const std::string& extraToml) {
     auto run = Scenario::bareFile(path_.string())
-                   .configToml("gs.upload_mode = \"strips\"\ngs.sky_height = 128\n" + extraToml)
+                   .config(config::loadPlatformToml("gs.upload_mode = \"strips\"\ngs.sky_height = 128\n" + extraToml,
+                                                    "<scenario config>"))
                    .seed(3)
                    .trace(false)
                    .start(fromMs(48'000));
     run->runToEnd();
     return run;
   }
-  static const DemuxCounters& demux(player::Run& run) { return run.player().pipeline().demux().counters(); }
+  static const ee::DemuxCounters& demux(player::Run& run) { return run.player().pipeline().demux().counters(); }
 
   static inline fs::path path_;
   static inline std::int64_t drift_ = 0;
@@ -57,7 +59,7 @@ TEST_F(DemuxBudget, TheDriftingStreamDrifts) {
 
 TEST_F(DemuxBudget, WithinTheDefaultBudgetEveryFrameArrives) {
   auto run = play("");
-  const DemuxCounters& c = demux(*run);
+  const ee::DemuxCounters& c = demux(*run);
   EXPECT_GT(c.overDepth, 0) << "the drift should make the demux store beyond the buffer depth";
   EXPECT_EQ(c.overBudget, 0);
   EXPECT_EQ(c.framesLost, 0);
@@ -65,7 +67,7 @@ TEST_F(DemuxBudget, WithinTheDefaultBudgetEveryFrameArrives) {
 
 TEST_F(DemuxBudget, PastASmallBudgetPicturesAreDroppedAndPlayGoesOn) {
   auto run = play("ee.compressed_budget_kib = 256\n");
-  const DemuxCounters& c = demux(*run);
+  const ee::DemuxCounters& c = demux(*run);
   EXPECT_GT(c.overBudget, 0);
   EXPECT_GE(c.framesLost, c.overBudget);
   // Played to the end: every vsync of the 48 s recorded (n = 0 .. floor(48 s x 60000/1001)),

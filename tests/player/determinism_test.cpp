@@ -8,8 +8,8 @@
 #include <thread>
 #include <vector>
 
-#include "runtime/player/report.hpp"
-#include "runtime/player/scenario.hpp"
+#include "player/report.hpp"
+#include "player/scenario.hpp"
 #include "tests/player/sample_path.hpp"
 
 namespace vbim::player {

@@ -9,8 +9,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "runtime/player/frame_hash.hpp"
-#include "runtime/player/scenario.hpp"
+#include "config/fault_plan_toml.hpp"
+#include "player/frame_hash.hpp"
+#include "player/scenario.hpp"
 #include "tests/player/sample_path.hpp"
 
 namespace vbim::player {
@@ -51,7 +52,7 @@ std::string goldenPath(const Case& c) {
 // "vsync hash" for vsync 0 and every vsync whose hash differs from the one before.
 std::string hashList(const Case& c) {
   Scenario sc = Scenario::bareFile(testing::samplePath(c.sample)).seed(1).trace(false);
-  if (*c.faults != 0) sc.faultsToml(c.faults);
+  if (*c.faults != 0) sc.faults(config::parseFaultPlan(c.faults, "<scenario faults>", &sc.disc()));
   if (c.branchVariant >= 0) sc.branch(fromMs(6'000), c.branchVariant);
   auto run = sc.start(c.duration);
   run->runToEnd();

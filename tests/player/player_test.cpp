@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "runtime/player/scenario.hpp"
+#include "config/platform_config.hpp"
+#include "player/scenario.hpp"
 #include "tests/player/sample_path.hpp"
 
 namespace vbim::player {
@@ -35,13 +36,14 @@ TEST(Player, WrapsAtTheLoopPointBySeekingTheRing) {
 }
 
 TEST(Player, LongStallThenSmoothCatchUp) {
-  auto run =
-      Scenario::bareFile(samplePath("day_clear.vbim"))
-          .seed(3)
-          .config(PlatformConfig{})
-          .configToml("ring.bufmax_sectors = 8\nring.bankmax = 4\nee.read_sectors = 1\nee.compressed_frames = 1\n")
-          .stall(fromMs(1'000), fromMs(30'000))
-          .start(fromMs(36'000));
+  auto run = Scenario::bareFile(samplePath("day_clear.vbim"))
+                 .seed(3)
+                 .config(PlatformConfig{})
+                 .config(config::loadPlatformToml(
+                     "ring.bufmax_sectors = 8\nring.bankmax = 4\nee.read_sectors = 1\nee.compressed_frames = 1\n",
+                     "<scenario config>"))
+                 .stall(fromMs(1'000), fromMs(30'000))
+                 .start(fromMs(36'000));
   run->runToEnd();
   EXPECT_TRUE(run->player().hasReference());
   const auto& c = run->counters();
@@ -83,7 +85,7 @@ TEST(Player, RejectsAFileThatIsNotAVbimStream) {
   try {
     Scenario::bareFile(bad).start(fromMs(1'000));
     FAIL() << "expected a StreamProbeError";
-  } catch (const StreamProbeError& e) {
+  } catch (const ee::StreamProbeError& e) {
     EXPECT_NE(std::string(e.what()).find("not a VBIM stream"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("sector 0"), std::string::npos) << e.what();
   }

@@ -2,7 +2,7 @@
 // assert that the lightmap falls behind during it and catches up smoothly afterwards.
 #include <gtest/gtest.h>
 
-#include "runtime/player/scenario.hpp"
+#include "player/scenario.hpp"
 #include "tests/player/sample_path.hpp"
 
 using namespace vbim;

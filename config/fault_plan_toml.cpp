@@ -1,0 +1,268 @@
+#include "config/fault_plan_toml.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "iop/sector_source.hpp"
+
+namespace vbim::config {
+
+using iop::Fault;
+using iop::FaultPlan;
+using iop::FaultPlanError;
+using iop::parseDuration;
+using iop::SectorSource;
+using iop::toString;
+
+namespace {
+
+struct Kind {
+  const char* name;
+  Fault::Kind kind;
+  std::vector<std::string> required;
+  std::vector<std::string> optional;
+};
+
+const std::vector<Kind>& kinds() {
+  static const std::vector<Kind> k = {
+      {"stall", Fault::Kind::stall, {"at", "duration"}, {}},
+      {"read_error", Fault::Kind::read_error, {"lba", "attempts"}, {"from"}},
+      {"seek_away", Fault::Kind::seek_away, {"at", "sectors"}, {"lba", "file"}},
+      {"contention", Fault::Kind::contention, {"from", "duration", "share"}, {"period", "lba", "file"}},
+      {"random_stall", Fault::Kind::random_stall, {"from", "duration", "mean_interval", "stall"}, {}},
+      {"random_error", Fault::Kind::random_error, {"from", "duration", "per_million"}, {"attempts"}},
+  };
+  return k;
+}
+
+class Reader {
+ public:
+  Reader(const std::string& origin, const toml::table& t, int line, std::string kind, const SectorSource* disc)
+      : origin_(origin), t_(t), line_(line), kind_(std::move(kind)), disc_(disc) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+    int line = line_;
+    if (const toml::node* n = t_.get(field)) line = static_cast<int>(n->source().begin.line);
+    throw FaultPlanError(origin_ + ":" + std::to_string(line) + ": fault '" + kind_ + "'" +
+                         (field.empty() ? "" : ", field '" + field + "'") + ": " + what);
+  }
+  bool has(const std::string& f) const { return t_.get(f) != nullptr; }
+
+  Tick time(const std::string& f, bool positive) const {
+    const toml::node* n = t_.get(f);
+    if (n == nullptr) fail(f, "missing (expected a time such as \"800ms\")");
+    const auto s = n->value<std::string>();
+    if (!s) fail(f, "expected a time as a string with a unit, such as \"12.5s\", \"800ms\" or \"250us\"");
+    Tick t = 0;
+    try {
+      t = parseDuration(*s);
+    } catch (const std::invalid_argument& e) {
+      fail(f, "'" + *s + "' is not a valid time: " + e.what());
+    }
+    if (positive && t <= 0) fail(f, "'" + *s + "' must be longer than zero");
+    return t;
+  }
+  std::int64_t integer(const std::string& f, std::int64_t min, std::int64_t max) const {
+    const toml::node* n = t_.get(f);
+    if (n == nullptr) fail(f, "missing");
+    if (!n->is_integer()) fail(f, "expected an integer");
+    const std::int64_t v = *n->value<std::int64_t>();
+    if (v < min || v > max) {
+      fail(f, std::to_string(v) + " is outside the allowed range [" + std::to_string(min) + ", " + std::to_string(max) +
+                  "]");
+    }
+    return v;
+  }
+  // `lba = N` or `file = "path"` (resolved on the disc like sceCdSearchFile).
+  std::int64_t location(bool required, std::int64_t* fileSectors = nullptr) const {
+    if (has("lba") && has("file")) fail("file", "give either lba or file, not both");
+    if (has("file")) {
+      const auto s = t_.get("file")->value<std::string>();
+      if (!s) fail("file", "expected a path string");
+      if (disc_ == nullptr) fail("file", "a file name needs a disc to look it up in; give lba instead");
+      const auto f = disc_->find(*s);
+      if (!f) fail("file", "no file '" + *s + "' on " + disc_->describe());
+      if (fileSectors != nullptr) *fileSectors = f->sectors();
+      return f->lba;
+    }
+    if (!has("lba")) {
+      if (required) fail("lba", "missing (give lba or file)");
+      return -1;
+    }
+    const std::int64_t max = disc_ != nullptr ? disc_->sectorCount() - 1 : (std::int64_t{1} << 40);
+    return integer("lba", 0, max);
+  }
+
+ private:
+  const std::string& origin_;
+  const toml::table& t_;
+  int line_;
+  std::string kind_;
+  const SectorSource* disc_;
+};
+
+std::string fmtTime(Tick t) {
+  char buf[40];
+  formatMicros(t, buf, sizeof buf);
+  return std::string(buf) + " us";
+}
+
+void rejectOverlaps(const std::string& origin, const std::vector<Fault>& faults, Fault::Kind kind) {
+  std::vector<const Fault*> list;
+  for (const Fault& f : faults) {
+    if (f.kind == kind) list.push_back(&f);
+  }
+  std::sort(list.begin(), list.end(), [](const Fault* a, const Fault* b) { return a->at < b->at; });
+  for (std::size_t i = 1; i < list.size(); ++i) {
+    const Fault& a = *list[i - 1];
+    const Fault& b = *list[i];
+    if (b.at < a.at + a.duration) {
+      throw FaultPlanError(origin + ":" + std::to_string(b.line) + ": fault '" + toString(kind) + "' starting at " +
+                           fmtTime(b.at) + " overlaps the one at line " + std::to_string(a.line) + " (" +
+                           fmtTime(a.at) + " to " + fmtTime(a.at + a.duration) +
+                           "); merge them into one entry or move one");
+    }
+  }
+}
+
+}  // namespace
+
+iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, const iop::SectorSource* disc) {
+  toml::table doc;
+  try {
+    doc = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw FaultPlanError(origin + ":" + std::to_string(e.source().begin.line) +
+                         ": TOML syntax error: " + std::string(e.description()));
+  }
+  FaultPlan plan;
+  plan.origin = origin;
+  for (const auto& [k, v] : doc) {
+    if (k.str() != "fault") {
+      throw FaultPlanError(origin + ":" + std::to_string(v.source().begin.line) + ": unknown key '" +
+                           std::string(k.str()) + "': a fault plan holds only [[fault]] tables");
+    }
+  }
+  const toml::node* node = doc.get("fault");
+  if (node == nullptr) return plan;  // an empty plan: no faults
+  const toml::array* arr = node->as_array();
+  if (arr == nullptr) {
+    throw FaultPlanError(origin + ":" + std::to_string(node->source().begin.line) +
+                         ": 'fault' must be an array of tables, written [[fault]]");
+  }
+  std::set<std::int64_t> errorLbas;
+  std::map<std::int64_t, int> errorLines;
+  for (const toml::node& el : *arr) {
+    const int line = static_cast<int>(el.source().begin.line);
+    const toml::table* t = el.as_table();
+    if (t == nullptr)
+      throw FaultPlanError(origin + ":" + std::to_string(line) + ": each fault must be a [[fault]] table");
+    const toml::node* kn = t->get("kind");
+    if (kn == nullptr || !kn->value<std::string>()) {
+      throw FaultPlanError(origin + ":" + std::to_string(line) +
+                           ": fault without a kind (expected kind = \"stall\", \"read_error\", \"seek_away\", "
+                           "\"contention\", \"random_stall\" or \"random_error\")");
+    }
+    const std::string kindName = *kn->value<std::string>();
+    const Kind* kind = nullptr;
+    for (const Kind& k : kinds()) {
+      if (kindName == k.name) kind = &k;
+    }
+    if (kind == nullptr) {
+      throw FaultPlanError(origin + ":" + std::to_string(kn->source().begin.line) + ": unknown fault kind '" +
+                           kindName +
+                           "' (expected stall, read_error, seek_away, contention, random_stall or random_error)");
+    }
+    Reader r(origin, *t, line, kindName, disc);
+    for (const auto& [fk, fv] : *t) {
+      const std::string field(fk.str());
+      if (field == "kind") continue;
+      const bool known = std::find(kind->required.begin(), kind->required.end(), field) != kind->required.end() ||
+                         std::find(kind->optional.begin(), kind->optional.end(), field) != kind->optional.end();
+      if (!known) {
+        std::string list;
+        for (const auto& f : kind->required) list += (list.empty() ? "" : ", ") + f;
+        for (const auto& f : kind->optional) list += ", " + f + " (optional)";
+        r.fail(field, "unknown field (a " + kindName + " takes " + list + ")");
+      }
+    }
+    Fault f;
+    f.kind = kind->kind;
+    f.line = line;
+    switch (f.kind) {
+      case Fault::Kind::stall:
+        f.at = r.time("at", false);
+        f.duration = r.time("duration", true);
+        break;
+      case Fault::Kind::read_error:
+        f.lba = r.location(true);
+        f.attempts = r.integer("attempts", 1, 1'000'000);
+        f.at = r.has("from") ? r.time("from", false) : 0;
+        if (errorLbas.count(f.lba) != 0) {
+          r.fail("lba", "LBA " + std::to_string(f.lba) + " already has a read_error at line " +
+                            std::to_string(errorLines[f.lba]) + "; give one entry with the total attempts");
+        }
+        errorLbas.insert(f.lba);
+        errorLines[f.lba] = line;
+        break;
+      case Fault::Kind::seek_away: {
+        f.at = r.time("at", false);
+        std::int64_t fileSectors = 0;
+        f.lba = r.location(true, &fileSectors);
+        f.sectors = r.integer("sectors", 1, 1'000'000);
+        if (disc != nullptr && f.lba + f.sectors > disc->sectorCount()) {
+          r.fail("sectors", std::to_string(f.sectors) + " sectors from LBA " + std::to_string(f.lba) +
+                                " run past the end of the disc (" + std::to_string(disc->sectorCount()) + " sectors)");
+        }
+        break;
+      }
+      case Fault::Kind::contention:
+        f.at = r.time("from", false);
+        f.duration = r.time("duration", true);
+        f.share = r.integer("share", 1, 99);
+        f.period = r.has("period") ? r.time("period", true) : fromMs(100);
+        f.lba = r.location(false);
+        if (f.period * f.share / 100 < 1) r.fail("period", "too short: a share of it must last at least one tick");
+        if (f.period > f.duration) r.fail("period", "is longer than the contention's duration");
+        break;
+      case Fault::Kind::random_stall:
+        f.at = r.time("from", false);
+        f.duration = r.time("duration", true);
+        f.meanInterval = r.time("mean_interval", true);
+        f.stallLength = r.time("stall", true);
+        if (f.stallLength >= f.meanInterval) {
+          r.fail("stall", "must be shorter than mean_interval, or the drive would never run");
+        }
+        break;
+      case Fault::Kind::random_error:
+        f.at = r.time("from", false);
+        f.duration = r.time("duration", true);
+        f.perMillion = r.integer("per_million", 1, 1'000'000);
+        f.attempts = r.has("attempts") ? r.integer("attempts", 1, 1'000'000) : 1;
+        break;
+    }
+    plan.faults.push_back(f);
+  }
+  rejectOverlaps(origin, plan.faults, Fault::Kind::stall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::contention);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::random_stall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::random_error);
+  return plan;
+}
+
+iop::FaultPlan loadFaultPlan(const std::string& path, const iop::SectorSource* disc) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FaultPlanError(path + ": cannot open the fault plan");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parseFaultPlan(ss.str(), path, disc);
+}
+
+}  // namespace vbim::config

@@ -1,0 +1,19 @@
+// TOML documents applied to a ParamTable: the one place that turns a platform config, a lighting
+// config or any other `[section] key = value` file into the model's plain parameter structs. Unknown
+// keys, wrong types and out-of-range values are rejected with the file, the line and the key.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "runtime/params.hpp"
+
+namespace vbim::config {
+
+// Applies a TOML document to the fields bound in `table`. `origin` names it in errors (a path or
+// "<string>"). Throws ConfigError.
+void applyToml(ParamTable& table, std::string_view text, const std::string& origin);
+// Reads `path` and applies it; a missing or unreadable file is a ConfigError naming it.
+void applyTomlFile(ParamTable& table, const std::string& path);
+
+}  // namespace vbim::config

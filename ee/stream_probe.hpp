@@ -1,0 +1,29 @@
+// Before a run: read the playback descriptor of the stream file on the disc, on the host, so the
+// player knows the streams' sizes, rates, loop point, variants and index. This is the
+// "is this a VBIM stream?" check: anything else is rejected with the place and the reason.
+#pragma once
+
+#include <stdexcept>
+
+#include "iop/sector_source.hpp"
+#include "streams/descriptor.hpp"
+
+namespace vbim::ee {
+
+class StreamProbeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ProbedStream {
+  iop::DiscFile file;
+  streams::Descriptor descriptor;
+  int lightmapIndex = -1;  // position of the 0xE0 stream in descriptor.streams
+  int skyIndex = -1;       // position of the 0xE1 stream, or -1 when the stream has no sky
+};
+
+// Reads the first sectors of `file` until the descriptor is complete. Throws StreamProbeError naming
+// the disc, the file, the sector and byte offset, and what was expected.
+ProbedStream probeStream(iop::SectorSource& disc, const iop::DiscFile& file);
+
+}  // namespace vbim::ee

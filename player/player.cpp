@@ -1,0 +1,101 @@
+#include "player/player.hpp"
+
+#include <algorithm>
+
+#include "gs/lag_meter.hpp"
+#include "player/frame_hash.hpp"
+
+namespace vbim::player {
+
+Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions options)
+    : options_(std::move(options)), stream_(ee::probeStream(disc, file)), tracer_(options_.trace) {
+  validate(options_.config);
+  for (const Branch& b : options_.branches) {
+    if (b.variant < 0 || b.variant >= static_cast<int>(stream_.descriptor.variants.size())) {
+      throw ConfigError("branch at " + std::to_string(toSeconds(b.at)) + " s to variant " + std::to_string(b.variant) +
+                        ", but the stream has " + std::to_string(stream_.descriptor.variants.size()) + " variant(s)");
+    }
+  }
+  main_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, &options_.faults, options_.seed,
+                                     options_.kernels, &tracer_, "");
+  if (options_.reference && !options_.faults.faults.empty()) {
+    ref_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, nullptr, options_.seed, options_.kernels,
+                                      nullptr, "ref.");
+  }
+  for (const Branch& b : options_.branches) {
+    main_->scheduleBranch(b.at, b.variant);
+    if (ref_) ref_->scheduleBranch(b.at, b.variant);
+  }
+  if (tracer_.enabled()) lagCounter_ = tracer_.counter("player.lag");
+  totals_.ringHistogram.assign(static_cast<std::size_t>(options_.config.iop.ring.bankmax) + 1, 0);
+}
+
+void Player::runTo(Tick t) {
+  if (!started_) {
+    started_ = true;
+    main_->start(options_.duration);
+    if (ref_) ref_->start(options_.duration);
+    sched_.spawn("player.record", record(*this));
+  }
+  sched_.runUntil(std::min(t, options_.duration));
+}
+
+void Player::onVsync(std::int64_t n) {
+  gs::Presenter& lm = main_->lightmap();
+  gs::Presenter* sky = main_->sky();
+  VsyncRow row;
+  row.vsync = n;
+  row.lightmap = lm.last();
+  row.at = row.lightmap.at;
+  if (sky != nullptr) row.sky = sky->last();
+  // An unchanged lightmap and sky (no byte moved: pop 0) keep the previous hash and lag.
+  const bool changed = !last_ || row.lightmap.pop != 0 || (row.sky && row.sky->pop != 0);
+  row.hash = changed ? frameHash(lm.lightmap(), sky ? &sky->lightmap() : nullptr) : last_->hash;
+  if (ref_) {
+    const bool refChanged =
+        !last_ || ref_->lightmap().last().pop != 0 || (ref_->sky() != nullptr && ref_->sky()->last().pop != 0);
+    if (changed || refChanged) {
+      row.lag = gs::compareImages(lm.lightmap(), ref_->lightmap().lightmap()).maxDiff;
+      if (sky != nullptr) row.skyLag = gs::compareImages(sky->lightmap(), ref_->sky()->lightmap()).maxDiff;
+    } else {
+      row.lag = last_->lag;
+      row.skyLag = last_->skyLag;
+    }
+  }
+  row.ringBanks = main_->ring().visibleBanks();
+
+  ++totals_.vsyncs;
+  if (n > 0 && !row.lightmap.snapped) totals_.pop.offer(row.lightmap.pop, n, row.at);
+  if (row.sky && n > 0 && !row.sky->snapped) totals_.skyPop.offer(row.sky->pop, n, row.at);
+  totals_.lag.offer(row.lag, n, row.at);
+  totals_.skyLag.offer(row.skyLag, n, row.at);
+  totals_.ringMin = totals_.ringMin < 0 ? row.ringBanks : std::min(totals_.ringMin, row.ringBanks);
+  totals_.ringMax = std::max(totals_.ringMax, row.ringBanks);
+  totals_.ringSum += row.ringBanks;
+  const auto bucket = static_cast<std::size_t>(
+      std::clamp<std::int64_t>(row.ringBanks, 0, static_cast<std::int64_t>(totals_.ringHistogram.size()) - 1));
+  ++totals_.ringHistogram[bucket];
+  if (row.lightmap.behind) ++totals_.behindVsyncs;
+  if (tracer_.enabled() && ref_) tracer_.value(lagCounter_, row.at, row.lag);
+  if (sink_) sink_(row, lm.lightmap(), sky ? &sky->lightmap() : nullptr);
+  last_ = std::move(row);
+}
+
+// Waits until every presenter (run and reference) has presented vsync n, then records it.
+Task<void> Player::record(Player& p) {
+  const VsyncClock clock = p.main_->lightmap().clock();
+  std::vector<gs::Presenter*> all{&p.main_->lightmap()};
+  if (p.main_->sky()) all.push_back(p.main_->sky());
+  if (p.ref_) {
+    all.push_back(&p.ref_->lightmap());
+    if (p.ref_->sky()) all.push_back(p.ref_->sky());
+  }
+  for (std::int64_t n = 0; clock.time(n) < p.options_.duration; ++n) {
+    for (gs::Presenter* pr : all) {
+      while (pr->presented() <= n) co_await pr->presentedEvent().wait();
+    }
+    p.onVsync(n);
+  }
+}
+
+}  // namespace vbim::player

@@ -1,0 +1,123 @@
+// The player: a whole run on one Scheduler. It probes the stream, builds the pipeline (and, when the
+// fault plan is not empty, a fault-free reference pipeline with the same seed beside it, so the lag
+// of every vsync is exact), and records every vsync: a 64-bit hash of the lightmap and sky, the
+// presenters' records, pop, lag and ring occupancy. Rows stream to a sink as they happen, so memory
+// does not grow with the run's length (the trace does, when enabled).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "ee/stream_probe.hpp"
+#include "iop/fault_plan.hpp"
+#include "iop/sector_source.hpp"
+#include "player/pipeline.hpp"
+#include "player/platform_config.hpp"
+#include "runtime/scheduler.hpp"
+#include "runtime/trace.hpp"
+
+namespace vbim::player {
+
+struct Branch {
+  Tick at = 0;
+  int variant = 0;
+};
+
+struct PlayerOptions {
+  PlatformConfig config;
+  iop::FaultPlan faults;  // empty: no faults (and no reference pipeline: the lag is zero by definition)
+  std::uint64_t seed = 1;
+  Tick duration = fromMs(10'000);  // vsyncs before this time are presented
+  std::vector<Branch> branches;    // scheduled variant switches
+  Kernels kernels;                 // SIMD kernels (null: scalar references; same bytes either way)
+  bool trace = true;               // keep busy spans and counters for trace.json / signals.vcd
+  bool reference = true;           // measure lag against a fault-free reference (only if faults exist)
+};
+
+// What happened at one vsync, over the whole output (lightmap + sky).
+struct VsyncRow {
+  std::int64_t vsync = 0;
+  Tick at = 0;
+  std::uint64_t hash = 0;
+  gs::VsyncRecord lightmap;
+  std::optional<gs::VsyncRecord> sky;
+  int lag = 0;                 // largest per-byte difference from the reference lightmap (0 without faults)
+  int skyLag = 0;              // the same for the sky
+  std::int64_t ringBanks = 0;  // banks readable in the stream ring at the vsync
+};
+
+struct Extreme {
+  int value = 0;
+  std::int64_t vsync = -1;
+  Tick at = 0;
+  void offer(int v, std::int64_t n, Tick t) {
+    if (v > value) {
+      value = v;
+      vsync = n;
+      at = t;
+    }
+  }
+};
+
+// Aggregates over the rows recorded so far.
+struct RunTotals {
+  std::int64_t vsyncs = 0;
+  Extreme pop;  // lightmap pop (excluding the first frame copied into the empty lightmap)
+  Extreme skyPop;
+  Extreme lag;
+  Extreme skyLag;
+  std::int64_t ringMin = -1, ringMax = 0, ringSum = 0;
+  std::vector<std::int64_t> ringHistogram;  // vsyncs per number of readable banks
+  std::int64_t behindVsyncs = 0;
+};
+
+class Player {
+ public:
+  using Sink = std::function<void(const VsyncRow&, const Rgba8Image& lightmap, const Rgba8Image* sky)>;
+
+  // Probes the stream (throws ee::StreamProbeError), validates the options (ConfigError, GsError).
+  Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions options);
+  Player(const Player&) = delete;
+  Player& operator=(const Player&) = delete;
+
+  void setSink(Sink sink) { sink_ = std::move(sink); }
+  // Runs the simulation up to time t (at most to the duration). May be called repeatedly.
+  void runTo(Tick t);
+  void runToEnd() { runTo(options_.duration); }
+
+  Tick now() const { return sched_.now(); }
+  Tick duration() const { return options_.duration; }
+  const ee::ProbedStream& stream() const { return stream_; }
+  const PlayerOptions& options() const { return options_; }
+  Pipeline& pipeline() { return *main_; }
+  const Pipeline& pipeline() const { return *main_; }
+  bool hasReference() const { return ref_ != nullptr; }
+  Pipeline* reference() { return ref_.get(); }
+  const Tracer& tracer() const { return tracer_; }
+  const Scheduler& scheduler() const { return sched_; }
+  const RunTotals& totals() const { return totals_; }
+  const std::optional<VsyncRow>& lastRow() const { return last_; }
+  const Rgba8Image& lightmap() const { return main_->lightmap().lightmap(); }
+  const Rgba8Image* sky() const { return main_->sky() ? &main_->sky()->lightmap() : nullptr; }
+
+ private:
+  static Task<void> record(Player& p);
+  void onVsync(std::int64_t n);
+
+  PlayerOptions options_;
+  ee::ProbedStream stream_;
+  Scheduler sched_;
+  Tracer tracer_;
+  std::unique_ptr<Pipeline> main_;
+  std::unique_ptr<Pipeline> ref_;
+  Tracer::CounterId lagCounter_ = 0;
+  Sink sink_;
+  RunTotals totals_;
+  std::optional<VsyncRow> last_;
+  bool started_ = false;
+};
+
+}  // namespace vbim::player

@@ -1,0 +1,172 @@
+#include "player/report.hpp"
+
+#include <cinttypes>
+#include <cstdio>
+#include <ostream>
+
+#include "player/frame_hash.hpp"
+#include "runtime/json.hpp"
+
+namespace vbim::player {
+
+namespace {
+
+std::string seconds(Tick t) {
+  // Exact decimal of t / kBusHz to 6 places, rounded down: integer arithmetic only.
+  const std::int64_t us = static_cast<std::int64_t>((static_cast<__int128>(t) * 1'000'000) / kBusHz);
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%" PRId64 ".%06" PRId64, us / 1'000'000, us % 1'000'000);
+  return buf;
+}
+
+// A ratio as a JSON number with 4 decimals, formatted from integers (identical everywhere).
+json::Value share(Tick part, Tick whole) {
+  if (whole <= 0) return 0;
+  const std::int64_t permyriad = static_cast<std::int64_t>((static_cast<__int128>(part) * 10'000) / whole);
+  return json::Value::decimal(std::to_string(permyriad / 10'000) + "." +
+                              std::string(4 - std::to_string(permyriad % 10'000).size(), '0') +
+                              std::to_string(permyriad % 10'000));
+}
+
+json::Value extreme(const Extreme& e) {
+  return json::object(
+      {{"max", e.value}, {"vsync", e.vsync}, {"time_s", json::Value::decimal(e.vsync < 0 ? "0" : seconds(e.at))}});
+}
+
+json::Value presenterJson(const gs::PresenterCounters& c) {
+  return json::object({{"vsyncs", c.vsyncs},
+                       {"frames_shown", c.framesShown},
+                       {"frames_on_time", c.framesShown - c.framesLate},
+                       {"frames_late", c.framesLate},
+                       {"frames_dropped", c.framesDropped},
+                       {"frames_caught_up", c.framesCaughtUp},
+                       {"catch_up_vsyncs", c.catchUpVsyncs},
+                       {"behind_vsyncs", c.behindVsyncs},
+                       {"missed_vsyncs", c.missedVsyncs},
+                       {"snaps", c.snaps},
+                       {"loop_wraps", c.loopWraps},
+                       {"branches", c.branches},
+                       {"upload_bytes", c.uploadBytes},
+                       {"gs_busy_ticks", c.gsBusy},
+                       {"slip_ticks", c.slip}});
+}
+
+}  // namespace
+
+std::string hashesLine(const VsyncRow& row) {
+  return std::to_string(row.vsync) + " " + seconds(row.at) + " " + hashHex(row.hash) + "\n";
+}
+
+std::string timelineHeader() {
+  return "vsync,time_s,hash,due_seq,target_seq,variant,fix,pop,behind,catch_up,snapped,sky_target_seq,sky_pop,lag,"
+         "sky_lag,ring_banks,gs_busy_ticks\n";
+}
+
+std::string timelineLine(const VsyncRow& r) {
+  const gs::VsyncRecord& l = r.lightmap;
+  std::string s = std::to_string(r.vsync) + "," + seconds(r.at) + "," + hashHex(r.hash) + "," +
+                  std::to_string(l.dueSeq) + "," + std::to_string(l.targetSeq) + "," + std::to_string(l.variant) + "," +
+                  std::to_string(l.fix) + "," + std::to_string(l.pop) + "," + (l.behind ? "1" : "0") + "," +
+                  (l.catchUp ? "1" : "0") + "," + (l.snapped ? "1" : "0") + ",";
+  s += r.sky ? std::to_string(r.sky->targetSeq) + "," + std::to_string(r.sky->pop) : std::string("-1,0");
+  s += "," + std::to_string(r.lag) + "," + std::to_string(r.skyLag) + "," + std::to_string(r.ringBanks) + "," +
+       std::to_string(l.gsBusy + (r.sky ? r.sky->gsBusy : 0)) + "\n";
+  return s;
+}
+
+void writeStatsJson(const Player& player, std::ostream& out) {
+  const Pipeline& p = player.pipeline();
+  const Tick elapsed = player.now();
+  const RunTotals& t = player.totals();
+  const auto& lmc = const_cast<Pipeline&>(p).lightmap().counters();
+  const gs::Presenter* sky = const_cast<Pipeline&>(p).sky();
+  const Tick gsBusy = lmc.gsBusy + (sky ? sky->counters().gsBusy : 0);
+  const iop::DriveStats& ds = p.drive().stats();
+  const iop::RingStats& rs = p.ring().stats();
+  const ee::DemuxCounters& dm = p.demux().counters();
+  const streams::DemuxStats& rd = p.demux().reader().stats();
+  const DecodeCounters& dc = p.decode();
+  const PlayerOptions& o = player.options();
+
+  json::Value busy = json::object({{"sif", share(p.sif().busyTime(), elapsed)},
+                                   {"demux", share(dm.busy, elapsed)},
+                                   {"ipu", share(dc.busy, elapsed)},
+                                   {"gs", share(gsBusy, elapsed)}});
+  busy["drive"] =
+      player.tracer().enabled() ? share(player.tracer().busyTime(p.driveTrack(), 0, elapsed), elapsed) : json::Value();
+  std::int64_t stalls = 0;
+  for (const iop::Fault& f : o.faults.faults) stalls += f.kind == iop::Fault::Kind::stall ? 1 : 0;
+
+  json::Value hist = json::Value::array();
+  for (std::int64_t v : t.ringHistogram) hist.push(v);
+  const std::int64_t bank = p.ring().bankSectors();
+  json::Value ring = json::object({{"bank_sectors", bank},
+                                   {"banks_min", t.ringMin < 0 ? 0 : t.ringMin},
+                                   {"banks_mean", share(t.ringSum, t.vsyncs)},
+                                   {"banks_max", t.ringMax},
+                                   {"histogram_banks", hist},
+                                   {"underruns", rs.underruns},
+                                   {"full_polls", rs.fullPolls},
+                                   {"timeouts", rs.timeouts},
+                                   {"errors", rs.errors},
+                                   {"bank_reads", rs.bankReads}});
+
+  json::Value j;
+  j["simulated_s"] = json::Value::decimal(seconds(elapsed));
+  j["simulated_ticks"] = elapsed;
+  j["seed"] = o.seed;
+  j["reference_pipeline"] = player.hasReference();
+  j["busy_share"] = busy;
+  j["ring"] = ring;
+  j["drive"] = json::object(
+      {{"commands", ds.commands},
+       {"sectors_read", ds.sectorsRead},
+       {"buffered_hits", ds.bufferedHits},
+       {"retries", ds.retries},
+       {"errors", ds.errors},
+       {"spin_ups", ds.spinUps},
+       {"stalls_planned", stalls},
+       {"stalled_ticks", ds.stalled},
+       {"seeks", json::object({{"contiguous", ds.seeks[1]}, {"fast", ds.seeks[2]}, {"full", ds.seeks[3]}})}});
+  j["demux"] = json::object({{"reads", dm.reads},
+                             {"empty_reads", dm.emptyReads},
+                             {"read_errors", dm.readErrors},
+                             {"sectors", dm.sectors},
+                             {"bytes", dm.bytes},
+                             {"seeks", dm.seeks},
+                             {"loop_seeks", dm.loopSeeks},
+                             {"pictures_loaded", dm.picturesLoaded},
+                             {"pictures_ignored", dm.picturesIgnored},
+                             {"pictures_over_buffer_depth", dm.overDepth},
+                             {"pictures_over_budget", dm.overBudget}});
+  j["damage"] = json::object({{"stream_errors", dm.streamErrors},
+                              {"bad_sectors", rd.badSectors},
+                              {"pictures_dropped_by_reader", rd.droppedPictures},
+                              {"pictures_damaged", dm.picturesDamaged},
+                              {"pictures_unidentified", dm.picturesUnidentified},
+                              {"frames_lost", dm.framesLost},
+                              {"concealed_macroblocks", dc.concealedMacroblocks},
+                              {"pictures_with_decode_issues", dc.picturesWithIssues},
+                              {"undecodable_pictures", dc.undecodable}});
+  j["frames"] = json::object({{"lightmap", presenterJson(lmc)}});
+  if (sky) j["frames"]["sky"] = presenterJson(sky->counters());
+  j["pop"] = json::object({{"lightmap", extreme(t.pop)}, {"sky", extreme(t.skyPop)}});
+  j["lag"] = json::object({{"lightmap", extreme(t.lag)}, {"sky", extreme(t.skyLag)}});
+  const std::int64_t lmPics = dc.picturesPerStream[0];
+  const std::int64_t skyPics = dc.picturesPerStream[1];
+  j["cost_per_frame"] = json::object(
+      {{"decode_lightmap_ticks_mean", lmPics ? dc.perStream[0] / lmPics : 0},
+       {"decode_sky_ticks_mean", skyPics ? dc.perStream[1] / skyPics : 0},
+       {"decode_ticks_max", dc.maxPerPicture},
+       {"gs_ticks_per_vsync_mean", lmc.vsyncs ? gsBusy / lmc.vsyncs : 0},
+       {"gs_ticks_per_new_frame_mean", lmc.framesShown ? gsBusy / std::max<std::int64_t>(1, lmc.framesShown) : 0},
+       // Time a presenter waited for the GS while the other one drew (they share one GS).
+       {"gs_wait_ticks_per_vsync_mean", lmc.vsyncs ? p.gsUnit().waited() / lmc.vsyncs : 0}});
+  j["sustained_bytes_per_s"] =
+      elapsed > 0 ? static_cast<std::int64_t>((static_cast<__int128>(dm.bytes) * kBusHz) / elapsed) : std::int64_t{0};
+  j["decoded_pictures"] = dc.pictures;
+  j["vsyncs_recorded"] = t.vsyncs;
+  out << j.dump(2) << "\n";
+}
+
+}  // namespace vbim::player

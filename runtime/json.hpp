@@ -1,0 +1,60 @@
+// A small JSON writer for the model's own outputs (trace.json, stats.json), so the portable model
+// needs no JSON library. Output is byte-for-byte what the formatting conventions of the JSON
+// library the tools around the model use (nlohmann::json's dump) would print for the same
+// document: object keys in byte order, two-space indentation, strings escaped the same way, and
+// decimals printed in the shortest form that reads back as the same double (tests/runtime/json_test
+// checks both against that library).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace vbim::json {
+
+// `s` as a JSON string literal with its quotes: ", \ and control characters escaped, UTF-8 as is.
+std::string quote(std::string_view s);
+
+class Value {
+ public:
+  Value() = default;  // null
+  Value(bool b) : kind_(Kind::boolean), text_(b ? "true" : "false") {}
+  Value(int v) : Value(static_cast<std::int64_t>(v)) {}
+  Value(long v) : kind_(Kind::number), text_(std::to_string(v)) {}
+  Value(long long v) : kind_(Kind::number), text_(std::to_string(v)) {}
+  Value(unsigned long v) : kind_(Kind::number), text_(std::to_string(v)) {}
+  Value(unsigned long long v) : kind_(Kind::number), text_(std::to_string(v)) {}
+  Value(const char* s) : kind_(Kind::string), text_(quote(s)) {}
+  Value(const std::string& s) : kind_(Kind::string), text_(quote(s)) {}
+
+  // A number given as exact decimal text ("12.500000", "0", "-3.25"), printed the way a double
+  // parsed from it prints: "12.5", "0", "-3.25", "1.6e-05". At most 15 significant digits.
+  static Value decimal(std::string_view text);
+  static Value array() { return Value(Kind::array); }
+  static Value object() { return Value(Kind::object); }
+
+  // Object member (created, as null, when missing); turns a null value into an object.
+  Value& operator[](const std::string& key);
+  // Array element appended; turns a null value into an array.
+  void push(Value v);
+
+  // The document, indented by `indent` spaces per level (no trailing newline).
+  std::string dump(int indent) const;
+
+ private:
+  enum class Kind { null, boolean, number, string, array, object };
+  explicit Value(Kind k) : kind_(k) {}
+  void write(std::string& out, int indent, int depth) const;
+
+  Kind kind_ = Kind::null;
+  std::string text_;  // scalars: their JSON text
+  std::vector<std::string> keys_;
+  std::vector<Value> items_;  // array elements, or object values in the order of keys_
+};
+
+// Builds an object from {key, value} pairs: json::object({{"a", 1}, {"b", true}}).
+Value object(std::vector<std::pair<std::string, Value>> members);
+
+}  // namespace vbim::json
