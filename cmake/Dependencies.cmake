@@ -38,7 +38,7 @@ vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
 
 # OpenImageIO through pkg-config: Debian 12's CMake config lists /usr/include/opencv4 and the
 # openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step
-# fails (notes/dependencies.md, pitfall 1).
+# fails (docs/dependencies.md#openimageio-cmake-config).
 vbim_require_pkgconfig(OIIO libopenimageio-dev OpenImageIO)
 
 if(VBIM_BUILD_TESTS)
