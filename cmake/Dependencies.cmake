@@ -40,7 +40,7 @@ if(NOT VBIM_MODEL_ONLY)
 
   # OpenImageIO through pkg-config: Debian 12's CMake config lists /usr/include/opencv4 and the
   # openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step
-  # fails (notes/dependencies.md, pitfall 1).
+  # fails (docs/dependencies.md#openimageio-cmake-config).
   vbim_require_pkgconfig(OIIO libopenimageio-dev OpenImageIO)
 endif()
 

@@ -2,7 +2,7 @@
 // and PES (streams::Demuxer), assembles each picture of the lightmap and sky streams, and copies a
 // complete picture into that stream's compressed frame buffer, then goes on loading the next one
 // at once ("Once a frame has been fully loaded into the stream buffer, it is copied into the
-// compressed frame buffer, and the next frame begins to load immediately", seeds).
+// compressed frame buffer, and the next frame begins to load immediately", Hoffman & Mitchell, GDC 2001).
 //
 // It follows the descriptor: it knows which global frame each stream needs next (Timeline), takes
 // only those pictures, and when every stream has finished the frames before a discontinuity (the

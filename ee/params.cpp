@@ -17,7 +17,8 @@ void describeParams(ParamTable& t, EeParams& p) {
   t.addInt("ee.copy_cycles_per_qword", &p.copy_cycles_per_qword, 0, 1'000, "EE cycles",
            "assumption: a quadword memcpy from cached to uncached EE RAM, 4 cycles per 16 bytes");
   t.addInt("ee.compressed_frames", &p.compressed_frames, 1, 64, "pictures",
-           "seeds: one complete picture waits in the compressed frame buffer while the next loads; 2 per stream");
+           "Hoffman & Mitchell, GDC 2001: one complete picture waits in the compressed frame buffer while the next "
+           "loads; 2 per stream");
   t.addInt("ee.compressed_budget_kib", &p.compressed_budget_kib, 1, 32 * 1'024, "KiB",
            "assumption: 4 MiB of the EE's 32 MiB per stream for compressed pictures, including those stored "
            "beyond ee.compressed_frames while the other stream is behind in the mux; a picture that would exceed "

@@ -1,5 +1,5 @@
 // The GS alpha blend used to fold a decoded video frame into the lightmap in place (T-GS
-// AlphaBlending; ps2-hardware.md 5.2): ALPHA_1 = (A = Cs, B = Cd, C = FIX, D = Cd), so per colour
+// AlphaBlending; docs/hardware.md#alpha-blending): ALPHA_1 = (A = Cs, B = Cd, C = FIX, D = Cd), so per colour
 // channel
 //     Cv = (((Cs - Cd) * FIX) >> 7) + Cd
 // on 9-bit signed values with an arithmetic shift (floor, as PCSX2's software renderer does [E]),

@@ -12,7 +12,7 @@ class ParamTable;
 namespace vbim::gs {
 
 struct GsParams {
-  // GIF -> GS transfer and drawing (ps2-hardware.md 5.1, 8).
+  // GIF -> GS transfer and drawing (docs/hardware.md#gs-rates, #gs-page-breaks).
   std::int64_t gifBytesPerTick = 8;         // 64-bit GIF bus, one word per bus clock
   std::int64_t uploadSetupQwords = 6;       // GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR + IMAGE GIFtag
   std::int64_t drawSetupQwords = 11;        // GIFtag + TEXFLUSH, TEX0, ALPHA, FRAME, PRIM, RGBAQ, 2x(UV, XYZ2)

@@ -1,5 +1,5 @@
 // The vsync presenter: a cooperating process that, at every vsync, blends the lightmap in place
-// toward the newest decoded frame that is due (DESIGN.md "Presentation"). Stream frame k is due at
+// toward the newest decoded frame that is due (gs/README.md, "Catch-up policies"). Stream frame k is due at
 // t0 + k / fps. The GS work of a vsync is simulated in order: the IMAGE upload of a new frame over
 // PATH3 into the staging texture, then the textured SPRITE with ALPHA (Cs, Cd, FIX, Cd) into the
 // lightmap; in strip mode each horizontal strip is uploaded and drawn in turn, every vsync, through
@@ -7,7 +7,7 @@
 //
 // Catch-up when frames are late (CatchUp):
 //   blend-through  target the newest due frame that is ready; while none is new, keep blending
-//                  toward the last one (the seeds: "the frame interpolation process will continue
+//                  toward the last one (Hoffman & Mitchell, GDC 2001: "the frame interpolation process will continue
 //                  unhindered ... smooth 'catch up' frames").
 //   hard-skip      the same targets, but a frame that arrived late is copied in outright (FIX 128),
 //                  skipping the in-between: the pop blend-through avoids.

@@ -1,5 +1,5 @@
 // GS local memory as a budget: 4 MiB of embedded DRAM in 512 pages of 8 KiB (P-GS m_vmsize;
-// ps2-hardware.md 5.1). Buffers are placed on page boundaries, as FRAME.FBP (9 bits, page units)
+// docs/hardware.md#vram). Buffers are placed on page boundaries, as FRAME.FBP (9 bits, page units)
 // requires for frame buffers and as is usual for textures. A page holds 64x32 pixels of PSMCT32 /
 // PSMCT24 / PSMZ32 / PSMZ24 and 64x64 of PSMCT16 / PSMZ16, so a buffer takes
 // ceil(w / page_w) * ceil(h / page_h) pages.

@@ -3,7 +3,8 @@
 // seed, sector reads at the CAV or CLV rate of the sector's position, per-sector read errors with
 // drive retries (one revolution each), end of media (0x32), and the DMA of each sector into IOP
 // RAM, which overlaps the next sector's read. While idle it reads ahead up to 16 sectors.
-// Sources: notes/ps2-hardware.md §2.2 (P-CDVD, P-CDVDi) and §8.
+// Sources: P-CDVD and P-CDVDi, summarised in docs/hardware.md#dvd-drive; assumed values in
+// docs/hardware.md#model-defaults.
 //
 // Faults act only on the simulated clock: a stall freezes the mechanism (every piece of drive work
 // that overlaps it is pushed back by the overlap); sector faults fail a number of read attempts;

@@ -21,8 +21,8 @@ void describeParams(ParamTable& t, DriveParams& p) {
   t.addInt("drive.fast_seek_us", &p.fast_seek_us, 0, 10'000'000, "us", "P-CDVDi Cdvd_FastSeek_Cycles = 30 ms");
   t.addInt("drive.full_seek_us", &p.full_seek_us, 0, 10'000'000, "us", "P-CDVDi Cdvd_FullSeek_Cycles = 100 ms");
   t.addInt("drive.revolution_us", &p.revolution_us, 1, 1'000'000, "us",
-           "assumption: latency drawn uniform in [0, 1 revolution); 16 ms gives the 8 ms mean of notes §8, between "
-           "PCSX2's 4.95 ms and the ~13 ms physical estimate");
+           "assumption: latency drawn uniform in [0, 1 revolution); 16 ms gives an 8 ms mean, between PCSX2's "
+           "4.95 ms and the ~13 ms physical estimate (docs/hardware.md#rotational-latency)");
   t.addInt("drive.spin_up_ms", &p.spin_up_ms, 0, 100'000, "ms", "P-CDVD spin-up from stopped PSXCLK/3 = 333 ms");
   t.addBool("drive.initially_spinning", &p.initially_spinning,
             "assumption: a run starts with the disc stopped, so the first read pays the spin-up");
@@ -34,17 +34,19 @@ void describeParams(ParamTable& t, DriveParams& p) {
            "P-CDVD N_DVD_READ param 8 (sceCdRMode.trycount): retries per failing sector, 0 means 256; each costs a "
            "revolution");
   t.addInt("drive.sector_error_ppm", &p.sector_error_ppm, 0, 1'000'000, "per million sector reads",
-           "assumption: 0 on a clean disc (notes §8 suggests 100 for tests); an error fails one attempt");
+           "assumption: 0 on a clean disc (100 is a test value, docs/hardware.md#read-errors); an error fails one "
+           "attempt");
 }
 
 void describeParams(ParamTable& t, RingParams& p) {
   t.addInt("ring.bufmax_sectors", &p.bufmax_sectors, 1, 1024, "sectors",
-           "assumption (notes §8): sceCdStInit bufmax 160 sectors = 320 KiB of the 2 MB IOP RAM");
+           "assumption: sceCdStInit bufmax 160 sectors = 320 KiB of the 2 MB IOP RAM "
+           "(docs/hardware.md#stream-ring-size)");
   // At least 3: with 2 banks the driver's rules deadlock. The producer holds its bank while the next
   // bank is the reader's, and the reader, having drained its bank, waits for the held one.
   t.addInt("ring.bankmax", &p.bankmax, 3, 512, "banks",
-           "assumption (notes §8): 5 banks of 32 sectors, about 30 ms of 1.6x reading each; SDK-ST keeps at most "
-           "bankmax - 1 visible; at least 3, since 2 banks deadlock under SDK-ST's hold rule");
+           "assumption: 5 banks of 32 sectors, about 30 ms of 1.6x reading each (docs/hardware.md#stream-ring-size); "
+           "SDK-ST keeps at most bankmax - 1 visible; at least 3, since 2 banks deadlock under SDK-ST's hold rule");
   t.addInt("ring.repoll_ms", &p.repoll_ms, 1, 10'000, "ms", "SDK-ST read-Full alarm 0x48000 IOP cycles = 8 ms");
   t.addInt("ring.issue_retry_ms", &p.issue_retry_ms, 1, 10'000, "ms",
            "SDK-ST alarm 0x708000 IOP cycles = 200 ms after sceCdRE fails (drive busy)");
@@ -61,9 +63,9 @@ void describeParams(ParamTable& t, RingParams& p) {
 void describeParams(ParamTable& t, SifParams& p) {
   t.addInt("sif.bandwidth_bytes_per_s", &p.bandwidth_bytes_per_s, 1'000, 2'400'000'000, "bytes/s",
            "assumption: no measured SIF0 rate exists; 20 MB/s sits between the >= 11.5 MB/s observed (FASTNET) and "
-           "the 147 MB/s IOP-bus ceiling (notes §3, §8)");
+           "the 147 MB/s IOP-bus ceiling (docs/hardware.md#sif-rate)");
   t.addInt("sif.setup_us", &p.setup_us, 0, 100'000, "us",
-           "assumption: per-sceSifSetDma latency is undocumented; 30 us per chunk (notes §8)");
+           "assumption: per-sceSifSetDma latency is undocumented; 30 us per chunk (docs/hardware.md#sif-rate)");
 }
 
 void describeParams(ParamTable& t, IopParams& p) {

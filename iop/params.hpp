@@ -1,6 +1,7 @@
 // Every timing constant of the IOP side (drive, stream ring, SIF), as plain settings structs with
-// the defaults of notes §8. describeParams registers them in a ParamTable under the prefixes
-// "drive.", "ring." and "sif.", each with its unit and its source; docs/timing/iop.md lists them.
+// the defaults explained in docs/hardware.md (drive and ring) and docs/hardware.md#model-defaults.
+// describeParams registers them in a ParamTable under the prefixes "drive.", "ring." and "sif.", each
+// with its unit and its source; docs/timing/iop.md lists them.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +22,7 @@ struct DriveParams {
   std::int64_t fast_seek_window_sectors = 14'764;
   std::int64_t fast_seek_us = 30'000;
   std::int64_t full_seek_us = 100'000;
-  std::int64_t revolution_us = 16'000;  // latency uniform in [0, 1 rev): 8 ms mean (notes §8)
+  std::int64_t revolution_us = 16'000;  // latency uniform in [0, 1 rev): 8 ms mean
   std::int64_t spin_up_ms = 333;
   bool initially_spinning = false;
   std::int64_t read_ahead_sectors = 16;
@@ -31,7 +32,7 @@ struct DriveParams {
 };
 
 struct RingParams {
-  std::int64_t bufmax_sectors = 160;            // sceCdStInit bufmax (notes §8: 320 KiB of IOP RAM)
+  std::int64_t bufmax_sectors = 160;            // sceCdStInit bufmax: 320 KiB of IOP RAM
   std::int64_t bankmax = 5;                     // sceCdStInit bankmax (32-sector banks)
   std::int64_t repoll_ms = 8;                   // "read Full" alarm 0x48000 IOP cycles (SDK-ST)
   std::int64_t issue_retry_ms = 200;            // alarm after a failed sceCdRE, 0x708000 IOP cycles (SDK-ST)
@@ -42,7 +43,7 @@ struct RingParams {
 };
 
 struct SifParams {
-  std::int64_t bandwidth_bytes_per_s = 20'000'000;  // assumption (notes §3, §8)
+  std::int64_t bandwidth_bytes_per_s = 20'000'000;  // assumption (docs/hardware.md#sif-rate)
   std::int64_t setup_us = 30;                       // assumption, per sceSifSetDma chunk
 };
 

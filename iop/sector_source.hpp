@@ -1,5 +1,5 @@
-// The disc as the drive model sees it: numbered 2048-byte user sectors (DVD data sectors, notes
-// §2.1) and the files that lie on them. The model reads only through this interface, so it never
+// The disc as the drive model sees it: numbered 2048-byte user sectors (DVD data sectors,
+// docs/hardware.md#dvd-drive) and the files that lie on them. The model reads only through this interface, so it never
 // depends on how an image is stored: a bare stream file (iop/file_disc.hpp), an ISO 9660 image
 // (streams/disc/, through libiso9660), or sectors in memory (tests).
 #pragma once
@@ -13,7 +13,7 @@
 
 namespace vbim::iop {
 
-inline constexpr std::size_t kSectorBytes = 2048;  // DVD user data per sector (notes §2.1)
+inline constexpr std::size_t kSectorBytes = 2048;  // DVD user data per sector (T-CDVD)
 using SectorSpan = std::span<std::uint8_t, kSectorBytes>;
 
 // A problem with a disc image (missing, unreadable, truncated, no such file). what() names the
@@ -39,7 +39,7 @@ struct SectorReadResult {
 class SectorSource {
  public:
   virtual ~SectorSource() = default;
-  // Sectors on the disc: reading at or past this LSN is "end of media" (error 0x32, notes §2.2).
+  // Sectors on the disc: reading at or past this LSN is "end of media" (error 0x32, P-CDVD).
   virtual std::int64_t sectorCount() const = 0;
   // Reads one 2048-byte user sector. lba must be in [0, sectorCount()).
   virtual SectorReadResult read(std::int64_t lba, SectorSpan out) = 0;

@@ -1,6 +1,6 @@
 // SIF0 (IOP -> EE) as a timed channel: each sceSifSetDma chunk costs a fixed setup plus its bytes
 // at the channel bandwidth, and chunks go one at a time in the order they were started. Both
-// constants are assumptions (notes §3, §8: no measured SIF0 rate or per-DMA latency exists).
+// constants are assumptions: no measured SIF0 rate or per-DMA latency exists (docs/hardware.md#sif-rate).
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 // The IOP stream ring with the semantics of the sceCdSt* API as the rebuilt cdvdstm driver shows
-// them (SDK-ST, notes §2.3). Our own code, not a translation; the behaviour it reproduces:
+// them (SDK-ST; docs/hardware.md#stream-ring). Our own code, not a translation; the behaviour it reproduces:
 // - init: bufmax sectors in bankmax banks of floor(bufmax / bankmax) sectors.
 // - the producer reads one whole bank per drive command and advances by a bank. When the next
 //   bank is full or is the reader's, the just-read bank is held back (not yet visible), the drive

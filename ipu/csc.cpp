@@ -5,7 +5,7 @@
 namespace vbim::ipu {
 namespace {
 
-// 4x4 ordered dither of the RGB16 path (notes §4.3, P-IPU IPUdither.cpp), [y & 3][x & 3].
+// 4x4 ordered dither of the RGB16 path (P-IPU IPUdither.cpp; docs/hardware.md#colour-conversion), [y & 3][x & 3].
 constexpr int kDither[4][4] = {{-4, 0, -3, 1}, {2, -2, 3, -1}, {-3, 1, -4, 0}, {3, -1, 2, -2}};
 
 // Alpha of a converted pixel under SETTH; 0 means the whole pixel is cleared.

@@ -6,7 +6,7 @@
 namespace vbim::ipu {
 namespace {
 
-constexpr std::uint32_t kQwordsPerMacroblock = 64;  // RGB32: 16 x 16 x 4 bytes / 16 (notes §4.2)
+constexpr std::uint32_t kQwordsPerMacroblock = 64;  // RGB32: 16 x 16 x 4 bytes / 16 (docs/hardware.md#idec)
 constexpr std::uint32_t kQwordsPerRow = 4;
 
 DecoderOptions withTrace(DecoderOptions o) {

@@ -1,5 +1,6 @@
 // Every timing constant of the IPU model, registered under the prefix "ipu." in the platform
-// config. Defaults and their reasoning: docs/timing/ipu.md (notes §4.4 and §8).
+// config. Defaults and their reasoning: docs/timing/ipu.md and
+// docs/hardware.md#ipu-decode-cost.
 #pragma once
 
 #include <cstdint>

@@ -35,7 +35,7 @@ struct DecoderOptions {
   int maxWidth = 4096;  // larger sizes are reported as absurd (MPEG-2 MP@HL is 1920x1152)
   int maxHeight = 4096;
   // The IPU's IDP field holds 8, 9 or 10 bits; 11 bits is invalid there and PCSX2 treats it as 9
-  // (notes §4.2). By default we decode 11-bit DC precision as the standard says.
+  // (docs/hardware.md#idec). By default we decode 11-bit DC precision as the standard says.
   bool dcPrecision11AsNine = false;
   bool recordMacroblocks = false;    // fill macroblockTrace() for the timing model
   const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes

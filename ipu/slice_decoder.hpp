@@ -1,7 +1,7 @@
 // The slice and macroblock layers of an intra picture (ISO/IEC 13818-2 §6.2.4-6.2.6, §7.2-7.5):
 // macroblock addressing, macroblock modes, DC prediction, AC run/level VLC, inverse quantisation
 // with saturation and mismatch control, the inverse DCT and the store into the frame. This is what
-// the IPU's IDEC command does for one slice (notes §4.2: DC prediction resets at slice start and
+// the IPU's IDEC command does for one slice (docs/hardware.md#idec: DC prediction resets at slice start and
 // on skipped-macroblock increments; per-macroblock quantiser_scale_code updates are honoured).
 #pragma once
 

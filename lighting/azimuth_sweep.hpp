@@ -2,7 +2,7 @@
 //
 // The sun's azimuth changes through the day at any real latitude, so one horizon angle "along the
 // arc" is exact only for a sun moving in a vertical plane. Frames are made offline, so each frame
-// runs one O(n) hull scan along the sun's actual azimuth instead (notes/lighting-math.md 1.5).
+// runs one O(n) hull scan along the sun's actual azimuth instead (docs/lighting.md#sun-path).
 //
 // Lines are sheared grid lines: along the major axis (the one closer to the azimuth) each line takes
 // one texel per step, and its minor coordinate is round(u * tan). Every texel lies on exactly one

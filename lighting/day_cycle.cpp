@@ -60,7 +60,7 @@ void describeParams(ParamTable& t, DayCycleParams& p) {
   t.addReal("lighting.sun_diameter_deg", &p.sunDiameterDeg, 0.01, 20, "deg",
             "real sun 0.53 deg; larger gives softer, anti-aliased shadow edges (Hoffman & Mitchell 2001)");
   t.addBool("lighting.exact_disc", &p.exactDisc,
-            "false: the article's linear ramp; true: visible disc area (notes 1.5)");
+            "false: the article's linear ramp; true: visible disc area (docs/lighting.md#sun-disc)");
   t.addReal("lighting.turbidity", &p.turbidity, 1.7, 10, "", "Preetham et al. 1999 (fitted for 2-6; 3 = clear)");
   t.addInt("lighting.sky_patches", &p.skyPatches, 1, kMaxSkyPatches, "patches",
            "Hoffman & Mitchell: one or two patches suffice; sectors i*P/8");

@@ -39,7 +39,7 @@ struct DayCycleParams {
   double startHour = 4.0;        // local solar time
   double endHour = 22.0;
   std::int64_t frames = 120;
-  double sunDiameterDeg = 1.5;  // wider than the real 0.53 deg: softer edges, anti-aliasing (seed)
+  double sunDiameterDeg = 1.5;  // wider than the real 0.53 deg: softer edges, anti-aliasing (docs/lighting.md#sun-disc)
   bool exactDisc = false;       // circular-segment occlusion instead of the article's linear ramp
   double turbidity = 3.0;
   std::int64_t skyPatches = 2;

@@ -1,4 +1,4 @@
-// Horizon angles as 16-bit fixed point, the way the seed article stores them: 0x0000 = 0 degrees
+// Horizon angles as 16-bit fixed point, the way Hoffman & Mitchell store them: 0x0000 = 0 degrees
 // (horizontal) and 0xFFFF = 90 degrees (zenith) ("scaled so that a quarter-circle fills the [0, 1]
 // range, and stored as 16-bit fixed-point numbers", Hoffman & Mitchell GDC 2001).
 #pragma once

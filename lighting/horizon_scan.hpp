@@ -1,10 +1,11 @@
 // Horizon maps in the 8 grid directions (rows, columns, diagonals), one exact O(n) convex-hull scan
-// per grid line (Dozier, Bruno & Downey 1981; Barrett 2011; notes/lighting-math.md 2.1).
+// per grid line (Dozier, Bruno & Downey 1981; Barrett 2011; docs/lighting.md#horizon-scan).
 //
 // Direction d points at azimuth d * pi/4 in the (col, row, up) basis: 0 = E (+col), 1 = SE,
 // 2 = S (+row), 3 = SW, 4 = W, 5 = NW, 6 = N, 7 = NE. The horizon of texel p in direction d is the
 // largest elevation angle from p to any texel p + k*d, k >= 1, clamped at 0 (the sky is only above
-// the horizontal: notes 1.3(c)), stored as a 16-bit fixed-point code (lighting/fixed_angle.hpp).
+// the horizontal: docs/lighting.md#sector-centring-and-clamps), stored as a 16-bit fixed-point code
+// (lighting/fixed_angle.hpp).
 //
 // Every direction scans the whole map: with a linear-time scan the full range costs less than the
 // article's short brute-force scans did, so nothing is gained by cutting the range short.

@@ -1,7 +1,7 @@
 // The step shared by every hull scan: points of one line arrive from far to near (occluders come
 // after the current point along the scan direction). The stack holds the upper convex hull of the
 // points already seen; its top, after popping every point that lies on or below the line from the
-// new point to the next one, is the new point's horizon point (notes/lighting-math.md 2.1). Each
+// new point to the next one, is the new point's horizon point (docs/lighting.md#horizon-scan). Each
 // point is pushed and popped at most once: O(n) per line. Slopes are compared by exact integer
 // cross products, so the result is exactly the brute-force maximum.
 #pragma once

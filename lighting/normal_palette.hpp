@@ -2,7 +2,7 @@
 // table of 256 normals and store a table index for each terrain point"). Per frame only the 256
 // palette normals are lit (N . L); each texel looks its value up by index.
 //
-// The palette is fitted to the terrain (notes/lighting-math.md 1.5: a uniform hemisphere palette
+// The palette is fitted to the terrain (docs/lighting.md#normal-palette: a uniform hemisphere palette
 // errs by up to 8.7 deg, enough to band at grazing sun): Fibonacci points on the cap that holds the
 // terrain's normals, then k-means (Lloyd) iterations on a deterministic subsample. Each texel gets
 // its exact nearest entry (ties to the lower index) through a bucket search over (n_x, n_y).

@@ -1,11 +1,11 @@
-// Stewart-Langer skylight with interreflection (notes/lighting-math.md 1.1, 1.4; Hoffman & Mitchell,
-// Game Developer 2001, Eq. 3-4).
+// Stewart-Langer skylight with interreflection (Hoffman & Mitchell, Game Developer 2001, Eq. 3-4;
+// derivation in docs/lighting.md#sky-visibility-integral and #interreflection).
 //
 // The sky is split into 8 azimuth sectors centred on the 8 scanned directions (sector i spans
-// (i - 1/2) pi/4 .. (i + 1/2) pi/4, notes 1.3(a)). In sector i the sky is visible from the zenith
-// down to the horizon elevation gamma_i, clamped from below by 0 (sky above the horizontal only)
-// and by the tangent plane's elevation in that direction (notes 1.3(b)). The sector's irradiance
-// from a unit-radiance sky is N . v_i with
+// (i - 1/2) pi/4 .. (i + 1/2) pi/4). In sector i the sky is visible from the zenith down to the
+// horizon elevation gamma_i, clamped from below by 0 (sky above the horizontal only) and by the
+// tangent plane's elevation in that direction (why: docs/lighting.md#sector-centring-and-clamps).
+// The sector's irradiance from a unit-radiance sky is N . v_i with
 //   v_i = 1/2 ((phi - sin 2phi / 2) dsin_i, (phi - sin 2phi / 2) dcos_i, (pi/4) sin^2 phi), phi = pi/2 - gamma_i.
 // Sectors are grouped into P patches (sector i belongs to patch floor(i P / 8)); I_p sums a
 // patch's sectors, K = sum_p I_p / pi, and with albedo rho the static per-texel factor is

@@ -1,7 +1,7 @@
 // Sun and sky colour over the day: Preetham, Shirley & Smits 1999, "A Practical Analytic Model for
-// Daylight" (coefficients as listed in notes/lighting-math.md 3.1, cross-checked there against two
-// independent implementations). Radiances are linear sRGB with Y in kcd/m^2, so pi * radiance is an
-// illuminance in klux; the generator divides by its exposure to normalise.
+// Daylight" (coefficients from the paper and its appendix; docs/lighting.md#sky-model). Radiances are
+// linear sRGB with Y in kcd/m^2, so pi * radiance is an illuminance in klux; the generator divides by
+// its exposure to normalise.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// Where the sun is: the simple declination / hour-angle formulas of notes/lighting-math.md 3.3
+// Where the sun is: the simple declination / hour-angle formulas of docs/lighting.md#sun-position
 // (declination 23.44 deg * sin(2 pi (284 + n) / 365), hour angle 15 deg per hour from solar noon).
 // Good to a few tenths of a degree, which is below the sun's own diameter; hours are local solar
 // time (no equation of time, no longitude).

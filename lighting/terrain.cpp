@@ -88,7 +88,8 @@ void setAlbedo(Terrain& terrain, FloatImage albedo, const std::string& origin) {
       throw LightingError(origin + ": colour at pixel (" + std::to_string(p % albedo.width) + ", " +
                           std::to_string(p / albedo.width) + ") is not a finite non-negative value");
     }
-    // A diffuse reflectance cannot exceed 1 (seed: "the color can never be greater than 1.0").
+    // A diffuse reflectance cannot exceed 1 (Hoffman & Mitchell, Game Developer 2001: "the color can
+    // never be greater than 1.0").
     albedo.pixels[i] = std::min(v, 1.0f);
   }
   terrain.albedo = std::move(albedo);

@@ -1,7 +1,7 @@
 // The terrain the generator lights: a heightfield on a square grid, optionally with a diffuse
 // colour (albedo) map of the same size.
 //
-// Axes (notes/lighting-math.md 1.2): e1 = +column (east), e2 = +row (south; image rows go down),
+// Axes (docs/lighting.md#axes-and-azimuth): e1 = +column (east), e2 = +row (south; image rows go down),
 // up = height. Every vector in lighting/ (normals, sun direction, horizon azimuths) uses this
 // (col, row, up) basis, so azimuth a counts from east towards south (clockwise seen from above).
 //

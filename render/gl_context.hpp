@@ -1,7 +1,7 @@
 // The one place that knows how a GL context is made. The renderer only needs "a current GL 4.5 core
 // context"; it draws into its own framebuffer object and reads that back, so the context needs no
 // window and no default framebuffer of a particular size. OSMesa (llvmpipe) makes it today; EGL
-// surfaceless can replace it (Mesa 25.1 removed OSMesa, notes/dependencies.md pitfall 6) by adding
+// surfaceless can replace it (Mesa 25.1 removed OSMesa, docs/dependencies.md#osmesa-removal) by adding
 // another factory here, without touching the renderer.
 #pragma once
 

@@ -37,7 +37,8 @@ void writePng(const std::filesystem::path& path, const Rgba8Image& image) {
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) throw RenderError(path.string() + ": cannot create the image writer: " + OIIO::geterror());
   OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("png:compressionLevel", 3);  // level 6 costs 2-3x the time for a few % (dependencies.md)
+  // Level 6 costs 2-3x the time for a few % (docs/dependencies.md#png-compression-level).
+  spec.attribute("png:compressionLevel", 3);
   // Strides skip the alpha byte.
   if (!out->open(path.string(), spec) ||
       !out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data(), 4, static_cast<OIIO::stride_t>(image.width) * 4) ||

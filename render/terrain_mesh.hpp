@@ -1,7 +1,7 @@
 // The terrain as GL geometry with a level of detail: the heightfield is cut into square patches of
 // `patchCells` cells; each patch can be drawn at steps of 1, 2, 4, ... cells, chosen per patch by its
 // distance from the camera, so a far mountain costs a few dozen triangles instead of two thousand
-// (vertex work is llvmpipe's single-threaded part: notes/dependencies.md section 2). Every patch
+// (vertex work is llvmpipe's single-threaded part: docs/dependencies.md#llvmpipe-threads). Every patch
 // shares one index list per level (drawn with a base vertex) and carries a skirt hanging below its
 // edges that hides the cracks between neighbours drawn at different levels.
 //

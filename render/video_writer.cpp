@@ -67,7 +67,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   a.codec->framerate = AVRational{fps, 1};
   a.codec->gop_size = 12;
   a.codec->max_b_frames = 0;
-  // Fixed quantiser: the encoder takes lambda from every frame's quality (dependencies.md pitfall 7).
+  // Fixed quantiser: the encoder takes lambda from every frame's quality (docs/dependencies.md#fixed-quantiser).
   a.codec->flags |= AV_CODEC_FLAG_QSCALE;
   a.quality = FF_QP2LAMBDA * quantiser;
   a.codec->global_quality = a.quality;

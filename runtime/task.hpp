@@ -1,7 +1,7 @@
 // Task<T>: the coroutine type of every cooperating thread and of the sub-routines they call.
 // A process is a Task<void> handed to Scheduler::spawn; inside it, `co_await someTask()` runs a
 // nested Task to completion (symmetric transfer, no scheduler round trip) and yields its value.
-// Rule (DESIGN.md): never make a coroutine from a capturing lambda; its captures die before the
+// Rule (runtime/README.md): never make a coroutine from a capturing lambda; its captures die before the
 // frame does. Use free functions or member functions with explicit parameters.
 #pragma once
 

@@ -7,7 +7,7 @@
 
 namespace vbim::streams {
 
-// One pack per DVD user sector (ps2-hardware.md: "DVD user sector 2048 B").
+// One pack per DVD user sector of 2048 bytes (docs/hardware.md#dvd-drive).
 inline constexpr std::size_t kSectorBytes = 2048;
 
 // Start code values (the byte after 00 00 01), ISO/IEC 13818-1 table 2-18 and 13818-2 table 6-1.

@@ -1,7 +1,7 @@
 // The in-place blend of a 512x512 RGBA8 frame, ((Cs - Cd) * FIX >> 7) + Cd, side by side with
 // memcpy of the same 1 MiB. Target (issue #6): the blend at least half as fast as memcpy, i.e.
 // blend_vs_memcpy = memcpy time / blend time >= 0.5. Anchors on a machine like this one
-// (notes/performance-anchors.md): memcpy 26-30 us, 16-bit-lane AVX2 blend ~67 us, AVX-512 44 us,
+// (docs/dependencies.md#speed-anchors): memcpy 26-30 us, 16-bit-lane AVX2 blend ~67 us, AVX-512 44 us,
 // scalar 470-670 us.
 //
 // BM_BlendVsMemcpy alternates both in one loop (same cache state, same moment) and reports the

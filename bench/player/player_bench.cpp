@@ -70,7 +70,7 @@ player::Kernels kernels(bool simd) {
 }
 
 // A 512x512 lightmap does not fit next to two 640x448 CT32 frame buffers with a full-size staging
-// texture: upload in strips through a small staging area (the seed's in-place blend) and size the
+// texture: upload in strips through a small staging area (Hoffman & Mitchell's in-place blend) and size the
 // sky texture to the stream's 256x128.
 player::PlatformConfig benchConfig() {
   return config::loadPlatformToml("gs.upload_mode = \"strips\"\ngs.sky_height = 128\n", "<bench config>");

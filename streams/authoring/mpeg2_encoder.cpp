@@ -10,7 +10,7 @@ SwsContext* makeRgbaToYuv(int width, int height) {
   SwsContext* sws = sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_YUV420P,
                                    SWS_BICUBIC | SWS_ACCURATE_RND | SWS_BITEXACT, nullptr, nullptr, nullptr);
   if (!sws) throw AuthoringError("cannot set up the RGB -> YCbCr conversion");
-  // Full-range RGB in, BT.601 limited-range YCbCr out: the IPU's CSC matrix (ps2-hardware.md).
+  // Full-range RGB in, BT.601 limited-range YCbCr out: the IPU's CSC matrix (docs/hardware.md#colour-conversion).
   const int* bt601 = sws_getCoefficients(SWS_CS_ITU601);
   sws_setColorspaceDetails(sws, bt601, 1, bt601, 0, 0, 1 << 16, 1 << 16);
   return sws;
@@ -43,17 +43,17 @@ Mpeg2Encoder::Mpeg2Encoder(int width, int height, const EncoderSettings& s) {
   ctx_->max_b_frames = 0;
   ctx_->flags |= AV_CODEC_FLAG_BITEXACT;
   ctx_->color_range = AVCOL_RANGE_MPEG;
-  ctx_->colorspace = AVCOL_SPC_BT470BG;  // BT.601, the IPU's CSC matrix (ps2-hardware.md)
-  // VBV sized for DVD so the muxer's buffer model matches a DVD drive. Beware (dependencies.md
-  // pitfall 9): a picture that overflows the VBV is re-quantised even with a fixed quantiser, which
-  // maxQscaleUsed() reveals.
+  ctx_->colorspace = AVCOL_SPC_BT470BG;  // BT.601, the IPU's CSC matrix (docs/hardware.md)
+  // VBV sized for DVD so the muxer's buffer model matches a DVD drive. Beware
+  // (docs/dependencies.md#vbv-size): a picture that overflows the VBV is re-quantised even with a
+  // fixed quantiser, which maxQscaleUsed() reveals.
   ctx_->rc_buffer_size = kDvdVbvBits;
   ctx_->rc_max_rate = kDvdMaxVideoRate;
   if (s.bitrate > 0) {
     ctx_->bit_rate = s.bitrate;
   } else {
     // Fixed quantiser: the flag and global_quality are not enough, every frame's `quality` must
-    // carry the lambda too, or the encoder silently uses qmin (dependencies.md pitfall 7).
+    // carry the lambda too, or the encoder silently uses qmin (docs/dependencies.md#fixed-quantiser).
     ctx_->flags |= AV_CODEC_FLAG_QSCALE;
     ctx_->global_quality = FF_QP2LAMBDA * s.qscale;
     ctx_->qmin = std::min(2, s.qscale);

@@ -32,7 +32,7 @@ int PsMuxer::addStream(const AVCodecContext* enc) {
   st->time_base = enc->time_base;
   avcodec_parameters_from_context(st->codecpar, enc);
   // The muxer reads the VBV size from stream side data; without it it assumes 230 KiB
-  // (dependencies.md pitfall 10).
+  // (docs/dependencies.md#stream-side-data).
   for (int i = 0; i < enc->nb_coded_side_data; ++i) {
     const AVPacketSideData& sd = enc->coded_side_data[i];
     std::uint8_t* dst = av_stream_new_side_data(st, sd.type, sd.size);

@@ -9,7 +9,7 @@
 
 namespace vbim::streams {
 
-// 10.08 Mbit/s = 25200 x 50 B/s, the DVD-Video program mux rate (dependencies.md pitfall 8).
+// 10.08 Mbit/s = 25200 x 50 B/s, the DVD-Video program mux rate (docs/dependencies.md#program-mux-rate).
 inline constexpr std::int64_t kDvdMuxRate = 10'080'000;
 
 class PsMuxer {

@@ -14,7 +14,7 @@ TEST(GsTiming, UploadAndDrawFromTheParameters) {
   const GsTiming t(p);
   // IMAGE transfer of a 256x256 PSMCT32 frame: (6 qw * 16 + 262,144 B) / 8 B per tick.
   EXPECT_EQ(t.imageTransfer(256 * 256 * 4), (6 * 16 + 262144) / 8);
-  // About 222 us at GIF peak (ps2-hardware.md 5.1).
+  // About 222 us at GIF peak (docs/hardware.md#gs-rates).
   EXPECT_NEAR(toMs(t.imageTransfer(256 * 256 * 4)) * 1000.0, 222.0, 1.0);
   // Sprite: 11 qw of registers, then 65,536 px / 8 per clock * 1.25.
   EXPECT_EQ(t.spriteDraw(256, 256), 22 + 10240);

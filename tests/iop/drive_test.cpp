@@ -64,8 +64,8 @@ TEST(DriveRate, CavInnerAndOuterRadiusMatchTheModel) {
     EXPECT_EQ(done[1].seek, SeekClass::contiguous);
     const Tick took = done[1].finished - done[1].issued;
     EXPECT_EQ(took, contiguousReadTicks(lsn + 16, 2000, cavSectorTicks));
-    // And that is the notes' rate: 1080 sectors/s at the hub, 2700 at the rim (within the drift
-    // of the rate over 2000 sectors).
+    // And that is the CAV rate of docs/hardware.md#dvd-drive: 1080 sectors/s at the hub, 2700 at the
+    // rim (within the drift of the rate over 2000 sectors).
     const double rate = 2000.0 / toSeconds(took - kDmaTicks);
     if (lsn == 0) {
       EXPECT_NEAR(rate, 1080.0, 1080.0 * 0.001);

@@ -18,7 +18,7 @@ namespace vbim::iop::test {
 
 inline constexpr std::int64_t kLayer = 2'298'496;
 
-// Notes §8: CAV 4x sectors/s = 2700 x (0.40 + 0.60 x LSN / 2,298,496); one sector's time in ticks,
+// docs/hardware.md#dvd-drive: CAV 4x sectors/s = 2700 x (0.40 + 0.60 x LSN / 2,298,496); one sector's time in ticks,
 // rounded to the nearest tick.
 inline Tick cavSectorTicks(std::int64_t lsn) {
   const __int128 num = static_cast<__int128>(147'456'000) * 100 * kLayer;

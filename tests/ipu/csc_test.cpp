@@ -1,4 +1,5 @@
-// Colour conversion with the PS2 integer matrix, SETTH thresholds and RGB16 dither (notes §4.3).
+// Colour conversion with the PS2 integer matrix, SETTH thresholds and RGB16 dither
+// (docs/hardware.md#colour-conversion).
 #include "ipu/csc.hpp"
 
 #include <gtest/gtest.h>

@@ -101,7 +101,8 @@ TEST(NormalPalette, FitsTheTerrain) {
   };
   const NormalPalette pal = buildNormalPalette(normals);
   const double fitted = meanError(pal), cap = meanError(buildNormalPalette(normals, 0));
-  // A uniform hemisphere palette averages 3.5 deg (notes 1.5); k-means on the terrain does better.
+  // A uniform hemisphere palette averages 3.5 deg (docs/lighting.md#normal-palette); k-means on the
+  // terrain does better.
   EXPECT_LT(fitted, 0.8 * cap) << fitted / kDeg << " vs " << cap / kDeg;
   EXPECT_LT(fitted, 3.0 * kDeg);
   EXPECT_LT(maxPaletteError(pal, normals), 12.0 * kDeg);

@@ -1,4 +1,4 @@
-// Item 5: the sky-visibility integral (notes/lighting-math.md 1.1-1.4).
+// Item 5: the sky-visibility integral (docs/lighting.md#sky-visibility-integral to #interreflection).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,7 +64,8 @@ TEST(SkyFactor, WallToTheNorthDarkensANormalTiltedTowardsIt) {
 }
 
 TEST(SkyFactor, OpenSlopeGivesTheTextbookValue) {
-  // An open 30-degree slope with the sky above the horizontal only: (1 + cos s) / 2 (notes 1.3).
+  // An open 30-degree slope with the sky above the horizontal only: (1 + cos s) / 2
+  // (docs/lighting.md#sector-centring-and-clamps).
   const Terrain t = testing::slopeTerrain(41, 41, std::tan(30 * kDeg));
   const std::vector<Vec3> normals = terrainNormals(t);
   const SkyFactors s = computeSkyFactors(t, computeHorizons(t), normals, 1);

@@ -33,7 +33,7 @@ TEST(SunOcclusion, OneBelowThetaMinZeroAboveThetaMax) {
   }
   // The article's ramp: (theta_max - phi) / alpha.
   EXPECT_NEAR(sunOcclusion(centre + alpha / 4, centre, alpha, false), 0.25, 1e-12);
-  // The two forms differ by at most 0.058 (notes 1.5).
+  // The two forms differ by at most 0.058 (docs/lighting.md#sun-disc).
   double gap = 0;
   for (int i = 0; i <= 1000; ++i) {
     const double h = centre - alpha / 2 + alpha * i / 1000;
@@ -43,7 +43,8 @@ TEST(SunOcclusion, OneBelowThetaMinZeroAboveThetaMax) {
 }
 
 TEST(SunPosition, MatchesSolposAtMidsummerNoon) {
-  // notes 3.3: 2024-06-21 (day 173) at 45.165 N, solar noon: elevation 68.27 deg, due south.
+  // GRASS r.sunmask (SOLPOS; docs/lighting.md#sun-position): 2024-06-21 (day 173) at 45.165 N, solar
+  // noon: elevation 68.27 deg, due south.
   const SunPosition s = sunPosition(45.165, 173, 12.0);
   EXPECT_NEAR(s.elevation / kDeg, 68.27, 0.1);
   EXPECT_NEAR(compassDegrees(s.azimuth), 180.0, 1e-6);

@@ -36,7 +36,7 @@ TEST(Vsync, AllRatesCountExactlyOverADay) {
 
 TEST(Vsync, PalPeriodIsExact) {
   const VsyncClock v(kPal);
-  EXPECT_EQ(v.time(1), 2'949'120);  // notes: 20 ms = 2,949,120 bus cycles
+  EXPECT_EQ(v.time(1), 2'949'120);  // 20 ms = 2,949,120 bus cycles (docs/hardware.md#clocks)
   EXPECT_EQ(v.time(50), kBusHz);
 }
 

@@ -34,7 +34,7 @@ TEST(StreamsRoundTrip, EveryPictureDecodesAbove40DbAtTheDefaultQuality) {
   const std::uint32_t total = s.descriptor.totalFrames();
   std::vector<int> seen(2 * total, 0);
   // The codec round trip is measured on the Y, Cb, Cr planes against the encoder's own input (the
-  // notes' method); RGB PSNR also contains the 4:2:0 chroma subsampling the format mandates, and is
+  // usual codec measure); RGB PSNR also contains the 4:2:0 chroma subsampling the format mandates, and is
   // only recorded.
   Mpeg2Decoder dec;
   double worst = 1e9, worstRgb = 1e9;

@@ -17,7 +17,7 @@ struct EncodeOptions {
   int height = 48;
   int frames = 2;
   int gopSize = 1;    // 1: intra only; more: P pictures follow the I picture
-  int quantiser = 5;  // fixed qscale 1..31 (frame->quality, notes/dependencies.md pitfall 7)
+  int quantiser = 5;  // fixed qscale 1..31 (frame->quality, docs/dependencies.md#fixed-quantiser)
   bool mpeg1 = false;
   bool intraVlc = false;  // B.15
   bool alternateScan = false;
