@@ -16,11 +16,11 @@ class GsTiming {
  public:
   explicit GsTiming(const GsParams& p) : p_(p) {}
   Tick imageTransfer(std::int64_t payloadBytes) const {
-    return ceilDiv(p_.uploadSetupQwords * 16 + payloadBytes, p_.gifBytesPerTick);
+    return ceilDiv(p_.upload_setup_qwords * 16 + payloadBytes, p_.gif_bytes_per_tick);
   }
   Tick spriteDraw(std::int64_t width, std::int64_t height) const {
-    const Tick setup = ceilDiv(p_.drawSetupQwords * 16, p_.gifBytesPerTick);
-    return setup + ceilDiv(width * height * (100 + p_.pageBreakOverheadPct), 100 * p_.texturedPixelsPerClock);
+    const Tick setup = ceilDiv(p_.draw_setup_qwords * 16, p_.gif_bytes_per_tick);
+    return setup + ceilDiv(width * height * (100 + p_.page_break_overhead_pct), 100 * p_.textured_pixels_per_clock);
   }
 
  private:

@@ -5,33 +5,33 @@
 namespace vbim::gs {
 
 void describeParams(ParamTable& t, GsParams& p) {
-  t.addInt("gs.gif_bytes_per_tick", &p.gifBytesPerTick, 1, 64, "bytes/tick",
+  t.addInt("gs.gif_bytes_per_tick", &p.gif_bytes_per_tick, 1, 64, "bytes/tick",
            "GIF->GS is 64 bits per bus clock = 1.18 GB/s (LINUXKIT 1.2 GB/s [D]; docs/hardware.md#gs-rates)");
-  t.addInt("gs.upload_setup_qwords", &p.uploadSetupQwords, 0, 1024, "qwords",
+  t.addInt("gs.upload_setup_qwords", &p.upload_setup_qwords, 0, 1024, "qwords",
            "A+D GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR, then the IMAGE GIFtag (T-GS Transfers)");
-  t.addInt("gs.draw_setup_qwords", &p.drawSetupQwords, 0, 1024, "qwords",
+  t.addInt("gs.draw_setup_qwords", &p.draw_setup_qwords, 0, 1024, "qwords",
            "GIFtag + TEXFLUSH, TEX0_1, ALPHA_1, FRAME_1, PRIM, RGBAQ, UV, XYZ2, UV, XYZ2 (T-GS; SDK-GS)");
-  t.addInt("gs.textured_pixels_per_clock", &p.texturedPixelsPerClock, 1, 16, "px/GS clock",
+  t.addInt("gs.textured_pixels_per_clock", &p.textured_pixels_per_clock, 1, 16, "px/GS clock",
            "textured fill rate 8 px/clk = 1.18 Gpix/s (WIKI-GS Specifications)");
-  t.addInt("gs.page_break_overhead_pct", &p.pageBreakOverheadPct, 0, 400, "%",
+  t.addInt("gs.page_break_overhead_pct", &p.page_break_overhead_pct, 0, 400, "%",
            "assumption: DRAM page breaks while sweeping a sprite cost about a quarter more; no public figure "
            "(docs/hardware.md#gs-page-breaks)");
 
-  t.addInt("gs.frame_buffers", &p.frameBuffers, 0, 3, "buffers",
+  t.addInt("gs.frame_buffers", &p.frame_buffers, 0, 3, "buffers",
            "double buffering, as a game has (VRAM budget example, docs/hardware.md#vram)");
-  t.addInt("gs.frame_width", &p.frameWidth, 64, 2048, "px", "640x448 NTSC interlaced frame (docs/hardware.md#vram)");
-  t.addInt("gs.frame_height", &p.frameHeight, 32, 2048, "px", "640x448 NTSC interlaced frame (docs/hardware.md#vram)");
-  t.addChoice("gs.frame_format", &p.frameFormat, {"ct32", "ct24", "ct16"},
+  t.addInt("gs.frame_width", &p.frame_width, 64, 2048, "px", "640x448 NTSC interlaced frame (docs/hardware.md#vram)");
+  t.addInt("gs.frame_height", &p.frame_height, 32, 2048, "px", "640x448 NTSC interlaced frame (docs/hardware.md#vram)");
+  t.addChoice("gs.frame_format", &p.frame_format, {"ct32", "ct24", "ct16"},
               "PSMCT32 frame buffers (VRAM budget example, docs/hardware.md#vram)");
-  t.addChoice("gs.depth_format", &p.depthFormat, {"none", "z32", "z24", "z16"},
+  t.addChoice("gs.depth_format", &p.depth_format, {"none", "z32", "z24", "z16"},
               "16-bit Z (VRAM budget example, docs/hardware.md#vram)");
-  t.addInt("gs.sky_width", &p.skyWidth, 0, 1024, "px", "assumption: a 256x256 sky dome texture, the second stream");
-  t.addInt("gs.sky_height", &p.skyHeight, 0, 1024, "px", "assumption: a 256x256 sky dome texture, the second stream");
-  t.addChoice("gs.upload_mode", &p.uploadMode, {"full", "strips"},
+  t.addInt("gs.sky_width", &p.sky_width, 0, 1024, "px", "assumption: a 256x256 sky dome texture, the second stream");
+  t.addInt("gs.sky_height", &p.sky_height, 0, 1024, "px", "assumption: a 256x256 sky dome texture, the second stream");
+  t.addChoice("gs.upload_mode", &p.upload_mode, {"full", "strips"},
               "full: the whole frame is uploaded to a staging texture; strips: uploaded and blended in horizontal "
               "strips through a small staging area (Hoffman & Mitchell, GDC 2001: 'performed in place ... to reduce "
               "VRAM use')");
-  t.addInt("gs.strip_rows", &p.stripRows, 32, 1024, "rows",
+  t.addInt("gs.strip_rows", &p.strip_rows, 32, 1024, "rows",
            "assumption: one PSMCT32 page high (32 rows); must be a multiple of 32");
 
   t.addChoice("gs.video", &p.video, {"ntsc", "ntsc-p", "pal", "pal-p"},
@@ -41,17 +41,17 @@ void describeParams(ParamTable& t, GsParams& p) {
            "(docs/hardware.md#blend-weight)");
   t.addChoice("gs.colclamp", &p.colclamp, {"clamp", "wrap"},
               "COLCLAMP bit 0 = 1: clamp to 0..255 (T-GS AlphaBlending)");
-  t.addChoice("gs.alpha_write", &p.alphaWrite, {"source", "keep"},
+  t.addChoice("gs.alpha_write", &p.alpha_write, {"source", "keep"},
               "source: the lightmap's alpha is the frame's As; keep: FRAME.FBMSK protects it (SDK-GS GS_SET_FRAME)");
   t.addChoice("gs.catchup", &p.catchup, {"blend-through", "hard-skip", "play-late"},
               "blend-through: keep blending toward the newest due frame (Hoffman & Mitchell, GDC 2001: 'smooth "
               "catch up frames'); hard-skip and play-late for comparison");
-  t.addInt("gs.catchup_fix", &p.catchupFix, 0, 255, "1/128",
+  t.addInt("gs.catchup_fix", &p.catchup_fix, 0, 255, "1/128",
            "assumption: off (0); a larger FIX while behind schedule shortens catch-up at the cost of bigger steps");
   t.addBool("gs.loop", &p.loop,
             "Hoffman & Mitchell, GDC 2001: the lighting video loops; the blend hides the jump from the last frame "
             "to the first");
-  t.addBool("gs.convergence_aware", &p.convergenceAware,
+  t.addBool("gs.convergence_aware", &p.convergence_aware,
             "host-side speed-up: skip 64x32 tiles already at the blend's fixed point; bit-identical, "
             "no effect on simulated time");
 }

@@ -13,32 +13,32 @@ namespace vbim::gs {
 
 struct GsParams {
   // GIF -> GS transfer and drawing (docs/hardware.md#gs-rates, #gs-page-breaks).
-  std::int64_t gifBytesPerTick = 8;         // 64-bit GIF bus, one word per bus clock
-  std::int64_t uploadSetupQwords = 6;       // GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR + IMAGE GIFtag
-  std::int64_t drawSetupQwords = 11;        // GIFtag + TEXFLUSH, TEX0, ALPHA, FRAME, PRIM, RGBAQ, 2x(UV, XYZ2)
-  std::int64_t texturedPixelsPerClock = 8;  // textured fill rate
-  std::int64_t pageBreakOverheadPct = 25;   // extra draw time for DRAM page breaks (assumption)
+  std::int64_t gif_bytes_per_tick = 8;         // 64-bit GIF bus, one word per bus clock
+  std::int64_t upload_setup_qwords = 6;        // GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR + IMAGE GIFtag
+  std::int64_t draw_setup_qwords = 11;         // GIFtag + TEXFLUSH, TEX0, ALPHA, FRAME, PRIM, RGBAQ, 2x(UV, XYZ2)
+  std::int64_t textured_pixels_per_clock = 8;  // textured fill rate
+  std::int64_t page_break_overhead_pct = 25;   // extra draw time for DRAM page breaks (assumption)
 
   // VRAM layout besides the lightmap (whose size comes from the stream).
-  std::int64_t frameBuffers = 2;
-  std::int64_t frameWidth = 640;
-  std::int64_t frameHeight = 448;
-  std::string frameFormat = "ct32";
-  std::string depthFormat = "z16";  // or "none"
-  std::int64_t skyWidth = 256;      // 0: no sky texture
-  std::int64_t skyHeight = 256;
-  std::string uploadMode = "full";  // or "strips"
-  std::int64_t stripRows = 32;      // rows per strip in strip mode (a multiple of 32: one page high)
+  std::int64_t frame_buffers = 2;
+  std::int64_t frame_width = 640;
+  std::int64_t frame_height = 448;
+  std::string frame_format = "ct32";
+  std::string depth_format = "z16";  // or "none"
+  std::int64_t sky_width = 256;      // 0: no sky texture
+  std::int64_t sky_height = 256;
+  std::string upload_mode = "full";  // or "strips"
+  std::int64_t strip_rows = 32;      // rows per strip in strip mode (a multiple of 32: one page high)
 
   // Presentation.
   std::string video = "ntsc";             // ntsc, ntsc-p, pal, pal-p
   std::int64_t fix = 64;                  // ALPHA.FIX per vsync
   std::string colclamp = "clamp";         // or "wrap"
-  std::string alphaWrite = "source";      // or "keep" (FBMSK protects the lightmap's alpha)
+  std::string alpha_write = "source";     // or "keep" (FBMSK protects the lightmap's alpha)
   std::string catchup = "blend-through";  // or "hard-skip", "play-late"
-  std::int64_t catchupFix = 0;            // FIX while behind schedule; 0 = same as fix
+  std::int64_t catchup_fix = 0;           // FIX while behind schedule; 0 = same as fix
   bool loop = true;                       // wrap from the last frame to the first
-  bool convergenceAware = true;           // host-side shortcut; bit-identical, no simulated-time effect
+  bool convergence_aware = true;          // host-side shortcut; bit-identical, no simulated-time effect
 };
 
 // Registers every field under "gs." with its unit, range and source.

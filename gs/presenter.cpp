@@ -19,19 +19,20 @@ VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight) {
                   " cannot be a GS texture: each side must be 1..1024 (TEX0.TW/TH are log2 sizes up to 10)");
   }
   std::vector<VramRequest> req;
-  const Psm fb = psmByName(p.frameFormat);
-  for (std::int64_t i = 0; i < p.frameBuffers; ++i) {
-    req.push_back({"frame" + std::to_string(i), fb, static_cast<int>(p.frameWidth), static_cast<int>(p.frameHeight)});
+  const Psm fb = psmByName(p.frame_format);
+  for (std::int64_t i = 0; i < p.frame_buffers; ++i) {
+    req.push_back({"frame" + std::to_string(i), fb, static_cast<int>(p.frame_width), static_cast<int>(p.frame_height)});
   }
-  if (p.depthFormat != "none") {
-    req.push_back({"depth", psmByName(p.depthFormat), static_cast<int>(p.frameWidth), static_cast<int>(p.frameHeight)});
+  if (p.depth_format != "none") {
+    req.push_back(
+        {"depth", psmByName(p.depth_format), static_cast<int>(p.frame_width), static_cast<int>(p.frame_height)});
   }
   req.push_back({"lightmap", Psm::Ct32, lightmapWidth, lightmapHeight});
-  const bool strips = p.uploadMode == "strips";
-  const int stagingRows = strips ? std::min<int>(static_cast<int>(p.stripRows), lightmapHeight) : lightmapHeight;
+  const bool strips = p.upload_mode == "strips";
+  const int stagingRows = strips ? std::min<int>(static_cast<int>(p.strip_rows), lightmapHeight) : lightmapHeight;
   req.push_back({"staging", Psm::Ct32, lightmapWidth, stagingRows});
-  if (p.skyWidth > 0 && p.skyHeight > 0) {
-    req.push_back({"sky", Psm::Ct32, static_cast<int>(p.skyWidth), static_cast<int>(p.skyHeight)});
+  if (p.sky_width > 0 && p.sky_height > 0) {
+    req.push_back({"sky", Psm::Ct32, static_cast<int>(p.sky_width), static_cast<int>(p.sky_height)});
   }
   return VramLayout::place(req);
 }
@@ -53,9 +54,9 @@ ColClamp colclampFor(const GsParams& p) {
 }
 
 AlphaWrite alphaFor(const GsParams& p) {
-  if (p.alphaWrite == "source") return AlphaWrite::Source;
-  if (p.alphaWrite == "keep") return AlphaWrite::Keep;
-  throw GsError("unknown alpha write '" + p.alphaWrite + "' (expected source or keep)");
+  if (p.alpha_write == "source") return AlphaWrite::Source;
+  if (p.alpha_write == "keep") return AlphaWrite::Keep;
+  throw GsError("unknown alpha write '" + p.alpha_write + "' (expected source or keep)");
 }
 
 const StreamInfo& checkedStreams(const FrameSource& source) {
@@ -78,14 +79,14 @@ const StreamInfo& checkedStreams(const FrameSource& source) {
 }
 
 bool checkedStrips(const GsParams& p) {
-  if (p.uploadMode != "full" && p.uploadMode != "strips") {
-    throw GsError("unknown upload mode '" + p.uploadMode + "' (expected full or strips)");
+  if (p.upload_mode != "full" && p.upload_mode != "strips") {
+    throw GsError("unknown upload mode '" + p.upload_mode + "' (expected full or strips)");
   }
-  if (p.stripRows <= 0 || p.stripRows % kTileHeight != 0) {
-    throw GsError("strip rows " + std::to_string(p.stripRows) +
+  if (p.strip_rows <= 0 || p.strip_rows % kTileHeight != 0) {
+    throw GsError("strip rows " + std::to_string(p.strip_rows) +
                   " must be a positive multiple of 32 (one PSMCT32 page)");
   }
-  return p.uploadMode == "strips";
+  return p.upload_mode == "strips";
 }
 
 }  // namespace
@@ -99,13 +100,14 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
       timing_(params),
       clock_(clockFor(params)),
       spec_(makeBlendSpec(params.fix, colclampFor(params), alphaFor(params))),
-      catchupSpec_(makeBlendSpec(params.catchupFix == 0 ? params.fix : params.catchupFix, spec_.colclamp, spec_.alpha)),
+      catchupSpec_(
+          makeBlendSpec(params.catchup_fix == 0 ? params.fix : params.catchup_fix, spec_.colclamp, spec_.alpha)),
       policy_(catchUpByName(params.catchup)),
       strips_(checkedStrips(params)),
       vram_(planVram(params, stream_.width, stream_.height)),
       lightmap_(stream_.width, stream_.height),
       blender_(stream_.width, stream_.height, opt_.kernels != nullptr ? *opt_.kernels : scalarKernels(),
-               params.convergenceAware),
+               params.convergence_aware),
       presentedEvent_(sched) {
   if (opt_.tracer != nullptr && opt_.tracer->enabled()) {
     track_ = opt_.tracer->track(opt_.name);
@@ -215,7 +217,7 @@ Task<void> Presenter::present(std::int64_t vsync) {
       spec.fix = 0x80;  // a copy: the first frame, or a hard skip
       rec.snapped = true;
       ++counters_.snaps;
-    } else if (params_.catchupFix > 0 && (rec.behind || target_.late)) {
+    } else if (params_.catchup_fix > 0 && (rec.behind || target_.late)) {
       spec = catchupSpec_;
     }
     if (newTarget && target_.late && !rec.snapped) ++counters_.framesCaughtUp;
@@ -248,7 +250,7 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
   Tracer* tr = opt_.tracer != nullptr && opt_.tracer->enabled() ? opt_.tracer : nullptr;
   // Full mode re-uploads only a new frame (the staging texture keeps it); strip mode has room for one
   // strip, so every vsync streams the whole frame through it again.
-  const int rows = strips_ ? static_cast<int>(params_.stripRows) : h;
+  const int rows = strips_ ? static_cast<int>(params_.strip_rows) : h;
   for (int y0 = 0; y0 < h; y0 += rows) {
     const int y1 = std::min(h, y0 + rows);
     if (strips_ || newTarget) {

@@ -16,7 +16,7 @@ DecoderOptions withTrace(DecoderOptions o) {
 
 }  // namespace
 
-IpuUnit::IpuUnit(Scheduler& s, const IpuTimingParams& p, Tracer* tracer, DecoderOptions options)
+IpuUnit::IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer, DecoderOptions options)
     : s_(s),
       p_(p),
       tracer_(tracer && tracer->enabled() ? tracer : nullptr),
@@ -25,8 +25,8 @@ IpuUnit::IpuUnit(Scheduler& s, const IpuTimingParams& p, Tracer* tracer, Decoder
       coreJobs_(s, 1, "ipu.core_jobs"),
       fromIpuJobs_(s, 1, "ipu.fromipu_jobs"),
       // The internal bit buffer holds qwords taken from the FIFO ahead of the decoder.
-      in_(s, static_cast<std::size_t>(p.inFifoQwords + p.inBufferQwords), "ipu.in"),
-      out_(s, static_cast<std::size_t>(p.outFifoQwords), "ipu.out") {
+      in_(s, static_cast<std::size_t>(p.in_fifo_qwords + p.in_buffer_qwords), "ipu.in"),
+      out_(s, static_cast<std::size_t>(p.out_fifo_qwords), "ipu.out") {
   if (tracer_) track_ = tracer_->track("ipu");
   toIpu_ = &s_.spawn("ipu.toIPU", toIpuLoop(*this));
   core_ = &s_.spawn("ipu", coreLoop(*this));
@@ -80,7 +80,7 @@ Task<void> IpuUnit::toIpuLoop(IpuUnit& u) {
   for (;;) {
     Job* job = co_await u.toIpuJobs_.pop();
     for (std::uint32_t q = 0; q < job->inQwords; ++q) {
-      co_await u.s_.delay(u.p_.toIpuCyclesPerQword);
+      co_await u.s_.delay(u.p_.toipu_cycles_per_qword);
       co_await u.in_.push(q);
     }
   }
@@ -89,7 +89,7 @@ Task<void> IpuUnit::toIpuLoop(IpuUnit& u) {
 Task<void> IpuUnit::coreLoop(IpuUnit& u) {
   for (;;) {
     Job* job = co_await u.coreJobs_.pop();
-    co_await u.s_.delay(u.p_.commandStartCycles);
+    co_await u.s_.delay(u.p_.idec_start_cycles);
     std::uint32_t pulled = 0;
     std::uint32_t q = 0;
     const std::size_t mbs = job->needQwords.size();
@@ -97,7 +97,7 @@ Task<void> IpuUnit::coreLoop(IpuUnit& u) {
       // The decoder consumes the macroblock's qwords while it works: the cost is spread over them,
       // so the toIPU DMA refills the FIFO during the decode and only a slower DMA makes it wait.
       const Tick begin = u.s_.now();
-      const Tick cost = u.p_.mbBaseCycles + u.p_.mbCyclesPerBit * job->bits[i];
+      const Tick cost = u.p_.mb_base_cycles + u.p_.mb_cycles_per_bit * job->bits[i];
       const std::uint32_t k = job->needQwords[i] - pulled;
       if (k == 0) co_await u.s_.delay(cost);
       for (std::uint32_t j = 1; j <= k; ++j) {
@@ -109,7 +109,7 @@ Task<void> IpuUnit::coreLoop(IpuUnit& u) {
       if (u.tracer_) u.tracer_->span(u.track_, begin, decoded, "idec");
       // CSC emits the macroblock row by row; each row's qwords wait for room in the output FIFO.
       for (int row = 0; row < 16; ++row) {
-        co_await u.s_.delay(u.p_.cscCyclesPerMb * (row + 1) / 16 - u.p_.cscCyclesPerMb * row / 16);
+        co_await u.s_.delay(u.p_.csc_cycles_per_mb * (row + 1) / 16 - u.p_.csc_cycles_per_mb * row / 16);
         const Tick ready = u.s_.now();
         for (std::uint32_t k = 0; k < kQwordsPerRow; ++k) co_await u.out_.push(q++);
         if (u.s_.now() != ready) {
@@ -133,7 +133,7 @@ Task<void> IpuUnit::fromIpuLoop(IpuUnit& u) {
     const std::uint32_t total = static_cast<std::uint32_t>(job->needQwords.size()) * kQwordsPerMacroblock;
     for (std::uint32_t n = 0; n < total; ++n) {
       const std::uint32_t q = co_await u.out_.pop();
-      co_await u.s_.delay(u.p_.fromIpuCyclesPerQword);
+      co_await u.s_.delay(u.p_.fromipu_cycles_per_qword);
       u.writeQword(*job, q);
     }
     job->done = true;

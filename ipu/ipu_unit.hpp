@@ -39,7 +39,7 @@ struct TimedPicture {
 
 class IpuUnit {
  public:
-  IpuUnit(Scheduler& s, const IpuTimingParams& p, Tracer* tracer = nullptr, DecoderOptions options = {});
+  IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer = nullptr, DecoderOptions options = {});
   IpuUnit(const IpuUnit&) = delete;
   IpuUnit& operator=(const IpuUnit&) = delete;
 
@@ -74,7 +74,7 @@ class IpuUnit {
   void writeQword(const Job& job, std::uint32_t q);
 
   Scheduler& s_;
-  IpuTimingParams p_;
+  IpuParams p_;
   Tracer* tracer_;
   Tracer::TrackId track_ = 0;
   Decoder decoder_;

@@ -2,26 +2,26 @@
 
 namespace vbim::ipu {
 
-void describeParams(ParamTable& t, IpuTimingParams& p) {
-  t.addInt("ipu.mb_base_cycles", &p.mbBaseCycles, 0, 1'000'000, "bus cycles",
+void describeParams(ParamTable& t, IpuParams& p) {
+  t.addInt("ipu.mb_base_cycles", &p.mb_base_cycles, 0, 1'000'000, "bus cycles",
            "assumption: no published IPU rate; 400 + 1/bit gives ~1,000 cycles for a 600-bit intra macroblock "
            "(~147k MB/s), well above DVD-Video's 40.5k MB/s (docs/hardware.md#ipu-decode-cost)");
-  t.addInt("ipu.mb_cycles_per_bit", &p.mbCyclesPerBit, 0, 1'000, "bus cycles/bit",
+  t.addInt("ipu.mb_cycles_per_bit", &p.mb_cycles_per_bit, 0, 1'000, "bus cycles/bit",
            "assumption: VLD at 1 bit per cycle; PCSX2's flat 64 EE cycles per MB is known too fast "
            "(docs/hardware.md#ipu-decode-cost)");
-  t.addInt("ipu.csc_cycles_per_mb", &p.cscCyclesPerMb, 0, 100'000, "bus cycles",
+  t.addInt("ipu.csc_cycles_per_mb", &p.csc_cycles_per_mb, 0, 100'000, "bus cycles",
            "assumption: CSC at 1 pixel per cycle, 256 per macroblock (docs/hardware.md#ipu-decode-cost)");
-  t.addInt("ipu.idec_start_cycles", &p.commandStartCycles, 0, 100'000, "bus cycles",
+  t.addInt("ipu.idec_start_cycles", &p.idec_start_cycles, 0, 100'000, "bus cycles",
            "PCSX2 IPU.cpp: IDEC/BDEC start delay of 64 EE cycles = 32 bus cycles [E]");
-  t.addInt("ipu.in_fifo_qwords", &p.inFifoQwords, 1, 64, "qwords",
+  t.addInt("ipu.in_fifo_qwords", &p.in_fifo_qwords, 1, 64, "qwords",
            "T-IPU IFC 4 bits 0..8; P-IPU IPU_Fifo.h 32 words (docs/hardware.md#ipu-fifos-and-dma)");
-  t.addInt("ipu.in_buffer_qwords", &p.inBufferQwords, 0, 8, "qwords",
+  t.addInt("ipu.in_buffer_qwords", &p.in_buffer_qwords, 0, 8, "qwords",
            "T-IPU IPU_BP.FP 0..2: internal bit buffer (docs/hardware.md#ipu-fifos-and-dma)");
-  t.addInt("ipu.out_fifo_qwords", &p.outFifoQwords, 1, 64, "qwords",
+  t.addInt("ipu.out_fifo_qwords", &p.out_fifo_qwords, 1, 64, "qwords",
            "T-IPU OFC 4 bits; P-IPU IPU_Fifo.h 32 words (docs/hardware.md#ipu-fifos-and-dma)");
-  t.addInt("ipu.toipu_cycles_per_qword", &p.toIpuCyclesPerQword, 1, 1'000, "bus cycles/qword",
+  t.addInt("ipu.toipu_cycles_per_qword", &p.toipu_cycles_per_qword, 1, 1'000, "bus cycles/qword",
            "T-DMA: DMAC moves 1 qword per bus cycle while the FIFO has room (docs/hardware.md#ipu-dma)");
-  t.addInt("ipu.fromipu_cycles_per_qword", &p.fromIpuCyclesPerQword, 1, 1'000, "bus cycles/qword",
+  t.addInt("ipu.fromipu_cycles_per_qword", &p.fromipu_cycles_per_qword, 1, 1'000, "bus cycles/qword",
            "T-DMA: DMAC moves 1 qword per bus cycle (docs/hardware.md#ipu-dma)");
 }
 

@@ -9,18 +9,18 @@
 
 namespace vbim::ipu {
 
-struct IpuTimingParams {
-  std::int64_t mbBaseCycles = 400;         // per macroblock, VLD + IQ + IDCT fixed part
-  std::int64_t mbCyclesPerBit = 1;         // per input bit of the macroblock
-  std::int64_t cscCyclesPerMb = 256;       // colour conversion, 1 pixel per cycle
-  std::int64_t commandStartCycles = 32;    // IDEC start latency (PCSX2: 64 EE cycles)
-  std::int64_t inFifoQwords = 8;           // input FIFO depth
-  std::int64_t inBufferQwords = 2;         // internal bit buffer (IPU_BP.FP)
-  std::int64_t outFifoQwords = 8;          // output FIFO depth
-  std::int64_t toIpuCyclesPerQword = 1;    // DMAC ch4 (toIPU) rate
-  std::int64_t fromIpuCyclesPerQword = 1;  // DMAC ch3 (fromIPU) rate
+struct IpuParams {
+  std::int64_t mb_base_cycles = 400;          // per macroblock, VLD + IQ + IDCT fixed part
+  std::int64_t mb_cycles_per_bit = 1;         // per input bit of the macroblock
+  std::int64_t csc_cycles_per_mb = 256;       // colour conversion, 1 pixel per cycle
+  std::int64_t idec_start_cycles = 32;        // IDEC start latency (PCSX2: 64 EE cycles)
+  std::int64_t in_fifo_qwords = 8;            // input FIFO depth
+  std::int64_t in_buffer_qwords = 2;          // internal bit buffer (IPU_BP.FP)
+  std::int64_t out_fifo_qwords = 8;           // output FIFO depth
+  std::int64_t toipu_cycles_per_qword = 1;    // DMAC ch4 (toIPU) rate
+  std::int64_t fromipu_cycles_per_qword = 1;  // DMAC ch3 (fromIPU) rate
 };
 
-void describeParams(ParamTable& table, IpuTimingParams& p);
+void describeParams(ParamTable& table, IpuParams& p);
 
 }  // namespace vbim::ipu

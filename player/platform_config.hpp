@@ -15,7 +15,7 @@ namespace vbim::player {
 
 struct PlatformConfig {
   iop::IopParams iop;
-  ipu::IpuTimingParams ipu;
+  ipu::IpuParams ipu;
   gs::GsParams gs;
   ee::EeParams ee;
 };

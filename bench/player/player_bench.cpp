@@ -102,7 +102,7 @@ UnitCosts measureUnits(bool simd) {
     Scheduler s;
     ipu::DecoderOptions o;
     o.kernels = simd ? &ipu::simdKernels() : nullptr;
-    ipu::IpuUnit unit(s, ipu::IpuTimingParams{}, nullptr, o);
+    ipu::IpuUnit unit(s, ipu::IpuParams{}, nullptr, o);
     struct Run {
       static Task<void> all(ipu::IpuUnit& u, const std::vector<streams::Picture>& pics) {
         Rgba8Image out;

@@ -32,7 +32,7 @@ TEST(BadInput, FixOutsideTheRegister) {
     p.fix = fix;
     EXPECT_NE(errorOf([&] { Presenter pr(s, src, p); }).find("outside 0..255"), std::string::npos);
     GsParams q;
-    q.catchupFix = fix;
+    q.catchup_fix = fix;
     EXPECT_NE(errorOf([&] { Presenter pr(s, src, q); }).find("outside 0..255"), std::string::npos);
   }
 }
@@ -70,8 +70,8 @@ TEST(BadInput, SettingsOutsideTheirChoices) {
   Scheduler s;
   auto src = source();
   GsParams a;
-  a.stripRows = 48;
-  a.uploadMode = "strips";
+  a.strip_rows = 48;
+  a.upload_mode = "strips";
   EXPECT_NE(errorOf([&] { Presenter pr(s, src, a); }).find("multiple of 32"), std::string::npos);
   GsParams b;
   b.catchup = "rewind";

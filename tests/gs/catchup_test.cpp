@@ -159,7 +159,7 @@ TEST(CatchUp, PlayLateNeverDropsAndKeepsItsLag) {
 
 TEST(CatchUp, LargerFixWhileBehindCatchesUpSooner) {
   GsParams fast;
-  fast.catchupFix = 120;
+  fast.catchup_fix = 120;
   Rig a({stream("clear")}, wave, stalled(), GsParams{}, GsParams{});
   Rig b({stream("clear")}, wave, stalled(), fast, GsParams{});
   a.runFor(kEnd);

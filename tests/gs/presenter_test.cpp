@@ -43,7 +43,7 @@ TEST(Presenter, StallFreeRunMatchesTheReferenceExactly) {
 TEST(Presenter, FullModeUploadsNewFramesOnlyStripModeStreamsEveryVsync) {
   GsParams full;
   GsParams strips;
-  strips.uploadMode = "strips";
+  strips.upload_mode = "strips";
   Rig a({stream("clear")}, wave, onTime(), full, full);
   Rig b({stream("clear")}, wave, onTime(), strips, strips);
   a.runFor(fromMs(500));
@@ -117,7 +117,7 @@ TEST(Presenter, WithoutLoopTheLastFrameHoldsAndSteadyVsyncsCostNoHostWork) {
 TEST(Presenter, SimdConvergenceAwareEqualsScalarBlendEverything) {
   GsParams fast;  // convergence-aware by default
   GsParams plain;
-  plain.convergenceAware = false;
+  plain.convergence_aware = false;
   SourceScript sc = onTime();
   sc.stalls = {{fromMs(700), fromMs(400)}};
   std::vector<std::uint64_t> hashesA, hashesB;
@@ -173,12 +173,12 @@ TEST(Presenter, PalPresentsFiftyTimesASecond) {
 
 TEST(Presenter, GsWorkLongerThanAVsyncLosesVsyncs) {
   GsParams p;
-  p.frameBuffers = 0;
-  p.depthFormat = "none";
-  p.skyWidth = 0;
-  p.uploadMode = "strips";
-  p.texturedPixelsPerClock = 1;
-  p.pageBreakOverheadPct = 400;
+  p.frame_buffers = 0;
+  p.depth_format = "none";
+  p.sky_width = 0;
+  p.upload_mode = "strips";
+  p.textured_pixels_per_clock = 1;
+  p.page_break_overhead_pct = 400;
   const int w = 1024, h = 512;  // 524,288 px * 5 clocks > one NTSC field (2.46 M ticks)
   Scheduler s;
   ScriptedFrameSource src(
@@ -196,7 +196,7 @@ TEST(Presenter, GsWorkLongerThanAVsyncLosesVsyncs) {
 // work; the pixels are those each would draw alone.
 TEST(Presenter, PresentersSharingOneGsDrawOneAfterTheOther) {
   GsParams p;
-  p.uploadMode = "strips";  // GS work at every vsync
+  p.upload_mode = "strips";  // GS work at every vsync
   Scheduler s;
   SerialUnit gs(s);
   ScriptedFrameSource lmSource({stream("clear")}, wave, onTime());

@@ -19,7 +19,7 @@ TEST(GsTiming, UploadAndDrawFromTheParameters) {
   // Sprite: 11 qw of registers, then 65,536 px / 8 per clock * 1.25.
   EXPECT_EQ(t.spriteDraw(256, 256), 22 + 10240);
   GsParams q;
-  q.pageBreakOverheadPct = 0;
+  q.page_break_overhead_pct = 0;
   EXPECT_EQ(GsTiming(q).spriteDraw(256, 256), 22 + 8192);  // ~56 us at peak fill
   EXPECT_EQ(GsTiming(q).spriteDraw(1, 1), 22 + 1);         // rounds up
 }
@@ -31,7 +31,7 @@ TEST(GsTiming, ParamsLoadFromTomlAndRejectBadValues) {
   config::applyToml(table, "[gs]\nfix = 96\ncatchup = \"hard-skip\"\nupload_mode = \"strips\"\n", "<test>");
   EXPECT_EQ(p.fix, 96);
   EXPECT_EQ(p.catchup, "hard-skip");
-  EXPECT_EQ(p.uploadMode, "strips");
+  EXPECT_EQ(p.upload_mode, "strips");
   EXPECT_THROW(config::applyToml(table, "[gs]\nfix = 256\n", "<test>"), ConfigError);
   EXPECT_THROW(config::applyToml(table, "[gs]\ncatchup = \"rewind\"\n", "<test>"), ConfigError);
   for (const auto& param : table.params()) {

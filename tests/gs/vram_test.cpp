@@ -59,7 +59,7 @@ TEST(Vram, StripModeMakesALayoutFit) {
   GsParams p;
   // 512x320 lightmap: full staging needs 280 + 70 + 80 + 80 + 32 = 542 pages.
   EXPECT_NE(refusal(p, 512, 320).find("needs 542 pages"), std::string::npos);
-  p.uploadMode = "strips";
+  p.upload_mode = "strips";
   const VramLayout v = planVram(p, 512, 320);
   EXPECT_EQ(v.region("staging").pages, 8);  // 512x32: one strip
   EXPECT_EQ(v.pagesUsed(), 470);
@@ -67,8 +67,8 @@ TEST(Vram, StripModeMakesALayoutFit) {
 
 TEST(Vram, TextureAndCoordinateLimits) {
   GsParams p;
-  p.frameBuffers = 0;
-  p.depthFormat = "none";
+  p.frame_buffers = 0;
+  p.depth_format = "none";
   EXPECT_NE(refusal(p, 2048, 16).find("1..1024"), std::string::npos);
   EXPECT_NE(refusal(p, 0, 16).find("1..1024"), std::string::npos);
   EXPECT_THROW(VramLayout::place({{"x", Psm::Ct32, 4096, 1}}), GsError);

@@ -39,8 +39,7 @@ Task<void> suspendLater(Scheduler& s, Process& p, Tick at, Tick duration) {
   s.suspendFor(p, duration);
 }
 
-TimedRun runWith(const IpuTimingParams& p, const std::vector<std::uint8_t>& bytes, Tick stallAt = -1,
-                 Tick stallFor = 0) {
+TimedRun runWith(const IpuParams& p, const std::vector<std::uint8_t>& bytes, Tick stallAt = -1, Tick stallFor = 0) {
   Scheduler s;
   Tracer tracer;
   IpuUnit unit(s, p, &tracer);
@@ -53,7 +52,7 @@ TimedRun runWith(const IpuTimingParams& p, const std::vector<std::uint8_t>& byte
 
 TEST(IpuUnit, OutputEqualsTheFunctionalDecode) {
   const std::vector<std::uint8_t> bytes = firstPicture();
-  const TimedRun run = runWith(IpuTimingParams{}, bytes);
+  const TimedRun run = runWith(IpuParams{}, bytes);
   ASSERT_TRUE(run.result.report.produced);
   Decoder dec;
   dec.decode(bytes);
@@ -68,21 +67,21 @@ TEST(IpuUnit, OutputEqualsTheFunctionalDecode) {
 // per-macroblock costs: the DMA never limits at the default rates.
 TEST(IpuUnit, DoublingMacroblockCostMovesCompletionByItsSum) {
   const std::vector<std::uint8_t> bytes = firstPicture();
-  IpuTimingParams p;
+  IpuParams p;
   const TimedRun a = runWith(p, bytes);
-  IpuTimingParams p2 = p;
-  p2.mbBaseCycles *= 2;
-  p2.mbCyclesPerBit *= 2;
-  p2.cscCyclesPerMb *= 2;
+  IpuParams p2 = p;
+  p2.mb_base_cycles *= 2;
+  p2.mb_cycles_per_bit *= 2;
+  p2.csc_cycles_per_mb *= 2;
   const TimedRun b = runWith(p2, bytes);
   ASSERT_EQ(a.trace.size(), 32u);
   Tick sum = 0;
-  for (const MacroblockBits& m : a.trace) sum += p.mbBaseCycles + p.mbCyclesPerBit * m.bits + p.cscCyclesPerMb;
+  for (const MacroblockBits& m : a.trace) sum += p.mb_base_cycles + p.mb_cycles_per_bit * m.bits + p.csc_cycles_per_mb;
   const Tick da = a.result.finished - a.result.started;
   const Tick db = b.result.finished - b.result.started;
   EXPECT_EQ(db - da, sum);
   // And the whole time is command start + the sum + draining the last CSC row's 4 qwords.
-  EXPECT_EQ(da, p.commandStartCycles + sum + 4 * p.fromIpuCyclesPerQword);
+  EXPECT_EQ(da, p.idec_start_cycles + sum + 4 * p.fromipu_cycles_per_qword);
   EXPECT_EQ(a.result.outputStalls, 0);
   EXPECT_EQ(a.image.pixels, b.image.pixels);
 }
@@ -92,16 +91,16 @@ TEST(IpuUnit, DoublingMacroblockCostMovesCompletionByItsSum) {
 // macroblock's VLD/IDCT plus the rows that fit in the FIFO).
 TEST(IpuUnit, DecodeStallsWhenOutputIsNotDrained) {
   const std::vector<std::uint8_t> bytes = firstPicture();
-  const TimedRun a = runWith(IpuTimingParams{}, bytes);
+  const TimedRun a = runWith(IpuParams{}, bytes);
   const Tick stall = 20'000;
-  const TimedRun b = runWith(IpuTimingParams{}, bytes, 5'000, stall);
+  const TimedRun b = runWith(IpuParams{}, bytes, 5'000, stall);
   const Tick delay = (b.result.finished - b.result.started) - (a.result.finished - a.result.started);
   EXPECT_GT(b.result.outputStalls, 0);
   EXPECT_LE(delay, stall);
   Tick maxMb = 0;
-  const IpuTimingParams p;
+  const IpuParams p;
   for (const MacroblockBits& m : a.trace)
-    maxMb = std::max<Tick>(maxMb, p.mbBaseCycles + p.mbCyclesPerBit * m.bits + p.cscCyclesPerMb);
+    maxMb = std::max<Tick>(maxMb, p.mb_base_cycles + p.mb_cycles_per_bit * m.bits + p.csc_cycles_per_mb);
   EXPECT_GE(delay, stall - maxMb);
   EXPECT_EQ(a.image.pixels, b.image.pixels);
 }
@@ -109,18 +108,18 @@ TEST(IpuUnit, DecodeStallsWhenOutputIsNotDrained) {
 // A slow toIPU DMA starves the decoder: it cannot finish before the last input qword arrives.
 TEST(IpuUnit, SlowInputDmaBoundsDecode) {
   const std::vector<std::uint8_t> bytes = firstPicture();
-  IpuTimingParams p;
-  p.toIpuCyclesPerQword = 400;
+  IpuParams p;
+  p.toipu_cycles_per_qword = 400;
   const TimedRun r = runWith(p, bytes);
   const Tick qwords = static_cast<Tick>((bytes.size() + 15) / 16);
   EXPECT_GE(r.result.finished - r.result.started, qwords * 400);
-  const TimedRun fast = runWith(IpuTimingParams{}, bytes);
+  const TimedRun fast = runWith(IpuParams{}, bytes);
   EXPECT_GT(r.result.finished, fast.result.finished);
 }
 
 TEST(IpuUnit, ParamsAreRegisteredWithSources) {
   ParamTable t;
-  IpuTimingParams p;
+  IpuParams p;
   describeParams(t, p);
   ASSERT_NE(t.find("ipu.mb_base_cycles"), nullptr);
   for (const auto& param : t.params()) {
@@ -128,7 +127,7 @@ TEST(IpuUnit, ParamsAreRegisteredWithSources) {
     EXPECT_FALSE(param.source.empty()) << param.key;
   }
   config::applyToml(t, "[ipu]\nmb_base_cycles = 800\n", "<test>");
-  EXPECT_EQ(p.mbBaseCycles, 800);
+  EXPECT_EQ(p.mb_base_cycles, 800);
 }
 
 }  // namespace
