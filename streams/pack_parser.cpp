@@ -69,8 +69,9 @@ class Parser {
         // Keep what there is of a cut PES packet: a decoder may still use the start of its picture.
         if (id != kSystemHeaderStartCode) (void)pesPacket(id, pos, d_.size());
         return fail(ErrorKind::Truncated, pos,
-                    "packet " + hex(id) + " of " + std::to_string(len + 6) + " bytes runs past the end of the data by " +
-                        std::to_string(end - d_.size()) + " bytes (truncated stream?)");
+                    "packet " + hex(id) + " of " + std::to_string(len + 6) +
+                        " bytes runs past the end of the data by " + std::to_string(end - d_.size()) +
+                        " bytes (truncated stream?)");
       }
       if (id == kSystemHeaderStartCode) {
         out_.hasSystemHeader = true;
@@ -99,7 +100,8 @@ class Parser {
   std::optional<StreamError> packHeader(std::size_t& pos) {
     if (auto e = needHeader(4)) return e;
     if (at(0) != 0 || at(1) != 0 || at(2) != 1 || at(3) != kPackStartCode)
-      return fail(ErrorKind::BadPackHeader, start_, "expected a pack start code 00 00 01 BA, found " + hexBytes(start_));
+      return fail(ErrorKind::BadPackHeader, start_,
+                  "expected a pack start code 00 00 01 BA, found " + hexBytes(start_));
     if (auto e = needHeader(5)) return e;
     const std::uint8_t b4 = at(4);
     if ((b4 & 0xF0) == 0x20) {
@@ -203,8 +205,7 @@ class Parser {
                   "MPEG-1 PES packet " + hex(id) +
                       ": expected a PTS ('0010'), a PTS and DTS ('0011') or 0x0F after the stuffing and STD buffer "
                       "fields");
-    if (q + fields > end)
-      return fail(ErrorKind::BadPes, q, "MPEG-1 PES header runs past its packet " + hex(id));
+    if (q + fields > end) return fail(ErrorKind::BadPes, q, "MPEG-1 PES header runs past its packet " + hex(id));
     payload = q + fields;
     if (fields > 1) return readPts(q, fields == 10 ? 3 : 2, p);
     return std::nullopt;

@@ -21,8 +21,8 @@ bool ProgramStreamReader::next(ParsedPack& pack) {
     } else {
       // Resume after the defect: the bytes between are not trustworthy, a pack header is.
       pos_ = nextPackStart(std::max<std::size_t>(pos_, static_cast<std::size_t>(defect->byteOffset)) + 1);
-      defect->message += pos_ < data_.size() ? "; skipping to the next pack at byte " + std::to_string(pos_)
-                                             : "; no pack follows";
+      defect->message +=
+          pos_ < data_.size() ? "; skipping to the next pack at byte " + std::to_string(pos_) : "; no pack follows";
     }
     defects_.push_back(std::move(*defect));
     if (!pack.packets.empty()) return true;

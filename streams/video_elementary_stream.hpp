@@ -16,9 +16,9 @@ namespace vbim::streams {
 
 // What a file holds, judged by its first bytes.
 enum class StreamForm {
-  kProgramStream,      // starts with a pack start code 00 00 01 BA
-  kElementaryStream,   // otherwise holds a start code 00 00 01 (the decoder judges the rest)
-  kNotMpeg,            // neither
+  kProgramStream,     // starts with a pack start code 00 00 01 BA
+  kElementaryStream,  // otherwise holds a start code 00 00 01 (the decoder judges the rest)
+  kNotMpeg,           // neither
 };
 StreamForm detectStreamForm(std::span<const std::uint8_t> file);
 
@@ -32,7 +32,7 @@ struct VideoElementaryStream {
   std::optional<std::uint8_t> streamId;  // PES stream id; none for a raw elementary stream, or when a
                                          // program stream lacks the video stream asked for
   std::vector<std::uint8_t> bytes;
-  std::vector<Run> runs;              // ascending esOffset
+  std::vector<Run> runs;             // ascending esOffset
   std::vector<StreamError> defects;  // damage skipped in the program stream
 
   // The file offset of elementary-stream byte `esOffset`.

@@ -20,8 +20,7 @@ const char* extensionOf(FrameFileFormat format) {
   return "";
 }
 
-FrameFileWriter::FrameFileWriter(std::filesystem::path directory, FrameFileFormat format,
-                                 ipu::CscThresholds thresholds)
+FrameFileWriter::FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds)
     : directory_(std::move(directory)), format_(format), thresholds_(thresholds) {}
 
 void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {

@@ -22,9 +22,9 @@ VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::str
     case StreamForm::kProgramStream: {
       VideoElementaryStream video = readVideoStream(file, streamId);
       if (!video.streamId)
-        throw DecodeError(name + ": MPEG program stream without " +
-                          (streamId ? "video stream " + hexId(*streamId)
-                                    : std::string("a video stream (PES id 0xE0..0xEF)")));
+        throw DecodeError(
+            name + ": MPEG program stream without " +
+            (streamId ? "video stream " + hexId(*streamId) : std::string("a video stream (PES id 0xE0..0xEF)")));
       return video;
     }
     case StreamForm::kElementaryStream:

@@ -187,8 +187,7 @@ TEST(StreamsProgramStream, SkipsADamagedPackAndReadsOn) {
   ASSERT_EQ(r.defects().size(), 1u) << all(r.defects());
   EXPECT_EQ(r.defects()[0].kind, ErrorKind::BadPes);
   EXPECT_EQ(r.defects()[0].byteOffset, damaged);
-  EXPECT_NE(r.defects()[0].message.find("skipping to the next pack at byte " + std::to_string(next)),
-            std::string::npos)
+  EXPECT_NE(r.defects()[0].message.find("skipping to the next pack at byte " + std::to_string(next)), std::string::npos)
       << r.defects()[0].message;
   // The packets before the defect are read, and so is the pack after it.
   ASSERT_EQ(packs.size(), 2u);

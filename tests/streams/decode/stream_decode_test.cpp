@@ -117,8 +117,7 @@ TEST(StreamsDecode, ReportsIssuesAtTheirFileOffsets) {
     if (l.rfind(prefix, 0) != 0) continue;  // "... and N more issues"
     const std::size_t esByte = std::stoull(l.substr(prefix.size()));
     const std::string rest = l.substr(l.find_first_not_of("0123456789", prefix.size()));
-    EXPECT_EQ(fromPs.lines[i],
-              "in.mpg (video stream 0xE0): byte " + std::to_string(video.fileOffsetOf(esByte)) + rest);
+    EXPECT_EQ(fromPs.lines[i], "in.mpg (video stream 0xE0): byte " + std::to_string(video.fileOffsetOf(esByte)) + rest);
     if (esByte == es.size()) {  // "at the end of the data": just past the last byte
       EXPECT_EQ(video.fileOffsetOf(esByte), video.fileOffsetOf(esByte - 1) + 1);
       continue;
@@ -169,8 +168,7 @@ TEST(StreamsDecode, WritesFramesAsFiles) {
   for (const FrameFileFormat f : {FrameFileFormat::kYuv, FrameFileFormat::kPng}) {
     FrameFileWriter writer(dir, f);
     decodeStream(
-        es, "a.m2v", {}, [&](int frame, const ipu::Decoder& d) { writer.write(frame, d); },
-        [](const std::string&) {});
+        es, "a.m2v", {}, [&](int frame, const ipu::Decoder& d) { writer.write(frame, d); }, [](const std::string&) {});
   }
   EXPECT_EQ(std::filesystem::file_size(dir / "frame_00001.yuv"), 40u * 24 * 3 / 2);
   EXPECT_TRUE(std::filesystem::exists(dir / "frame_00001.png"));
