@@ -15,13 +15,14 @@
 #include "cli/output_dir.hpp"
 #include "cli/profile_plots.hpp"
 #include "cli/profile_run.hpp"
-#include "cli/profile_transcode.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
 #include "gs/gs_error.hpp"
 #include "iop/file_disc.hpp"
 #include "iop/memory_disc.hpp"
 #include "player/scenario.hpp"
+#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/transcode.hpp"
 
 namespace vbim::cli {
 
@@ -98,6 +99,15 @@ std::shared_ptr<Stream> memoryStream(std::string label, std::vector<std::uint8_t
   return s;
 }
 
+// The first disc re-encoded at other settings; a stream that cannot be re-encoded ends the command.
+std::vector<std::uint8_t> reencoded(const std::string& disc, const streams::EncoderSettings& e) {
+  try {
+    return streams::transcodeStream(disc, e);
+  } catch (const streams::AuthoringError& x) {
+    throw Exit(2, x.what());
+  }
+}
+
 std::string fixed(double v, int decimals) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -115,7 +125,7 @@ void runProfile(const ProfileRequest& r) {
     if (q < 1 || q > 31) throw Exit(2, "--qscale " + std::to_string(q) + ": expected 1..31");
     streams::EncoderSettings e;
     e.qscale = q;
-    streams.push_back(memoryStream(stem(r.discs[0]) + "_q" + std::to_string(q), transcodeStream(r.discs[0], e)));
+    streams.push_back(memoryStream(stem(r.discs[0]) + "_q" + std::to_string(q), reencoded(r.discs[0], e)));
   }
   for (std::int64_t b : r.bitrates) {
     if (b < 1 || b > streams::kDvdMaxVideoRate)
@@ -123,7 +133,7 @@ void runProfile(const ProfileRequest& r) {
     streams::EncoderSettings e;
     e.bitrate = b;
     streams.push_back(
-        memoryStream(stem(r.discs[0]) + "_" + std::to_string(b / 1000) + "kbps", transcodeStream(r.discs[0], e)));
+        memoryStream(stem(r.discs[0]) + "_" + std::to_string(b / 1000) + "kbps", reencoded(r.discs[0], e)));
   }
 
   player::PlatformConfig base;

@@ -18,6 +18,8 @@ class OutputDir {
 
   // Path of a file inside the temporary directory.
   std::filesystem::path path(const std::string& name) const { return tmp_ / name; }
+  // The temporary directory itself, for a library that writes several files into it.
+  const std::filesystem::path& directory() const { return tmp_; }
   const std::filesystem::path& finalPath() const { return final_; }
   void commit();
 

@@ -30,6 +30,8 @@ inline constexpr std::uint8_t kGroupStartCode = 0xB8;
 
 // Pack header size without stuffing (13818-1 §2.5.3.3): start code + 10 bytes.
 inline constexpr std::size_t kPackHeaderBytes = 14;
+// An MPEG-1 system stream's pack header (ISO/IEC 11172-1 §2.4.3.2): start code + 8 bytes, no stuffing.
+inline constexpr std::size_t kMpeg1PackHeaderBytes = 12;
 
 // The 90 kHz clock of PTS values.
 inline constexpr std::int64_t kPtsHz = 90000;

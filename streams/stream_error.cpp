@@ -18,6 +18,8 @@ const char* toString(ErrorKind kind) {
       return "picture mismatch";
     case ErrorKind::BadDescriptor:
       return "bad descriptor";
+    case ErrorKind::Truncated:
+      return "truncated";
   }
   return "unknown";
 }

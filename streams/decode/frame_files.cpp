@@ -1,0 +1,54 @@
+#include "streams/decode/frame_files.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+#include "runtime/image_file.hpp"
+#include "streams/decode/stream_decode.hpp"
+
+namespace vbim::streams {
+
+const char* extensionOf(FrameFileFormat format) {
+  switch (format) {
+    case FrameFileFormat::kPng:
+      return "png";
+    case FrameFileFormat::kExr:
+      return "exr";
+    case FrameFileFormat::kYuv:
+      return "yuv";
+  }
+  return "";
+}
+
+FrameFileWriter::FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds)
+    : directory_(std::move(directory)), format_(format), thresholds_(thresholds) {}
+
+void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%05d.%s", frame, extensionOf(format_));
+  const std::filesystem::path path = directory_ / name;
+  const int w = decoder.width(), h = decoder.height();
+  if (format_ == FrameFileFormat::kYuv) {
+    ipu::copyToYuv420(decoder.frame(), w, h, yuv_);
+    std::ofstream f(path, std::ios::binary);
+    f.write(reinterpret_cast<const char*>(yuv_.y.data()), static_cast<std::streamsize>(yuv_.y.size()));
+    f.write(reinterpret_cast<const char*>(yuv_.cb.data()), static_cast<std::streamsize>(yuv_.cb.size()));
+    f.write(reinterpret_cast<const char*>(yuv_.cr.data()), static_cast<std::streamsize>(yuv_.cr.size()));
+    if (!f) throw DecodeError(path.string() + ": cannot write");
+    return;
+  }
+  ipu::convertToRgba32(decoder.frame(), w, h, thresholds_, rgba_, decoder.kernels().cscRow);
+  // GS alpha 0x80 = 1.0: PNG alpha 255 = 2 * a (clamped), EXR alpha = a / 128.
+  if (format_ == FrameFileFormat::kPng) {
+    for (std::size_t i = 3; i < rgba_.pixels.size(); i += 4)
+      rgba_.pixels[i] = static_cast<std::uint8_t>(rgba_.pixels[i] >= 0x80 ? 255 : rgba_.pixels[i] * 2);
+    writePng(path, w, h, rgba_.pixels.data());
+    return;
+  }
+  floats_.resize(rgba_.pixels.size());
+  for (std::size_t i = 0; i < rgba_.pixels.size(); ++i)
+    floats_[i] = (i % 4 == 3) ? rgba_.pixels[i] / 128.0f : rgba_.pixels[i] / 255.0f;
+  writeExr(path, w, h, floats_.data());
+}
+
+}  // namespace vbim::streams

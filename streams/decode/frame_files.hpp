@@ -1,0 +1,40 @@
+// Decoded frames as files, one per frame: frame_00000.png (RGBA, the GS alpha doubled so that 0x80
+// is opaque), .exr (half-float RGBA, alpha 0x80 = 1.0) or .yuv (the IPU's planar 4:2:0 output,
+// Y then Cb then Cr). The frame sink of decodeStream for `vbim decode`.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ipu/csc.hpp"
+#include "ipu/picture_decoder.hpp"
+#include "runtime/image.hpp"
+
+namespace vbim::streams {
+
+enum class FrameFileFormat { kPng, kExr, kYuv };
+
+// "png", "exr", "yuv": the file name extension.
+const char* extensionOf(FrameFileFormat format);
+
+class FrameFileWriter {
+ public:
+  // `thresholds`: the SETTH thresholds of the RGB32 conversion (PNG and EXR).
+  FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds = {});
+
+  // Writes the frame the decoder holds as frame number `frame`. Throws DecodeError (YUV) or
+  // ImageFileError (PNG, EXR) naming the file when it cannot be written.
+  void write(int frame, const ipu::Decoder& decoder);
+
+ private:
+  std::filesystem::path directory_;
+  FrameFileFormat format_;
+  ipu::CscThresholds thresholds_;
+  Rgba8Image rgba_;  // reused from frame to frame
+  Yuv420Image yuv_;
+  std::vector<float> floats_;
+};
+
+}  // namespace vbim::streams

@@ -1,0 +1,100 @@
+#include "streams/decode/stream_decode.hpp"
+
+#include <memory>
+#include <vector>
+
+#include "ipu/elementary_stream.hpp"
+#include "ipu/simd/simd_kernels.hpp"
+#include "runtime/worker_pool.hpp"
+#include "streams/video_elementary_stream.hpp"
+
+namespace vbim::streams {
+namespace {
+
+std::string hexId(std::uint8_t id) {
+  static const char kHex[] = "0123456789ABCDEF";
+  return std::string("0x") + kHex[(id >> 4) & 15] + kHex[id & 15];
+}
+
+VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::string& name,
+                              std::optional<std::uint8_t> streamId) {
+  switch (detectStreamForm(file)) {
+    case StreamForm::kProgramStream: {
+      VideoElementaryStream video = readVideoStream(file, streamId);
+      if (!video.streamId)
+        throw DecodeError(
+            name + ": MPEG program stream without " +
+            (streamId ? "video stream " + hexId(*streamId) : std::string("a video stream (PES id 0xE0..0xEF)")));
+      return video;
+    }
+    case StreamForm::kElementaryStream:
+      // If it lacks a sequence header the decoder says so.
+      return rawVideoStream(file);
+    case StreamForm::kNotMpeg:
+      break;
+  }
+  throw DecodeError(name +
+                    ": byte 0: not an MPEG program stream or video elementary stream "
+                    "(expected 00 00 01 BA or 00 00 01 B3)");
+}
+
+}  // namespace
+
+DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string& name, const DecodeOptions& options,
+                           const FrameSink& frames, const DiagnosticSink& diagnostics) {
+  const VideoElementaryStream video = videoOf(file, name, options.streamId);
+  for (const StreamError& d : video.defects)
+    diagnostics("warning: " + name + ": byte " + std::to_string(d.byteOffset) + ": " + d.message);
+
+  ipu::DecoderOptions decoderOptions;
+  decoderOptions.kernels = &ipu::simdKernels();  // same bytes as the scalar reference, faster
+  ipu::Decoder decoder(decoderOptions);
+  std::unique_ptr<WorkerPool> pool;
+  if (options.threads > 1) pool = std::make_unique<WorkerPool>(options.threads - 1);
+
+  DecodeSummary summary;
+  if (video.streamId) summary.streamLabel = " (video stream " + hexId(*video.streamId) + ")";
+  const std::string source = name + summary.streamLabel;
+  int pendingField = 0;  // parity of a first field waiting for its second
+  for (const ipu::AccessUnit& au : ipu::splitAccessUnits(video.bytes)) {
+    const auto bytes = std::span(video.bytes).subspan(au.offset, au.size);
+    const ipu::PictureReport r = pool ? decoder.decode(bytes, *pool) : decoder.decode(bytes);
+    for (const ipu::DecodeIssue& is : r.issues) {
+      std::string line = source + ": byte " + std::to_string(video.fileOffsetOf(au.offset + is.byteOffset));
+      if (is.mbX >= 0)
+        line += ", picture " + std::to_string(summary.frames) + " macroblock (" + std::to_string(is.mbX) + "," +
+                std::to_string(is.mbY) + ")";
+      diagnostics(line + ": " + ipu::issueName(is.kind));
+    }
+    if (r.issueCount > r.issues.size())
+      diagnostics("... and " + std::to_string(r.issueCount - r.issues.size()) + " more issues in this picture");
+    summary.issues += r.issueCount;
+    if (r.undecodable) {
+      const ipu::IssueKind k = r.issues.empty() ? ipu::IssueKind::kBadHeader : r.issues.back().kind;
+      throw DecodeError(source + ": byte " + std::to_string(video.fileOffsetOf(au.offset)) +
+                        ": cannot decode: " + ipu::issueName(k));
+    }
+    if (!r.produced) continue;
+    const int structure = decoder.picture().pictureStructure;
+    if (structure != 3) {  // a field picture
+      if (pendingField == 0 || pendingField == structure) {
+        pendingField = structure;
+        continue;
+      }
+      pendingField = 0;
+    }
+    summary.concealedMacroblocks += r.macroblocksConcealed;
+    frames(summary.frames, decoder);
+    ++summary.frames;
+  }
+  if (summary.frames == 0) {
+    if (!decoder.hasSequence()) throw DecodeError(source + ": no sequence header: nothing can be decoded");
+    throw DecodeError(source + ": no picture could be decoded");
+  }
+  summary.width = decoder.width();
+  summary.height = decoder.height();
+  summary.mpeg2 = decoder.sequence().mpeg2;
+  return summary;
+}
+
+}  // namespace vbim::streams

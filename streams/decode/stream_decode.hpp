@@ -1,0 +1,53 @@
+// Every picture of a stream file through the IPU decoder, without timing: the body of `vbim decode`.
+// The file may be a program stream (a VBIM stream, ffmpeg's MPEG-2 program streams and MPEG-1 system
+// streams) or a raw MPEG-1/2 video elementary stream; streams/video_elementary_stream.hpp takes the
+// video out of it and the IPU model (ipu/) decodes it. Frames go to a sink (frame_files.hpp writes
+// them as files); diagnostics go to a second sink, one line each, so nothing here prints.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "ipu/picture_decoder.hpp"
+
+namespace vbim::streams {
+
+// A stream that cannot be decoded at all; the message names the file and, where known, the byte.
+class DecodeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct DecodeOptions {
+  std::optional<std::uint8_t> streamId;  // PES id of the video stream; default: the first one
+  unsigned threads = 0;                  // > 1: slice-parallel decode on this many host threads (same bytes)
+};
+
+struct DecodeSummary {
+  int frames = 0;
+  int width = 0;
+  int height = 0;
+  bool mpeg2 = false;
+  std::string streamLabel;  // " (video stream 0xE0)" for a program stream, empty otherwise
+  std::size_t issues = 0;   // decode issues over all pictures
+  long concealedMacroblocks = 0;
+};
+
+// Called with each complete frame (numbered from 0) while the decoder holds it. A field picture
+// completes its frame only with the second field, of the other parity.
+using FrameSink = std::function<void(int frame, const ipu::Decoder& decoder)>;
+// Called with one line per diagnostic: defects skipped in the container ("warning: ..."), issues
+// found while decoding (with their file byte offset and macroblock).
+using DiagnosticSink = std::function<void(const std::string& line)>;
+
+// Decodes every picture of `file` (named `name` in messages). Throws DecodeError when the file is
+// not an MPEG stream, holds no such video stream, or a picture stops the decoder.
+DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string& name, const DecodeOptions& options,
+                           const FrameSink& frames, const DiagnosticSink& diagnostics);
+
+}  // namespace vbim::streams

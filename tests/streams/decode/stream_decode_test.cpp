@@ -1,0 +1,180 @@
+// decodeStream, the body of `vbim decode`: the same video decodes to the same frames whatever carries
+// it (raw elementary stream, MPEG-2 packs of any size, MPEG-1 system stream); damage and failures are
+// reported with file byte offsets.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ipu/csc.hpp"
+#include "streams/decode/frame_files.hpp"
+#include "streams/decode/stream_decode.hpp"
+#include "streams/video_elementary_stream.hpp"
+#include "tests/ipu/support/libav_mpeg.hpp"
+#include "tests/streams/program_stream_builder.hpp"
+
+namespace vbim::streams {
+namespace {
+
+using testing::append;
+using testing::Bytes;
+
+Bytes encode(bool mpeg1, int frames = 3, int w = 48, int h = 32) {
+  ipu::testing::EncodeOptions o;
+  o.width = w;
+  o.height = h;
+  o.frames = frames;
+  o.mpeg1 = mpeg1;
+  o.content = ipu::testing::Content::kPattern;
+  return ipu::testing::encodeIntra(o);
+}
+
+struct Decoded {
+  DecodeSummary summary;
+  std::vector<Bytes> frames;  // Y, Cb, Cr of each
+  std::vector<std::string> lines;
+};
+
+Decoded decode(const Bytes& file, DecodeOptions options = {}) {
+  Decoded d;
+  Yuv420Image yuv;
+  d.summary = decodeStream(
+      file, "in.mpg", options,
+      [&](int frame, const ipu::Decoder& dec) {
+        EXPECT_EQ(frame, static_cast<int>(d.frames.size()));
+        ipu::copyToYuv420(dec.frame(), dec.width(), dec.height(), yuv);
+        Bytes b = yuv.y;
+        append(b, yuv.cb);
+        append(b, yuv.cr);
+        d.frames.push_back(std::move(b));
+      },
+      [&](const std::string& line) { d.lines.push_back(line); });
+  return d;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& l : lines) s += l + "\n";
+  return s;
+}
+
+TEST(StreamsDecode, EveryContainerGivesTheFramesOfItsElementaryStream) {
+  for (const bool mpeg1 : {false, true}) {
+    SCOPED_TRACE(mpeg1 ? "MPEG-1" : "MPEG-2");
+    const Bytes es = encode(mpeg1);
+    const Decoded raw = decode(es);
+    ASSERT_EQ(raw.frames.size(), 3u);
+    EXPECT_EQ(raw.summary.frames, 3);
+    EXPECT_EQ(raw.summary.width, 48);
+    EXPECT_EQ(raw.summary.height, 32);
+    EXPECT_EQ(raw.summary.mpeg2, !mpeg1);
+    EXPECT_EQ(raw.summary.streamLabel, "");
+    EXPECT_EQ(raw.summary.issues, 0u);
+    const Bytes containers[] = {testing::muxMpeg2(es, 0xE0, 1000), testing::muxMpeg2(es, 0xE0, 333),
+                                testing::muxMpeg1(es, 0xE0, 2048), testing::muxMpeg1(es, 0xE0, 501)};
+    for (const Bytes& ps : containers) {
+      const Decoded d = decode(ps, {std::nullopt, 2});
+      EXPECT_TRUE(d.lines.empty()) << joined(d.lines);
+      EXPECT_EQ(d.summary.streamLabel, " (video stream 0xE0)");
+      EXPECT_EQ(d.frames, raw.frames);
+    }
+  }
+}
+
+TEST(StreamsDecode, DecodesTheVideoStreamAskedFor) {
+  Bytes ps = testing::muxMpeg2(encode(false, 2, 40, 24), 0xE0, 2048);
+  append(ps, testing::muxMpeg2(encode(false, 4, 32, 16), 0xE1, 2048));
+  const Decoded e1 = decode(ps, {0xE1, 0});
+  EXPECT_EQ(e1.summary.frames, 4);
+  EXPECT_EQ(e1.summary.width, 32);
+  EXPECT_EQ(e1.summary.streamLabel, " (video stream 0xE1)");
+  EXPECT_EQ(decode(ps).summary.frames, 2);
+  try {
+    decode(ps, {0xE2, 0});
+    FAIL() << "no stream 0xE2";
+  } catch (const DecodeError& e) {
+    EXPECT_STREQ(e.what(), "in.mpg: MPEG program stream without video stream 0xE2");
+  }
+}
+
+TEST(StreamsDecode, ReportsIssuesAtTheirFileOffsets) {
+  Bytes es = encode(false, 2, 64, 48);
+  for (std::size_t i = 120; i < es.size(); i += 211) es[i] ^= 0x24;
+  const Bytes ps = testing::muxMpeg2(es, 0xE0, 700);
+  const Decoded fromEs = decode(es);
+  const Decoded fromPs = decode(ps);
+  EXPECT_GT(fromEs.summary.issues, 0u);
+  EXPECT_GT(fromEs.summary.concealedMacroblocks, 0);
+  EXPECT_EQ(fromPs.frames, fromEs.frames);
+  ASSERT_EQ(fromPs.lines.size(), fromEs.lines.size());
+  // Each line names the byte: in the program stream, the file byte that holds the same ES byte.
+  const VideoElementaryStream video = readVideoStream(ps);
+  const std::string prefix = "in.mpg: byte ";
+  for (std::size_t i = 0; i < fromEs.lines.size(); ++i) {
+    const std::string& l = fromEs.lines[i];
+    if (l.rfind(prefix, 0) != 0) continue;  // "... and N more issues"
+    const std::size_t esByte = std::stoull(l.substr(prefix.size()));
+    const std::string rest = l.substr(l.find_first_not_of("0123456789", prefix.size()));
+    EXPECT_EQ(fromPs.lines[i], "in.mpg (video stream 0xE0): byte " + std::to_string(video.fileOffsetOf(esByte)) + rest);
+    if (esByte == es.size()) {  // "at the end of the data": just past the last byte
+      EXPECT_EQ(video.fileOffsetOf(esByte), video.fileOffsetOf(esByte - 1) + 1);
+      continue;
+    }
+    ASSERT_LT(esByte, es.size()) << l;
+    EXPECT_EQ(ps[video.fileOffsetOf(esByte)], es[esByte]) << l;
+  }
+}
+
+TEST(StreamsDecode, ATruncatedStreamDecodesWhatIsThereWithAWarning) {
+  const Bytes es = encode(false, 3);
+  const Bytes whole = testing::muxMpeg2(es, 0xE0, 1000);
+  const Bytes cut(whole.begin(), whole.end() - 700);
+  const Decoded d = decode(cut);
+  ASSERT_FALSE(d.lines.empty());
+  EXPECT_EQ(d.lines[0].rfind("warning: in.mpg: byte ", 0), 0u) << d.lines[0];
+  EXPECT_NE(d.lines[0].find("truncated"), std::string::npos) << d.lines[0];
+  EXPECT_GE(d.summary.frames, 2);
+}
+
+TEST(StreamsDecode, RefusesWhatIsNotAVideoStream) {
+  const auto message = [](const Bytes& file) {
+    try {
+      decode(file);
+    } catch (const DecodeError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(decoded)");
+  };
+  EXPECT_EQ(message({1, 2, 3, 4, 5}),
+            "in.mpg: byte 0: not an MPEG program stream or video elementary stream (expected 00 00 01 BA or 00 00 01 "
+            "B3)");
+  Bytes audio = testing::mpeg2PackHeader(0, 2500);
+  append(audio, testing::mpeg2Pes(0xC0, Bytes(10, 0x55)));
+  EXPECT_EQ(message(audio), "in.mpg: MPEG program stream without a video stream (PES id 0xE0..0xEF)");
+  Bytes noSequence = encode(false, 2);
+  for (std::size_t i = 0; i + 3 < noSequence.size(); ++i)
+    if (noSequence[i] == 0 && noSequence[i + 1] == 0 && noSequence[i + 2] == 1 && noSequence[i + 3] == 0xB3)
+      noSequence[i + 3] = 0xB2;
+  EXPECT_EQ(message(noSequence), "in.mpg: byte 0: cannot decode: no sequence header before the picture");
+}
+
+TEST(StreamsDecode, WritesFramesAsFiles) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("vbim-stream-decode-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const Bytes es = encode(false, 2, 40, 24);
+  for (const FrameFileFormat f : {FrameFileFormat::kYuv, FrameFileFormat::kPng}) {
+    FrameFileWriter writer(dir, f);
+    decodeStream(
+        es, "a.m2v", {}, [&](int frame, const ipu::Decoder& d) { writer.write(frame, d); }, [](const std::string&) {});
+  }
+  EXPECT_EQ(std::filesystem::file_size(dir / "frame_00001.yuv"), 40u * 24 * 3 / 2);
+  EXPECT_TRUE(std::filesystem::exists(dir / "frame_00001.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "frame_00002.png"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace vbim::streams
