@@ -99,6 +99,9 @@ class DemoProfile {
     plots::writeChartFiles(plots::profile::lagPopFigure(title, runs, -1), dir.path("plots/lag_pop"));
 
     const auto stream = pr::bareStream(disc);
+    // The authored file's temporary name carries the process id; the legend names it as it is
+    // saved (day.vbim), so that the figure is the same on every run.
+    stream->label = "day";
     pr::StallSearch search;
     search.stallAt = fromMs(3'000);
     search.maxStall = fromMs(20'000);
