@@ -45,11 +45,12 @@ bool listsDevice(const std::filesystem::path& driverInfo, std::string_view devic
 // drivers makes it exit: both are checked here first, with the package to install.
 void requireDevice(Device device, const std::string& file) {
   const char* env = std::getenv("PLPLOT_DRV_DIR");
-  const std::filesystem::path dir = env != nullptr && *env != '\0' ? env : VBIM_PLPLOT_DRV_DIR;
+  // Set but empty is PLplot's choice too (a directory it cannot open): the check below fails it.
+  const std::filesystem::path dir = env != nullptr ? env : VBIM_PLPLOT_DRV_DIR;
   const char* name = deviceName(device);
   std::error_code ec;
-  if (!std::filesystem::exists(dir / "cairo.so", ec) || !listsDevice(dir / "cairo.driver_info", name)) {
-    throw PlotError(file + ": PLplot's cairo driver (device " + name + ") is not installed in " + dir.string() +
+  if (dir.empty() || !std::filesystem::exists(dir / "cairo.so", ec) || !listsDevice(dir / "cairo.driver_info", name)) {
+    throw PlotError(file + ": PLplot's cairo driver (device " + name + ") is not installed in '" + dir.string() + "'" +
                     ": apt-get install plplot-driver-cairo" + (env != nullptr ? " (or unset PLPLOT_DRV_DIR)" : ""));
   }
   const char* menus[128];
