@@ -18,9 +18,11 @@
 
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
-#include "cli/profile_plots.hpp"
+#include "cli/profile_outputs.hpp"
 #include "cli/profile_run.hpp"
 #include "iop/fault_plan.hpp"
+#include "plots/profile_figures.hpp"
+#include "plots/write_chart.hpp"
 #include "render/render_error.hpp"
 #include "render/render_run.hpp"
 #include "render/run_dir.hpp"
@@ -90,12 +92,16 @@ class DemoProfile {
     std::filesystem::create_directories(dir.path("plots"));
     const pr::RingSize demoRing{player::PlatformConfig{}.iop.ring.bankmax,
                                 player::PlatformConfig{}.iop.ring.bufmax_sectors};
-    const std::vector<pr::NamedSeries> runs{{"vbim demo (ring 160 sectors, 5 banks)", demoRing, &series_}};
+    const std::vector<plots::profile::RunTrace> runs{
+        {"vbim demo (ring 160 sectors, 5 banks)", demoRing.bankmax, pr::tracePoints(series_)}};
     const std::string title = "vbim demo: day_clear with a 6 s stall at 0.2 s, a read error and a loop wrap";
-    plot::writePng(pr::occupancyFigure(title, runs), dir.path("plots/occupancy.png"));
-    plot::writePng(pr::lagPopFigure(title, runs, -1), dir.path("plots/lag_pop.png"));
+    plots::writeChartFiles(plots::profile::occupancyFigure(title, runs), dir.path("plots/occupancy"));
+    plots::writeChartFiles(plots::profile::lagPopFigure(title, runs, -1), dir.path("plots/lag_pop"));
 
     const auto stream = pr::bareStream(disc);
+    // The authored file's temporary name carries the process id; the legend names it as it is
+    // saved (day.vbim), so that the figure is the same on every run.
+    stream->label = "day";
     pr::StallSearch search;
     search.stallAt = fromMs(3'000);
     search.maxStall = fromMs(20'000);
@@ -112,8 +118,9 @@ class DemoProfile {
         rows.push_back(
             pr::StallRow{stream->label, ring, c.config.gs.catchup, crit, pr::longestSurvivableStall(c, search, crit)});
     }
-    plot::writePng(pr::stallFigure("vbim demo: survivable drive stall against ring size", rows, search),
-                   dir.path("plots/survivable_stall.png"));
+    plots::writeChartFiles(plots::profile::stallFigure("vbim demo: survivable drive stall against ring size",
+                                                       pr::stallPoints(rows), pr::stallSearchSetup(search)),
+                           dir.path("plots/survivable_stall"));
     std::ofstream csv(dir.path("plots/survivable_stall.csv"), std::ios::binary);
     csv << "bankmax,bufmax_sectors,policy,criterion,longest_stall_s,saturated\n";
     for (const pr::StallRow& r : rows) {

@@ -1,6 +1,6 @@
 // vbim profile: sweeps over ring size, stream (several discs, or one re-encoded at several
 // quantisers / bitrates), fault plans and catch-up policy; searches the longest drive stall each
-// ring size survives; writes sweep.csv, stall.csv, profile.json and plots/*.png into --out
+// ring size survives; writes sweep.csv, stall.csv, profile.json and plots/*.png and *.svg into --out
 // (complete or absent). docs/player.md, "Profiling".
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
-#include "cli/profile_plots.hpp"
+#include "cli/profile_outputs.hpp"
 #include "cli/profile_run.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"

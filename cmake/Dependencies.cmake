@@ -38,6 +38,14 @@ if(NOT VBIM_MODEL_ONLY)
   vbim_require_pkgconfig(PNG libpng-dev libpng)
   vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
 
+  # Plots (plots/): PLplot and its cairo driver (PNG and SVG devices). PLplot loads the driver at run
+  # time from its drivers directory, so a missing driver package would only show when a plot is drawn.
+  vbim_require_pkgconfig(PLPLOT "libplplot-dev plplot-driver-cairo" plplot)
+  pkg_get_variable(PLPLOT_DRV_DIR plplot drvdir)
+  if(NOT EXISTS "${PLPLOT_DRV_DIR}/cairo.driver_info")
+    message(FATAL_ERROR "PLplot's cairo driver not found in '${PLPLOT_DRV_DIR}': apt-get install plplot-driver-cairo (or run scripts/setup.sh as root)")
+  endif()
+
   # OpenImageIO through pkg-config: Debian 12's CMake config lists /usr/include/opencv4 and the
   # openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step
   # fails (docs/dependencies.md#openimageio-cmake-config).

@@ -18,6 +18,8 @@ PACKAGES=(
   libiso9660-dev libcdio-dev xorriso
   # pictures
   libosmesa6-dev libglm-dev
+  # plots (PLplot draws PNG and SVG through its cairo driver)
+  libplplot-dev plplot-driver-cairo
   # portable SIMD with run-time dispatch
   libhwy-dev
 )

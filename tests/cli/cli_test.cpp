@@ -92,7 +92,8 @@ TEST(Cli, DemoWritesACompleteOutputDirectory) {
   EXPECT_TRUE(fs::exists(out / "signals.vcd"));
   EXPECT_TRUE(fs::exists(out / "stats.json"));
   EXPECT_TRUE(fs::exists(out / "hashes.txt"));
-  for (const char* plot : {"plots/occupancy.png", "plots/lag_pop.png", "plots/survivable_stall.png"})
+  for (const char* plot : {"plots/occupancy.png", "plots/lag_pop.png", "plots/survivable_stall.png",
+                           "plots/occupancy.svg", "plots/lag_pop.svg", "plots/survivable_stall.svg"})
     EXPECT_TRUE(fs::exists(out / plot)) << plot;  // the profile pass (issue #7 item 10)
   // Rendered pictures (issue #9 item 4).
   for (const char* f : {"render/contact_sheet.png", "render/playback.mp4", "render/render.json"})

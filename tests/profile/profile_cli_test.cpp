@@ -1,5 +1,5 @@
 // `vbim profile` end to end on the committed sample: the outputs exist and are complete, a second
-// run gives the same bytes (CSV, JSON, PNG), the survivable stall grows with the ring, and bad input
+// run gives the same bytes (CSV, JSON, PNG, SVG), the survivable stall grows with the ring, and bad input
 // exits non-zero with a message naming what was wrong, leaving no output directory behind.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -68,8 +68,9 @@ TEST(ProfileCli, WritesTablesAndPlotsDeterministically) {
   const Result rb = run("profile " + kSample + kSmall + " --policy blend,skip --out " + b.string());
   ASSERT_EQ(rb.code, 0) << rb.output;
   for (const char* f :
-       {"sweep.csv", "stall.csv", "profile.json", "plots/survivable_stall.png",
-        "plots/occupancy_day_clear_none_blend-through.png", "plots/lag_pop_day_clear_none_hard-skip.png"}) {
+       {"sweep.csv", "stall.csv", "profile.json", "plots/survivable_stall.png", "plots/survivable_stall.svg",
+        "plots/occupancy_day_clear_none_blend-through.png", "plots/occupancy_day_clear_none_blend-through.svg",
+        "plots/lag_pop_day_clear_none_hard-skip.png", "plots/lag_pop_day_clear_none_hard-skip.svg"}) {
     ASSERT_TRUE(fs::exists(a / f)) << f << "\n" << ra.output;
     EXPECT_GT(fs::file_size(a / f), 100u) << f;
     EXPECT_EQ(slurp(a / f), slurp(b / f)) << f << " differs between two identical runs";

@@ -1,6 +1,7 @@
 // The results of a profile (sweep runs and stall searches) and how they are written: sweep.csv,
-// stall.csv, profile.json, and the plots (plots/occupancy_*.png, plots/lag_pop_*.png,
-// plots/survivable_stall.png). Shared by `vbim profile` and `vbim demo`.
+// stall.csv, profile.json, and the figures, drawn by plots/profile_figures.hpp from the plain
+// results (plots/occupancy_*, plots/lag_pop_*, plots/survivable_stall, each .png and .svg).
+// Shared by `vbim profile` and `vbim demo`.
 #pragma once
 
 #include <string>
@@ -8,8 +9,8 @@
 #include <vector>
 
 #include "cli/output_dir.hpp"
-#include "cli/plot_png.hpp"
 #include "cli/profile_run.hpp"
+#include "plots/profile_figures.hpp"
 
 namespace vbim::cli::profile {
 
@@ -44,16 +45,9 @@ struct ProfileData {
 // Writes every output into `dir` and returns the names written (relative), plots first.
 std::vector<std::string> writeProfileOutputs(const ProfileData& d, const OutputDir& dir);
 
-// The time-series figures of runs that differ in one thing (`name` of each run in the legend):
-// ring occupancy (percent of the ring readable) and lag + pop per vsync.
-struct NamedSeries {
-  std::string name;
-  RingSize ring;
-  const std::vector<Sample>* series = nullptr;
-};
-plot::Figure occupancyFigure(const std::string& title, const std::vector<NamedSeries>& runs);
-plot::Figure lagPopFigure(const std::string& title, const std::vector<NamedSeries>& runs, int popThreshold);
-// Longest survivable stall against ring size (sectors), one line per stream, policy and criterion.
-plot::Figure stallFigure(const std::string& title, const std::vector<StallRow>& rows, const StallSearch& search);
+// The plain inputs of the figures.
+std::vector<plots::profile::TracePoint> tracePoints(const std::vector<Sample>& series);
+std::vector<plots::profile::StallPoint> stallPoints(const std::vector<StallRow>& rows);
+plots::profile::StallSearchSetup stallSearchSetup(const StallSearch& search);
 
 }  // namespace vbim::cli::profile

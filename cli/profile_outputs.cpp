@@ -1,10 +1,7 @@
-#include "cli/profile_plots.hpp"
+#include "cli/profile_outputs.hpp"
 
 #include <cstdio>
 #include <fstream>
-#include <iostream>
-#include <map>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -16,17 +13,6 @@ std::string fixed(double v, int decimals) {
   char b[48];
   std::snprintf(b, sizeof b, "%.*f", decimals, v);
   return b;
-}
-
-std::string ringLabel(const RingSize& r) {
-  return std::to_string(r.bufmax) + " sectors (" + std::to_string(r.bankmax) + " banks)";
-}
-
-// A file-name-safe version of a label.
-std::string safe(const std::string& s) {
-  std::string o;
-  for (char c : s) o += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
-  return o;
 }
 
 std::string csvQuote(const std::string& s) {
@@ -126,135 +112,37 @@ nlohmann::ordered_json profileJson(const ProfileData& d) {
   return j;
 }
 
-void writePlot(const plot::Figure& f, const OutputDir& dir, const std::string& name, std::vector<std::string>& out) {
-  if (!plot::writePng(f, dir.path(name)))
-    std::cerr << "warning: no TrueType font found; " << name << " has no labels\n";
-  out.push_back(name);
-}
-
 }  // namespace
 
-plot::Figure occupancyFigure(const std::string& title, const std::vector<NamedSeries>& runs) {
-  plot::Figure f;
-  f.title = title;
-  f.panelHeight = 360;
-  plot::Panel p;
-  p.title = "Stream ring occupancy";
-  p.yLabel = "% of the ring readable";
-  p.xLabel = "simulated time (s)";
-  p.yMin = 0;
-  p.yMax = 105;
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    plot::Series s;
-    s.name = runs[i].name;
-    s.color = plot::paletteColor(i);
-    s.step = true;
-    s.thickness = 2;
-    const double banks = static_cast<double>(std::max<std::int64_t>(runs[i].ring.bankmax, 1));
-    for (const Sample& v : *runs[i].series) {
-      s.x.push_back(v.t);
-      s.y.push_back(100.0 * v.ringBanks / banks);
-    }
-    p.series.push_back(std::move(s));
-  }
-  f.panels.push_back(std::move(p));
-  return f;
+std::vector<plots::profile::TracePoint> tracePoints(const std::vector<Sample>& series) {
+  std::vector<plots::profile::TracePoint> points;
+  points.reserve(series.size());
+  for (const Sample& s : series) points.push_back({s.t, s.ringBanks, s.lag, s.pop});
+  return points;
 }
 
-plot::Figure lagPopFigure(const std::string& title, const std::vector<NamedSeries>& runs, int popThreshold) {
-  plot::Figure f;
-  f.title = title;
-  plot::Panel lag, pop, behind;
-  lag.title = "Lag: largest per-byte difference from the fault-free run";
-  lag.yLabel = "lag (8-bit levels)";
-  lag.xLabel = "simulated time (s)";
-  pop.title = "Pop: largest per-byte change of the lightmap in one vsync";
-  pop.yLabel = "pop (8-bit levels)";
-  pop.xLabel = "simulated time (s)";
-  if (popThreshold >= 0)
-    pop.refLines.push_back(plot::RefLine{"threshold " + std::to_string(popThreshold), double(popThreshold)});
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    plot::Series l, p;
-    l.name = p.name = runs[i].name;
-    l.color = p.color = plot::paletteColor(i);
-    l.thickness = 2;
-    for (const Sample& v : *runs[i].series) {
-      l.x.push_back(v.t);
-      l.y.push_back(v.lag);
-      p.x.push_back(v.t);
-      p.y.push_back(v.pop);
-    }
-    lag.series.push_back(std::move(l));
-    pop.series.push_back(std::move(p));
-  }
-  f.panels.push_back(std::move(lag));
-  f.panels.push_back(std::move(pop));
-  return f;
-}
-
-plot::Figure stallFigure(const std::string& title, const std::vector<StallRow>& rows, const StallSearch& search) {
-  plot::Figure f;
-  f.title = title;
-  f.panelHeight = 420;
-  plot::Panel p;
-  p.title = "Longest drive stall survived (stall at " + fixed(toSeconds(search.stallAt), 1) + " s; pop threshold " +
-            (search.popThreshold >= 0 ? std::to_string(search.popThreshold) : std::string("auto")) + ")";
-  p.yLabel = "longest stall (s)";
-  p.xLabel = "stream ring size (sectors of 2 KiB, log scale)";
-  p.xLog2 = true;
-  p.refLines.push_back(plot::RefLine{
-      "search limit " + fixed(toSeconds(search.maxStall), 0) + " s", toSeconds(search.maxStall), {0.6f, 0.6f, 0.6f}});
-  std::map<std::string, plot::Series> lines;  // by stream / policy / criterion, in first-seen order below
-  std::vector<std::string> order;
+std::vector<plots::profile::StallPoint> stallPoints(const std::vector<StallRow>& rows) {
+  std::vector<plots::profile::StallPoint> points;
   for (const StallRow& r : rows) {
-    const std::string key = r.stream + ", " + r.policy + ", " + toString(r.criterion);
-    if (!lines.count(key)) {
-      order.push_back(key);
-      plot::Series& s = lines[key];
-      s.name = key;
-      s.color = plot::paletteColor(order.size() - 1);
-      s.markers = true;
-      s.thickness = 2;
-    }
-    if (!r.result.longest) continue;  // fails without a stall: no point
-    lines[key].x.push_back(static_cast<double>(r.ring.bufmax));
-    lines[key].y.push_back(toSeconds(*r.result.longest));
+    plots::profile::StallPoint p;
+    p.line = r.stream + ", " + r.policy + ", " + toString(r.criterion);
+    p.ringSectors = static_cast<double>(r.ring.bufmax);
+    if (r.result.longest) p.longestS = toSeconds(*r.result.longest);
+    points.push_back(std::move(p));
   }
-  // Lines that coincide (common: criteria and policies often agree) stay visible as nested
-  // stripes: the first drawn is the widest.
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    plot::Series& s = lines[order[i]];
-    s.thickness = 2 + 3 * static_cast<int>(order.size() - 1 - i);
-    p.series.push_back(std::move(s));
-  }
-  f.panels.push_back(std::move(p));
-  return f;
+  return points;
+}
+
+plots::profile::StallSearchSetup stallSearchSetup(const StallSearch& search) {
+  return {toSeconds(search.stallAt), toSeconds(search.maxStall), search.popThreshold};
 }
 
 std::vector<std::string> writeProfileOutputs(const ProfileData& d, const OutputDir& dir) {
-  std::vector<std::string> written;
-  std::filesystem::create_directories(dir.path("plots"));
-  // One occupancy and one lag/pop figure per (stream, faults, policy), lines per ring size.
-  std::map<std::string, std::vector<const SweepRun*>> groups;
-  std::vector<std::string> order;
-  for (const SweepRun& s : d.sweep) {
-    const std::string key = s.stream + "_" + s.faults + "_" + s.policy;
-    if (!groups.count(key)) order.push_back(key);
-    groups[key].push_back(&s);
-  }
-  for (const std::string& key : order) {
-    std::vector<NamedSeries> runs;
-    const SweepRun& first = *groups[key].front();
-    for (const SweepRun* s : groups[key])
-      runs.push_back(NamedSeries{"ring " + ringLabel(s->ring), s->ring, &s->result.series});
-    const std::string what = first.stream + ", faults: " + first.faults + ", catch-up: " + first.policy;
-    writePlot(occupancyFigure(what, runs), dir, "plots/occupancy_" + safe(key) + ".png", written);
-    writePlot(lagPopFigure(what, runs, d.search.popThreshold), dir, "plots/lag_pop_" + safe(key) + ".png", written);
-  }
-  if (!d.stalls.empty()) {
-    writePlot(stallFigure("Survivable drive stall against ring size", d.stalls, d.search), dir,
-              "plots/survivable_stall.png", written);
-  }
+  std::vector<plots::profile::SweepTrace> sweep;
+  for (const SweepRun& s : d.sweep)
+    sweep.push_back({s.stream, s.faults, s.policy, s.ring.bankmax, s.ring.bufmax, tracePoints(s.result.series)});
+  std::vector<std::string> written =
+      plots::profile::writeProfileFigures(sweep, stallPoints(d.stalls), stallSearchSetup(d.search), dir.path(""));
   {
     std::ofstream o(dir.path("sweep.csv"), std::ios::binary);
     writeSweepCsv(d, o);

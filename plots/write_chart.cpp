@@ -1,0 +1,33 @@
+#include "plots/write_chart.hpp"
+
+#include "plots/atomic_file.hpp"
+#include "plots/draw_chart.hpp"
+#include "plots/plplot_page.hpp"
+#include "plots/svg_ids.hpp"
+
+namespace vbim::plots {
+
+std::string renderChart(const Figure& fig, Format format, const std::string& name) {
+  PlplotPage page(format == Format::png ? Device::png : Device::svg, fig.width, figureHeight(fig), name);
+  drawChart(fig);
+  page.check();
+  std::string bytes = page.finish();
+  return format == Format::svg ? renumberCairoIds(bytes) : bytes;
+}
+
+void writeChart(const Figure& fig, const std::filesystem::path& file, Format format) {
+  writeFileAtomically(file, renderChart(fig, format, file.string()));
+}
+
+std::vector<std::filesystem::path> writeChartFiles(const Figure& fig, const std::filesystem::path& stem) {
+  std::vector<std::filesystem::path> files;
+  for (const Format f : {Format::png, Format::svg}) {
+    std::filesystem::path file = stem;
+    file += f == Format::png ? ".png" : ".svg";
+    writeChart(fig, file, f);
+    files.push_back(std::move(file));
+  }
+  return files;
+}
+
+}  // namespace vbim::plots
