@@ -19,8 +19,10 @@
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
 #include "cli/profile_outputs.hpp"
-#include "cli/profile_run.hpp"
+#include "gs/blend_simd.hpp"
 #include "iop/fault_plan.hpp"
+#include "ipu/simd/simd_kernels.hpp"
+#include "player/profile_run.hpp"
 #include "plots/profile_figures.hpp"
 #include "plots/write_chart.hpp"
 #include "render/render_error.hpp"
@@ -114,6 +116,7 @@ class DemoProfile {
       c.stream = stream.get();
       c.config.iop.ring.bankmax = ring.bankmax;
       c.config.iop.ring.bufmax_sectors = ring.bufmax;
+      c.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
       for (pr::Criterion crit : {pr::Criterion::late, pr::Criterion::pop})
         rows.push_back(
             pr::StallRow{stream->label, ring, c.config.gs.catchup, crit, pr::longestSurvivableStall(c, search, crit)});

@@ -14,12 +14,14 @@
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/profile_outputs.hpp"
-#include "cli/profile_run.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
+#include "gs/blend_simd.hpp"
 #include "gs/gs_error.hpp"
 #include "iop/file_disc.hpp"
 #include "iop/memory_disc.hpp"
+#include "ipu/simd/simd_kernels.hpp"
+#include "player/profile_run.hpp"
 #include "player/scenario.hpp"
 #include "streams/authoring/authoring_error.hpp"
 #include "streams/authoring/transcode.hpp"
@@ -120,7 +122,13 @@ void runProfile(const ProfileRequest& r) {
   const auto wall0 = std::chrono::steady_clock::now();  // host time: stdout only
   // Streams: every disc as given, then the first one re-encoded at each quantiser and bitrate.
   std::vector<std::shared_ptr<Stream>> streams;
-  for (const std::string& d : r.discs) streams.push_back(bareStream(d));
+  for (const std::string& d : r.discs) {
+    try {
+      streams.push_back(bareStream(d));
+    } catch (const iop::DiscError& e) {
+      throw Exit(2, e.what());
+    }
+  }
   for (int q : r.qscales) {
     if (q < 1 || q > 31) throw Exit(2, "--qscale " + std::to_string(q) + ": expected 1..31");
     streams::EncoderSettings e;
@@ -191,6 +199,7 @@ void runProfile(const ProfileRequest& r) {
     c.config.gs.catchup = policy;
     c.seed = r.seed;
     c.duration = duration;
+    c.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
     return c;
   };
   try {

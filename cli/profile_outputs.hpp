@@ -9,10 +9,13 @@
 #include <vector>
 
 #include "cli/output_dir.hpp"
-#include "cli/profile_run.hpp"
+#include "player/profile_run.hpp"
 #include "plots/profile_figures.hpp"
 
 namespace vbim::cli::profile {
+
+// The runs themselves are the player's (player/profile_run.hpp); this file writes their results.
+using namespace vbim::player::profile;
 
 struct RingSize {
   std::int64_t bankmax = 5;

@@ -1,44 +1,35 @@
-#include "cli/profile_run.hpp"
+#include "player/profile_run.hpp"
 
 #include <filesystem>
 
-#include "cli/command.hpp"
-#include "gs/blend_simd.hpp"
 #include "iop/file_disc.hpp"
-#include "ipu/simd/simd_kernels.hpp"
 #include "player/scenario.hpp"
 
-namespace vbim::cli::profile {
+namespace vbim::player::profile {
 
 std::shared_ptr<Stream> bareStream(const std::string& path) {
   auto s = std::make_shared<Stream>();
   s->label = std::filesystem::path(path).stem().string();
-  try {
-    iop::FileDisc probe(path, player::kBareFileLba);
-    s->file = probe.file();
-    s->disc = std::make_shared<iop::FileDisc>(path, player::kBareFileLba,
-                                              player::kBareFileLba + s->file.sectors() + player::kBareFilePadSectors);
-  } catch (const iop::DiscError& e) {
-    throw Exit(2, e.what());
-  }
+  iop::FileDisc probe(path, kBareFileLba);
+  s->file = probe.file();
+  s->disc = std::make_shared<iop::FileDisc>(path, kBareFileLba, kBareFileLba + s->file.sectors() + kBareFilePadSectors);
   return s;
 }
 
 CaseResult runCase(const Case& c, bool keepSeries) {
-  player::PlayerOptions o;
+  PlayerOptions o;
   o.config = c.config;
   o.faults = c.faults;
   o.seed = c.seed;
   o.duration = c.duration;
   o.trace = false;
   o.reference = c.reference;
-  o.kernels.blend = &gs::simd::kernels();
-  o.kernels.ipu = &ipu::simdKernels();
-  player::Player p(*c.stream->disc, c.stream->file, o);
+  o.kernels = c.kernels;
+  Player p(*c.stream->disc, c.stream->file, o);
   CaseResult r;
   if (keepSeries) r.series.reserve(static_cast<std::size_t>(toSeconds(c.duration) * 60.0) + 2);
   bool shown = false, skyShown = false;  // a frame was in the lightmap (sky) before this vsync
-  p.setSink([&](const player::VsyncRow& row, const Rgba8Image&, const Rgba8Image*) {
+  p.setSink([&](const VsyncRow& row, const Rgba8Image&, const Rgba8Image*) {
     const int pop = shown ? row.lightmap.pop : 0;
     const int skyPop = skyShown && row.sky ? row.sky->pop : 0;
     shown = shown || row.lightmap.targetSeq >= 0;
@@ -121,4 +112,4 @@ StallResult longestSurvivableStall(const Case& base, const StallSearch& search, 
   return out;
 }
 
-}  // namespace vbim::cli::profile
+}  // namespace vbim::player::profile

@@ -27,7 +27,7 @@
 #include "iop/sector_source.hpp"
 #include "player/player.hpp"
 
-namespace vbim::cli::profile {
+namespace vbim::player::profile {
 
 // A stream to play: a disc and the file on it, with a label for tables and legends.
 struct Stream {
@@ -36,8 +36,8 @@ struct Stream {
   iop::DiscFile file;
 };
 
-// A bare stream file on a notional disc, as `vbim play` places it (throws cli::Exit for a file that
-// is missing or not whole sectors).
+// A bare stream file on a notional disc, as `vbim play` places it (throws iop::DiscError for a file
+// that is missing or not whole sectors).
 std::shared_ptr<Stream> bareStream(const std::string& path);
 
 struct Case {
@@ -47,6 +47,7 @@ struct Case {
   std::uint64_t seed = 1;
   Tick duration = 0;
   bool reference = true;  // measure lag against a fault-free reference (costs a second pipeline)
+  Kernels kernels;        // SIMD kernels injected by the caller (null: the scalar references, same bytes)
 };
 
 // One vsync, as the plots need it.
@@ -72,7 +73,7 @@ struct CaseResult {
   std::vector<Sample> series;  // empty unless asked for
 };
 
-// Runs one case (throws what the player throws: StreamProbeError, ConfigError, gs::GsError).
+// Runs one case (throws what the player throws: ee::StreamProbeError, ConfigError, gs::GsError).
 CaseResult runCase(const Case& c, bool keepSeries);
 
 enum class Criterion { late, pop };
@@ -98,4 +99,4 @@ struct StallResult {
 // reference pipeline is not built (lag is not a criterion).
 StallResult longestSurvivableStall(const Case& base, const StallSearch& search, Criterion criterion);
 
-}  // namespace vbim::cli::profile
+}  // namespace vbim::player::profile
