@@ -1,17 +1,21 @@
 // vbim author: image sequences, Technique A (author_terrain.cpp) or the synthetic day generator ->
 // one VBIM stream file.
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
+#include "imageio/error.hpp"
+#include "imageio/image_reader.hpp"
 #include "streams/authoring/authoring_error.hpp"
 #include "streams/authoring/frame_pattern.hpp"
-#include "streams/authoring/image_loader.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/synthetic_day.hpp"
+#include "streams/authoring/tone_map.hpp"
 
 extern "C" {
 #include <libavutil/log.h>
@@ -44,6 +48,20 @@ std::vector<std::pair<std::string, std::string>> parsePairs(const std::vector<st
     out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
   }
   return out;
+}
+
+// One input frame file to 8-bit (streams/authoring/tone_map.hpp); a file that cannot be read is an
+// AuthoringError naming it.
+Rgba8Image loadFrame(const std::filesystem::path& path, InputEncoding enc, const ToneMapping& tone) {
+  imageio::FloatRgbFrame frame;
+  try {
+    frame = imageio::readFloatRgb(path);
+  } catch (const imageio::ImageIoError& e) {
+    throw AuthoringError(e.what());
+  }
+  FloatRgbImage rgb(frame.rgb.width, frame.rgb.height);
+  rgb.rgb = std::move(frame.rgb.samples);
+  return encodeFrame(rgb, frame.floatingPoint, enc, tone);
 }
 
 struct VariantInput {

@@ -13,11 +13,12 @@
 
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
+#include "imageio/exr_writer.hpp"
+#include "imageio/png_writer.hpp"
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "runtime/image_file.hpp"
 #include "runtime/worker_pool.hpp"
 
 namespace vbim::cli {
@@ -230,12 +231,12 @@ void run(const Options& o) {
       if (o.format == "png") {
         for (std::size_t i = 3; i < rgba.pixels.size(); i += 4)
           rgba.pixels[i] = static_cast<std::uint8_t>(rgba.pixels[i] >= 0x80 ? 255 : rgba.pixels[i] * 2);
-        writePng(dir.path(name), w, h, rgba.pixels.data());
+        imageio::writePng(dir.path(name), imageio::ImageView<std::uint8_t>{w, h, 4, rgba.pixels.data()});
       } else {
         floats.resize(rgba.pixels.size());
         for (std::size_t i = 0; i < rgba.pixels.size(); ++i)
           floats[i] = (i % 4 == 3) ? rgba.pixels[i] / 128.0f : rgba.pixels[i] / 255.0f;
-        writeExr(dir.path(name), w, h, floats.data());
+        imageio::writeExr(dir.path(name), imageio::ImageView<float>{w, h, 4, floats.data()});
       }
     }
     ++pictures;

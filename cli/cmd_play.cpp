@@ -15,9 +15,12 @@
 #include "cli/play_run.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/gs_error.hpp"
+#include "imageio/error.hpp"
+#include "imageio/exr_writer.hpp"
+#include "imageio/png_writer.hpp"
+#include "imageio/rgba8.hpp"
 #include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "runtime/image_file.hpp"
 #include "runtime/player/report.hpp"
 #include "runtime/player/scenario.hpp"
 
@@ -38,11 +41,11 @@ void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool e
     if (exr) {
       std::vector<float> scaled(img.pixels.size());  // 8-bit texels as 0..1 (alpha 0x80 = 0.502)
       for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = static_cast<float>(img.pixels[i]) / 255.0f;
-      writeExr(path, img.width, img.height, scaled.data());
+      imageio::writeExr(path, imageio::ImageView<float>{img.width, img.height, 4, scaled.data()});
     } else {
-      writePng(path, img.width, img.height, img.pixels.data());
+      imageio::writePng(path, imageio::rgbaView(img));
     }
-  } catch (const ImageFileError& e) {
+  } catch (const imageio::ImageIoError& e) {
     throw Exit(1, e.what());
   }
 }

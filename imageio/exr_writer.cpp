@@ -1,10 +1,10 @@
 #include "imageio/exr_writer.hpp"
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <Imath/half.h>
 
 #include <array>
 #include <exception>
@@ -31,6 +31,9 @@ template <typename Sample>
 void writeSamples(const fs::path& temporary, int width, int height, int channels, Imf::PixelType type,
                   const Sample* samples) {
   Imf::Header header(width, height);
+  // Both lossless. PIZ (wavelet) is OpenEXR's choice for half-float pictures (ImfRgbaFile.h's
+  // default, what vbim play and decode have always written); ZIP suits 32-bit data layers.
+  header.compression() = type == Imf::HALF ? Imf::PIZ_COMPRESSION : Imf::ZIP_COMPRESSION;
   Imf::FrameBuffer frame;
   const std::size_t xStride = sizeof(Sample) * static_cast<std::size_t>(channels);
   const std::size_t yStride = xStride * static_cast<std::size_t>(width);

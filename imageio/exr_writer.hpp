@@ -12,9 +12,9 @@ namespace vbim::imageio {
 // (generator outputs, data layers).
 enum class ExrSamples { Half, Float };
 
-// Grey (1 channel, named Y), grey + alpha (2: Y, A), RGB (3) or RGBA (4), 1.0 = full scale, ZIP
-// compressed. Written under a temporary name and renamed into place. Throws ImageIoError naming the
-// file.
+// Grey (1 channel, named Y), grey + alpha (2: Y, A), RGB (3) or RGBA (4), 1.0 = full scale; half
+// samples PIZ-, float samples ZIP-compressed (both lossless). Written under a temporary name and
+// renamed into place. Throws ImageIoError naming the file.
 void writeExr(const std::filesystem::path& path, ImageView<float> image, ExrSamples stored = ExrSamples::Half);
 
 }  // namespace vbim::imageio

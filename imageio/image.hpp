@@ -28,8 +28,7 @@ struct Image {
   std::vector<T> samples;
 
   Image() = default;
-  Image(int w, int h, int c)
-      : width(w), height(h), channels(c), samples(static_cast<std::size_t>(w) * h * c, T{}) {}
+  Image(int w, int h, int c) : width(w), height(h), channels(c), samples(static_cast<std::size_t>(w) * h * c, T{}) {}
   ImageView<T> view() const { return {width, height, channels, samples.data()}; }
 };
 

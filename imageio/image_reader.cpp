@@ -65,11 +65,19 @@ ImageReader::ImageReader(const fs::path& path, std::string what, AlphaMode alpha
 
 ImageReader::~ImageReader() = default;
 
-const ImageInfo& ImageReader::info() const { return impl_->info; }
+const ImageInfo& ImageReader::info() const {
+  return impl_->info;
+}
 
-Image<std::uint8_t> ImageReader::readUInt8() { return impl_->read<std::uint8_t>(OIIO::TypeDesc::UINT8); }
-Image<std::uint16_t> ImageReader::readUInt16() { return impl_->read<std::uint16_t>(OIIO::TypeDesc::UINT16); }
-Image<float> ImageReader::readFloat() { return impl_->read<float>(OIIO::TypeDesc::FLOAT); }
+Image<std::uint8_t> ImageReader::readUInt8() {
+  return impl_->read<std::uint8_t>(OIIO::TypeDesc::UINT8);
+}
+Image<std::uint16_t> ImageReader::readUInt16() {
+  return impl_->read<std::uint16_t>(OIIO::TypeDesc::UINT16);
+}
+Image<float> ImageReader::readFloat() {
+  return impl_->read<float>(OIIO::TypeDesc::FLOAT);
+}
 
 ImageIoError ImageReader::error(const std::string& problem) const {
   return ImageIoError(impl_->path + ": the " + impl_->what + " " + problem);
@@ -103,8 +111,11 @@ FloatRgbFrame readFloatRgb(const fs::path& path) {
   frame.rgb = Image<float>(info.width, info.height, 3);
   const std::size_t pixels = static_cast<std::size_t>(info.width) * static_cast<std::size_t>(info.height);
   const auto channels = static_cast<std::size_t>(info.channels);
-  for (std::size_t i = 0; i < pixels; ++i)
-    for (std::size_t c = 0; c < 3; ++c) frame.rgb.samples[i * 3 + c] = samples.samples[i * channels + (channels >= 3 ? c : 0)];
+  for (std::size_t i = 0; i < pixels; ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      frame.rgb.samples[i * 3 + c] = samples.samples[i * channels + (channels >= 3 ? c : 0)];
+    }
+  }
   return frame;
 }
 

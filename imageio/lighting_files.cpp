@@ -94,6 +94,8 @@ void writeImage(const std::filesystem::path& path, const lighting::FloatImage& i
   }
   Image<std::uint8_t> bytes(image.width, image.height, image.channels);
   for (std::size_t i = 0; i < bytes.samples.size(); ++i) {
+    // Float "+ 0.5, truncate" (not lround) keeps the 8-bit files' values as they have always been.
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings)
     bytes.samples[i] = static_cast<std::uint8_t>(std::clamp(image.pixels[i], 0.0f, 1.0f) * 255.0f + 0.5f);
   }
   writeImage(path, bytes.view());

@@ -27,7 +27,9 @@ using lighting::FloatImage;
 using lighting::LightingError;
 using lighting::Terrain;
 
-fs::path scratchDir() { return fs::temp_directory_path() / ("vbim_imageio_lighting_" + std::to_string(::getpid())); }
+fs::path scratchDir() {
+  return fs::temp_directory_path() / ("vbim_imageio_lighting_" + std::to_string(::getpid()));
+}
 
 fs::path scratch(const std::string& name) {
   fs::create_directories(scratchDir());
