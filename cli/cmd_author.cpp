@@ -9,6 +9,7 @@
 #include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
+#include "cli/progress.hpp"
 #include "imageio/error.hpp"
 #include "imageio/image_reader.hpp"
 #include "streams/authoring/authoring_error.hpp"
@@ -95,7 +96,9 @@ void runAuthor(const AuthorOptions& o) {
     std::stringstream list(o.synthetic);
     for (std::string w; std::getline(list, w, ',');) weathers.push_back(w);
     StreamWriter writer(settings);
-    Progress progress(weathers.size() * day.frames);
+    const std::size_t total = weathers.size() * day.frames;
+    std::size_t done = 0;
+    Progress progress("vbim author", "frames");
     for (const std::string& w : weathers) {
       day.weather = w;
       checkSyntheticDay(day);
@@ -108,10 +111,10 @@ void runAuthor(const AuthorOptions& o) {
         } else {
           writer.addFrame(lm);
         }
-        progress.step(w + " " + std::to_string(f));
+        progress.show(static_cast<double>(++done), static_cast<double>(total), w + " " + std::to_string(f));
       }
     }
-    progress.end();
+    progress.finish();
     bytes = writer.finish();
     stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
   } else {
@@ -149,7 +152,8 @@ void runAuthor(const AuthorOptions& o) {
       total += v.lightmaps.size();
     }
     StreamWriter writer(settings);
-    Progress progress(total);
+    std::size_t done = 0;
+    Progress progress("vbim author", "frames");
     for (const VariantInput& v : inputs) {
       writer.beginVariant(v.name);
       for (std::size_t i = 0; i < v.lightmaps.size(); ++i) {
@@ -163,10 +167,10 @@ void runAuthor(const AuthorOptions& o) {
           const bool skyFault = std::string(e.what()).rfind("sky", 0) == 0;
           throw AuthoringError((skyFault ? v.skies[i].path : lmPath).string() + ": " + e.what());
         }
-        progress.step(lmPath.filename().string());
+        progress.show(static_cast<double>(++done), static_cast<double>(total), lmPath.filename().string());
       }
     }
-    progress.end();
+    progress.finish();
     bytes = writer.finish();
     stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
   }

@@ -1,6 +1,4 @@
 // vbim lightmap: Technique A frames (lightmaps + sky domes) from a heightfield, as image files.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,6 +12,7 @@
 #include "cli/command.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/progress.hpp"
 #include "imageio/error.hpp"
 #include "imageio/image_writer.hpp"
 #include "imageio/lighting_files.hpp"
@@ -37,25 +36,6 @@ struct LightmapOptions {
   unsigned threads = 2;
   bool force = false, noMoon = false;
   DayCycleParams params;  // values given on the command line
-};
-
-// Prints "\rlightmap [#####.....] 12/120" on stderr, only when stderr is a terminal.
-class Progress {
- public:
-  explicit Progress(int total) : total_(total), enabled_(::isatty(2) == 1) {}
-  void update(int done) {
-    if (!enabled_) return;
-    constexpr int kWidth = 40;
-    const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
-    std::fprintf(stderr, "\rvbim lightmap [%s%s] %d/%d frames", std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, '.').c_str(), done, total_);
-    if (done == total_) std::fputc('\n', stderr);
-    std::fflush(stderr);
-  }
-
- private:
-  int total_;
-  bool enabled_;
 };
 
 std::string frameName(const std::string& stem, int i, const std::string& ext) {
@@ -152,8 +132,8 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
 
   std::ofstream csv(dir.path("frames.csv"));
   csv << "frame,hour,sun_elevation_deg,sun_azimuth_compass_deg,key_light\n";
-  Progress progress(gen.frameCount());
-  progress.update(0);
+  Progress progress("vbim lightmap", "frames");
+  progress.show(0, gen.frameCount());
   FloatImage light, sky, mask;
   for (int i = 0; i < gen.frameCount(); ++i) {
     gen.renderFrame(i, light, sky, debug.shadow ? &mask : nullptr);
@@ -166,8 +146,9 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
       imageio::writeImage(dir.path(frameName("sky", i, ext)), sky);
       if (debug.shadow) imageio::writeImage(dir.path(frameName("shadow", i, ext)), mask);
     }
-    progress.update(i + 1);
+    progress.show(i + 1, gen.frameCount());
   }
+  progress.finish();
   csv.close();
   if (!csv) throw Exit(2, dir.path("frames.csv").string() + ": cannot write the frame list");
   dir.commit();

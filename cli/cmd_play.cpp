@@ -1,7 +1,5 @@
 // vbim play: a disc through the whole pipeline on the simulated clock; writes images, hashes.txt,
 // stats.json, trace.json, signals.vcd and timeline.csv into --out (docs/player.md).
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -13,6 +11,7 @@
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/play_run.hpp"
+#include "cli/progress.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/gs_error.hpp"
 #include "imageio/error.hpp"
@@ -148,17 +147,13 @@ std::string runPlay(const PlayRequest& r, bool progress) {
 
   const auto wall0 = std::chrono::steady_clock::now();  // host time: the summary only
   const Tick step = fromMs(1'000);
+  Progress bar("vbim play", "s");
   for (Tick t = step;; t += step) {
     player->runTo(std::min(t, o.duration));
-    if (progress) {
-      const int pct = static_cast<int>((100 * player->now()) / o.duration);
-      std::cout << "\r[" << std::string(static_cast<std::size_t>(pct / 5), '#')
-                << std::string(static_cast<std::size_t>(20 - pct / 5), ' ') << "] " << pct << "% "
-                << static_cast<long long>(toSeconds(player->now())) << " s" << std::flush;
-    }
+    if (progress) bar.show(toSeconds(player->now()), toSeconds(o.duration));
     if (t >= o.duration) break;
   }
-  if (progress) std::cout << "\n";
+  bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   hashes.close();
   timeline.close();
@@ -211,7 +206,7 @@ void addPlay(CLI::App& app) {
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
   cmd->add_flag("!--no-trace", r->trace, "Skip trace.json and signals.vcd (they grow with the run)");
   cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
-  cmd->callback([r] { std::cout << runPlay(*r, isatty(STDOUT_FILENO) != 0); });
+  cmd->callback([r] { std::cout << runPlay(*r, true); });
 }
 
 }  // namespace vbim::cli
