@@ -1,8 +1,5 @@
 #include "cli/author_common.hpp"
 
-#include <unistd.h>
-
-#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -74,22 +71,6 @@ void parseSize(const std::string& s, int& w, int& h, const char* what) {
   std::istringstream in(s);
   if (!(in >> w >> x >> h) || x != 'x' || !in.eof())
     throw Exit(2, std::string("vbim author: ") + what + " '" + s + "': expected WxH");
-}
-
-Progress::Progress(std::size_t total) : total_(total), tty_(::isatty(STDERR_FILENO) == 1) {}
-
-void Progress::step(const std::string& label) {
-  ++done_;
-  if (!tty_) return;
-  const int width = 30;
-  const int filled = static_cast<int>(width * done_ / std::max<std::size_t>(1, total_));
-  std::fprintf(stderr, "\r[%.*s%*s] %zu/%zu %-24.24s", filled, "##############################", width - filled, "",
-               done_, total_, label.c_str());
-  std::fflush(stderr);
-}
-
-void Progress::end() {
-  if (tty_) std::fprintf(stderr, "\n");
 }
 
 std::string containerStretchNote(std::uint32_t stretch, streams::Rational containerFps) {

@@ -1,8 +1,7 @@
 // Shared by the two sources of `vbim author` (image sequences / synthetic day in cmd_author.cpp,
-// Technique A in author_terrain.cpp): the encoder and tone-mapping options, and the progress bar.
+// Technique A in author_terrain.cpp): the encoder and tone-mapping options.
 #pragma once
 
-#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -38,17 +37,5 @@ void parseSize(const std::string& s, int& w, int& h, const char* what);
 // The line `vbim author` prints when the writer spaced the frames more than one container period
 // apart (StreamWriter::containerStretch): nothing when stretch is 1.
 std::string containerStretchNote(std::uint32_t stretch, streams::Rational containerFps);
-
-// A progress bar on stderr, drawn only when stderr is a terminal (so logs and tests stay clean).
-class Progress {
- public:
-  explicit Progress(std::size_t total);
-  void step(const std::string& label);
-  void end();
-
- private:
-  std::size_t total_, done_ = 0;
-  bool tty_;
-};
 
 }  // namespace vbim::cli

@@ -1,12 +1,12 @@
 #include "cli/author_terrain.hpp"
 
-#include <algorithm>
 #include <iostream>
 #include <sstream>
 
 #include "cli/command.hpp"
 #include "cli/lighting_options.hpp"
 #include "config/params_toml.hpp"
+#include "cli/progress.hpp"
 #include "runtime/params.hpp"
 #include "streams/authoring/authoring_error.hpp"
 
@@ -115,12 +115,12 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   }
 
   av_log_set_level(AV_LOG_ERROR);
-  const std::size_t total =
-      s.variants.size() * static_cast<std::size_t>(std::max<std::int64_t>(0, s.variants.front().params.frames));
-  Progress progress(total);
-  const lighting::AuthoredStream stream = lighting::authorTechniqueA(
-      s, out, [&](const lighting::TechniqueAProgress& p) { progress.step(p.variant + " " + std::to_string(p.frame)); });
-  progress.end();
+  Progress progress("vbim author", "frames");
+  const lighting::AuthoredStream stream =
+      lighting::authorTechniqueA(s, out, [&](const lighting::TechniqueAProgress& p) {
+        progress.show(p.done, p.total, p.variant + " " + std::to_string(p.frame));
+      });
+  progress.finish();
   const streams::Descriptor& d = stream.descriptor;
   std::cout << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
             << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width

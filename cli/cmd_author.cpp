@@ -1,17 +1,22 @@
 // vbim author: image sequences, Technique A (author_terrain.cpp) or the synthetic day generator ->
 // one VBIM stream file.
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
+#include "cli/progress.hpp"
+#include "imageio/error.hpp"
+#include "imageio/image_reader.hpp"
 #include "streams/authoring/authoring_error.hpp"
 #include "streams/authoring/frame_pattern.hpp"
-#include "streams/authoring/image_loader.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/synthetic_day.hpp"
+#include "streams/authoring/tone_map.hpp"
 
 extern "C" {
 #include <libavutil/log.h>
@@ -46,6 +51,20 @@ std::vector<std::pair<std::string, std::string>> parsePairs(const std::vector<st
   return out;
 }
 
+// One input frame file to 8-bit (streams/authoring/tone_map.hpp); a file that cannot be read is an
+// AuthoringError naming it.
+Rgba8Image loadFrame(const std::filesystem::path& path, InputEncoding enc, const ToneMapping& tone) {
+  imageio::FloatRgbFrame frame;
+  try {
+    frame = imageio::readFloatRgb(path);
+  } catch (const imageio::ImageIoError& e) {
+    throw AuthoringError(e.what());
+  }
+  FloatRgbImage rgb(frame.rgb.width, frame.rgb.height);
+  rgb.rgb = std::move(frame.rgb.samples);
+  return encodeFrame(rgb, frame.floatingPoint, enc, tone);
+}
+
 struct VariantInput {
   std::string name;
   std::vector<FrameFile> lightmaps, skies;
@@ -77,7 +96,9 @@ void runAuthor(const AuthorOptions& o) {
     std::stringstream list(o.synthetic);
     for (std::string w; std::getline(list, w, ',');) weathers.push_back(w);
     StreamWriter writer(settings);
-    Progress progress(weathers.size() * day.frames);
+    const std::size_t total = weathers.size() * day.frames;
+    std::size_t done = 0;
+    Progress progress("vbim author", "frames");
     for (const std::string& w : weathers) {
       day.weather = w;
       checkSyntheticDay(day);
@@ -90,10 +111,10 @@ void runAuthor(const AuthorOptions& o) {
         } else {
           writer.addFrame(lm);
         }
-        progress.step(w + " " + std::to_string(f));
+        progress.show(static_cast<double>(++done), static_cast<double>(total), w + " " + std::to_string(f));
       }
     }
-    progress.end();
+    progress.finish();
     bytes = writer.finish();
     stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
   } else {
@@ -131,7 +152,8 @@ void runAuthor(const AuthorOptions& o) {
       total += v.lightmaps.size();
     }
     StreamWriter writer(settings);
-    Progress progress(total);
+    std::size_t done = 0;
+    Progress progress("vbim author", "frames");
     for (const VariantInput& v : inputs) {
       writer.beginVariant(v.name);
       for (std::size_t i = 0; i < v.lightmaps.size(); ++i) {
@@ -145,10 +167,10 @@ void runAuthor(const AuthorOptions& o) {
           const bool skyFault = std::string(e.what()).rfind("sky", 0) == 0;
           throw AuthoringError((skyFault ? v.skies[i].path : lmPath).string() + ": " + e.what());
         }
-        progress.step(lmPath.filename().string());
+        progress.show(static_cast<double>(++done), static_cast<double>(total), lmPath.filename().string());
       }
     }
-    progress.end();
+    progress.finish();
     bytes = writer.finish();
     stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
   }

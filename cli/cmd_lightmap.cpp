@@ -1,6 +1,4 @@
 // vbim lightmap: Technique A frames (lightmaps + sky domes) from a heightfield, as image files.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -15,10 +13,13 @@
 #include "cli/lighting_options.hpp"
 #include "cli/output_dir.hpp"
 #include "config/params_toml.hpp"
+#include "cli/progress.hpp"
+#include "imageio/error.hpp"
+#include "imageio/image_writer.hpp"
+#include "imageio/lighting_files.hpp"
 #include "lighting/day_cycle.hpp"
 #include "lighting/errors.hpp"
 #include "lighting/fixed_angle.hpp"
-#include "lighting/image_io.hpp"
 #include "lighting/procedural_terrain.hpp"
 #include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"
@@ -36,25 +37,6 @@ struct LightmapOptions {
   unsigned threads = 2;
   bool force = false, noMoon = false;
   DayCycleParams params;  // values given on the command line
-};
-
-// Prints "\rlightmap [#####.....] 12/120" on stderr, only when stderr is a terminal.
-class Progress {
- public:
-  explicit Progress(int total) : total_(total), enabled_(::isatty(2) == 1) {}
-  void update(int done) {
-    if (!enabled_) return;
-    constexpr int kWidth = 40;
-    const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
-    std::fprintf(stderr, "\rvbim lightmap [%s%s] %d/%d frames", std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, '.').c_str(), done, total_);
-    if (done == total_) std::fputc('\n', stderr);
-    std::fflush(stderr);
-  }
-
- private:
-  int total_;
-  bool enabled_;
 };
 
 std::string frameName(const std::string& stem, int i, const std::string& ext) {
@@ -93,9 +75,9 @@ Terrain loadTerrain(const LightmapOptions& o) {
     t = proceduralTerrain({.size = o.size, .cellSize = o.cellSize, .reliefMetres = o.relief, .seed = o.seed});
     if (o.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
   } else {
-    t = readHeightfield(o.terrain, o.cellSize, o.verticalScale);
+    t = imageio::readHeightfield(o.terrain, o.cellSize, o.verticalScale);
   }
-  if (!o.albedo.empty()) setAlbedo(t, readColourMap(o.albedo), o.albedo);
+  if (!o.albedo.empty()) setAlbedo(t, imageio::readColourMap(o.albedo), o.albedo);
   return t;
 }
 
@@ -105,20 +87,22 @@ void writeDebugStatic(const DayCycleGenerator& g, const DebugLayers& d, const Ou
     for (int k = 0; k < kDirections; ++k) {
       const std::string name = std::string("horizon_") + kDirectionNames[k];
       // The stored 16-bit codes, exactly (0 = horizontal, 65535 = 90 deg) ...
-      writeGray16(dir.path(name + ".png").string(), pre.horizons.width, pre.horizons.height, pre.horizons.code[k]);
+      imageio::writeImage(
+          dir.path(name + ".png"),
+          imageio::ImageView<std::uint16_t>{pre.horizons.width, pre.horizons.height, 1, pre.horizons.code[k].data()});
       // ... and the same in degrees for viewing.
       FloatImage deg(pre.horizons.width, pre.horizons.height, 1);
       for (std::size_t i = 0; i < deg.pixels.size(); ++i) {
         deg.pixels[i] = static_cast<float>(angleFromCode(pre.horizons.code[k][i]) * 180.0 / 3.14159265358979323846);
       }
-      writeImage(dir.path(name + "_deg.exr").string(), deg);
+      imageio::writeImage(dir.path(name + "_deg.exr"), deg);
     }
   }
   if (d.sky) {
     FloatImage k(pre.sky.width, pre.sky.height, 1);
     k.pixels = pre.sky.k;
-    writeImage(dir.path("sky_factor_K.exr").string(), k);
-    writeImage(dir.path("sky_factor_K.png").string(), k);
+    imageio::writeImage(dir.path("sky_factor_K.exr"), k);
+    imageio::writeImage(dir.path("sky_factor_K.png"), k);
   }
 }
 
@@ -137,7 +121,7 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
   validateParams(params);  // before any heavy work or output
   FloatImage cloudTexture;
   if (!o.cloudTexture.empty()) {
-    cloudTexture = readDensityMap(o.cloudTexture);
+    cloudTexture = imageio::readDensityMap(o.cloudTexture);
     params.clouds.enabled = true;
   }
   Terrain terrain = loadTerrain(o);
@@ -149,8 +133,8 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
 
   std::ofstream csv(dir.path("frames.csv"));
   csv << "frame,hour,sun_elevation_deg,sun_azimuth_compass_deg,key_light\n";
-  Progress progress(gen.frameCount());
-  progress.update(0);
+  Progress progress("vbim lightmap", "frames");
+  progress.show(0, gen.frameCount());
   FloatImage light, sky, mask;
   for (int i = 0; i < gen.frameCount(); ++i) {
     gen.renderFrame(i, light, sky, debug.shadow ? &mask : nullptr);
@@ -159,12 +143,13 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
         << compassDegrees(f.sun.azimuth) << "," << (f.keyIsMoon ? "moon" : "sun") << "\n";
     for (const char* ext : {".png", ".exr"}) {
       if (o.format != "both" && o.format != std::string(ext + 1)) continue;
-      writeImage(dir.path(frameName("lightmap", i, ext)).string(), light);
-      writeImage(dir.path(frameName("sky", i, ext)).string(), sky);
-      if (debug.shadow) writeImage(dir.path(frameName("shadow", i, ext)).string(), mask);
+      imageio::writeImage(dir.path(frameName("lightmap", i, ext)), light);
+      imageio::writeImage(dir.path(frameName("sky", i, ext)), sky);
+      if (debug.shadow) imageio::writeImage(dir.path(frameName("shadow", i, ext)), mask);
     }
-    progress.update(i + 1);
+    progress.show(i + 1, gen.frameCount());
   }
+  progress.finish();
   csv.close();
   if (!csv) throw Exit(2, dir.path("frames.csv").string() + ": cannot write the frame list");
   dir.commit();
@@ -202,6 +187,8 @@ void addLightmap(CLI::App& app) {
     try {
       run(*o, *given);
     } catch (const LightingError& e) {
+      throw Exit(2, std::string("vbim lightmap: ") + e.what());
+    } catch (const imageio::ImageIoError& e) {
       throw Exit(2, std::string("vbim lightmap: ") + e.what());
     } catch (const ConfigError& e) {
       throw Exit(2, std::string("vbim lightmap: ") + e.what());

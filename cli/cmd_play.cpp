@@ -1,7 +1,5 @@
 // vbim play: a disc through the whole pipeline on the simulated clock; writes images, hashes.txt,
 // stats.json, trace.json, signals.vcd and timeline.csv into --out (docs/player.md).
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -15,13 +13,17 @@
 #include "cli/play_run.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
+#include "cli/progress.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/gs_error.hpp"
+#include "imageio/error.hpp"
+#include "imageio/exr_writer.hpp"
+#include "imageio/png_writer.hpp"
+#include "imageio/rgba8.hpp"
 #include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
-#include "runtime/image_file.hpp"
 
 namespace vbim::cli {
 
@@ -40,11 +42,11 @@ void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool e
     if (exr) {
       std::vector<float> scaled(img.pixels.size());  // 8-bit texels as 0..1 (alpha 0x80 = 0.502)
       for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = static_cast<float>(img.pixels[i]) / 255.0f;
-      writeExr(path, img.width, img.height, scaled.data());
+      imageio::writeExr(path, imageio::ImageView<float>{img.width, img.height, 4, scaled.data()});
     } else {
-      writePng(path, img.width, img.height, img.pixels.data());
+      imageio::writePng(path, imageio::rgbaView(img));
     }
-  } catch (const ImageFileError& e) {
+  } catch (const imageio::ImageIoError& e) {
     throw Exit(1, e.what());
   }
 }
@@ -147,17 +149,13 @@ std::string runPlay(const PlayRequest& r, bool progress) {
 
   const auto wall0 = std::chrono::steady_clock::now();  // host time: the summary only
   const Tick step = fromMs(1'000);
+  Progress bar("vbim play", "s");
   for (Tick t = step;; t += step) {
     player->runTo(std::min(t, o.duration));
-    if (progress) {
-      const int pct = static_cast<int>((100 * player->now()) / o.duration);
-      std::cout << "\r[" << std::string(static_cast<std::size_t>(pct / 5), '#')
-                << std::string(static_cast<std::size_t>(20 - pct / 5), ' ') << "] " << pct << "% "
-                << static_cast<long long>(toSeconds(player->now())) << " s" << std::flush;
-    }
+    if (progress) bar.show(toSeconds(player->now()), toSeconds(o.duration));
     if (t >= o.duration) break;
   }
-  if (progress) std::cout << "\n";
+  bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   hashes.close();
   timeline.close();
@@ -210,7 +208,7 @@ void addPlay(CLI::App& app) {
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
   cmd->add_flag("!--no-trace", r->trace, "Skip trace.json and signals.vcd (they grow with the run)");
   cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
-  cmd->callback([r] { std::cout << runPlay(*r, isatty(STDOUT_FILENO) != 0); });
+  cmd->callback([r] { std::cout << runPlay(*r, true); });
 }
 
 }  // namespace vbim::cli

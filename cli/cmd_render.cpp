@@ -1,13 +1,12 @@
 // vbim render: the frames a `vbim play` run saved, rendered as the terrain lit by the streamed
 // lightmap and sky with hemisphere-lit objects (render/), plus a contact sheet of the day and an
 // MPEG-4 video of the playback (docs/render.md).
-#include <unistd.h>
-
 #include <iostream>
 #include <memory>
 
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/progress.hpp"
 #include "render/render_error.hpp"
 #include "render/render_run.hpp"
 
@@ -34,11 +33,10 @@ void runRender(RenderOptions& o) {
     o.req.video = !o.noVideo;
     const RunDir run = readRunDir(o.run);
     OutputDir dir(o.out, o.force);
-    const bool tty = isatty(STDOUT_FILENO) != 0;
-    const RunRenderResult r = renderRun(run, o.req, dir.path(""), [tty](int done, int total) {
-      if (tty) std::cout << "\rrendering " << done << "/" << total << std::flush;
-    });
-    if (tty) std::cout << "\n";
+    Progress progress("vbim render", "frames");
+    const RunRenderResult r =
+        renderRun(run, o.req, dir.path(""), [&progress](int done, int total) { progress.show(done, total); });
+    progress.finish();
     dir.commit();
     std::cout << "rendered " << r.frames << " frame(s) of " << o.run << " with " << r.context << " ("
               << static_cast<int>(r.secondsPerFrame * 1000) << " ms/frame)\n"

@@ -34,7 +34,7 @@ if(NOT VBIM_MODEL_ONLY)
   vbim_require_pkgconfig(OSMESA libosmesa6-dev osmesa)
   vbim_require_pkgconfig(HWY libhwy-dev libhwy)
   vbim_require_config(glm libglm-dev)
-  # Image output of the lean `vbim` tool (runtime/image_file.*): small libraries, not OpenImageIO.
+  # Image output of the lean `vbim` tool (imageio/, its lean part): small libraries, not OpenImageIO.
   vbim_require_pkgconfig(PNG libpng-dev libpng)
   vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
 

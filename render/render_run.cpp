@@ -6,8 +6,11 @@
 #include <nlohmann/json.hpp>
 
 #include "config/params_toml.hpp"
+#include "imageio/error.hpp"
+#include "imageio/image_reader.hpp"
+#include "imageio/png_writer.hpp"
+#include "imageio/rgba8.hpp"
 #include "render/contact_sheet.hpp"
-#include "render/image_file.hpp"
 #include "render/render_error.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_lighting.hpp"
@@ -39,6 +42,24 @@ void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day) 
 
 namespace {
 
+// Picture files through imageio, their errors as the renderer's.
+Rgba8Image readFrame(const std::filesystem::path& path) {
+  try {
+    return imageio::readRgba8(path);
+  } catch (const imageio::ImageIoError& e) {
+    throw RenderError(e.what());
+  }
+}
+
+void writePicture(const std::filesystem::path& path, const Rgba8Image& picture) {
+  try {
+    // RGB: the alpha is the GS's, meaningless in a picture file. Fast: frames are written in bulk.
+    imageio::writePng(path, imageio::rgbOf(picture).view(), imageio::PngSpeed::Fast);
+  } catch (const imageio::ImageIoError& e) {
+    throw RenderError(e.what());
+  }
+}
+
 Moment momentOf(const TimelineRow& r) {
   return r.behind ? Moment::Stall : r.catchUp ? Moment::CatchUp : Moment::OnTime;
 }
@@ -49,7 +70,7 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
                           const RenderProgressFn& progress) {
   namespace fs = std::filesystem;
   RunRenderResult result;
-  const Rgba8Image first = readRgba8(run.frames.front().lightmap);
+  const Rgba8Image first = readFrame(run.frames.front().lightmap);
 
   lighting::TerrainSource source = req.terrain;
   if (source.heightfield.empty()) {
@@ -98,9 +119,9 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
   double renderSeconds = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const RunFrame& f = run.frames[i];
-    const Rgba8Image lm = i == 0 ? first : readRgba8(f.lightmap);
+    const Rgba8Image lm = i == 0 ? first : readFrame(f.lightmap);
     std::optional<Rgba8Image> sky;
-    if (f.sky) sky = readRgba8(*f.sky);
+    if (f.sky) sky = readFrame(*f.sky);
     // The frame the lightmap is showing or moving to; without a timeline, one frame per second.
     std::int64_t seq = f.vsync / 60;
     const auto row = run.timeline.find(f.vsync);
@@ -111,7 +132,7 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
     renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     char name[64];
     std::snprintf(name, sizeof name, "render_%06lld.png", static_cast<long long>(f.vsync));
-    writePng(outDir / "frames" / name, picture);
+    writePicture(outDir / "frames" / name, picture);
     if (video) {
       if (picture.width % 2 != 0 || picture.height % 2 != 0) {
         Rgba8Image even(video ? picture.width - picture.width % 2 : 0, picture.height - picture.height % 2);
@@ -141,7 +162,7 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
   }
   if (video) video->finish();
   result.sheet = outDir / "contact_sheet.png";
-  writePng(result.sheet, contactSheet(tiles, states, req.sheetColumns, req.sheetThumbWidth));
+  writePicture(result.sheet, contactSheet(tiles, states, req.sheetColumns, req.sheetThumbWidth));
   result.frames = static_cast<int>(n);
   result.secondsPerFrame = renderSeconds / static_cast<double>(n);
 

@@ -4,8 +4,9 @@
 #include <memory>
 #include <optional>
 
+#include "imageio/error.hpp"
+#include "imageio/lighting_files.hpp"
 #include "lighting/errors.hpp"
-#include "lighting/image_io.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/authoring_error.hpp"
 
@@ -66,11 +67,13 @@ Terrain loadTerrain(const TerrainSource& src) {
       t = proceduralTerrain(src.procedural);
       if (src.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
     } else {
-      t = readHeightfield(src.heightfield, src.cellSize, src.verticalScale);
+      t = imageio::readHeightfield(src.heightfield, src.cellSize, src.verticalScale);
     }
-    if (!src.albedo.empty()) setAlbedo(t, readColourMap(src.albedo), src.albedo);
+    if (!src.albedo.empty()) setAlbedo(t, imageio::readColourMap(src.albedo), src.albedo);
     return t;
   } catch (const LightingError& e) {
+    throw AuthoringError(e.what());
+  } catch (const imageio::ImageIoError& e) {
     throw AuthoringError(e.what());
   }
 }
@@ -135,8 +138,10 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
   FloatImage cloudTexture;
   if (!s.terrain.cloudTexture.empty()) {
     try {
-      cloudTexture = readDensityMap(s.terrain.cloudTexture);
+      cloudTexture = imageio::readDensityMap(s.terrain.cloudTexture);
     } catch (const LightingError& e) {
+      throw AuthoringError(e.what());
+    } catch (const imageio::ImageIoError& e) {
       throw AuthoringError(e.what());
     }
   }

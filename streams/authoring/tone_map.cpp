@@ -87,4 +87,9 @@ Rgba8Image quantiseEncoded(const FloatRgbImage& in) {
   return out;
 }
 
+Rgba8Image encodeFrame(const FloatRgbImage& in, bool storedAsFloat, InputEncoding enc, const ToneMapping& m) {
+  const bool linear = enc == InputEncoding::Linear || (enc == InputEncoding::Auto && storedAsFloat);
+  return linear ? toneMap(in, m) : quantiseEncoded(in);
+}
+
 }  // namespace vbim::streams

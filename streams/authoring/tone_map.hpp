@@ -39,4 +39,11 @@ Rgba8Image toneMap(const FloatRgbImage& in, const ToneMapping& m);
 // For display-encoded inputs: code = round(255 * clamp(value)).
 Rgba8Image quantiseEncoded(const FloatRgbImage& in);
 
+// How an input frame's values are taken: Auto treats files that stored floats as linear light and
+// integer files as already display-encoded.
+enum class InputEncoding { Auto, Linear, Encoded };
+
+// One input frame to 8-bit: toneMap() if it is linear, quantiseEncoded() if it is encoded.
+Rgba8Image encodeFrame(const FloatRgbImage& in, bool storedAsFloat, InputEncoding enc, const ToneMapping& m);
+
 }  // namespace vbim::streams

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <fstream>
 
-#include "runtime/image_file.hpp"
+#include "imageio/error.hpp"
+#include "imageio/exr_writer.hpp"
+#include "imageio/png_writer.hpp"
 #include "streams/decode/stream_decode.hpp"
 
 namespace vbim::streams {
@@ -42,13 +44,13 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
   if (format_ == FrameFileFormat::kPng) {
     for (std::size_t i = 3; i < rgba_.pixels.size(); i += 4)
       rgba_.pixels[i] = static_cast<std::uint8_t>(rgba_.pixels[i] >= 0x80 ? 255 : rgba_.pixels[i] * 2);
-    writePng(path, w, h, rgba_.pixels.data());
+    imageio::writePng(path, imageio::ImageView<std::uint8_t>{w, h, 4, rgba_.pixels.data()});
     return;
   }
   floats_.resize(rgba_.pixels.size());
   for (std::size_t i = 0; i < rgba_.pixels.size(); ++i)
     floats_[i] = (i % 4 == 3) ? rgba_.pixels[i] / 128.0f : rgba_.pixels[i] / 255.0f;
-  writeExr(path, w, h, floats_.data());
+  imageio::writeExr(path, imageio::ImageView<float>{w, h, 4, floats_.data()});
 }
 
 }  // namespace vbim::streams

@@ -25,7 +25,7 @@ class FrameFileWriter {
   FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds = {});
 
   // Writes the frame the decoder holds as frame number `frame`. Throws DecodeError (YUV) or
-  // ImageFileError (PNG, EXR) naming the file when it cannot be written.
+  // imageio::ImageIoError (PNG, EXR) naming the file when it cannot be written.
   void write(int frame, const ipu::Decoder& decoder);
 
  private:

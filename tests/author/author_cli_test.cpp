@@ -18,7 +18,6 @@
 #include <nlohmann/json.hpp>
 
 #include "lighting/authoring/technique_a_stream.hpp"
-#include "lighting/image_io.hpp"
 #include "streams/authoring/mpeg2_decoder.hpp"
 #include "streams/authoring/mpeg2_encoder.hpp"
 #include "streams/demuxer.hpp"

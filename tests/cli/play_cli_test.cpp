@@ -99,6 +99,22 @@ TEST(PlayCli, ExrFramesAreWritten) {
   fs::remove_all(out);
 }
 
+// The progress line (cli/progress.hpp) is drawn on a terminal only: never into a pipe or a log.
+// `script` (util-linux, in every Debian) gives the second run a terminal.
+TEST(PlayCli, ProgressLineOnlyOnATerminal) {
+  const fs::path out = scratch("progress");
+  const std::string args = kSample + " --duration 2s --no-trace --force --out " + out.string();
+  const auto piped = play(args);
+  ASSERT_EQ(piped.status, 0) << piped.output;
+  EXPECT_EQ(piped.output.find('\r'), std::string::npos) << piped.output;
+  if (runCommand("command -v script >/dev/null").status != 0) GTEST_SKIP() << "no `script` to run vbim on a terminal";
+  const auto terminal = runCommand("script -qec '" + std::string(VBIM_BINARY) + " play " + args + "' /dev/null");
+  ASSERT_EQ(terminal.status, 0) << terminal.output;
+  EXPECT_NE(terminal.output.find("\rvbim play [##############################] 2/2 s"), std::string::npos)
+      << terminal.output;
+  fs::remove_all(out);
+}
+
 struct Refusal {
   std::string args;      // after "vbim play"
   std::string expected;  // in the message

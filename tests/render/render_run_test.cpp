@@ -5,8 +5,10 @@
 
 #include <unistd.h>
 
+#include "imageio/image_reader.hpp"
+#include "imageio/png_writer.hpp"
+#include "imageio/rgba8.hpp"
 #include "render/contact_sheet.hpp"
-#include "render/image_file.hpp"
 #include "render/render_error.hpp"
 #include "render/render_run.hpp"
 #include "render_test_scene.hpp"
@@ -42,8 +44,8 @@ fs::path fakeRun() {
     const test::StreamedFrame f = test::streamedFrame(10 + k);
     char name[64];
     std::snprintf(name, sizeof name, "%06d.png", k * 60);
-    writePng(run / "frames" / ("lightmap_" + std::string(name)), f.lightmap);
-    writePng(run / "frames" / ("sky_" + std::string(name)), f.sky);
+    imageio::writePng(run / "frames" / ("lightmap_" + std::string(name)), imageio::rgbOf(f.lightmap).view());
+    imageio::writePng(run / "frames" / ("sky_" + std::string(name)), imageio::rgbOf(f.sky).view());
   }
   std::ofstream t(run / "timeline.csv");
   t << "vsync,time_s,hash,due_seq,target_seq,variant,fix,pop,behind,catch_up,snapped,sky_target_seq,sky_pop,lag,"
@@ -73,7 +75,7 @@ TEST(RenderRun, WritesFramesSheetVideoAndSummary) {
   }
   EXPECT_GT(fs::file_size(out / "playback.mp4"), 1000u);
   // The tile of vsync 120 covers the stall: its frame is red.
-  const Rgba8Image sheet = readRgba8(out / "contact_sheet.png");
+  const Rgba8Image sheet = imageio::readRgba8(out / "contact_sheet.png");
   const int tile3x = 4 + 2 * (48 + 6 + 4);
   const std::uint8_t* border = sheet.row(5) + (tile3x + 1) * 4;
   EXPECT_EQ(border[0], 220);

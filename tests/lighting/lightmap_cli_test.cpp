@@ -1,6 +1,7 @@
-// Item 1 (heightfields from files) and item 4 (vbim lightmap), with the bad-input cases of the
-// issue: not single-channel, empty, NaN heights, latitude outside +-90, zero frames, colour map of
-// another size. Each must give a clear message and a non-zero exit.
+// vbim lightmap run as a child process, with the bad-input cases: a heightfield that is not
+// single-channel, empty or holds NaN heights, latitude outside +-90, zero frames, a colour map of
+// another size. Each must give a clear message and a non-zero exit. (Reading and writing the files
+// themselves is tested in tests/imageio/lighting_files_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
@@ -11,9 +12,6 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include "lighting/errors.hpp"
-#include "lighting/image_io.hpp"
 
 namespace vbim::lighting {
 namespace {
@@ -60,69 +58,6 @@ Result runVbim(const std::string& args) {
   std::stringstream s;
   s << in.rdbuf();
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-}
-
-TEST(ImageIo, SixteenBitPngHeightsAreKeptExactly) {
-  std::vector<std::uint16_t> v(6 * 4);
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<std::uint16_t>(i * 2500);
-  const fs::path p = scratch("hf16.png");
-  writeRaw(p, 6, 4, 1, OIIO::TypeDesc::UINT16, v);
-  const Terrain t = readHeightfield(p.string(), 5.0, 655.35);
-  ASSERT_EQ(t.width, 6);
-  ASSERT_EQ(t.height, 4);
-  for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(t.heights[i], v[i]);
-  EXPECT_DOUBLE_EQ(t.heightStep, 0.01);
-  EXPECT_DOUBLE_EQ(t.cellSize, 5.0);
-}
-
-TEST(ImageIo, FloatExrHeightsAreMetresTimesScale) {
-  std::vector<float> v = {0.0f, 1.5f, 100.25f, -3.0f};
-  const fs::path p = scratch("hf.exr");
-  writeRaw(p, 2, 2, 1, OIIO::TypeDesc::FLOAT, v);
-  const Terrain t = readHeightfield(p.string(), 10.0, 2.0);
-  for (int i = 0; i < 4; ++i) EXPECT_NEAR(t.heights[i] * t.heightStep, v[i] * 2.0, 1.0 / 512);
-}
-
-TEST(ImageIo, RejectsRgbHeightfieldsAndNaN) {
-  const fs::path rgb = scratch("rgb.png");
-  writeRaw(rgb, 4, 4, 3, OIIO::TypeDesc::UINT8, std::vector<std::uint8_t>(48, 7));
-  try {
-    readHeightfield(rgb.string(), 10, 100);
-    FAIL();
-  } catch (const LightingError& e) {
-    EXPECT_NE(std::string(e.what()).find("rgb.png: the heightfield has 3 channels; expected a single-channel"),
-              std::string::npos)
-        << e.what();
-  }
-  const fs::path nan = scratch("nan.exr");
-  std::vector<float> v(9, 1.0f);
-  v[5] = std::nanf("");
-  writeRaw(nan, 3, 3, 1, OIIO::TypeDesc::FLOAT, v);
-  try {
-    readHeightfield(nan.string(), 10, 1);
-    FAIL();
-  } catch (const LightingError& e) {
-    EXPECT_NE(std::string(e.what()).find("nan.exr: height at pixel (2, 1) is NaN"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW(readHeightfield(scratch("missing.png").string(), 10, 1), LightingError);
-  std::ofstream(scratch("garbage.png")) << "not an image";
-  EXPECT_THROW(readHeightfield(scratch("garbage.png").string(), 10, 1), LightingError);
-}
-
-TEST(ImageIo, WritesExrAndPngRoundTrip) {
-  FloatImage img(3, 2, 3);
-  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = static_cast<float>(i) / 17.0f;
-  writeImage(scratch("out.exr").string(), img);
-  writeImage(scratch("out.png").string(), img);
-  auto in = OIIO::ImageInput::open(scratch("out.exr").string());
-  ASSERT_TRUE(in);
-  std::vector<float> back(img.pixels.size());
-  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, back.data()));
-  EXPECT_EQ(back, img.pixels);
-  auto png = OIIO::ImageInput::open(scratch("out.png").string());
-  ASSERT_TRUE(png);
-  EXPECT_EQ(png->spec().format, OIIO::TypeDesc::UINT8);
-  EXPECT_FALSE(fs::exists(scratch(".out.tmp.png")));
 }
 
 TEST(LightmapCli, WritesFramesAndDebugLayers) {

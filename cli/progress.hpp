@@ -1,0 +1,38 @@
+// The one progress line of the long commands (play, render, lightmap, author):
+//
+//   vbim lightmap [############..................] 48/120 frames  note
+//
+// redrawn in place ("\r") on stderr, and only when stderr is a terminal, so logs, pipes and tests
+// stay clean; finished with a newline. Libraries never print: they report through a plain callback
+// (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command forwards here.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace vbim::cli {
+
+class Progress {
+ public:
+  // `label` starts the line (the command, "vbim play"); `unit` follows the count ("frames", "s").
+  Progress(std::string label, std::string unit);
+  // Ends the line if one was drawn, so a message after an error starts on a line of its own.
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  // Redraws the line: `done` of `total` (whole numbers print without decimals), then `note`.
+  void show(double done, double total, std::string_view note = {});
+  // Ends the line (once).
+  void finish();
+
+ private:
+  std::string label_;
+  std::string unit_;
+  bool terminal_;
+  bool drawn_ = false;
+  std::size_t lastLength_ = 0;  // to blank what a longer previous line left behind
+};
+
+}  // namespace vbim::cli
