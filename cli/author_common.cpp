@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "cli/command.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 namespace vbim::cli {
 

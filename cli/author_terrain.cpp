@@ -5,10 +5,10 @@
 
 #include "cli/command.hpp"
 #include "cli/lighting_options.hpp"
-#include "config/params_toml.hpp"
 #include "cli/progress.hpp"
+#include "config/params_toml.hpp"
 #include "runtime/params.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 extern "C" {
 #include <libavutil/log.h>

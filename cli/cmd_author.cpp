@@ -12,7 +12,7 @@
 #include "cli/progress.hpp"
 #include "imageio/error.hpp"
 #include "imageio/image_reader.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/frame_pattern.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/synthetic_day.hpp"

@@ -25,10 +25,10 @@
 #include "player/profile_run.hpp"
 #include "plots/profile_figures.hpp"
 #include "plots/write_chart.hpp"
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 #include "render/render_run.hpp"
 #include "render/run_dir.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 namespace vbim::cli {
 

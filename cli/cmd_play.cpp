@@ -10,12 +10,13 @@
 
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/platform_params.hpp"
 #include "cli/play_run.hpp"
+#include "cli/progress.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
-#include "cli/progress.hpp"
 #include "gs/blend_simd.hpp"
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 #include "imageio/error.hpp"
 #include "imageio/exr_writer.hpp"
 #include "imageio/png_writer.hpp"
@@ -52,11 +53,7 @@ void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool e
 }
 
 std::string policyName(const std::string& p) {
-  if (p.empty()) return "";
-  if (p == "blend") return "blend-through";
-  if (p == "skip") return "hard-skip";
-  if (p == "late") return "play-late";
-  throw Exit(2, "--policy '" + p + "': expected blend, skip or late");
+  return p.empty() ? "" : catchupPolicy(p);
 }
 
 }  // namespace
@@ -85,7 +82,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     } else if (!r.faultsText.empty()) {
       o.faults = config::parseFaultPlan(r.faultsText, "<built-in fault plan>", disc.get());
     }
-  } catch (const iop::FaultPlanError& e) {
+  } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   }
   if (const std::string p = policyName(r.policy); !p.empty()) o.config.gs.catchup = p;
@@ -199,7 +196,7 @@ void addPlay(CLI::App& app) {
   cmd->add_option("--faults", r->faults, "Fault plan (TOML; docs/fault-plans.md)");
   cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();
   cmd->add_option("--duration", r->duration, "Simulated time to play (e.g. 60s)")->capture_default_str();
-  cmd->add_option("--policy", r->policy, "Catch-up policy: blend (default), skip or late");
+  cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late");
   cmd->add_option("--every", r->every, "Write the lightmap and sky every N vsyncs (0: never)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--at", r->at, "Write the images at these times (12.5s,30s,...)")->delimiter(',');

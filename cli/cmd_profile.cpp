@@ -13,17 +13,18 @@
 
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/platform_params.hpp"
 #include "cli/profile_outputs.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 #include "iop/file_disc.hpp"
 #include "iop/memory_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/profile_run.hpp"
 #include "player/scenario.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/transcode.hpp"
 
 namespace vbim::cli {
@@ -39,7 +40,7 @@ struct ProfileRequest {
   std::vector<std::string> rings{"4:8", "4:16", "4:32", "4:64", "5:160"};
   std::vector<int> qscales;
   std::vector<std::int64_t> bitrates;
-  std::vector<std::string> policies{"blend"};
+  std::vector<std::string> policies{"blend-through"};
   std::uint64_t seed = 1;
   std::string duration = "20s";
   std::string stallAt = "3s";
@@ -58,13 +59,6 @@ Tick parseTime(const std::string& what, const std::string& text) {
   } catch (const std::exception& e) {
     throw Exit(2, what + " '" + text + "': " + e.what() + " (expected a time with a unit, e.g. 12.5s or 800ms)");
   }
-}
-
-std::string catchupName(const std::string& p) {
-  if (p == "blend") return "blend-through";
-  if (p == "skip") return "hard-skip";
-  if (p == "late") return "play-late";
-  throw Exit(2, "--policy '" + p + "': expected blend, skip or late");
 }
 
 RingSize parseRing(const std::string& text) {
@@ -156,13 +150,13 @@ void runProfile(const ProfileRequest& r) {
     return a.bufmax != b.bufmax ? a.bufmax < b.bufmax : a.bankmax < b.bankmax;
   });
   std::vector<std::string> policies;
-  for (const std::string& p : r.policies) policies.push_back(catchupName(p));
+  for (const std::string& p : r.policies) policies.push_back(catchupPolicy(p));
   // Fault plans: "none" first, then each file (parsed against the first stream's disc).
   std::vector<std::pair<std::string, iop::FaultPlan>> plans{{"none", iop::FaultPlan{}}};
   for (const std::string& f : r.faults) {
     try {
       plans.emplace_back(stem(f), config::loadFaultPlan(f, streams[0]->disc.get()));
-    } catch (const iop::FaultPlanError& e) {
+    } catch (const ConfigError& e) {
       throw Exit(2, e.what());
     }
   }
@@ -268,7 +262,7 @@ void addProfile(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--bitrate", r->bitrates, "Also sweep the first disc re-encoded at these bitrates (bit/s)")
       ->delimiter(',');
-  cmd->add_option("--policy", r->policies, "Catch-up policies: blend, skip, late")
+  cmd->add_option("--policy", r->policies, "Catch-up policies: blend-through, hard-skip, play-late")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();

@@ -7,7 +7,7 @@
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 #include "render/render_run.hpp"
 
 namespace vbim::cli {

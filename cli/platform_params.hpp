@@ -4,6 +4,8 @@
 // the test API shares; this header keeps the CLI's names.
 #pragma once
 
+#include <string>
+
 #include "player/platform_config.hpp"
 #include "runtime/params.hpp"
 
@@ -14,5 +16,8 @@ using PlatformParams = player::PlatformConfig;
 void describePlatform(ParamTable& t, PlatformParams& p);
 // Checks relations between parameters (after loading); throws ConfigError.
 void validatePlatform(const PlatformParams& p);
+
+// A `--policy` value checked against gs::kCatchupPolicies (throws Exit 2 naming the choices).
+std::string catchupPolicy(const std::string& name);
 
 }  // namespace vbim::cli

@@ -20,7 +20,7 @@ struct PlayRequest {
   std::string faultsText;  // a fault plan given inline (the demo's built-in one), used if faults is empty
   std::uint64_t seed = 1;
   std::string duration = "60s";
-  std::string policy;  // blend|skip|late, or empty (the config's gs.catchup)
+  std::string policy;  // blend-through|hard-skip|play-late, or empty (the config's gs.catchup)
   std::int64_t every = 0;
   std::vector<std::string> at;
   std::string format = "png";

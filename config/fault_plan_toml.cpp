@@ -16,7 +16,6 @@ namespace vbim::config {
 
 using iop::Fault;
 using iop::FaultPlan;
-using iop::FaultPlanError;
 using iop::parseDuration;
 using iop::SectorSource;
 using iop::toString;
@@ -50,8 +49,8 @@ class Reader {
   [[noreturn]] void fail(const std::string& field, const std::string& what) const {
     int line = line_;
     if (const toml::node* n = t_.get(field)) line = static_cast<int>(n->source().begin.line);
-    throw FaultPlanError(origin_ + ":" + std::to_string(line) + ": fault '" + kind_ + "'" +
-                         (field.empty() ? "" : ", field '" + field + "'") + ": " + what);
+    throw ConfigError(origin_ + ":" + std::to_string(line) + ": fault '" + kind_ + "'" +
+                      (field.empty() ? "" : ", field '" + field + "'") + ": " + what);
   }
   bool has(const std::string& f) const { return t_.get(f) != nullptr; }
 
@@ -124,10 +123,9 @@ void rejectOverlaps(const std::string& origin, const std::vector<Fault>& faults,
     const Fault& a = *list[i - 1];
     const Fault& b = *list[i];
     if (b.at < a.at + a.duration) {
-      throw FaultPlanError(origin + ":" + std::to_string(b.line) + ": fault '" + toString(kind) + "' starting at " +
-                           fmtTime(b.at) + " overlaps the one at line " + std::to_string(a.line) + " (" +
-                           fmtTime(a.at) + " to " + fmtTime(a.at + a.duration) +
-                           "); merge them into one entry or move one");
+      throw ConfigError(origin + ":" + std::to_string(b.line) + ": fault '" + toString(kind) + "' starting at " +
+                        fmtTime(b.at) + " overlaps the one at line " + std::to_string(a.line) + " (" + fmtTime(a.at) +
+                        " to " + fmtTime(a.at + a.duration) + "); merge them into one entry or move one");
     }
   }
 }
@@ -139,36 +137,35 @@ iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, 
   try {
     doc = toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
-    throw FaultPlanError(origin + ":" + std::to_string(e.source().begin.line) +
-                         ": TOML syntax error: " + std::string(e.description()));
+    throw ConfigError(origin + ":" + std::to_string(e.source().begin.line) +
+                      ": TOML syntax error: " + std::string(e.description()));
   }
   FaultPlan plan;
   plan.origin = origin;
   for (const auto& [k, v] : doc) {
     if (k.str() != "fault") {
-      throw FaultPlanError(origin + ":" + std::to_string(v.source().begin.line) + ": unknown key '" +
-                           std::string(k.str()) + "': a fault plan holds only [[fault]] tables");
+      throw ConfigError(origin + ":" + std::to_string(v.source().begin.line) + ": unknown key '" +
+                        std::string(k.str()) + "': a fault plan holds only [[fault]] tables");
     }
   }
   const toml::node* node = doc.get("fault");
   if (node == nullptr) return plan;  // an empty plan: no faults
   const toml::array* arr = node->as_array();
   if (arr == nullptr) {
-    throw FaultPlanError(origin + ":" + std::to_string(node->source().begin.line) +
-                         ": 'fault' must be an array of tables, written [[fault]]");
+    throw ConfigError(origin + ":" + std::to_string(node->source().begin.line) +
+                      ": 'fault' must be an array of tables, written [[fault]]");
   }
   std::set<std::int64_t> errorLbas;
   std::map<std::int64_t, int> errorLines;
   for (const toml::node& el : *arr) {
     const int line = static_cast<int>(el.source().begin.line);
     const toml::table* t = el.as_table();
-    if (t == nullptr)
-      throw FaultPlanError(origin + ":" + std::to_string(line) + ": each fault must be a [[fault]] table");
+    if (t == nullptr) throw ConfigError(origin + ":" + std::to_string(line) + ": each fault must be a [[fault]] table");
     const toml::node* kn = t->get("kind");
     if (kn == nullptr || !kn->value<std::string>()) {
-      throw FaultPlanError(origin + ":" + std::to_string(line) +
-                           ": fault without a kind (expected kind = \"stall\", \"read_error\", \"seek_away\", "
-                           "\"contention\", \"random_stall\" or \"random_error\")");
+      throw ConfigError(origin + ":" + std::to_string(line) +
+                        ": fault without a kind (expected kind = \"stall\", \"read_error\", \"seek_away\", "
+                        "\"contention\", \"random_stall\" or \"random_error\")");
     }
     const std::string kindName = *kn->value<std::string>();
     const Kind* kind = nullptr;
@@ -176,9 +173,8 @@ iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, 
       if (kindName == k.name) kind = &k;
     }
     if (kind == nullptr) {
-      throw FaultPlanError(origin + ":" + std::to_string(kn->source().begin.line) + ": unknown fault kind '" +
-                           kindName +
-                           "' (expected stall, read_error, seek_away, contention, random_stall or random_error)");
+      throw ConfigError(origin + ":" + std::to_string(kn->source().begin.line) + ": unknown fault kind '" + kindName +
+                        "' (expected stall, read_error, seek_away, contention, random_stall or random_error)");
     }
     Reader r(origin, *t, line, kindName, disc);
     for (const auto& [fk, fv] : *t) {
@@ -259,7 +255,7 @@ iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, 
 
 iop::FaultPlan loadFaultPlan(const std::string& path, const iop::SectorSource* disc) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw FaultPlanError(path + ": cannot open the fault plan");
+  if (!in) throw ConfigError(path + ": cannot open the fault plan");
   std::stringstream ss;
   ss << in.rdbuf();
   return parseFaultPlan(ss.str(), path, disc);

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "iop/fault_plan.hpp"
+#include "runtime/error.hpp"
 
 namespace vbim::iop {
 class SectorSource;
@@ -15,7 +16,7 @@ class SectorSource;
 namespace vbim::config {
 
 // Parses a plan. `disc` (optional) resolves `file = "..."` and checks LBAs against the disc. Throws
-// iop::FaultPlanError.
+// ConfigError (runtime/error.hpp), naming the file, the line, the fault and the field.
 iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin,
                               const iop::SectorSource* disc = nullptr);
 iop::FaultPlan loadFaultPlan(const std::string& path, const iop::SectorSource* disc = nullptr);

@@ -5,15 +5,11 @@
 
 #include <stdexcept>
 
+#include "ee/error.hpp"
 #include "iop/sector_source.hpp"
 #include "streams/descriptor.hpp"
 
 namespace vbim::ee {
-
-class StreamProbeError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct ProbedStream {
   iop::DiscFile file;

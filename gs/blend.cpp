@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 
 namespace vbim::gs {
 

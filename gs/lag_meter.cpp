@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 
 namespace vbim::gs {
 

@@ -43,7 +43,7 @@ void describeParams(ParamTable& t, GsParams& p) {
               "COLCLAMP bit 0 = 1: clamp to 0..255 (T-GS AlphaBlending)");
   t.addChoice("gs.alpha_write", &p.alpha_write, {"source", "keep"},
               "source: the lightmap's alpha is the frame's As; keep: FRAME.FBMSK protects it (SDK-GS GS_SET_FRAME)");
-  t.addChoice("gs.catchup", &p.catchup, {"blend-through", "hard-skip", "play-late"},
+  t.addChoice("gs.catchup", &p.catchup, {kCatchupPolicies.begin(), kCatchupPolicies.end()},
               "blend-through: keep blending toward the newest due frame (Hoffman & Mitchell, GDC 2001: 'smooth "
               "catch up frames'); hard-skip and play-late for comparison");
   t.addInt("gs.catchup_fix", &p.catchup_fix, 0, 255, "1/128",

@@ -2,14 +2,21 @@
 // sources (docs/timing/gs.md lists them; `vbim config --defaults` prints them).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace vbim {
 class ParamTable;
 }
 
 namespace vbim::gs {
+
+// The catch-up policies, by the one name each has everywhere (gs.catchup, `--policy`, the API, docs):
+// the seeds' default that keeps blending toward late frames, a hard skip to the due frame, and
+// playing late frames as if on time (docs/player.md, "Catch-up").
+inline constexpr std::array<std::string_view, 3> kCatchupPolicies{"blend-through", "hard-skip", "play-late"};
 
 struct GsParams {
   // GIF -> GS transfer and drawing (docs/hardware.md#gs-rates, #gs-page-breaks).

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 
 namespace vbim::gs {
 

@@ -2,13 +2,13 @@
 // command can print it as it is.
 #pragma once
 
-#include <stdexcept>
+#include "runtime/error.hpp"
 
 namespace vbim::imageio {
 
-class ImageIoError : public std::runtime_error {
+class ImageIoError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace vbim::imageio

@@ -7,7 +7,7 @@
 
 #include "imageio/image_reader.hpp"
 #include "imageio/image_writer.hpp"
-#include "lighting/errors.hpp"
+#include "lighting/error.hpp"
 
 namespace vbim::imageio {
 

@@ -26,11 +26,6 @@ namespace vbim::iop {
 class SectorSource;
 class Drive;
 
-class FaultPlanError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 struct Fault {
   enum class Kind { stall, read_error, seek_away, contention, random_stall, random_error };
   Kind kind = Kind::stall;

@@ -11,17 +11,12 @@
 #include <string>
 #include <string_view>
 
+#include "iop/error.hpp"
+
 namespace vbim::iop {
 
 inline constexpr std::size_t kSectorBytes = 2048;  // DVD user data per sector (T-CDVD)
 using SectorSpan = std::span<std::uint8_t, kSectorBytes>;
-
-// A problem with a disc image (missing, unreadable, truncated, no such file). what() names the
-// image, the place (byte offset, LBA or path) and what was expected.
-class DiscError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // Where a file lies: its first logical sector (LBA = LSN on a single-layer DVD) and its length.
 struct DiscFile {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lighting/errors.hpp"
+#include "lighting/error.hpp"
 
 namespace vbim::lighting {
 

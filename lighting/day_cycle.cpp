@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "lighting/azimuth_sweep.hpp"
-#include "lighting/errors.hpp"
+#include "lighting/error.hpp"
 #include "lighting/sky_model.hpp"
 #include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 #include <system_error>
 
-#include "plots/plot_error.hpp"
+#include "plots/error.hpp"
 
 namespace vbim::plots {
 

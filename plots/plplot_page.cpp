@@ -8,7 +8,7 @@
 #include <iostream>
 #include <string_view>
 
-#include "plots/plot_error.hpp"
+#include "plots/error.hpp"
 
 namespace vbim::plots {
 

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <vector>
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 
 namespace vbim::render {
 

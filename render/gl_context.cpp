@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 
 namespace vbim::render {
 

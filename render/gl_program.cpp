@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 
 namespace vbim::render {
 

@@ -11,12 +11,12 @@
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
 #include "render/contact_sheet.hpp"
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_lighting.hpp"
 #include "render/video_writer.hpp"
 #include "runtime/params.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 namespace vbim::render {
 

@@ -9,9 +9,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "render/error.hpp"
 #include "render/gl_program.hpp"
 #include "render/object_meshes.hpp"
-#include "render/render_error.hpp"
 #include "render/shaders.hpp"
 #include "render/terrain_mesh.hpp"
 

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 
 namespace vbim::render {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "lighting/errors.hpp"
-#include "render/render_error.hpp"
+#include "lighting/error.hpp"
+#include "render/error.hpp"
 
 namespace vbim::render {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 
 namespace vbim::render {
 

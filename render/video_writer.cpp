@@ -1,6 +1,6 @@
 #include "render/video_writer.hpp"
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 #include "streams/authoring/libav.hpp"
 
 namespace vbim::render {

@@ -13,13 +13,9 @@
 #include <variant>
 #include <vector>
 
-namespace vbim {
+#include "runtime/error.hpp"
 
-// A configuration problem; what() names the file, the line and the key.
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace vbim {
 
 class ParamTable {
  public:

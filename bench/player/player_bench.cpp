@@ -41,7 +41,8 @@ double cpuSeconds() {
 }
 
 const std::vector<std::uint8_t>& content() {
-  static const std::vector<std::uint8_t> bytes = bench::authorBenchStream(kFrames, bench::BenchContent::syntheticDay);
+  static const std::vector<std::uint8_t> bytes =
+      streams::authorBenchStream(kFrames, streams::BenchContent::syntheticDay);
   return bytes;
 }
 

@@ -6,9 +6,9 @@
 
 #include "imageio/error.hpp"
 #include "imageio/lighting_files.hpp"
-#include "lighting/errors.hpp"
+#include "lighting/error.hpp"
 #include "runtime/worker_pool.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 namespace vbim::lighting {
 

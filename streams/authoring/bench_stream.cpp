@@ -5,7 +5,7 @@
 #include "streams/authoring/synthetic_day.hpp"
 #include "streams/authoring/tone_map.hpp"
 
-namespace vbim::bench {
+namespace vbim::streams {
 
 namespace {
 
@@ -45,4 +45,4 @@ std::vector<std::uint8_t> authorBenchStream(int frames, BenchContent content, in
   return w.finish();
 }
 
-}  // namespace vbim::bench
+}  // namespace vbim::streams

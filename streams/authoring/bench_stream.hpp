@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace vbim::bench {
+namespace vbim::streams {
 
 enum class BenchContent { syntheticDay, noise };
 
@@ -18,4 +18,4 @@ enum class BenchContent { syntheticDay, noise };
 std::vector<std::uint8_t> authorBenchStream(int frames, BenchContent content, int qscale = 3,
                                             bool stretchContainerTime = true);
 
-}  // namespace vbim::bench
+}  // namespace vbim::streams

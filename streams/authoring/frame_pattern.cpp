@@ -4,7 +4,7 @@
 #include <cctype>
 #include <map>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 namespace vbim::streams {
 

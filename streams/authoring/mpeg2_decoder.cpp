@@ -4,7 +4,7 @@
 #include <cstring>
 #include <limits>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/libav.hpp"
 
 namespace vbim::streams {

@@ -1,6 +1,6 @@
 #include "streams/authoring/mpeg2_encoder.hpp"
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 namespace vbim::streams {
 

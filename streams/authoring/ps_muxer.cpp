@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/format.hpp"
 
 namespace vbim::streams {

@@ -8,7 +8,7 @@
 #include <map>
 #include <utility>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/ps_muxer.hpp"
 #include "streams/descriptor_packs.hpp"
 #include "streams/format.hpp"

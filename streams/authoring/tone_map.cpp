@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 
 namespace vbim::streams {
 

@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/mpeg2_decoder.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/demuxer.hpp"

@@ -14,14 +14,9 @@
 #include <string>
 
 #include "ipu/picture_decoder.hpp"
+#include "streams/decode/error.hpp"
 
 namespace vbim::streams {
-
-// A stream that cannot be decoded at all; the message names the file and, where known, the byte.
-class DecodeError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct DecodeOptions {
   std::optional<std::uint8_t> streamId;  // PES id of the video stream; default: the first one

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "lighting/authoring/technique_a_stream.hpp"
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/mpeg2_decoder.hpp"
 #include "streams/authoring/mpeg2_encoder.hpp"
 #include "streams/demuxer.hpp"

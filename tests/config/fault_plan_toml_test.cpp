@@ -15,7 +15,7 @@ namespace {
 std::string errorOf(const std::string& text, const SectorSource* disc = nullptr) {
   try {
     config::parseFaultPlan(text, "plan.toml", disc);
-  } catch (const FaultPlanError& e) {
+  } catch (const ConfigError& e) {
     return e.what();
   }
   return "";
@@ -141,7 +141,7 @@ TEST(FaultPlan, RejectsBadPlansNamingLineAndField) {
   try {
     config::loadFaultPlan("/nonexistent/plan.toml");
     FAIL();
-  } catch (const FaultPlanError& e) {
+  } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/plan.toml: cannot open"), std::string::npos);
   }
 }

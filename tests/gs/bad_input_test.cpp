@@ -2,7 +2,7 @@
 // it) whose message says what was given and what was expected.
 #include <gtest/gtest.h>
 
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 #include "presenter_fixture.hpp"
 
 namespace vbim::gs {

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 
 namespace vbim::gs {
 namespace {

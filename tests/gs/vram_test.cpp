@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gs/gs_error.hpp"
+#include "gs/error.hpp"
 #include "gs/presenter.hpp"
 
 namespace vbim::gs {

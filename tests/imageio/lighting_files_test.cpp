@@ -17,7 +17,7 @@
 
 #include "imageio/error.hpp"
 #include "imageio/lighting_files.hpp"
-#include "lighting/errors.hpp"
+#include "lighting/error.hpp"
 
 namespace vbim::imageio {
 namespace {

@@ -7,7 +7,7 @@
 #include "config/params_toml.hpp"
 #include "lighting/azimuth_sweep.hpp"
 #include "lighting/day_cycle.hpp"
-#include "lighting/errors.hpp"
+#include "lighting/error.hpp"
 #include "lighting/procedural_terrain.hpp"
 #include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"

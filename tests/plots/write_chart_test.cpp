@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "plots/plot_error.hpp"
+#include "plots/error.hpp"
 #include "plots/write_chart.hpp"
 
 namespace {

@@ -63,9 +63,9 @@ double longest(const std::string& csv, const std::string& bufmax, const std::str
 
 TEST(ProfileCli, WritesTablesAndPlotsDeterministically) {
   const fs::path a = scratch("a"), b = scratch("b");
-  const Result ra = run("profile " + kSample + kSmall + " --policy blend,skip --out " + a.string());
+  const Result ra = run("profile " + kSample + kSmall + " --policy blend-through,hard-skip --out " + a.string());
   ASSERT_EQ(ra.code, 0) << ra.output;
-  const Result rb = run("profile " + kSample + kSmall + " --policy blend,skip --out " + b.string());
+  const Result rb = run("profile " + kSample + kSmall + " --policy blend-through,hard-skip --out " + b.string());
   ASSERT_EQ(rb.code, 0) << rb.output;
   for (const char* f :
        {"sweep.csv", "stall.csv", "profile.json", "plots/survivable_stall.png", "plots/survivable_stall.svg",

@@ -9,7 +9,7 @@
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
 #include "render/contact_sheet.hpp"
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 #include "render/render_run.hpp"
 #include "render_test_scene.hpp"
 

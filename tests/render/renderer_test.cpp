@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_lighting.hpp"
 #include "render_test_scene.hpp"

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "render/render_error.hpp"
+#include "render/error.hpp"
 #include "render/terrain_mesh.hpp"
 #include "render_test_scene.hpp"
 

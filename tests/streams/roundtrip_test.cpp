@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "streams/authoring/authoring_error.hpp"
 #include "streams/authoring/bench_stream.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/mpeg2_decoder.hpp"
 #include "streams/authoring/mpeg2_encoder.hpp"
 #include "streams/demuxer.hpp"
@@ -151,7 +151,7 @@ TEST(StreamsRoundTrip, AuthoringIsDeterministic) {
 // sky pictures together: without that, the sky fell further behind every frame (330 sectors after
 // 16 frames, 1,400 after 64), and the EE demux had to hold everything in between.
 TEST(StreamsRoundTrip, LightmapAndSkyStayInStepWhenFramesExceedTheMuxRate) {
-  const auto bytes = vbim::bench::authorBenchStream(16, vbim::bench::BenchContent::noise, 1);
+  const auto bytes = vbim::streams::authorBenchStream(16, vbim::streams::BenchContent::noise, 1);
   const StreamScan scan = scanStream(bytes);
   ASSERT_TRUE(scan.descriptor);
   const Descriptor& d = *scan.descriptor;

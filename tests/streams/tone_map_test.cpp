@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/synthetic_day.hpp"
 #include "streams/authoring/tone_map.hpp"
 

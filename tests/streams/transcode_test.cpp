@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "streams/authoring/authoring_error.hpp"
+#include "streams/authoring/error.hpp"
 #include "streams/authoring/transcode.hpp"
 #include "streams/stream_stats.hpp"
 #include "tests/streams/stream_fixture.hpp"

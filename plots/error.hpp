@@ -1,13 +1,13 @@
 // The one error type of plots/: a figure could not be drawn or written. The message names the file.
 #pragma once
 
-#include <stdexcept>
+#include "runtime/error.hpp"
 
 namespace vbim::plots {
 
-class PlotError : public std::runtime_error {
+class PlotError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace vbim::plots

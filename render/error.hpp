@@ -3,14 +3,13 @@
 // and what was expected.
 #pragma once
 
-#include <stdexcept>
-#include <string>
+#include "runtime/error.hpp"
 
 namespace vbim::render {
 
-class RenderError : public std::runtime_error {
+class RenderError : public Error {
  public:
-  explicit RenderError(const std::string& message) : std::runtime_error(message) {}
+  using Error::Error;
 };
 
 }  // namespace vbim::render

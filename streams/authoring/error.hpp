@@ -1,14 +1,13 @@
 // The one exception type of authoring: its message names the file (or frame) and the problem.
 #pragma once
 
-#include <stdexcept>
-#include <string>
+#include "runtime/error.hpp"
 
 namespace vbim::streams {
 
-class AuthoringError : public std::runtime_error {
+class AuthoringError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace vbim::streams

@@ -2,13 +2,13 @@
 // place (pixel, key) and what was expected, so the CLI can print it as is.
 #pragma once
 
-#include <stdexcept>
+#include "runtime/error.hpp"
 
 namespace vbim::lighting {
 
-class LightingError : public std::runtime_error {
+class LightingError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace vbim::lighting

@@ -3,13 +3,13 @@
 // given and what was expected; the CLI turns it into a non-zero exit.
 #pragma once
 
-#include <stdexcept>
+#include "runtime/error.hpp"
 
 namespace vbim::gs {
 
-class GsError : public std::runtime_error {
+class GsError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace vbim::gs
