@@ -33,6 +33,8 @@ function(vbim_library name)
   target_include_directories(${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
                                             $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/vbim>)
   target_link_libraries(${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE})
+  # Users compile our headers (coroutines, concepts): C++20 goes with the target, also when installed.
+  target_compile_features(${name} PUBLIC cxx_std_20)
   if(ARG_MODEL)
     get_property(model GLOBAL PROPERTY VBIM_MODEL_TARGETS)
     foreach(dep IN LISTS ARG_PUBLIC ARG_PRIVATE)

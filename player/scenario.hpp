@@ -1,6 +1,6 @@
 // The test API: build a scenario (disc, platform config, fault plan, seed), run it to a time, and read
 // the frames, hashes and metrics, from your own GoogleTest suites. docs/test-api.md has a worked
-// example (tests/player/test_api_example_test.cpp is that example, compiled and run in ctest).
+// example (examples/stall-test/, compiled and run in ctest).
 //
 //   using namespace vbim;
 //   auto run = player::Scenario::bareFile("day_clear.vbim")

@@ -2,47 +2,18 @@
 
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "tests/runtime/trace_sample.hpp"
 
 namespace vbim {
 namespace {
 
-Tracer sample() {
-  Tracer t;
-  const auto drive = t.track("drive");
-  const auto ipu = t.track("ipu");
-  const auto ring = t.counter("ring.banks");
-  t.span(drive, 0, fromMs(2), "read");
-  t.begin(ipu, fromUs(500), "decode");
-  t.end(ipu, fromUs(1500));
-  t.value(ring, 0, 0);
-  t.value(ring, fromMs(2), 1);
-  t.value(ring, fromMs(3), 1);  // repeated value: dropped
-  t.instant(drive, fromMs(5), "stall");
-  return t;
-}
-
-TEST(Trace, ChromeJsonParsesAndHasTheEvents) {
-  std::ostringstream s;
-  sample().writeChromeJson(s);
-  const auto j = nlohmann::json::parse(s.str());
-  const auto& ev = j["traceEvents"];
-  int spans = 0, counters = 0, instants = 0;
-  for (const auto& e : ev) {
-    if (e["ph"] == "X") ++spans;
-    if (e["ph"] == "C") ++counters;
-    if (e["ph"] == "i") ++instants;
-  }
-  EXPECT_EQ(spans, 2);
-  EXPECT_EQ(counters, 2);
-  EXPECT_EQ(instants, 1);
-  EXPECT_NE(s.str().find(R"("ts":0.000,"dur":2000.000)"), std::string::npos);
-}
+using testing::sampleTrace;
 
 TEST(Trace, VcdHasHeaderAndTimeOrderedChanges) {
   std::ostringstream s;
-  sample().writeVcd(s);
+  sampleTrace().writeVcd(s);
   const std::string v = s.str();
   EXPECT_NE(v.find("$timescale 1ps $end"), std::string::npos);
   EXPECT_NE(v.find("drive_busy"), std::string::npos);
@@ -62,13 +33,13 @@ TEST(Trace, VcdHasHeaderAndTimeOrderedChanges) {
 
 TEST(Trace, ByteIdenticalAcrossBuilds) {
   std::ostringstream a, b;
-  sample().writeChromeJson(a);
-  sample().writeChromeJson(b);
+  sampleTrace().writeChromeJson(a);
+  sampleTrace().writeChromeJson(b);
   EXPECT_EQ(a.str(), b.str());
 }
 
 TEST(Trace, BusyTimeSumsSpansInWindow) {
-  Tracer t = sample();
+  Tracer t = sampleTrace();
   EXPECT_EQ(t.busyTime(0, 0, fromMs(10)), fromMs(2));
   EXPECT_EQ(t.busyTime(0, fromMs(1), fromMs(10)), fromMs(1));
   EXPECT_EQ(t.busyTime(1, 0, fromMs(10)), fromMs(1));
