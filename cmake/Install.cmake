@@ -70,11 +70,11 @@ list(REMOVE_DUPLICATES _vbim_header_folders)
 foreach(_folder IN LISTS _vbim_header_folders)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vbim/${_folder}
           FILES_MATCHING PATTERN "*.hpp"
-          PATTERN "image_file.hpp" EXCLUDE  # runtime/: pictures through libpng and OpenEXR
           PATTERN "blend_simd.hpp" EXCLUDE  # gs/: Highway kernels
           PATTERN "simd" EXCLUDE            # ipu/simd/: Highway kernels
           PATTERN "authoring" EXCLUDE       # streams/authoring/: FFmpeg, OpenImageIO
           PATTERN "disc" EXCLUDE            # streams/disc/: ISO 9660 through libcdio
+          PATTERN "decode" EXCLUDE          # streams/decode/: vbim decode's library (imageio, Highway)
           PATTERN "samples" EXCLUDE)        # streams/samples/: no headers (the streams go to share/)
 endforeach()
 
