@@ -19,7 +19,7 @@ void describeParams(ParamTable& t, EeParams& p) {
   t.addInt("ee.compressed_frames", &p.compressed_frames, 1, 64, "pictures",
            "Hoffman & Mitchell, GDC 2001: one complete picture waits in the compressed frame buffer while the next "
            "loads; 2 per stream");
-  t.addInt("ee.compressed_budget_kib", &p.compressed_budget_kib, 1, 32 * 1'024, "KiB",
+  t.addInt("ee.compressed_budget_kib", &p.compressed_budget_kib, 1, std::int64_t{32} * 1'024, "KiB",
            "assumption: 4 MiB of the EE's 32 MiB per stream for compressed pictures, including those stored "
            "beyond ee.compressed_frames while the other stream is behind in the mux; a picture that would exceed "
            "it is dropped and its frame counted lost");

@@ -103,10 +103,11 @@ StallResult longestSurvivableStall(const Case& base, const StallSearch& search, 
   while (hi - lo > s.resolution) {
     const Tick mid = lo + (hi - lo) / 2;
     ++out.runs;
-    if (survives(base, s, criterion, mid))
+    if (survives(base, s, criterion, mid)) {
       lo = mid;
-    else
+    } else {
       hi = mid;
+    }
   }
   out.longest = lo;
   return out;

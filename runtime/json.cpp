@@ -167,9 +167,9 @@ void Value::write(std::string& out, int indent, int depth) const {
   }
 }
 
-Value object(std::vector<std::pair<std::string, Value>> members) {
+Value object(const std::vector<std::pair<std::string, Value>>& members) {
   Value v = Value::object();
-  for (auto& [k, m] : members) v[k] = std::move(m);
+  for (const auto& [k, m] : members) v[k] = m;
   return v;
 }
 

@@ -55,6 +55,6 @@ class Value {
 };
 
 // Builds an object from {key, value} pairs: json::object({{"a", 1}, {"b", true}}).
-Value object(std::vector<std::pair<std::string, Value>> members);
+Value object(const std::vector<std::pair<std::string, Value>>& members);
 
 }  // namespace vbim::json
