@@ -16,7 +16,7 @@
 #include "config/params_toml.hpp"
 #include "imageio/error.hpp"
 #include "imageio/image_writer.hpp"
-#include "imageio/lighting_files.hpp"
+#include "lighting/image_files.hpp"
 #include "lighting/day_cycle.hpp"
 #include "lighting/error.hpp"
 #include "lighting/fixed_angle.hpp"
@@ -75,9 +75,9 @@ Terrain loadTerrain(const LightmapOptions& o) {
     t = proceduralTerrain({.size = o.size, .cellSize = o.cellSize, .reliefMetres = o.relief, .seed = o.seed});
     if (o.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
   } else {
-    t = imageio::readHeightfield(o.terrain, o.cellSize, o.verticalScale);
+    t = lighting::readHeightfield(o.terrain, o.cellSize, o.verticalScale);
   }
-  if (!o.albedo.empty()) setAlbedo(t, imageio::readColourMap(o.albedo), o.albedo);
+  if (!o.albedo.empty()) setAlbedo(t, lighting::readColourMap(o.albedo), o.albedo);
   return t;
 }
 
@@ -95,14 +95,14 @@ void writeDebugStatic(const DayCycleGenerator& g, const DebugLayers& d, const Ou
       for (std::size_t i = 0; i < deg.pixels.size(); ++i) {
         deg.pixels[i] = static_cast<float>(angleFromCode(pre.horizons.code[k][i]) * 180.0 / 3.14159265358979323846);
       }
-      imageio::writeImage(dir.path(name + "_deg.exr"), deg);
+      lighting::writeImage(dir.path(name + "_deg.exr"), deg);
     }
   }
   if (d.sky) {
     FloatImage k(pre.sky.width, pre.sky.height, 1);
     k.pixels = pre.sky.k;
-    imageio::writeImage(dir.path("sky_factor_K.exr"), k);
-    imageio::writeImage(dir.path("sky_factor_K.png"), k);
+    lighting::writeImage(dir.path("sky_factor_K.exr"), k);
+    lighting::writeImage(dir.path("sky_factor_K.png"), k);
   }
 }
 
@@ -121,7 +121,7 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
   validateParams(params);  // before any heavy work or output
   FloatImage cloudTexture;
   if (!o.cloudTexture.empty()) {
-    cloudTexture = imageio::readDensityMap(o.cloudTexture);
+    cloudTexture = lighting::readDensityMap(o.cloudTexture);
     params.clouds.enabled = true;
   }
   Terrain terrain = loadTerrain(o);
@@ -143,9 +143,9 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
         << compassDegrees(f.sun.azimuth) << "," << (f.keyIsMoon ? "moon" : "sun") << "\n";
     for (const char* ext : {".png", ".exr"}) {
       if (o.format != "both" && o.format != std::string(ext + 1)) continue;
-      imageio::writeImage(dir.path(frameName("lightmap", i, ext)), light);
-      imageio::writeImage(dir.path(frameName("sky", i, ext)), sky);
-      if (debug.shadow) imageio::writeImage(dir.path(frameName("shadow", i, ext)), mask);
+      lighting::writeImage(dir.path(frameName("lightmap", i, ext)), light);
+      lighting::writeImage(dir.path(frameName("sky", i, ext)), sky);
+      if (debug.shadow) lighting::writeImage(dir.path(frameName("shadow", i, ext)), mask);
     }
     progress.show(i + 1, gen.frameCount());
   }

@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "imageio/error.hpp"
-#include "imageio/lighting_files.hpp"
+#include "lighting/image_files.hpp"
 #include "lighting/error.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/error.hpp"
@@ -67,9 +67,9 @@ Terrain loadTerrain(const TerrainSource& src) {
       t = proceduralTerrain(src.procedural);
       if (src.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
     } else {
-      t = imageio::readHeightfield(src.heightfield, src.cellSize, src.verticalScale);
+      t = lighting::readHeightfield(src.heightfield, src.cellSize, src.verticalScale);
     }
-    if (!src.albedo.empty()) setAlbedo(t, imageio::readColourMap(src.albedo), src.albedo);
+    if (!src.albedo.empty()) setAlbedo(t, lighting::readColourMap(src.albedo), src.albedo);
     return t;
   } catch (const LightingError& e) {
     throw AuthoringError(e.what());
@@ -138,7 +138,7 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
   FloatImage cloudTexture;
   if (!s.terrain.cloudTexture.empty()) {
     try {
-      cloudTexture = imageio::readDensityMap(s.terrain.cloudTexture);
+      cloudTexture = lighting::readDensityMap(s.terrain.cloudTexture);
     } catch (const LightingError& e) {
       throw AuthoringError(e.what());
     } catch (const imageio::ImageIoError& e) {

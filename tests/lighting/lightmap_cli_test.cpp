@@ -1,7 +1,7 @@
 // vbim lightmap run as a child process, with the bad-input cases: a heightfield that is not
 // single-channel, empty or holds NaN heights, latitude outside +-90, zero frames, a colour map of
 // another size. Each must give a clear message and a non-zero exit. (Reading and writing the files
-// themselves is tested in tests/imageio/lighting_files_test.cpp.)
+// themselves is tested in tests/lighting/image_files_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>

@@ -1,8 +1,8 @@
 // The lighting generator's pictures (lighting/): heightfields, colour and cloud maps in; lightmaps,
-// sky domes and debug layers out. Kept here, not in lighting/, so the generator itself needs the
-// standard library only. Part of the full imageio library (vbim_imageio_full).
+// sky domes and debug layers out, read and written through imageio/. A target of its own
+// (vbim_lighting_files), so the generator itself (vbim_lighting) needs the standard library only.
 //
-// Errors: ImageIoError for the file (unreadable, wrong channel count); LightingError for what it
+// Errors: imageio::ImageIoError for the file (unreadable, wrong channel count); LightingError for what it
 // holds (a NaN height, lighting/terrain.hpp).
 #pragma once
 
@@ -13,21 +13,21 @@
 #include "lighting/float_image.hpp"
 #include "lighting/terrain.hpp"
 
-namespace vbim::imageio {
+namespace vbim::lighting {
 
 // A single-channel heightfield. Integer samples are kept exact (full scale = `verticalScale`
 // metres, so a 16-bit count is verticalScale / 65535 m); float samples are metres / verticalScale.
-lighting::Terrain readHeightfield(const std::string& path, double cellSize, double verticalScale);
+Terrain readHeightfield(const std::string& path, double cellSize, double verticalScale);
 
 // An RGB colour (albedo) map, linear. 8/16-bit files are taken as sRGB-encoded and linearised,
 // float files as linear. One channel is grey; a fourth channel (alpha) is ignored.
-lighting::FloatImage readColourMap(const std::string& path);
+FloatImage readColourMap(const std::string& path);
 
 // A single-channel image with values 0..1 (cloud density); values outside are clamped.
-lighting::FloatImage readDensityMap(const std::string& path);
+FloatImage readDensityMap(const std::string& path);
 
 // By extension: .exr as 32-bit floats (exact), anything else (.png, .tif) as 8-bit linear,
 // round(255 * value) clamped to [0, 1].
-void writeImage(const std::filesystem::path& path, const lighting::FloatImage& image);
+void writeImage(const std::filesystem::path& path, const FloatImage& image);
 
-}  // namespace vbim::imageio
+}  // namespace vbim::lighting

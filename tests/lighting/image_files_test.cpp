@@ -16,16 +16,15 @@
 #include <vector>
 
 #include "imageio/error.hpp"
-#include "imageio/lighting_files.hpp"
+#include "lighting/image_files.hpp"
 #include "lighting/error.hpp"
 
-namespace vbim::imageio {
+namespace vbim::lighting {
 namespace {
 
+using imageio::ImageIoError;
+
 namespace fs = std::filesystem;
-using lighting::FloatImage;
-using lighting::LightingError;
-using lighting::Terrain;
 
 fs::path scratchDir() {
   return fs::temp_directory_path() / ("vbim_imageio_lighting_" + std::to_string(::getpid()));
@@ -141,4 +140,4 @@ TEST(LightingFiles, ColourMapsAreLinearisedAndCloudTexturesClamped) {
 }
 
 }  // namespace
-}  // namespace vbim::imageio
+}  // namespace vbim::lighting

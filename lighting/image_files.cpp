@@ -1,4 +1,4 @@
-#include "imageio/lighting_files.hpp"
+#include "lighting/image_files.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,13 @@
 #include "imageio/image_writer.hpp"
 #include "lighting/error.hpp"
 
-namespace vbim::imageio {
+namespace vbim::lighting {
+
+using imageio::Image;
+using imageio::ImageInfo;
+using imageio::ImageReader;
+using imageio::ImageView;
+using imageio::SampleType;
 
 namespace {
 
@@ -24,29 +30,29 @@ std::vector<std::uint32_t> widen(const std::vector<T>& samples) {
 
 }  // namespace
 
-lighting::Terrain readHeightfield(const std::string& path, double cellSize, double verticalScale) {
+Terrain readHeightfield(const std::string& path, double cellSize, double verticalScale) {
   ImageReader in(path, "heightfield");
   const ImageInfo& info = in.info();
   if (info.channels != 1) {
     throw in.error("has " + std::to_string(info.channels) + " channels; expected a single-channel (greyscale) image");
   }
   if (!(verticalScale > 0) || !std::isfinite(verticalScale)) {
-    throw lighting::LightingError(path + ": vertical scale must be a positive number of metres");
+    throw LightingError(path + ": vertical scale must be a positive number of metres");
   }
   if (info.stored == SampleType::UInt8) {
-    return lighting::terrainFromCounts(info.width, info.height, widen(in.readUInt8().samples), cellSize,
+    return terrainFromCounts(info.width, info.height, widen(in.readUInt8().samples), cellSize,
                                        verticalScale / 255.0, path);
   }
   if (info.stored == SampleType::UInt16) {
-    return lighting::terrainFromCounts(info.width, info.height, widen(in.readUInt16().samples), cellSize,
+    return terrainFromCounts(info.width, info.height, widen(in.readUInt16().samples), cellSize,
                                        verticalScale / 65535.0, path);
   }
   std::vector<float> metres = in.readFloat().samples;
   for (float& v : metres) v = static_cast<float>(v * verticalScale);
-  return lighting::terrainFromMetres(info.width, info.height, metres, cellSize, path);
+  return terrainFromMetres(info.width, info.height, metres, cellSize, path);
 }
 
-lighting::FloatImage readColourMap(const std::string& path) {
+FloatImage readColourMap(const std::string& path) {
   ImageReader in(path, "colour map");
   const int channels = in.info().channels;
   if (channels != 1 && channels != 3 && channels != 4) {
@@ -54,7 +60,7 @@ lighting::FloatImage readColourMap(const std::string& path) {
   }
   const bool encoded = !in.info().floatingPoint;
   const Image<float> raw = in.readFloat();
-  lighting::FloatImage image(raw.width, raw.height, 3);
+  FloatImage image(raw.width, raw.height, 3);
   const std::size_t pixels = static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height);
   const auto ch = static_cast<std::size_t>(channels);
   for (std::size_t i = 0; i < pixels; ++i) {
@@ -66,17 +72,17 @@ lighting::FloatImage readColourMap(const std::string& path) {
   return image;
 }
 
-lighting::FloatImage readDensityMap(const std::string& path) {
+FloatImage readDensityMap(const std::string& path) {
   ImageReader in(path, "cloud texture");
   if (in.info().channels != 1) {
     throw in.error("has " + std::to_string(in.info().channels) + " channels; expected a single-channel image");
   }
   Image<float> raw = in.readFloat();
-  lighting::FloatImage image(raw.width, raw.height, 1);
+  FloatImage image(raw.width, raw.height, 1);
   image.pixels = std::move(raw.samples);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     if (!std::isfinite(image.pixels[i])) {
-      throw lighting::LightingError(path + ": value at pixel (" + std::to_string(i % image.width) + ", " +
+      throw LightingError(path + ": value at pixel (" + std::to_string(i % image.width) + ", " +
                                     std::to_string(i / image.width) + ") is not finite");
     }
     image.pixels[i] = std::clamp(image.pixels[i], 0.0f, 1.0f);
@@ -84,12 +90,12 @@ lighting::FloatImage readDensityMap(const std::string& path) {
   return image;
 }
 
-void writeImage(const std::filesystem::path& path, const lighting::FloatImage& image) {
+void writeImage(const std::filesystem::path& path, const FloatImage& image) {
   const ImageView<float> floats{image.width, image.height, image.channels, image.pixels.data()};
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext == ".exr") {
-    writeImage(path, floats);
+    imageio::writeImage(path, floats);
     return;
   }
   Image<std::uint8_t> bytes(image.width, image.height, image.channels);
@@ -98,7 +104,7 @@ void writeImage(const std::filesystem::path& path, const lighting::FloatImage& i
     // NOLINTNEXTLINE(bugprone-incorrect-roundings)
     bytes.samples[i] = static_cast<std::uint8_t>(std::clamp(image.pixels[i], 0.0f, 1.0f) * 255.0f + 0.5f);
   }
-  writeImage(path, bytes.view());
+  imageio::writeImage(path, bytes.view());
 }
 
-}  // namespace vbim::imageio
+}  // namespace vbim::lighting
