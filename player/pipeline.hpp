@@ -4,12 +4,12 @@
 //     -> compressed frame buffers (lightmap, sky) -> IPU feeder ("ee.ipu", one IPU, serialised)
 //     -> decoded frame buffers -> GS presenters ("gs" lightmap, "gs.sky" sky) at every vsync
 //
-// The IPU feeder decodes in timeline order: for each sequence number the lightmap picture, then the
-// sky picture, so the sky stays in step with the lightmap. A branch (scheduled on both presenters
-// at the same time) drops what was loaded for the old variant and repositions the demux.
+// The IPU feeder (ee/ipu_feeder.hpp) decodes in timeline order: for each sequence number the
+// lightmap picture, then the sky picture, so the sky stays in step with the lightmap. A branch
+// (scheduled on both presenters at the same time) drops what was loaded for the old variant and
+// repositions the demux.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -17,6 +17,7 @@
 
 #include "ee/ee_demux.hpp"
 #include "ee/frame_buffers.hpp"
+#include "ee/ipu_feeder.hpp"
 #include "ee/stream_probe.hpp"
 #include "ee/timeline.hpp"
 #include "gs/blend.hpp"
@@ -40,18 +41,6 @@ struct Kernels {
   const ipu::Kernels* ipu = nullptr;        // null: ipu scalar reference
 };
 
-struct DecodeCounters {
-  std::int64_t pictures = 0;
-  std::int64_t concealedMacroblocks = 0;  // kept their previous value: damage the IPU hid
-  std::int64_t picturesWithIssues = 0;
-  std::int64_t undecodable = 0;   // produced nothing usable (wrong size or no picture): not shown
-  std::int64_t staleDropped = 0;  // decoded for a variant a branch left meanwhile
-  Tick busy = 0;                  // IPU command time, start to last output qword
-  Tick maxPerPicture = 0;
-  std::array<Tick, 2> perStream{0, 0};  // summed per stream
-  std::array<std::int64_t, 2> picturesPerStream{0, 0};
-};
-
 class Pipeline : public ee::DecodedFrames::BranchSink {
  public:
   Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream& stream, const PlatformConfig& config,
@@ -71,19 +60,15 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   const iop::StreamRing& ring() const { return ring_; }
   const iop::SifChannel& sif() const { return sif_; }
   const ee::EeDemux& demux() const { return demux_; }
-  const DecodeCounters& decode() const { return dc_; }
+  const ee::DecodeCounters& decode() const { return feeder_->counters(); }
   Tick t0() const { return t0_; }
   // The drive's busy-span track in the tracer (the drive creates it right after the feeder's).
   Tracer::TrackId driveTrack() const { return feederTrack_ + 1; }
 
  private:
   void onBranch(int variant, std::int64_t fromSeq, Tick now) override;
-  static Task<void> feedIpu(Pipeline& p);
-  Task<void> decodeOne(int stream);
-  bool active(int s) const { return s == ee::kLightmap || stream_.skyIndex >= 0; }
 
   Scheduler& s_;
-  const ee::ProbedStream& stream_;
   PlatformConfig config_;
   Tracer* tracer_;
   std::string name_;
@@ -100,14 +85,13 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   ipu::IpuUnit ipu_;
   std::unique_ptr<ee::DecodedFrames> lmFrames_;
   std::unique_ptr<ee::DecodedFrames> skyFrames_;
+  // Built after the frame buffers it fills, from the track created first (feederTrack_).
+  std::unique_ptr<ee::IpuFeeder> feeder_;
   SerialUnit gs_;  // the one GS both presenters draw on
   std::unique_ptr<gs::Presenter> lightmap_;
   std::unique_ptr<gs::Presenter> sky_;
-  std::uint64_t generation_ = 0;
-  std::int64_t lastBranchFrom_ = 0;
   Tick lastBranchAt_ = -1;
   int lastBranchVariant_ = 0;
-  DecodeCounters dc_;
 };
 
 }  // namespace vbim::player

@@ -85,7 +85,7 @@ void writeStatsJson(const Player& player, std::ostream& out) {
   const iop::RingStats& rs = p.ring().stats();
   const ee::DemuxCounters& dm = p.demux().counters();
   const streams::DemuxStats& rd = p.demux().reader().stats();
-  const DecodeCounters& dc = p.decode();
+  const ee::DecodeCounters& dc = p.decode();
   const PlayerOptions& o = player.options();
 
   json::Value busy = json::object({{"sif", share(p.sif().busyTime(), elapsed)},

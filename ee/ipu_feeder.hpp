@@ -1,0 +1,75 @@
+// The EE thread that feeds the one IPU ("ee.ipu"): it takes complete pictures from the compressed
+// frame buffers in timeline order (for each sequence number the lightmap picture, then the sky
+// picture, so the sky stays in step with the lightmap), issues one IPU command per picture (one at a
+// time: the EE serialises IPU_CMD) and pushes each decoded frame into its stream's decoded frame
+// buffers, where the GS presenter finds it.
+//
+// EE time: ee.decode_setup_cycles per picture (DMA chains and IDEC) before the IPU's own time
+// (docs/timing/ee.md, docs/timing/ipu.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "ee/ee_demux.hpp"
+#include "ee/frame_buffers.hpp"
+#include "ee/params.hpp"
+#include "ee/timeline.hpp"
+#include "ipu/ipu_unit.hpp"
+#include "runtime/event.hpp"
+#include "runtime/scheduler.hpp"
+#include "runtime/trace.hpp"
+
+namespace vbim::ee {
+
+struct DecodeCounters {
+  std::int64_t pictures = 0;
+  std::int64_t concealedMacroblocks = 0;  // kept their previous value: damage the IPU hid
+  std::int64_t picturesWithIssues = 0;
+  std::int64_t undecodable = 0;   // produced nothing usable (wrong size or no picture): not shown
+  std::int64_t staleDropped = 0;  // decoded for a variant a branch left meanwhile
+  Tick busy = 0;                  // IPU command time, start to last output qword
+  Tick maxPerPicture = 0;
+  std::array<Tick, 2> perStream{0, 0};  // summed per stream
+  std::array<std::int64_t, 2> picturesPerStream{0, 0};
+};
+
+class IpuFeeder {
+ public:
+  // `in` and `out` are indexed by stream (kLightmap, kSky); a stream the file does not have has a
+  // null decoded-frame buffer. `work` is the demux's "a picture was loaded" event. `tracer` is null
+  // or enabled; `track` is the feeder's busy-span track in it.
+  IpuFeeder(Scheduler& s, std::array<CompressedBuffer*, 2> in, std::array<DecodedFrames*, 2> out, const EeDemux& demux,
+            const Timeline& timeline, ipu::IpuUnit& ipu, const EeParams& p, Event& work, Tracer* tracer,
+            Tracer::TrackId track);
+  IpuFeeder(const IpuFeeder&) = delete;
+  IpuFeeder& operator=(const IpuFeeder&) = delete;
+
+  // The process: feeds the IPU forever.
+  Task<void> run();
+  // A branch from seq `fromSeq` took effect: a picture of that seq or later still being decoded
+  // belongs to the variant left and is dropped when it comes out.
+  void branch(std::int64_t fromSeq);
+
+  const DecodeCounters& counters() const { return dc_; }
+
+ private:
+  Task<void> decodeOne(int stream);
+  bool active(int s) const { return out_[static_cast<std::size_t>(s)] != nullptr; }
+
+  Scheduler& s_;
+  std::array<CompressedBuffer*, 2> in_;
+  std::array<DecodedFrames*, 2> out_;
+  const EeDemux& demux_;
+  const Timeline& timeline_;
+  ipu::IpuUnit& ipu_;
+  EeParams p_;
+  Event& work_;
+  Tracer* tracer_;
+  Tracer::TrackId track_;
+  std::uint64_t generation_ = 0;
+  std::int64_t lastBranchFrom_ = 0;
+  DecodeCounters dc_;
+};
+
+}  // namespace vbim::ee
