@@ -10,6 +10,7 @@
 
 #include <toml++/toml.h>
 
+#include "config/toml_document.hpp"
 #include "iop/sector_source.hpp"
 
 namespace vbim::config {
@@ -133,13 +134,7 @@ void rejectOverlaps(const std::string& origin, const std::vector<Fault>& faults,
 }  // namespace
 
 iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, const iop::SectorSource* disc) {
-  toml::table doc;
-  try {
-    doc = toml::parse(text, origin);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(origin + ":" + std::to_string(e.source().begin.line) +
-                      ": TOML syntax error: " + std::string(e.description()));
-  }
+  const toml::table doc = parseTomlDocument(text, origin);
   FaultPlan plan;
   plan.origin = origin;
   for (const auto& [k, v] : doc) {

@@ -8,6 +8,8 @@
 
 #include <toml++/toml.h>
 
+#include "config/toml_document.hpp"
+
 namespace vbim::config {
 
 namespace {
@@ -39,13 +41,7 @@ void applyTomlFile(ParamTable& table, const std::string& path) {
 }
 
 void applyToml(ParamTable& table, std::string_view text, const std::string& origin) {
-  toml::table doc;
-  try {
-    doc = toml::parse(text, origin);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(origin + ":" + std::to_string(e.source().begin.line) +
-                      ": TOML syntax error: " + std::string(e.description()));
-  }
+  const toml::table doc = parseTomlDocument(text, origin);
   std::vector<std::pair<std::string, const toml::node*>> entries;
   flatten(doc, "", entries);
   for (const auto& entry : entries) {

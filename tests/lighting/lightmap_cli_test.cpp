@@ -13,37 +13,18 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/lighting/oiio_scratch.hpp"
+
 namespace vbim::lighting {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratchDir() {
-  return fs::temp_directory_path() / ("vbim_lighting_test_" + std::to_string(::getpid()));
-}
-
-fs::path scratch(const std::string& name) {
-  fs::create_directories(scratchDir());
-  return scratchDir() / name;
-}
-
-class RemoveScratch : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(scratchDir(), ec);
-  }
-};
+using testing::RemoveScratch;
+using testing::scratch;
+using testing::scratchDir;
+using testing::writeRaw;
 const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
-
-template <typename T>
-void writeRaw(const fs::path& path, int w, int h, int channels, OIIO::TypeDesc type, const std::vector<T>& data) {
-  auto out = OIIO::ImageOutput::create(path.string());
-  ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(path.string(), OIIO::ImageSpec(w, h, channels, type)));
-  ASSERT_TRUE(out->write_image(type, data.data()));
-  ASSERT_TRUE(out->close());
-}
 
 struct Result {
   int code;
