@@ -22,7 +22,7 @@
 #include "iop/file_disc.hpp"
 #include "iop/memory_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "player/profile_run.hpp"
+#include "player/profile_sweep.hpp"
 #include "player/scenario.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/transcode.hpp"
@@ -182,52 +182,34 @@ void runProfile(const ProfileRequest& r) {
   if (search.maxStall / search.resolution > 100'000)
     throw Exit(2, "--max-stall / --resolution is above 100000 steps: choose a coarser --resolution");
 
-  ProfileData data;
-  data.search = search;
-  auto makeCase = [&](const Stream& s, const RingSize& ring, const std::string& policy) {
-    Case c;
-    c.stream = &s;
-    c.config = base;
-    c.config.iop.ring.bankmax = ring.bankmax;
-    c.config.iop.ring.bufmax_sectors = ring.bufmax;
-    c.config.gs.catchup = policy;
-    c.seed = r.seed;
-    c.duration = duration;
-    c.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
-    return c;
+  SweepPlan plan;
+  for (const auto& s : streams) plan.streams.push_back(s.get());
+  plan.base = base;
+  plan.plans = std::move(plans);
+  plan.policies = policies;
+  plan.rings = rings;
+  plan.seed = r.seed;
+  plan.duration = duration;
+  plan.searchStalls = r.search;
+  plan.search = search;
+  plan.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
+  SweepObserver progress;
+  progress.onRun = [](const SweepRun& run) {
+    std::cout << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax << "  faults "
+              << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate << ", pop max "
+              << run.result.pop.value << ", lag max " << run.result.totals.lag.value << "\n";
   };
+  progress.onStall = [](const StallRow& row) {
+    std::cout << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
+              << row.policy << "  " << toString(row.criterion) << ": "
+              << (row.result.longest
+                      ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
+                      : std::string("fails without a stall"))
+              << " (" << row.result.runs << " runs)\n";
+  };
+  ProfileData data;
   try {
-    for (const auto& s : streams) {
-      for (const auto& [planName, plan] : plans) {
-        for (const std::string& policy : policies) {
-          for (const RingSize& ring : rings) {
-            Case c = makeCase(*s, ring, policy);
-            c.faults = plan;
-            SweepRun run{s->label, ring, planName, policy, runCase(c, true)};
-            std::cout << "sweep  " << s->label << "  ring " << ring.bankmax << ":" << ring.bufmax << "  faults "
-                      << planName << "  " << policy << ": late " << run.result.lightmap.framesLate << ", pop max "
-                      << run.result.pop.value << ", lag max " << run.result.totals.lag.value << "\n";
-            data.sweep.push_back(std::move(run));
-          }
-        }
-      }
-      if (!r.search) continue;
-      for (const std::string& policy : policies) {
-        for (const RingSize& ring : rings) {
-          for (Criterion crit : {Criterion::late, Criterion::pop}) {
-            const Case c = makeCase(*s, ring, policy);
-            StallRow row{s->label, ring, policy, crit, longestSurvivableStall(c, search, crit)};
-            std::cout << "stall  " << s->label << "  ring " << ring.bankmax << ":" << ring.bufmax << "  " << policy
-                      << "  " << toString(crit) << ": "
-                      << (row.result.longest
-                              ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
-                              : std::string("fails without a stall"))
-                      << " (" << row.result.runs << " runs)\n";
-            data.stalls.push_back(std::move(row));
-          }
-        }
-      }
-    }
+    data = runSweep(plan, progress);
   } catch (const ee::StreamProbeError& e) {
     throw Exit(2, e.what());
   } catch (const ConfigError& e) {
@@ -235,7 +217,6 @@ void runProfile(const ProfileRequest& r) {
   } catch (const gs::GsError& e) {
     throw Exit(2, std::string("platform config: ") + e.what());
   }
-  for (const auto& s : streams) data.streamBytes.emplace_back(s->label, s->file.bytes);
 
   OutputDir dir(r.out, r.force);
   const std::vector<std::string> written = writeProfileOutputs(data, dir);

@@ -9,41 +9,14 @@
 #include <vector>
 
 #include "cli/output_dir.hpp"
-#include "player/profile_run.hpp"
+#include "player/profile_sweep.hpp"
 #include "plots/profile_figures.hpp"
 
 namespace vbim::cli::profile {
 
-// The runs themselves are the player's (player/profile_run.hpp); this file writes their results.
+// The runs and the sweep are the player's (player/profile_run.hpp, player/profile_sweep.hpp); this
+// file writes their results.
 using namespace vbim::player::profile;
-
-struct RingSize {
-  std::int64_t bankmax = 5;
-  std::int64_t bufmax = 160;  // sectors
-};
-
-struct SweepRun {
-  std::string stream;
-  RingSize ring;
-  std::string faults;  // plan label ("none" or the file's stem)
-  std::string policy;  // gs.catchup
-  CaseResult result;
-};
-
-struct StallRow {
-  std::string stream;
-  RingSize ring;
-  std::string policy;
-  Criterion criterion = Criterion::late;
-  StallResult result;
-};
-
-struct ProfileData {
-  std::vector<std::pair<std::string, std::int64_t>> streamBytes;
-  std::vector<SweepRun> sweep;
-  std::vector<StallRow> stalls;
-  StallSearch search;
-};
 
 // Writes every output into `dir` and returns the names written (relative), plots first.
 std::vector<std::string> writeProfileOutputs(const ProfileData& d, const OutputDir& dir);

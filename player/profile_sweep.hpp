@@ -1,0 +1,71 @@
+// The sweep behind `vbim profile`: every stream x fault plan x catch-up policy x ring size played
+// once (one case, player/profile_run.hpp), then for every stream x policy x ring size the longest
+// survivable drive stall under both criteria. The order is fixed (streams, then plans, policies,
+// rings; the stall searches after each stream's runs), so the results are the same table on every
+// machine.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "iop/fault_plan.hpp"
+#include "player/platform_config.hpp"
+#include "player/profile_run.hpp"
+
+namespace vbim::player::profile {
+
+struct RingSize {
+  std::int64_t bankmax = 5;
+  std::int64_t bufmax = 160;  // sectors
+};
+
+struct SweepRun {
+  std::string stream;
+  RingSize ring;
+  std::string faults;  // plan label ("none" or the file's stem)
+  std::string policy;  // gs.catchup
+  CaseResult result;
+};
+
+struct StallRow {
+  std::string stream;
+  RingSize ring;
+  std::string policy;
+  Criterion criterion = Criterion::late;
+  StallResult result;
+};
+
+struct ProfileData {
+  std::vector<std::pair<std::string, std::int64_t>> streamBytes;
+  std::vector<SweepRun> sweep;
+  std::vector<StallRow> stalls;
+  StallSearch search;
+};
+
+struct SweepPlan {
+  std::vector<const Stream*> streams;
+  PlatformConfig base;                                        // ring size and policy are set per case
+  std::vector<std::pair<std::string, iop::FaultPlan>> plans;  // label, plan
+  std::vector<std::string> policies;                          // gs.catchup names
+  std::vector<RingSize> rings;
+  std::uint64_t seed = 1;
+  Tick duration = 0;
+  bool searchStalls = true;
+  StallSearch search;
+  Kernels kernels;  // injected SIMD kernels (null: scalar references, same results)
+};
+
+// Told of each result as it is made, so a command can print progress.
+struct SweepObserver {
+  std::function<void(const SweepRun&)> onRun;
+  std::function<void(const StallRow&)> onStall;
+};
+
+// Runs the whole sweep (throws what the player throws: ee::StreamProbeError, ConfigError,
+// gs::GsError).
+ProfileData runSweep(const SweepPlan& plan, const SweepObserver& observer = {});
+
+}  // namespace vbim::player::profile
