@@ -73,7 +73,8 @@ void run(const Options& o) {
     throw Exit(1, o.input + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
   dir.commit();
   std::cout << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
-            << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << o.outDir << "/ as " << o.format;
+            << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
+            << o.format;
   if (s.issues) std::cout << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
   std::cout << "\n";
 }

@@ -161,7 +161,7 @@ void addDemo(CLI::App& app) {
   cmd->callback([r] {
     namespace fs = std::filesystem;
     // The authored stream goes beside the output first and into it with the rest at commit.
-    const fs::path out(r->out);
+    const fs::path out = outputPath(r->out);
     const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
     fs::create_directories(parent);
     const fs::path stream = parent / ("." + out.filename().string() + ".day-" + std::to_string(::getpid()) + ".vbim");

@@ -40,9 +40,9 @@ void runRender(RenderOptions& o) {
     dir.commit();
     std::cout << "rendered " << r.frames << " frame(s) of " << o.run << " with " << r.context << " ("
               << static_cast<int>(r.secondsPerFrame * 1000) << " ms/frame)\n"
-              << "  " << o.out << "/frames/render_NNNNNN.png\n"
-              << "  " << o.out << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
-    if (o.req.video) std::cout << "  " << o.out << "/playback.mp4\n";
+              << "  " << dir.finalPath().string() << "/frames/render_NNNNNN.png\n"
+              << "  " << dir.finalPath().string() << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
+    if (o.req.video) std::cout << "  " << dir.finalPath().string() << "/playback.mp4\n";
   } catch (const RenderError& e) {
     throw Exit(2, "vbim render: " + std::string(e.what()));
   }

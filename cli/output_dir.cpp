@@ -8,7 +8,14 @@ namespace vbim::cli {
 
 namespace fs = std::filesystem;
 
-OutputDir::OutputDir(const fs::path& final, bool force) : final_(final), force_(force) {
+fs::path outputPath(const fs::path& given) {
+  fs::path p = given.lexically_normal();
+  // "dir/" normalises to "dir/", whose filename is empty: the directory is its parent path.
+  if (p.filename().empty() && p.has_parent_path() && p != p.root_path()) p = p.parent_path();
+  return p;
+}
+
+OutputDir::OutputDir(const fs::path& final, bool force) : final_(outputPath(final)), force_(force) {
   std::error_code ec;
   if (fs::exists(final_, ec) && !force_) {
     if (!fs::is_directory(final_, ec)) throw Exit(2, final_.string() + ": exists and is not a directory");

@@ -8,6 +8,10 @@
 
 namespace vbim::cli {
 
+// `--out dir`, `--out dir/` and `--out ./dir` name the same directory: the path without a trailing
+// separator, `.` and `..` resolved lexically.
+std::filesystem::path outputPath(const std::filesystem::path& given);
+
 class OutputDir {
  public:
   // Fails (cli::Exit) if `final` exists, is not empty and `force` is false.

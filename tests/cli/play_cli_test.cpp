@@ -78,6 +78,29 @@ TEST(PlayCli, WritesEveryFileAndPicturesMatchTheirHashes) {
   fs::remove_all(out);
 }
 
+// `--out run/` (as the README writes it) and `--out ./run` name the directory `run`, and the files
+// are those of `--out run`.
+TEST(PlayCli, OutAcceptsATrailingSlashAndDotSlash) {
+  const fs::path base = scratch("slash");
+  fs::create_directories(base);
+  const std::string args = kSample + " --duration 2s --every 60 --seed 5 --no-trace --out ";
+  ASSERT_EQ(play(args + (base / "plain").string()).status, 0);
+  const auto slash = play(args + (base / "slash").string() + "/");
+  ASSERT_EQ(slash.status, 0) << slash.output;
+  const auto dot = runCommand("cd " + base.string() + " && " + std::string(VBIM_BINARY) + " play " + args + "./dot");
+  ASSERT_EQ(dot.status, 0) << dot.output;
+  for (const char* d : {"slash", "dot"}) {
+    for (const char* f : {"hashes.txt", "timeline.csv", "stats.json"}) {
+      EXPECT_EQ(vbim::testing::readFileBytes(base / d / f), vbim::testing::readFileBytes(base / "plain" / f))
+          << d << "/" << f;
+    }
+  }
+  for (const auto& e : fs::directory_iterator(base)) {
+    EXPECT_NE(e.path().filename().string().rfind('.', 0), 0u) << "left behind: " << e.path();
+  }
+  fs::remove_all(base);
+}
+
 TEST(PlayCli, SameRunSameBytes) {
   const fs::path a = scratch("a"), b = scratch("b");
   ASSERT_EQ(play(kSample + " --duration 6s --seed 3 --out " + a.string()).status, 0);
