@@ -114,6 +114,8 @@ std::string fixed(double v, int decimals) {
 
 void runProfile(const ProfileRequest& r) {
   const auto wall0 = std::chrono::steady_clock::now();  // host time: stdout only
+  // An existing, non-empty --out is refused before the sweep, not after it.
+  OutputDir dir(r.out, r.force);
   // Streams: every disc as given, then the first one re-encoded at each quantiser and bitrate.
   std::vector<std::shared_ptr<Stream>> streams;
   for (const std::string& d : r.discs) {
@@ -218,7 +220,6 @@ void runProfile(const ProfileRequest& r) {
     throw Exit(2, std::string("platform config: ") + e.what());
   }
 
-  OutputDir dir(r.out, r.force);
   const std::vector<std::string> written = writeProfileOutputs(data, dir);
   dir.commit();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -119,6 +119,8 @@ TEST(ProfileCli, BadInputExitsNonZeroAndLeavesNothing) {
   const Result r = run("profile " + kSample + " --ring 4:8 --no-search --duration 2s --out " + out.string());
   EXPECT_NE(r.code, 0);
   EXPECT_TRUE(fs::exists(out / "keep.txt"));
+  EXPECT_NE(r.output.find("--force"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("sweep "), std::string::npos) << "refused only after running the sweep:\n" << r.output;
   fs::remove_all(out);
 }
 
