@@ -40,12 +40,12 @@ Terrain readHeightfield(const std::string& path, double cellSize, double vertica
     throw LightingError(path + ": vertical scale must be a positive number of metres");
   }
   if (info.stored == SampleType::UInt8) {
-    return terrainFromCounts(info.width, info.height, widen(in.readUInt8().samples), cellSize,
-                                       verticalScale / 255.0, path);
+    return terrainFromCounts(info.width, info.height, widen(in.readUInt8().samples), cellSize, verticalScale / 255.0,
+                             path);
   }
   if (info.stored == SampleType::UInt16) {
-    return terrainFromCounts(info.width, info.height, widen(in.readUInt16().samples), cellSize,
-                                       verticalScale / 65535.0, path);
+    return terrainFromCounts(info.width, info.height, widen(in.readUInt16().samples), cellSize, verticalScale / 65535.0,
+                             path);
   }
   std::vector<float> metres = in.readFloat().samples;
   for (float& v : metres) v = static_cast<float>(v * verticalScale);
@@ -83,7 +83,7 @@ FloatImage readDensityMap(const std::string& path) {
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     if (!std::isfinite(image.pixels[i])) {
       throw LightingError(path + ": value at pixel (" + std::to_string(i % image.width) + ", " +
-                                    std::to_string(i / image.width) + ") is not finite");
+                          std::to_string(i / image.width) + ") is not finite");
     }
     image.pixels[i] = std::clamp(image.pixels[i], 0.0f, 1.0f);
   }

@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "imageio/error.hpp"
-#include "lighting/image_files.hpp"
 #include "lighting/error.hpp"
+#include "lighting/image_files.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/error.hpp"
 
