@@ -21,10 +21,11 @@ VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::str
   switch (detectStreamForm(file)) {
     case StreamForm::kProgramStream: {
       VideoElementaryStream video = readVideoStream(file, streamId);
-      if (!video.streamId)
+      if (!video.streamId) {
         throw DecodeError(
             name + ": MPEG program stream without " +
             (streamId ? "video stream " + hexId(*streamId) : std::string("a video stream (PES id 0xE0..0xEF)")));
+      }
       return video;
     }
     case StreamForm::kElementaryStream:
@@ -61,9 +62,10 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
     const ipu::PictureReport r = pool ? decoder.decode(bytes, *pool) : decoder.decode(bytes);
     for (const ipu::DecodeIssue& is : r.issues) {
       std::string line = source + ": byte " + std::to_string(video.fileOffsetOf(au.offset + is.byteOffset));
-      if (is.mbX >= 0)
+      if (is.mbX >= 0) {
         line += ", picture " + std::to_string(summary.frames) + " macroblock (" + std::to_string(is.mbX) + "," +
                 std::to_string(is.mbY) + ")";
+      }
       diagnostics(line + ": " + ipu::issueName(is.kind));
     }
     if (r.issueCount > r.issues.size())
