@@ -1,10 +1,8 @@
 #include "config/fault_plan_toml.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -249,11 +247,7 @@ iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, 
 }
 
 iop::FaultPlan loadFaultPlan(const std::string& path, const iop::SectorSource* disc) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot open the fault plan");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parseFaultPlan(ss.str(), path, disc);
+  return parseFaultPlan(readTomlFile(path, "fault plan"), path, disc);
 }
 
 }  // namespace vbim::config

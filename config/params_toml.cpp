@@ -1,6 +1,5 @@
 #include "config/params_toml.hpp"
 
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -33,11 +32,7 @@ void flatten(const toml::table& t, const std::string& prefix,
 }  // namespace
 
 void applyTomlFile(ParamTable& table, const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot open the platform config");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  applyToml(table, ss.str(), path);
+  applyToml(table, readTomlFile(path, "config file"), path);
 }
 
 void applyToml(ParamTable& table, std::string_view text, const std::string& origin) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "config/fault_plan_toml.hpp"
+#include "config/params_toml.hpp"
 #include "iop/fault_plan.hpp"
 #include "tests/iop/iop_fixture.hpp"
 
@@ -143,6 +144,27 @@ TEST(FaultPlan, RejectsBadPlansNamingLineAndField) {
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/plan.toml: cannot open"), std::string::npos);
+  }
+}
+
+// A directory given where a TOML file is expected was read as an empty file: no faults, no
+// platform settings, exit 0. Both readers now refuse it, naming the path.
+TEST(FaultPlan, ADirectoryIsNotAPlanOrAConfig) {
+  const std::string dir = ::testing::TempDir();
+  try {
+    config::loadFaultPlan(dir);
+    FAIL() << "a directory was read as a fault plan";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir + ": is a directory; expected a fault plan"), std::string::npos)
+        << e.what();
+  }
+  ParamTable table;
+  try {
+    config::applyTomlFile(table, dir);
+    FAIL() << "a directory was read as a config file";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir + ": is a directory; expected a config file"), std::string::npos)
+        << e.what();
   }
 }
 
