@@ -104,14 +104,6 @@ std::vector<std::uint8_t> reencoded(const std::string& disc, const streams::Enco
   }
 }
 
-std::string fixed(double v, int decimals) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(decimals);
-  s << v;
-  return s.str();
-}
-
 void runProfile(const ProfileRequest& r) {
   const auto wall0 = std::chrono::steady_clock::now();  // host time: stdout only
   // An existing, non-empty --out is refused before the sweep, not after it.

@@ -7,13 +7,13 @@
 
 namespace vbim::cli::profile {
 
-namespace {
-
 std::string fixed(double v, int decimals) {
   char b[48];
   std::snprintf(b, sizeof b, "%.*f", decimals, v);
   return b;
 }
+
+namespace {
 
 std::string csvQuote(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;

@@ -18,6 +18,9 @@ namespace vbim::cli::profile {
 // file writes their results.
 using namespace vbim::player::profile;
 
+// `v` with `decimals` digits after the point (C locale), for the tables and the command's lines.
+std::string fixed(double v, int decimals);
+
 // Writes every output into `dir` and returns the names written (relative), plots first.
 std::vector<std::string> writeProfileOutputs(const ProfileData& d, const OutputDir& dir);
 
