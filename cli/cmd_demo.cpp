@@ -200,19 +200,20 @@ void addDemo(CLI::App& app) {
     std::cout << runPlay(*r, false);
     std::cout << "profile pass (plots, survivable-stall curve): " << static_cast<int>(prof->seconds() * 10) / 10.0
               << " s of host time; rendered " << rendered->frames << " frames (" << rendered->context << ")\n";
+    const std::string shown = out.string();  // "--out dd/" is shown as dd
     std::cout << "Open:\n"
-              << "  " << r->out << "/trace.json    in https://ui.perfetto.dev (busy spans, ring occupancy, pop, lag)\n"
-              << "  " << r->out << "/signals.vcd   in GTKWave\n"
-              << "  " << r->out << "/stats.json    busy shares, ring occupancy, late/dropped/caught-up frames, damage\n"
-              << "  " << r->out << "/timeline.csv  one row per vsync (pop, lag, targets, ring banks)\n"
-              << "  " << r->out << "/frames/       lightmap and sky images (PNG)\n"
-              << "  " << r->out << "/plots/occupancy.png         stream ring occupancy over time\n"
-              << "  " << r->out << "/plots/lag_pop.png           lag and pop over time\n"
-              << "  " << r->out << "/plots/survivable_stall.png  longest stall survived against ring size "
+              << "  " << shown << "/trace.json    in https://ui.perfetto.dev (busy spans, ring occupancy, pop, lag)\n"
+              << "  " << shown << "/signals.vcd   in GTKWave\n"
+              << "  " << shown << "/stats.json    busy shares, ring occupancy, late/dropped/caught-up frames, damage\n"
+              << "  " << shown << "/timeline.csv  one row per vsync (pop, lag, targets, ring banks)\n"
+              << "  " << shown << "/frames/       lightmap and sky images (PNG)\n"
+              << "  " << shown << "/plots/occupancy.png         stream ring occupancy over time\n"
+              << "  " << shown << "/plots/lag_pop.png           lag and pop over time\n"
+              << "  " << shown << "/plots/survivable_stall.png  longest stall survived against ring size "
               << "(vbim profile sweeps more)\n"
-              << "  " << r->out << "/render/contact_sheet.png    the day, rendered, stall and catch-up marked\n"
-              << "  " << r->out << "/render/playback.mp4         the playback as video\n"
-              << "  " << r->out << "/day.vbim                    the authored stream (vbim info / vbim play it)\n";
+              << "  " << shown << "/render/contact_sheet.png    the day, rendered, stall and catch-up marked\n"
+              << "  " << shown << "/render/playback.mp4         the playback as video\n"
+              << "  " << shown << "/day.vbim                    the authored stream (vbim info / vbim play it)\n";
   });
 }
 
