@@ -1,20 +1,76 @@
-// What both programs share: the app's description, and turning every error into a message and a
-// non-zero status.
+// What both programs share: the app's description, `vbim help CMD`, the --help layout, and the one
+// error convention of every command (docs/cli.md):
+//   vbim CMD: message            on stderr
+//   exit 2                       bad usage or bad input (an argument, a file, a config, a stream)
+//   exit 1                       a failure while running (a file that cannot be written, ...)
+// A usage error prints one line and `see 'vbim CMD --help'`, not the whole help.
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <memory>
+#include <new>
+#include <string>
+#include <string_view>
+#include <system_error>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
+#include "runtime/error.hpp"
 
 namespace vbim::cli {
+
+namespace {
+
+// The subcommand named by the first argument, or nullptr.
+CLI::App* subcommandNamed(CLI::App& app, std::string_view name) {
+  for (auto* sub : app.get_subcommands({})) {
+    if (sub->get_name() == name) return sub;
+  }
+  return nullptr;
+}
+
+// "vbim play: " for the command the user typed ("vbim: " before one is known).
+std::string prefixFor(CLI::App& app, int argc, char** argv) {
+  if (argc > 1 && subcommandNamed(app, argv[1]) != nullptr) return "vbim " + std::string(argv[1]) + ": ";
+  return "vbim: ";
+}
+
+// Messages may already start with "vbim CMD: " (library code that names the command): print it once.
+std::string withPrefix(const std::string& prefix, std::string message) {
+  const std::string bare = prefix.substr(0, prefix.size() - 2);  // "vbim play"
+  for (const std::string& p : {prefix, bare + ":"}) {
+    if (message.rfind(p, 0) == 0) message = message.substr(p.size());
+  }
+  while (!message.empty() && message.front() == ' ') message.erase(0, 1);
+  return prefix + message;
+}
+
+// --help lines show `--seed UINT=1`: CLI11 would append its validators' names to the type
+// (`INT:NONNEGATIVE`, `TEXT:FILE`), which say nothing to a user; the help text says the range.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_opts(const CLI::Option* opt) const override {
+    std::string s = CLI::Formatter::make_option_opts(opt);
+    if (const auto colon = s.find(':'); colon != std::string::npos && s.rfind(' ', colon) == 0) {
+      const auto end = s.find_first_of("= ", colon);
+      s.erase(colon, end == std::string::npos ? std::string::npos : end - colon);
+    }
+    return s;
+  }
+};
+
+}  // namespace
 
 void configureApp(CLI::App& app) {
   app.description(
       "vbim: a simulator of the PlayStation 2 video-based illumination map pipeline\n"
       "(DVD -> IOP stream ring -> SIF -> EE demux -> IPU decode -> GS blend, on a simulated clock)");
   app.name("vbim");
-  app.set_version_flag("--version", "vbim 0.1.0");
+  app.set_version_flag("--version", "vbim " VBIM_VERSION);
   app.require_subcommand(1);
   app.fallthrough(false);
+  app.formatter(std::make_shared<HelpFormatter>());
+  app.footer("'vbim help CMD' or 'vbim CMD --help' shows a command's options, defaults and examples.");
 }
 
 void addCoreCommands(CLI::App& app) {
@@ -24,29 +80,56 @@ void addCoreCommands(CLI::App& app) {
   addConfig(app);
 }
 
-int runApp(CLI::App& app, int argc, char** argv) {
-  // A first word that is neither an option nor a subcommand gets a plain answer.
-  if (argc > 1 && argv[1][0] != '-') {
-    bool known = false;
-    for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == argv[1];
-    if (!known) {
-      std::cerr << "vbim: unknown subcommand '" << argv[1] << "'\n\n" << app.help();
-      return 2;
-    }
+std::vector<char*> helpAsOption(int argc, char** argv) {
+  std::vector<char*> out(argv, argv + argc);
+  static char helpFlag[] = "--help";
+  if (argc >= 2 && std::string_view(argv[1]) == "help") {
+    out.erase(out.begin() + 1);  // "vbim help play ..." is "vbim play --help"
+    out.push_back(helpFlag);
   }
+  out.push_back(nullptr);
+  return out;
+}
+
+int runApp(CLI::App& app, int argc, char** argv) {
+  checkNumbersStrictly(app);
+  const std::vector<char*> args = helpAsOption(argc, argv);
+  argc = static_cast<int>(args.size()) - 1;
+  argv = const_cast<char**>(args.data());
+  // A first word that is neither an option nor a subcommand gets a plain answer.
+  if (argc > 1 && argv[1][0] != '-' && subcommandNamed(app, argv[1]) == nullptr) {
+    std::cerr << "vbim: unknown command '" << argv[1] << "'; see 'vbim --help'\n";
+    return 2;
+  }
+  const std::string prefix = prefixFor(app, argc, argv);
+  const std::string seeHelp =
+      argc > 1 && argv[1][0] != '-' ? "see 'vbim " + std::string(argv[1]) + " --help'" : "see 'vbim --help'";
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() != 0) {
-      std::cerr << "vbim: " << e.what() << "\n\n" << app.help() << std::flush;
+      std::cerr << withPrefix(prefix, e.what()) << "; " << seeHelp << "\n";
       return 2;
     }
-    return app.exit(e);
+    return app.exit(e);  // --help, --version
   } catch (const Exit& e) {
-    std::cerr << e.what() << "\n";
+    std::cerr << withPrefix(prefix, e.what()) << "\n";
     return e.code();
+  } catch (const Error& e) {
+    // The project's own errors name the input and what was expected: bad input.
+    std::cerr << withPrefix(prefix, e.what()) << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << prefix << "out of memory (the input or the options ask for more than this machine has)\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << prefix << e.path1().string() << ": " << e.code().message() << "\n";
+    return 1;
+  } catch (const std::system_error& e) {
+    std::cerr << prefix << "system error: " << e.code().message() << "\n";
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "vbim: error: " << e.what() << "\n";
+    std::cerr << prefix << "internal error (" << e.what() << "); please report it with the command line\n";
     return 1;
   }
   return 0;

@@ -5,6 +5,7 @@
 
 #include "cli/command.hpp"
 #include "cli/lighting_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
 #include "config/params_toml.hpp"
 #include "runtime/params.hpp"
@@ -84,8 +85,9 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   // itself, which LeakSanitizer would report.
   addLightingOptions(cmd, o->params, o->noMoon, o->given, LightingOptionNames{"--frame-count", "--exposure-klux"},
                      [&](CLI::Option* opt) { track(opt); });
-  track(cmd->add_option("--lighting-config", o->lightingConfig,
-                        "TOML file of lighting.* keys (command-line options win)"));
+  track(
+      cmd->add_option("--lighting-config", o->lightingConfig, "TOML file of lighting.* keys (command-line options win)")
+          ->check(inputFile()));
   track(cmd->add_option("--weather", o->weather,
                         "Variants: presets clear, overcast, or NAME=FILE.toml (lighting.* over the base), "
                         "comma-separated")

@@ -45,7 +45,7 @@ std::vector<std::pair<std::string, std::string>> parsePairs(const std::vector<st
   for (const std::string& s : in) {
     const std::size_t eq = s.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
-      throw Exit(2, std::string("vbim author: ") + what + " '" + s + "': expected NAME=PATTERN");
+      throw Exit(2, std::string(what) + " '" + s + "': expected NAME=PATTERN");
     out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
   }
   return out;
@@ -79,14 +79,14 @@ void runAuthor(const AuthorOptions& o) {
   else if (o.input == "encoded")
     enc = InputEncoding::Encoded;
   else if (o.input != "auto")
-    throw Exit(2, "vbim author: --input '" + o.input + "': expected auto, linear or encoded");
+    throw Exit(2, "--input '" + o.input + "': expected auto, linear or encoded");
 
   av_log_set_level(AV_LOG_ERROR);
   std::vector<std::uint8_t> bytes;
   std::string stretchNote;
   if (!o.synthetic.empty()) {
     if (!o.frames.empty() || !o.variants.empty())
-      throw Exit(2, "vbim author: --synthetic replaces --frames and --variant; give one or the other");
+      throw Exit(2, "--synthetic replaces --frames and --variant; give one or the other");
     SyntheticDay day;
     day.frames = o.syntheticFrames;
     parseSize(o.syntheticSize, day.width, day.height, "--synthetic-size");
@@ -135,19 +135,19 @@ void runAuthor(const AuthorOptions& o) {
     for (const auto& [skyName, skyPattern] : skies) {
       bool known = false;
       for (const VariantInput& v : inputs) known |= v.name == skyName;
-      if (!known) throw Exit(2, "vbim author: --variant-sky " + skyName + "=...: no --variant named '" + skyName + "'");
+      if (!known) throw Exit(2, "--variant-sky " + skyName + "=...: no --variant named '" + skyName + "'");
     }
     settings.withSky = !inputs[0].skies.empty();
     std::size_t total = 0;
     for (const VariantInput& v : inputs) {
       if (settings.withSky && v.skies.empty())
-        throw Exit(2, "vbim author: variant '" + v.name + "' has no sky sequence (give --variant-sky " + v.name +
+        throw Exit(2, "variant '" + v.name + "' has no sky sequence (give --variant-sky " + v.name +
                           "=PATTERN, or no sky for any variant)");
       if (!settings.withSky && !v.skies.empty())
-        throw Exit(2, "vbim author: variant '" + v.name + "' has a sky sequence but the first variant has none");
+        throw Exit(2, "variant '" + v.name + "' has a sky sequence but the first variant has none");
       if (settings.withSky && v.skies.size() != v.lightmaps.size())
-        throw Exit(2, "vbim author: variant '" + v.name + "': " + std::to_string(v.lightmaps.size()) +
-                          " lightmap frames but " + std::to_string(v.skies.size()) + " sky frames (first sky file " +
+        throw Exit(2, "variant '" + v.name + "': " + std::to_string(v.lightmaps.size()) + " lightmap frames but " +
+                          std::to_string(v.skies.size()) + " sky frames (first sky file " +
                           v.skies.front().path.string() + ")");
       total += v.lightmaps.size();
     }
@@ -199,6 +199,10 @@ void addAuthor(CLI::App& app) {
   cmd->add_option("--out", o->out, "Output stream file (complete or left as it was)")->required();
   auto terrain = std::make_shared<TerrainAuthorOptions>();
   addTerrainOptions(cmd, terrain);
+  cmd->footer(
+      "Examples:\n"
+      "  vbim author --procedural --out day.vbim\n"
+      "  vbim author --frames 'lm_%04d.exr' --sky 'sky_%04d.exr' --fps 1 --out day.vbim\n");
   cmd->callback([o, terrain] {
     try {
       const std::string technique = firstTerrainOptionGiven(*terrain);
@@ -209,12 +213,12 @@ void addAuthor(CLI::App& app) {
       // Technique A renders its own frames: the image-sequence and synthetic options do not apply.
       if (!o->frames.empty() || !o->sky.empty() || !o->variants.empty() || !o->variantSkies.empty() ||
           !o->synthetic.empty())
-        throw Exit(2, "vbim author: " + technique +
+        throw Exit(2, technique +
                           " selects Technique A, which renders its own frames; it excludes --frames, --sky, "
                           "--variant, --variant-sky and --synthetic");
       runTerrainAuthor(*terrain, o->encode, o->out);
     } catch (const AuthoringError& e) {
-      throw Exit(1, std::string("vbim author: ") + e.what());
+      throw Exit(2, e.what());
     }
   });
 }

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/platform_params.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/params_toml.hpp"
@@ -56,8 +57,12 @@ void addConfig(CLI::App& app) {
   cmd->add_flag("--defaults", opts->defaults, "Print the defaults as TOML (the default action)");
   cmd->add_flag("--markdown", opts->markdown, "Print a Markdown table instead of TOML");
   cmd->add_option("--check", opts->check, "A platform config (TOML) to validate; prints the effective config")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--faults", opts->faults, "A fault plan (TOML) to validate")->check(CLI::ExistingFile);
+      ->check(inputFile());
+  cmd->add_option("--faults", opts->faults, "A fault plan (TOML) to validate")->check(inputFile());
+  cmd->footer(
+      "Examples:\n"
+      "  vbim config > platform.toml\n"
+      "  vbim config --check platform.toml --faults plan.toml\n");
   cmd->callback([opts] { runConfig(*opts); });
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
@@ -67,10 +68,10 @@ void run(const Options& o) {
         file, o.input, options, [&writer](int frame, const ipu::Decoder& d) { writer.write(frame, d); },
         [](const std::string& line) { std::cerr << "vbim decode: " << line << "\n"; });
   } catch (const streams::DecodeError& e) {
-    throw Exit(1, e.what());
+    throw Exit(2, e.what());
   }
   if (o.strict && s.issues > 0)
-    throw Exit(1, o.input + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
+    throw Exit(2, o.input + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
   dir.commit();
   std::cout << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
             << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
@@ -86,18 +87,24 @@ void addDecode(CLI::App& app) {
   auto o = std::make_shared<Options>();
   cmd->add_option("stream", o->input, "MPEG program stream (VBIM stream) or MPEG-1/2 video elementary stream")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   cmd->add_option("--out", o->outDir, "Output directory (written completely or not at all)")->required();
   cmd->add_option("--format", o->format, "png (RGBA, GS alpha doubled), exr (half float) or yuv (planar 4:2:0)")
+      ->capture_default_str()
       ->check(CLI::IsMember({"png", "exr", "yuv"}));
   cmd->add_option("--stream-id", o->stream, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
-  cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)");
+  cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)")
+      ->capture_default_str();
   cmd->add_option("--th0", o->th0, "SETTH TH0: pixels with R, G, B all below it become transparent black")
       ->check(CLI::Range(0, 511));
   cmd->add_option("--th1", o->th1, "SETTH TH1: pixels with R, G, B all below it get alpha 0x40")
       ->check(CLI::Range(0, 511));
   cmd->add_flag("--force", o->force, "Replace a non-empty output directory");
-  cmd->add_flag("--strict", o->strict, "Fail (exit 1) if any picture needed concealment");
+  cmd->add_flag("--strict", o->strict, "Fail (exit 2) if any picture needed concealment");
+  cmd->footer(
+      "Examples:\n"
+      "  vbim decode streams/samples/day_clear.vbim --out frames/\n"
+      "  vbim decode streams/samples/day_clear.vbim --out frames/ --format exr --threads 2\n");
   cmd->callback([o] { run(*o); });
 }
 

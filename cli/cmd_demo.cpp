@@ -158,6 +158,10 @@ void addDemo(CLI::App& app) {
   cmd->add_option("--seconds", seconds, "Simulated seconds (the same as --duration Ns)")
       ->check(CLI::Range(0.001, 86400.0))
       ->each([r](const std::string& v) { r->duration = v + "s"; });
+  cmd->footer(
+      "Examples:\n"
+      "  vbim demo\n"
+      "  vbim demo --out dd/ --duration 20s\n");
   cmd->callback([r] {
     namespace fs = std::filesystem;
     // The authored stream goes beside the output first and into it with the rest at commit.
@@ -194,7 +198,7 @@ void addDemo(CLI::App& app) {
         *rendered = render::renderRun(render::readRunDir(dir.path("")), render::RunRenderRequest{}, dir.path("render"),
                                       [](int, int) {});
       } catch (const render::RenderError& e) {
-        throw Exit(2, std::string("vbim demo: rendering failed: ") + e.what());
+        throw Exit(1, std::string("rendering failed: ") + e.what());
       }
     };
     std::cout << runPlay(*r, false);

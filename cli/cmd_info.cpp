@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "streams/format.hpp"
 #include "streams/stream_stats.hpp"
 
@@ -109,17 +110,21 @@ void addInfo(CLI::App& app) {
       app.add_subcommand("info", "Inspect a VBIM stream: streams, frames, sectors per frame, bitrate, descriptor");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("STREAM", *path, "Stream file")->required();
+  cmd->add_option("STREAM", *path, "Stream file")->required()->check(inputFile());
   cmd->add_flag("--json", *json, "Machine-readable output");
+  cmd->footer(
+      "Examples:\n"
+      "  vbim info streams/samples/day_clear.vbim\n"
+      "  vbim info streams/samples/day_clear.vbim --json\n");
   cmd->callback([path, json] {
     StreamScan scan;
     try {
       scan = scanStreamFile(*path);
     } catch (const std::exception& e) {
-      throw Exit(1, std::string("vbim info: ") + e.what());
+      throw Exit(2, e.what());
     }
     if (scan.pictures.empty() && scan.stats.badSectors == scan.stats.sectors) {
-      throw Exit(1, "vbim info: " + *path + ": not an MPEG-2 program stream with 2048-byte packs: " +
+      throw Exit(2, *path + ": not an MPEG-2 program stream with 2048-byte packs: " +
                         (scan.errors.empty() ? std::string("empty file") : scan.errors.front().describe()));
     }
     const bool guessed = !scan.descriptor;
@@ -164,7 +169,7 @@ void addInfo(CLI::App& app) {
       printText(*path, scan, reports, fps, guessed);
     }
     if (!scan.errors.empty())
-      throw Exit(1, "vbim info: " + *path + ": " + std::to_string(scan.errors.size()) +
+      throw Exit(2, *path + ": " + std::to_string(scan.errors.size()) +
                         " defects found (first: " + scan.errors.front().describe() + ")");
   });
 }

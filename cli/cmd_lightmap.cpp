@@ -11,6 +11,7 @@
 
 #include "cli/command.hpp"
 #include "cli/lighting_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "config/params_toml.hpp"
@@ -177,12 +178,17 @@ void addLightmap(CLI::App& app) {
   cmd->add_option("--relief", o->relief, "Procedural terrain relief in metres")->default_val(900.0);
   cmd->add_option("--cloud-texture", o->cloudTexture, "Single-channel cloud density texture (implies --clouds)");
   addLightingOptions(cmd, o->params, o->noMoon, *given, LightingOptionNames{}, [](CLI::Option*) {});
-  cmd->add_option("--config", o->config, "TOML file of lighting.* parameters (command-line values win)");
+  cmd->add_option("--config", o->config, "TOML file of lighting.* parameters (command-line values win)")
+      ->check(inputFile());
   cmd->add_option("--format", o->format, "png, exr or both")->default_val("png");
   cmd->add_option("--debug", o->debug, "Extra layers: horizons, sky (factor K), shadow (sun mask), or all");
   cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")->default_val(2);
   cmd->add_option("--out", o->out, "Output directory (complete or absent)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing non-empty output directory");
+  cmd->footer(
+      "Examples:\n"
+      "  vbim lightmap --out lm/\n"
+      "  vbim lightmap --size 256 --frames 24 --debug all --format both --out lm/\n");
   cmd->callback([o, given] {
     try {
       run(*o, *given);

@@ -1,6 +1,7 @@
 // vbim play: a disc through the whole pipeline on the simulated clock; writes images, hashes.txt,
 // stats.json, trace.json, signals.vcd and timeline.csv into --out (docs/player.md).
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
 #include "cli/play_run.hpp"
@@ -50,6 +52,17 @@ void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool e
   } catch (const imageio::ImageIoError& e) {
     throw Exit(1, e.what());
   }
+}
+
+// The variant after '=' in --branch: a plain index (0 is the first variant).
+int variantIndex(const std::string& branch, const std::string& text) {
+  int v = -1;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || v < 0) {
+    throw Exit(2, "--branch '" + branch + "': the variant '" + text +
+                      "' is not a variant number (0, 1, ...; `vbim info` lists the variants)");
+  }
+  return v;
 }
 
 std::string policyName(const std::string& p) {
@@ -95,7 +108,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   for (const std::string& b : r.branches) {
     const auto eq = b.find('=');
     if (eq == std::string::npos) throw Exit(2, "--branch '" + b + "': expected TIME=VARIANT, e.g. 12.5s=1");
-    o.branches.push_back(Branch{parseTime("--branch", b.substr(0, eq)), std::stoi(b.substr(eq + 1))});
+    o.branches.push_back(Branch{parseTime("--branch", b.substr(0, eq)), variantIndex(b, b.substr(eq + 1))});
   }
   std::set<Tick> atTimes;
   for (const std::string& a : r.at) {
@@ -191,20 +204,29 @@ std::string runPlay(const PlayRequest& r, bool progress) {
 void addPlay(CLI::App& app) {
   auto r = std::make_shared<PlayRequest>();
   auto* cmd = app.add_subcommand("play", "Play a VBIM disc through the whole pipeline on the simulated clock");
-  cmd->add_option("disc", r->disc, "A VBIM stream file (a bare stream is a disc with one file)")->required();
-  cmd->add_option("--config", r->config, "Platform config (TOML; `vbim config --defaults` lists every key)");
-  cmd->add_option("--faults", r->faults, "Fault plan (TOML; docs/fault-plans.md)");
+  cmd->add_option("disc", r->disc, "A VBIM stream file (a bare stream is a disc with one file)")
+      ->required()
+      ->check(inputFile());
+  cmd->add_option("--config", r->config, "Platform config (TOML; `vbim config --defaults` lists every key)")
+      ->check(inputFile());
+  cmd->add_option("--faults", r->faults, "Fault plan (TOML; docs/fault-plans.md)")->check(inputFile());
   cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();
   cmd->add_option("--duration", r->duration, "Simulated time to play (e.g. 60s)")->capture_default_str();
   cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late");
   cmd->add_option("--every", r->every, "Write the lightmap and sky every N vsyncs (0: never)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeInteger())
+      ->capture_default_str();
   cmd->add_option("--at", r->at, "Write the images at these times (12.5s,30s,...)")->delimiter(',');
   cmd->add_option("--format", r->format, "Image format: png or exr")->capture_default_str();
   cmd->add_option("--branch", r->branches, "Switch to a variant at a time: 12.5s=1 (repeatable)");
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
-  cmd->add_flag("!--no-trace", r->trace, "Skip trace.json and signals.vcd (they grow with the run)");
+  cmd->add_flag_callback(
+      "--no-trace", [r] { r->trace = false; }, "Skip trace.json and signals.vcd (they grow with the run)");
   cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
+  cmd->footer(
+      "Examples:\n"
+      "  vbim play streams/samples/day_clear.vbim --out run/\n"
+      "  vbim play streams/samples/day_clear.vbim --faults plan.toml --seed 7 --duration 60s --every 60 --out run/\n");
   cmd->callback([r] { std::cout << runPlay(*r, true); });
 }
 

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
 #include "cli/profile_outputs.hpp"
@@ -225,10 +226,12 @@ void runProfile(const ProfileRequest& r) {
 void addProfile(CLI::App& app) {
   auto r = std::make_shared<ProfileRequest>();
   auto* cmd = app.add_subcommand(kProfileCommand.name, kProfileCommand.summary);
-  cmd->add_option("disc", r->discs, "VBIM stream file(s); several discs are one sweep axis")->required();
-  cmd->add_option("--config", r->config, "Platform config (TOML) the sweep starts from");
-  cmd->add_option("--faults", r->faults,
-                  "Fault plan(s) to sweep (repeatable); a run without faults is always included");
+  cmd->add_option("disc", r->discs, "VBIM stream file(s); several discs are one sweep axis")
+      ->required()
+      ->check(inputFile());
+  cmd->add_option("--config", r->config, "Platform config (TOML) the sweep starts from")->check(inputFile());
+  cmd->add_option("--faults", r->faults, "Fault plan(s) to sweep (repeatable); a run without faults is always included")
+      ->check(inputFile());
   cmd->add_option("--ring", r->rings, "Ring sizes BANKS:SECTORS (ring.bankmax:ring.bufmax_sectors)")
       ->delimiter(',')
       ->capture_default_str();
@@ -250,9 +253,15 @@ void addProfile(CLI::App& app) {
                   "Stall search: largest pop (per-byte change per vsync) allowed, or auto (the "
                   "configuration's own pop maximum without the stall)")
       ->capture_default_str();
-  cmd->add_flag("!--no-search", r->search, "Skip the survivable-stall search");
+  cmd->add_flag_callback(
+      "--no-search", [r] { r->search = false; }, "Skip the survivable-stall search");
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
   cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
+  cmd->footer(
+      "Examples:\n"
+      "  vbim profile streams/samples/day_clear.vbim --ring 4:16,5:160 --out prof/\n"
+      "  vbim profile streams/samples/day_clear.vbim --faults plan.toml --policy blend-through,hard-skip --out "
+      "prof/\n");
   cmd->callback([r] { runProfile(*r); });
 }
 

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "render/error.hpp"
@@ -53,7 +54,9 @@ void runRender(RenderOptions& o) {
 void addRender(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   auto* cmd = app.add_subcommand(kRenderCommand.name, kRenderCommand.summary);
-  cmd->add_option("run", o->run, "A `vbim play --every N --out RUN_DIR` directory")->required();
+  cmd->add_option("run", o->run, "A `vbim play --every N --out RUN_DIR` directory")
+      ->required()
+      ->check(inputDirectory());
   cmd->add_option("--out", o->out, "Output directory (written complete or not at all)")->required();
   cmd->add_option("--camera", o->camera,
                   "EX,EZ,EH,TX,TZ: eye east/south in metres, eye height above ground, target east/south "
@@ -73,12 +76,17 @@ void addRender(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--terrain-seed", o->req.terrain.procedural.seed, "Procedural terrain seed")->capture_default_str();
   cmd->add_option("--lighting-config", o->lightingConfig,
-                  "lighting.* TOML the stream was authored with (default: the samples' 24-frame day)");
+                  "lighting.* TOML the stream was authored with (default: the samples' 24-frame day)")
+      ->check(inputFile());
   cmd->add_option("--loop-frame", o->req.loopFrame, "The stream's loop frame")->capture_default_str();
   cmd->add_option("--fps", o->req.videoFps, "Video frame rate")->capture_default_str();
   cmd->add_flag("--no-objects", o->noObjects, "Terrain and sky only");
   cmd->add_flag("--no-video", o->noVideo, "Skip playback.mp4");
   cmd->add_flag("--force", o->force, "Replace a non-empty output directory");
+  cmd->footer(
+      "Examples:\n"
+      "  vbim render run/ --out pictures/\n"
+      "  (run/ written by: vbim play streams/samples/day_clear.vbim --every 300 --out run/)\n");
   cmd->callback([o] { runRender(*o); });
 }
 

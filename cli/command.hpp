@@ -10,6 +10,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -47,8 +48,11 @@ inline constexpr std::array kFullOnlyCommands{kDemoCommand, kAuthorCommand, kLig
 
 // The tool's name, description and version (both programs).
 void configureApp(CLI::App& app);
-// Parses and runs; every error becomes a message on stderr and a non-zero status.
+// Parses and runs; every error becomes `vbim CMD: message` on stderr and exit 2 (bad usage or
+// input) or 1 (a failure while running).
 int runApp(CLI::App& app, int argc, char** argv);
+// argv with `vbim help CMD ...` turned into `vbim CMD ... --help` (null-terminated, for exec too).
+std::vector<char*> helpAsOption(int argc, char** argv);
 // The commands both programs have: play, info, decode, config.
 void addCoreCommands(CLI::App& app);
 

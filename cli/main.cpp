@@ -11,6 +11,7 @@
 #include <iostream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "cli/command.hpp"
 
@@ -37,6 +38,9 @@ int runFullTool(char** argv) {
 
 int main(int argc, char** argv) {
   try {
+    std::vector<char*> args = vbim::cli::helpAsOption(argc, argv);  // `vbim help author` too
+    argv = args.data();
+    argc = static_cast<int>(args.size()) - 1;
     if (argc > 1) {
       for (const vbim::cli::CommandInfo& c : vbim::cli::kFullOnlyCommands) {
         if (std::string(argv[1]) == c.name) return runFullTool(argv);

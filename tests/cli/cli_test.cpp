@@ -46,7 +46,7 @@ TEST(Cli, FullToolCommandsAreHandedOverWithArgumentsAndStatus) {
   const Result help = run("render --help");
   EXPECT_EQ(help.code, 0) << help.output;
   EXPECT_NE(help.output.find("vbim play --every N --out RUN_DIR"), std::string::npos) << help.output;
-  const Result bad = run("profile some.vbim --out somewhere --bogus");
+  const Result bad = run("profile " VBIM_SOURCE_DIR "/streams/samples/day_clear.vbim --out somewhere --bogus");
   EXPECT_EQ(bad.code, 2) << bad.output;
   EXPECT_NE(bad.output.find("--bogus"), std::string::npos) << bad.output;
 }
@@ -69,8 +69,7 @@ TEST(Cli, AMissingFullToolIsNamed) {
 TEST(Cli, UnknownSubcommandIsAnErrorWithUsage) {
   const Result r = run("frobnicate");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.output.find("unknown subcommand 'frobnicate'"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("Subcommands:"), std::string::npos);
+  EXPECT_EQ(r.output, "vbim: unknown command 'frobnicate'; see 'vbim --help'\n");
 }
 
 TEST(Cli, UnknownOptionIsAnErrorWithUsage) {

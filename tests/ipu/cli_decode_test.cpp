@@ -153,18 +153,18 @@ TEST(IpuCli, RefusesWhatCannotBeDecoded) {
     if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0xB3) es[i + 3] = 0xB2;  // user data
   writeFile(d / "noseq.m2v", es);
   Result r = runTool("decode " + (d / "noseq.m2v").string() + " --out " + (d / "o1").string());
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);  // bad input (docs/cli.md)
   EXPECT_NE(r.output.find("no sequence header"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(d / "o1"));
   writeFile(d / "p.m2v", stream(40, 24, 3, 12));
   r = runTool("decode " + (d / "p.m2v").string() + " --out " + (d / "o2").string());
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("not an intra picture"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("byte "), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(d / "o2"));
   writeFile(d / "junk.bin", {1, 2, 3, 4, 5});
   r = runTool("decode " + (d / "junk.bin").string() + " --out " + (d / "o3").string());
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("byte 0"), std::string::npos) << r.output;
   fs::remove_all(d);
 }
@@ -179,7 +179,7 @@ TEST(IpuCli, ConcealsAndReportsCorruption) {
   EXPECT_NE(r.output.find("macroblock"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("concealed"), std::string::npos) << r.output;
   const Result strict = runTool("decode " + (d / "bad.m2v").string() + " --out " + (d / "s").string() + " --strict");
-  EXPECT_EQ(strict.code, 1);
+  EXPECT_EQ(strict.code, 2);
   fs::remove_all(d);
 }
 

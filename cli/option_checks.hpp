@@ -1,0 +1,24 @@
+// Checks every command applies to its arguments before any work starts, so a mistake gets one line
+// naming the argument, what was found and what was expected (never a C++ exception's text):
+//   - numbers are read strictly: an unsigned option refuses "-1" (CLI11 would wrap it to 2^64-1),
+//     values beyond the type are refused rather than clamped, and text after the digits is refused;
+//   - input files must exist, be regular files (or directories where one is expected) and be readable.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace vbim::cli {
+
+// An input file: exists, is not a directory, can be opened for reading.
+const CLI::Validator& inputFile();
+// An input directory: exists and is a directory.
+const CLI::Validator& inputDirectory();
+// A count, seed or size that cannot be negative (text of digits only, fits in 64 bits).
+const CLI::Validator& nonNegativeInteger();
+
+// Adds the strict number checks to every option of `app` and its subcommands whose type is an
+// integer or a floating-point number (CLI11's INT, UINT and FLOAT), and gives each option a plain
+// type name in --help (CLI11 appends validator names: "INT:NONNEGATIVE").
+void checkNumbersStrictly(CLI::App& app);
+
+}  // namespace vbim::cli

@@ -1,0 +1,128 @@
+// The one convention of every vbim command (docs/cli.md): `vbim CMD: message` on stderr, exit 2 for
+// bad usage or bad input, one line for a usage error with a pointer to the help, `vbim help CMD`,
+// strict numbers, and input files checked before any work starts.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "tests/support/run_command.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+  const vbim::testing::CommandResult r = vbim::testing::runCommand(std::string(VBIM_BINARY) + " " + args);
+  return {r.status, r.output};
+}
+
+const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("vbim_conventions_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+int lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n' ? 1 : 0;
+  return n;
+}
+
+// A usage error: one line, prefixed with the command, ending with where the help is; exit 2.
+void expectUsageError(const std::string& args, const std::string& command, const std::string& mentions) {
+  const Result r = run(args);
+  EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+  EXPECT_EQ(lines(r.output), 1) << args << "\n" << r.output;
+  EXPECT_EQ(r.output.rfind("vbim " + command + ": ", 0), 0u) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find(mentions), std::string::npos) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find("see 'vbim " + command + " --help'"), std::string::npos) << args << "\n" << r.output;
+}
+
+TEST(CliConventions, HelpCommandIsTheCommandsHelp) {
+  for (const char* cmd : {"play", "info", "decode", "config", "profile", "author", "render", "demo", "lightmap"}) {
+    const Result help = run(std::string("help ") + cmd);
+    const Result option = run(std::string(cmd) + " --help");
+    EXPECT_EQ(help.code, 0) << cmd << "\n" << help.output;
+    EXPECT_EQ(help.output, option.output) << cmd;
+    EXPECT_NE(help.output.find("Examples:\n  vbim " + std::string(cmd)), std::string::npos) << help.output;
+    // CLI11 leftovers a user cannot read: validator names after the type, flag defaults in braces.
+    EXPECT_EQ(help.output.find(":NONNEGATIVE"), std::string::npos) << help.output;
+    EXPECT_EQ(help.output.find("{false}"), std::string::npos) << help.output;
+    EXPECT_EQ(help.output.find("TEXT:FILE"), std::string::npos) << help.output;
+  }
+  EXPECT_EQ(run("help").code, 0);
+}
+
+TEST(CliConventions, UsageErrorsAreOneLineWithAPointerToTheHelp) {
+  expectUsageError(kSample.substr(0, 0) + "play " + kSample + " --bogus --out x", "play", "--bogus");
+  expectUsageError("info", "info", "STREAM");
+  expectUsageError("decode " + kSample + " --format gif --out x", "decode", "gif");
+  expectUsageError("profile " + kSample + " --out x --bogus", "profile", "--bogus");
+}
+
+TEST(CliConventions, NumbersAreParsedStrictly) {
+  expectUsageError("play " + kSample + " --seed -1 --out x", "play", "'-1' is negative");
+  expectUsageError("play " + kSample + " --seed 18446744073709551616 --out x", "play", "out of range");
+  expectUsageError("play " + kSample + " --seed 12abc --out x", "play", "not a whole number");
+  expectUsageError("play " + kSample + " --every -1 --out x", "play", "'-1' is negative");
+  expectUsageError("decode " + kSample + " --threads -2 --out x", "decode", "'-2' is negative");
+  expectUsageError("profile " + kSample + " --seed -5 --out x", "profile", "'-5' is negative");
+  // The largest seed is accepted as it is (not clamped, not wrapped): the run starts.
+  const Result big = run("config --check /nonexistent-config.toml");
+  EXPECT_EQ(big.code, 2) << big.output;
+}
+
+TEST(CliConventions, InputFilesAreCheckedAndNamed) {
+  const fs::path dir = scratch("inputs");
+  fs::create_directories(dir);
+  const std::string d = dir.string();
+  expectUsageError("play " + kSample + " --faults " + d + " --out x", "play", d + ": is a directory; expected a file");
+  expectUsageError("play " + kSample + " --config " + d + " --out x", "play", d + ": is a directory; expected a file");
+  expectUsageError("play " + d + "/missing.vbim --out x", "play", "missing.vbim: no such file");
+  expectUsageError("info " + d, "info", d + ": is a directory; expected a file");
+  expectUsageError("decode " + d + " --out x", "decode", "is a directory");
+  expectUsageError("config --check " + d, "config", "is a directory");
+  expectUsageError("author --procedural --lighting-config " + d + "/missing.toml --out x.vbim", "author",
+                   "missing.toml: no such file");
+  expectUsageError("lightmap --config " + d + " --out x", "lightmap", "is a directory");
+  expectUsageError("render " + kSample + " --out x", "render", "is a file; expected a directory");
+  // Nothing was written.
+  EXPECT_FALSE(fs::exists("x"));
+  EXPECT_FALSE(fs::exists("x.vbim"));
+  fs::remove_all(dir);
+}
+
+TEST(CliConventions, BadInputNamesTheCommandAndExitsTwo) {
+  const Result branch = run("play " + kSample + " --branch 5s=overcast --duration 1s --out x");
+  EXPECT_EQ(branch.code, 2) << branch.output;
+  EXPECT_EQ(branch.output.rfind("vbim play: --branch '5s=overcast'", 0), 0u) << branch.output;
+  const Result streamId = run("decode " + kSample + " --stream-id zz --out x");
+  EXPECT_EQ(streamId.code, 2) << streamId.output;
+  EXPECT_EQ(streamId.output.rfind("vbim decode: --stream-id zz", 0), 0u) << streamId.output;
+  // Not a stream: a bad input (2), named with the file, in info as in every command.
+  const fs::path dir = scratch("notastream");
+  fs::create_directories(dir);
+  const fs::path text = dir / "notes.txt";
+  {
+    std::FILE* f = std::fopen(text.c_str(), "w");
+    std::fputs("not a stream\n", f);
+    std::fclose(f);
+  }
+  for (const std::string cmd : {"info ", "play "}) {
+    const Result r = run(cmd + text.string() + (cmd == "play " ? " --out " + (dir / "o").string() : ""));
+    EXPECT_EQ(r.code, 2) << cmd << r.output;
+    EXPECT_EQ(r.output.rfind("vbim " + cmd.substr(0, cmd.size() - 1) + ": ", 0), 0u) << r.output;
+    EXPECT_NE(r.output.find(text.string()), std::string::npos) << r.output;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
