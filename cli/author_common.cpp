@@ -11,7 +11,8 @@ namespace vbim::cli {
 using namespace vbim::streams;
 
 void addEncodeOptions(CLI::App* cmd, EncodeOptions& o) {
-  cmd->add_option("--fps", o.fps, "Game-time frame rate: stream frames per second of game time (N or N/D)")->required();
+  cmd->add_option("--fps", o.fps, "Game-time frame rate: stream frames per second of game time (N or N/D)")
+      ->capture_default_str();
   cmd->add_option("--container-fps", o.containerFps, "Frame rate written in the MPEG headers (what ffplay shows)")
       ->capture_default_str();
   cmd->add_option("--loop", o.loop, "Frame playback returns to after the last one")->capture_default_str();

@@ -14,7 +14,7 @@ namespace vbim::cli {
 
 // What every `vbim author` source encodes with.
 struct EncodeOptions {
-  std::string fps, containerFps = "25";
+  std::string fps = "1", containerFps = "25";
   std::uint32_t loop = 0;
   int q = 3;
   std::int64_t bitrate = 0;

@@ -76,8 +76,10 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   track(cmd->add_option("--vertical-scale", o->terrain.verticalScale,
                         "Metres at full scale for integer heightfields; metres per unit for float ones")
             ->default_val(1000.0));
-  track(cmd->add_option("--size", o->terrain.procedural.size, "Procedural terrain size in texels (multiple of 16)")
-            ->default_val(512));
+  track(cmd->add_option("--size", o->terrain.procedural.size,
+                        "Procedural terrain size in texels (multiple of 16); the default "
+                        "fits the default platform config's VRAM next to the sky")
+            ->default_val(256));
   track(cmd->add_option("--seed", o->terrain.procedural.seed, "Procedural terrain seed")->default_val(1));
   track(cmd->add_option("--relief", o->terrain.procedural.reliefMetres, "Procedural terrain relief in metres")
             ->default_val(900.0));

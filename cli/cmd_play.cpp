@@ -129,7 +129,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
-    throw Exit(2, std::string("platform config: ") + e.what());
+    throw Exit(2, (r.config.empty() ? std::string("the default platform config") : r.config) + ": " + e.what());
   }
 
   OutputDir dir(r.out, r.force);

@@ -210,7 +210,7 @@ void runProfile(const ProfileRequest& r) {
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
-    throw Exit(2, std::string("platform config: ") + e.what());
+    throw Exit(2, (r.config.empty() ? std::string("the default platform config") : r.config) + ": " + e.what());
   }
 
   const std::vector<std::string> written = writeProfileOutputs(data, dir);

@@ -13,7 +13,9 @@ CatchUp catchUpByName(const std::string& name) {
   throw GsError("unknown catch-up policy '" + name + "' (expected blend-through, hard-skip or play-late)");
 }
 
-VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight) {
+namespace {
+
+VramLayout placeBuffers(const GsParams& p, int lightmapWidth, int lightmapHeight) {
   if (lightmapWidth <= 0 || lightmapHeight <= 0 || lightmapWidth > 1024 || lightmapHeight > 1024) {
     throw GsError("lightmap " + std::to_string(lightmapWidth) + "x" + std::to_string(lightmapHeight) +
                   " cannot be a GS texture: each side must be 1..1024 (TEX0.TW/TH are log2 sizes up to 10)");
@@ -35,6 +37,48 @@ VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight) {
     req.push_back({"sky", Psm::Ct32, static_cast<int>(p.sky_width), static_cast<int>(p.sky_height)});
   }
   return VramLayout::place(req);
+}
+
+// True when `p` changed as given by `change` would fit the GS's VRAM.
+template <typename Change>
+bool fitsWith(const GsParams& p, int width, int height, Change change) {
+  GsParams q = p;
+  change(q);
+  try {
+    placeBuffers(q, width, height);
+    return true;
+  } catch (const GsError&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight) {
+  try {
+    return placeBuffers(p, lightmapWidth, lightmapHeight);
+  } catch (const GsError& e) {
+    // Name the way out when a setting of the platform config has one (docs/player.md, "VRAM").
+    std::string hint;
+    const bool strips = p.upload_mode == "strips";
+    const auto toStrips = [](GsParams& q) { q.upload_mode = "strips"; };
+    const auto smallerSky = [&](GsParams& q) { q.sky_height = std::min<std::int64_t>(q.sky_height, q.sky_width / 2); };
+    if (!strips && fitsWith(p, lightmapWidth, lightmapHeight, toStrips)) {
+      hint =
+          "; it fits with gs.upload_mode = \"strips\" in a platform config (--config FILE), which blends "
+          "through a " +
+          std::to_string(p.strip_rows) + "-row staging area instead of a whole frame";
+    } else if (fitsWith(p, lightmapWidth, lightmapHeight, [&](GsParams& q) {
+                 toStrips(q);
+                 smallerSky(q);
+               })) {
+      hint = "; it fits with gs.upload_mode = \"strips\" and gs.sky_height = " + std::to_string(p.sky_width / 2) +
+             " (a sky dome texture as high as half its width) in a platform config (--config FILE)";
+    } else {
+      hint = "; author a smaller lightmap (each side a power of two up to 1024)";
+    }
+    throw GsError(e.what() + hint);
+  }
 }
 
 namespace {

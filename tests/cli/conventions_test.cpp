@@ -126,3 +126,49 @@ TEST(CliConventions, BadInputNamesTheCommandAndExitsTwo) {
 }
 
 }  // namespace
+
+namespace {
+
+// `vbim author` with a source and --out only makes a stream every other command accepts on the
+// default platform config (issue #15: it used to need --fps, then did not fit the GS's VRAM).
+TEST(CliConventions, AuthorDefaultsMakeAStreamTheOtherCommandsAccept) {
+  const fs::path dir = scratch("defaults");
+  fs::create_directories(dir);
+  const std::string d = dir.string();
+  const Result author = run("author --procedural --out " + d + "/day.vbim");
+  ASSERT_EQ(author.code, 0) << author.output;
+  const Result play = run("play " + d + "/day.vbim --duration 4s --every 120 --out " + d + "/run");
+  EXPECT_EQ(play.code, 0) << play.output;
+  const Result info = run("info " + d + "/day.vbim");
+  EXPECT_EQ(info.code, 0) << info.output;
+  const Result profile = run("profile " + d + "/day.vbim --ring 4:16 --duration 3s --no-search --out " + d + "/prof");
+  EXPECT_EQ(profile.code, 0) << profile.output;
+  const Result render = run("render " + d + "/run --no-video --width 64 --height 36 --out " + d + "/pictures");
+  EXPECT_EQ(render.code, 0) << render.output;
+  fs::remove_all(dir);
+}
+
+// A layout that does not fit names the setting that makes it fit.
+TEST(CliConventions, AVramOverflowNamesTheWayOut) {
+  const fs::path dir = scratch("vram");
+  fs::create_directories(dir);
+  const std::string d = dir.string();
+  const Result author = run("author --procedural --size 512 --frame-count 4 --out " + d + "/big.vbim");
+  ASSERT_EQ(author.code, 0) << author.output;
+  const Result play = run("play " + d + "/big.vbim --duration 1s --out " + d + "/run");
+  EXPECT_EQ(play.code, 2) << play.output;
+  EXPECT_NE(play.output.find("the default platform config: VRAM layout does not fit"), std::string::npos)
+      << play.output;
+  EXPECT_NE(play.output.find("gs.upload_mode = \"strips\""), std::string::npos) << play.output;
+  // Following the advice works.
+  {
+    std::FILE* f = std::fopen((d + "/strips.toml").c_str(), "w");
+    std::fputs("[gs]\nupload_mode = \"strips\"\nsky_height = 128\n", f);
+    std::fclose(f);
+  }
+  const Result fixed = run("play " + d + "/big.vbim --config " + d + "/strips.toml --duration 1s --out " + d + "/run");
+  EXPECT_EQ(fixed.code, 0) << fixed.output;
+  fs::remove_all(dir);
+}
+
+}  // namespace
