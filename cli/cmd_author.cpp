@@ -9,6 +9,7 @@
 #include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
+#include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "imageio/error.hpp"
 #include "imageio/image_reader.hpp"
@@ -37,6 +38,7 @@ struct AuthorOptions {
   std::uint32_t syntheticFrames = 48;
   std::string syntheticSize = "256x256", syntheticSkySize = "128x64";
   std::string out;
+  bool force = false;
 };
 
 // NAME=VALUE options, in order of first appearance.
@@ -197,6 +199,7 @@ void addAuthor(CLI::App& app) {
   cmd->add_option("--synthetic-sky-size", o->syntheticSkySize, "Synthetic sky size WxH (0x0: no sky)")
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output stream file (complete or left as it was)")->required();
+  cmd->add_flag("--force", o->force, "Replace an existing output file");
   auto terrain = std::make_shared<TerrainAuthorOptions>();
   addTerrainOptions(cmd, terrain);
   cmd->footer(
@@ -204,6 +207,7 @@ void addAuthor(CLI::App& app) {
       "  vbim author --procedural --out day.vbim\n"
       "  vbim author --frames 'lm_%04d.exr' --sky 'sky_%04d.exr' --fps 1 --out day.vbim\n");
   cmd->callback([o, terrain] {
+    refuseExistingOutputFile(o->out, o->force);  // before minutes of encoding, not after
     try {
       const std::string technique = firstTerrainOptionGiven(*terrain);
       if (technique.empty()) {

@@ -150,9 +150,9 @@ void addDemo(CLI::App& app) {
   r->every = 240;              // about every 4 s: a rendered day on the contact sheet
   r->at = {"6s", "7s", "8s"};  // the catch-up after the stall
   r->seed = 1;
-  r->force = true;  // the demo owns out/demo and replaces it
   auto* cmd = app.add_subcommand(kDemoCommand.name, kDemoCommand.summary);
-  cmd->add_option("--out", r->out, "Output directory (replaced)")->capture_default_str();
+  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->capture_default_str();
+  cmd->add_flag("--force", r->force, "Replace a non-empty output directory (scripts/demo.sh passes it)");
   cmd->add_option("--duration", r->duration, "Simulated time")->capture_default_str();
   static double seconds = 0.0;  // CLI11 writes here; lives as long as the app
   cmd->add_option("--seconds", seconds, "Simulated seconds (the same as --duration Ns)")
@@ -166,6 +166,7 @@ void addDemo(CLI::App& app) {
     namespace fs = std::filesystem;
     // The authored stream goes beside the output first and into it with the rest at commit.
     const fs::path out = outputPath(r->out);
+    refuseExistingOutputDir(out, r->force);  // before minutes of work, not after
     const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
     fs::create_directories(parent);
     const fs::path stream = parent / ("." + out.filename().string() + ".day-" + std::to_string(::getpid()) + ".vbim");
@@ -179,6 +180,7 @@ void addDemo(CLI::App& app) {
     std::cout << "vbim demo: authoring a day cycle from the procedural terrain (Technique A)\n";
     authorDemoStream(stream);
     r->disc = stream.string();
+    r->discLabel = "day.vbim";  // as it is saved in the output: the summary is the same on every run
     if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
     r->faultsText = kDemoFaults;
     std::cout << "vbim demo: playing it with a 6 s drive stall at 0.2 s, a read error at LBA 2090 and loop wraps\n";
@@ -195,8 +197,9 @@ void addDemo(CLI::App& app) {
       if (ec) throw Exit(2, dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());
       fs::create_directories(dir.path("render"));
       try {
-        *rendered = render::renderRun(render::readRunDir(dir.path("")), render::RunRenderRequest{}, dir.path("render"),
-                                      [](int, int) {});
+        render::RunDir run = render::readRunDir(dir.path(""));
+        run.path = "..";  // render.json names the run as seen from render/, not the temporary directory
+        *rendered = render::renderRun(run, render::RunRenderRequest{}, dir.path("render"), [](int, int) {});
       } catch (const render::RenderError& e) {
         throw Exit(1, std::string("rendering failed: ") + e.what());
       }

@@ -187,8 +187,9 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(1);
-  s << "played " << toSeconds(o.duration) << " s of " << r.disc << " (" << tot.vsyncs << " vsyncs) in " << wall
-    << " s of host time (" << toSeconds(o.duration) / std::max(wall, 1e-9) << "x real time)\n"
+  s << "played " << toSeconds(o.duration) << " s of " << (r.discLabel.empty() ? r.disc : r.discLabel) << " ("
+    << tot.vsyncs << " vsyncs) in " << wall << " s of host time (" << toSeconds(o.duration) / std::max(wall, 1e-9)
+    << "x real time)\n"
     << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
     << c.framesCaughtUp << " caught up; " << c.loopWraps << " loop wrap(s), " << c.branches << " branch(es)\n"
     << "  pop max " << tot.pop.value << " at " << toSeconds(tot.pop.at) << " s; lag max " << tot.lag.value;

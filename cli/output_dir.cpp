@@ -15,13 +15,25 @@ fs::path outputPath(const fs::path& given) {
   return p;
 }
 
-OutputDir::OutputDir(const fs::path& final, bool force) : final_(outputPath(final)), force_(force) {
+void refuseExistingOutputDir(const fs::path& given, bool force) {
+  const fs::path final = outputPath(given);
   std::error_code ec;
-  if (fs::exists(final_, ec) && !force_) {
-    if (!fs::is_directory(final_, ec)) throw Exit(2, final_.string() + ": exists and is not a directory");
-    if (!fs::is_empty(final_, ec))
-      throw Exit(2, final_.string() + ": exists and is not empty (use --force to replace it)");
-  }
+  if (!fs::exists(final, ec)) return;
+  if (!fs::is_directory(final, ec)) throw Exit(2, "--out " + final.string() + ": exists and is not a directory");
+  if (!force && !fs::is_empty(final, ec))
+    throw Exit(2, "--out " + final.string() + ": exists and is not empty (use --force to replace it)");
+}
+
+void refuseExistingOutputFile(const fs::path& file, bool force) {
+  std::error_code ec;
+  if (fs::is_directory(file, ec))
+    throw Exit(2, "--out " + file.string() + ": is a directory; expected the name of the file to write");
+  if (!force && fs::exists(file, ec)) throw Exit(2, "--out " + file.string() + ": exists (use --force to replace it)");
+}
+
+OutputDir::OutputDir(const fs::path& final, bool force) : final_(outputPath(final)), force_(force) {
+  refuseExistingOutputDir(final_, force_);
+  std::error_code ec;
   const fs::path parent = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
   fs::create_directories(parent, ec);
   if (ec) throw Exit(2, parent.string() + ": cannot create the directory: " + ec.message());

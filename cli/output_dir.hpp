@@ -12,6 +12,13 @@ namespace vbim::cli {
 // separator, `.` and `..` resolved lexically.
 std::filesystem::path outputPath(const std::filesystem::path& given);
 
+// Refuses (cli::Exit, status 2) before any work starts: an output directory that exists and is
+// not empty unless `force`, or a path that exists and is not a directory.
+void refuseExistingOutputDir(const std::filesystem::path& final, bool force);
+// The same for a command that writes one file (vbim author): refused if it exists unless `force`,
+// and always if it is a directory.
+void refuseExistingOutputFile(const std::filesystem::path& file, bool force);
+
 class OutputDir {
  public:
   // Fails (cli::Exit) if `final` exists, is not empty and `force` is false.

@@ -15,6 +15,7 @@ namespace vbim::cli {
 
 struct PlayRequest {
   std::string disc;
+  std::string discLabel;   // how the summary names the disc (default: the path given)
   std::string config;      // platform config TOML, or empty
   std::string faults;      // fault plan TOML path, or empty
   std::string faultsText;  // a fault plan given inline (the demo's built-in one), used if faults is empty

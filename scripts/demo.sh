@@ -4,4 +4,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 scripts/build.sh build
-./build/cli/vbim demo "$@"
+./build/cli/vbim demo --force "$@"  # the main job owns out/demo/ and replaces it on each run

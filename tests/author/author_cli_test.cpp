@@ -254,7 +254,8 @@ TEST(AuthorCli, BadInputsFailClearlyAndLeaveNothing) {
   for (const BadCase& c : cases) {
     for (const bool existing : {false, true}) {
       if (existing) std::ofstream(out) << "old";
-      const Outcome r = run("author " + c.args + " --out " + out.string());
+      // An existing output is replaced only with --force; a failed run must leave it as it was.
+      const Outcome r = run("author " + c.args + " --out " + out.string() + (existing ? " --force" : ""));
       EXPECT_NE(r.status, 0) << c.name << "\n" << r.out;
       EXPECT_NE(r.out.find(c.words), std::string::npos) << c.name << ": expected '" << c.words << "' in\n" << r.out;
       if (existing) {

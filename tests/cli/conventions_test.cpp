@@ -172,3 +172,44 @@ TEST(CliConventions, AVramOverflowNamesTheWayOut) {
 }
 
 }  // namespace
+
+namespace {
+
+// Every command that writes refuses an existing output before any work starts, unless --force.
+TEST(CliConventions, ExistingOutputsAreRefusedBeforeAnyWorkUnlessForced) {
+  const fs::path dir = scratch("existing");
+  fs::create_directories(dir / "full");
+  {
+    std::FILE* f = std::fopen((dir / "full" / "keep.txt").c_str(), "w");
+    std::fputs("keep\n", f);
+    std::fclose(f);
+  }
+  {
+    std::FILE* f = std::fopen((dir / "old.vbim").c_str(), "w");
+    std::fputs("old\n", f);
+    std::fclose(f);
+  }
+  const std::string d = dir.string();
+  for (const std::string& args :
+       {"demo --out " + d + "/full", "demo --out " + d + "/full/", "lightmap --out " + d + "/full/",
+        "play " + kSample + " --out " + d + "/full/", "profile " + kSample + " --out " + d + "/full",
+        "decode " + kSample + " --out " + d + "/full"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("exists and is not empty (use --force to replace it)"), std::string::npos) << args << "\n"
+                                                                                                       << r.output;
+    EXPECT_EQ(lines(r.output), 1) << args << ": no work before the refusal\n" << r.output;
+  }
+  const Result author = run("author --procedural --out " + d + "/old.vbim");
+  EXPECT_EQ(author.code, 2) << author.output;
+  EXPECT_NE(author.output.find("exists (use --force to replace it)"), std::string::npos) << author.output;
+  EXPECT_EQ(vbim::testing::readFileBytes(dir / "old.vbim"), "old\n");
+  const Result intoDir = run("author --procedural --out " + d + "/full");
+  EXPECT_EQ(intoDir.code, 2) << intoDir.output;
+  EXPECT_NE(intoDir.output.find("is a directory; expected the name of the file to write"), std::string::npos)
+      << intoDir.output;
+  EXPECT_EQ(vbim::testing::readFileBytes(dir / "full" / "keep.txt"), "keep\n");
+  fs::remove_all(dir);
+}
+
+}  // namespace
