@@ -30,19 +30,25 @@ start() {
   for tool in munged slurmctld slurmd sinfo; do
     command -v "$tool" >/dev/null || { echo "slurm-local: $tool not found (apt-get install slurm-wlm munge)" >&2; exit 1; }
   done
-  mkdir -p "$dir"/{etc,munge,state,spool,log,run}
+  mkdir -p "$dir"/{etc,state,spool,log,run}
   dir=$(cd "$dir" && pwd)
   conf="$dir/etc/slurm.conf"
-  # munged wants its socket directory executable by all and not writable by group or other.
-  chmod 0755 "$dir" "$dir/munge"
-  if [ ! -f "$dir/munge/munge.key" ]; then
-    head -c 1024 /dev/urandom >"$dir/munge/munge.key"
-    chmod 0400 "$dir/munge/munge.key"
-  fi
+  # munged wants every directory above its socket executable by all (a mktemp -d directory is
+  # not): its socket and key live in a directory of their own under /tmp, removed by stop.
+  local munge
+  munge=$(mktemp -d /tmp/vbim-munge.XXXXXX)
+  chmod 0755 "$munge"
+  echo "$munge" >"$dir/run/munge.dir"
+  head -c 1024 /dev/urandom >"$munge/munge.key"
+  chmod 0400 "$munge/munge.key"
   # The daemons' stdio goes to /dev/null: they log to files, and must not hold a caller's pipe open.
-  munged --socket="$dir/munge/munge.socket.2" --key-file="$dir/munge/munge.key" \
-    --pid-file="$dir/run/munged.pid" --log-file="$dir/log/munged.log" --seed-file="$dir/munge/munged.seed" \
-    </dev/null >/dev/null 2>&1
+  munged --socket="$munge/munge.socket.2" --key-file="$munge/munge.key" \
+    --pid-file="$dir/run/munged.pid" --log-file="$dir/log/munged.log" --seed-file="$munge/munged.seed" \
+    </dev/null >/dev/null 2>&1 || {
+    echo "slurm-local: munged did not start:" >&2
+    tail -n 3 "$dir/log/munged.log" >&2
+    exit 1
+  }
   # The node as slurmd sees it, with 512 MB of memory left to the system.
   # slurmctld accepts to run only on the host SlurmctldHost names: this one's short name.
   local host node cpus boards sockets cores threads memory
@@ -63,7 +69,7 @@ SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
 CredType=cred/munge
-AuthInfo=socket=$dir/munge/munge.socket.2
+AuthInfo=socket=$munge/munge.socket.2
 StateSaveLocation=$dir/state
 SlurmdSpoolDir=$dir/spool
 SlurmctldPidFile=$dir/run/slurmctld.pid
@@ -98,7 +104,7 @@ CONF
     sleep 0.1
   done
   echo "slurm-local: the node did not come up within 30 s; logs in $dir/log" >&2
-  tail -5 "$dir/log/slurmctld.log" "$dir/log/slurmd.log" >&2 || true
+  tail -n 5 "$dir/log/slurmctld.log" "$dir/log/slurmd.log" >&2 || true
   exit 1
 }
 
@@ -113,6 +119,10 @@ stop() {
   stop_pid "$dir/run/slurmctld.pid" &
   wait
   stop_pid "$dir/run/munged.pid"
+  if [ -f "$dir/run/munge.dir" ]; then
+    rm -rf "$(cat "$dir/run/munge.dir")"
+    rm -f "$dir/run/munge.dir"
+  fi
   echo "slurm-local: stopped"
 }
 
