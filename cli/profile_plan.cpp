@@ -150,12 +150,14 @@ LoadedPlan load(const std::string& path) {
 unsigned jobsFor(const PlanRequest& r) {
   const unsigned cores = coresAvailable();
   if (r.jobs == 0) return std::min(cores, kMaxJobs);
-  if (r.jobs > kMaxJobs)
+  if (r.jobs > kMaxJobs) {
     throw Exit(2, "--jobs " + std::to_string(r.jobs) + ": at most " + std::to_string(kMaxJobs) +
                       " (this machine offers " + std::to_string(cores) + " cores)");
-  if (r.jobs > cores)
+  }
+  if (r.jobs > cores) {
     std::cerr << "vbim profile: --jobs " << r.jobs << " is more than the " << cores
               << " cores available: cases will share cores (no faster, same results)\n";
+  }
   return r.jobs;
 }
 
@@ -293,9 +295,10 @@ void runMerge(const PlanRequest& r, const LoadedPlan& p) {
     nlohmann::json info;
     try {
       info = nlohmann::json::parse(readFile((it->second / "shard.json").string()));
-      if (info.at("plan_digest").get<std::string>() != p.digest)
+      if (info.at("plan_digest").get<std::string>() != p.digest) {
         throw Exit(2, (it->second / "shard.json").string() + ": made from another plan (digest " +
                           info.at("plan_digest").get<std::string>() + ", this plan's is " + p.digest + ")");
+      }
       const auto [first, last] = shardRange(p.cases.size(), k, n);
       std::istringstream lines(readFile((it->second / "shard.jsonl").string()));
       std::size_t expect = first;
@@ -305,12 +308,14 @@ void runMerge(const PlanRequest& r, const LoadedPlan& p) {
         ++expect;
         records.push_back(std::move(rec));
       }
-      if (expect != last)
+      if (expect != last) {
         throw std::runtime_error("holds cases up to " + std::to_string(expect) + " of " + std::to_string(first) + ".." +
                                  std::to_string(last - 1));
-      if (info.at("failed_cases").get<std::size_t>() > 0)
+      }
+      if (info.at("failed_cases").get<std::size_t>() > 0) {
         failedShards.push_back(std::to_string(k) + " (" + std::to_string(info.at("failed_cases").get<std::size_t>()) +
                                " failed cases)");
+      }
     } catch (const Exit&) {
       throw;
     } catch (const std::exception& e) {

@@ -26,7 +26,7 @@ int lineOf(const toml::node& n) {
 // Reads one table of the plan; every message is origin:line: key 'path.key': what was expected.
 class Section {
  public:
-  Section(const std::string& origin, const toml::table& t, std::string path, std::set<std::string> known)
+  Section(const std::string& origin, const toml::table& t, std::string path, const std::set<std::string>& known)
       : origin_(origin), t_(t), path_(std::move(path)) {
     for (const auto& [k, v] : t) {
       if (known.count(std::string(k.str())) == 0) {
