@@ -102,6 +102,9 @@ std::vector<Cell> measureCells(const SweepPlanSpec& plan, const CaseRecord& r) {
         break;
     }
   }
+  if (!r.ok) {  // a failed case measured nothing: empty cells (null in JSON), not zeros
+    for (std::size_t i = 1; i < row.size(); ++i) row[i] = Cell{row[i].key, "", Cell::Kind::null};
+  }
   row.push_back(text("error", r.error));
   return row;
 }
