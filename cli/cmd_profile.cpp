@@ -1,7 +1,8 @@
 // vbim profile: sweeps over ring size, stream (several discs, or one re-encoded at several
 // quantisers / bitrates), fault plans and catch-up policy; searches the longest drive stall each
 // ring size survives; writes sweep.csv, stall.csv, profile.json and plots/*.png and *.svg into --out
-// (complete or absent). docs/player.md, "Profiling".
+// (complete or absent). docs/player.md, "Profiling". With --plan, a sweep plan instead
+// (cli/profile_plan.hpp, docs/sweeps.md).
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
 #include "cli/profile_outputs.hpp"
+#include "cli/profile_plan.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
@@ -225,9 +227,9 @@ void runProfile(const ProfileRequest& r) {
 
 void addProfile(CLI::App& app) {
   auto r = std::make_shared<ProfileRequest>();
+  auto plan = std::make_shared<PlanRequest>();
   auto* cmd = app.add_subcommand(kProfileCommand.name, kProfileCommand.summary);
-  cmd->add_option("disc", r->discs, "VBIM stream file(s); several discs are one sweep axis")
-      ->required()
+  cmd->add_option("disc", r->discs, "VBIM stream file(s); several discs are one sweep axis (not with --plan)")
       ->check(inputFile());
   cmd->add_option("--config", r->config, "Platform config (TOML) the sweep starts from")->check(inputFile());
   cmd->add_option("--faults", r->faults, "Fault plan(s) to sweep (repeatable); a run without faults is always included")
@@ -256,13 +258,25 @@ void addProfile(CLI::App& app) {
   cmd->add_flag_callback(
       "--no-search", [r] { r->search = false; }, "Skip the survivable-stall search");
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
-  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
+  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)");
+  addPlanOptions(*cmd, *plan);
   cmd->footer(
       "Examples:\n"
       "  vbim profile streams/samples/day_clear.vbim --ring 4:16,5:160 --out prof/\n"
-      "  vbim profile streams/samples/day_clear.vbim --faults plan.toml --policy blend-through,hard-skip --out "
-      "prof/\n");
-  cmd->callback([r] { runProfile(*r); });
+      "  vbim profile streams/samples/day_clear.vbim --faults examples/fault-plans/stall.toml --policy "
+      "blend-through,hard-skip --out prof/\n"
+      "  vbim profile --plan examples/sweeps/survivable-stall.toml --jobs 2 --out study/\n");
+  cmd->callback([r, plan] {
+    if (planMode(*plan)) {
+      if (!r->discs.empty()) throw Exit(2, "a sweep plan names its streams: give --plan or stream files, not both");
+      plan->out = r->out;
+      plan->force = r->force;
+      return runPlan(*plan);
+    }
+    if (r->discs.empty()) throw Exit(2, "no stream file given (or --plan sweep.toml)");
+    if (r->out.empty()) throw Exit(2, "--out is required");
+    runProfile(*r);
+  });
 }
 
 }  // namespace vbim::cli

@@ -3,8 +3,9 @@
 //   vbim lightmap [############..................] 48/120 frames  note
 //
 // redrawn in place ("\r") on stderr, and only when stderr is a terminal, so logs, pipes and tests
-// stay clean; finished with a newline. Libraries never print: they report through a plain callback
-// (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command forwards here.
+// stay clean; finished with a newline. Asked for explicitly (`always`), it also writes to a
+// non-terminal, one line per call (the caller decides how often: a batch job's log). Libraries never print: they report
+// through a plain callback (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command forwards here.
 #pragma once
 
 #include <cstddef>
@@ -16,7 +17,7 @@ namespace vbim::cli {
 class Progress {
  public:
   // `label` starts the line (the command, "vbim play"); `unit` follows the count ("frames", "s").
-  Progress(std::string label, std::string unit);
+  Progress(std::string label, std::string unit, bool always = false);
   // Ends the line if one was drawn, so a message after an error starts on a line of its own.
   ~Progress();
   Progress(const Progress&) = delete;
@@ -31,6 +32,7 @@ class Progress {
   std::string label_;
   std::string unit_;
   bool terminal_;
+  bool always_;
   bool drawn_ = false;
   std::size_t lastLength_ = 0;  // to blank what a longer previous line left behind
 };

@@ -8,6 +8,7 @@
 
 #include <toml++/toml.h>
 
+#include "config/fault_template.hpp"
 #include "config/toml_document.hpp"
 #include "iop/sector_source.hpp"
 
@@ -42,8 +43,15 @@ const std::vector<Kind>& kinds() {
 
 class Reader {
  public:
-  Reader(const std::string& origin, const toml::table& t, int line, std::string kind, const SectorSource* disc)
-      : origin_(origin), t_(t), line_(line), kind_(std::move(kind)), disc_(disc) {}
+  Reader(const std::string& origin, const toml::table& t, int line, std::string kind, const SectorSource* disc,
+         std::vector<FaultRange>* ranges = nullptr, std::size_t faultIndex = 0)
+      : origin_(origin),
+        t_(t),
+        line_(line),
+        kind_(std::move(kind)),
+        disc_(disc),
+        ranges_(ranges),
+        faultIndex_(faultIndex) {}
 
   [[noreturn]] void fail(const std::string& field, const std::string& what) const {
     int line = line_;
@@ -53,9 +61,19 @@ class Reader {
   }
   bool has(const std::string& f) const { return t_.get(f) != nullptr; }
 
+  // A time; in a template, `{ min = "1s", max = "4s" }` is a range: both ends are checked, the
+  // minimum is returned and the range recorded for the draws.
   Tick time(const std::string& f, bool positive) const {
     const toml::node* n = t_.get(f);
     if (n == nullptr) fail(f, "missing (expected a time such as \"800ms\")");
+    if (const toml::table* range = rangeOf(f, n)) {
+      const Tick lo = timeValue(f, range->get("min"), positive);
+      const Tick hi = timeValue(f, range->get("max"), positive);
+      return record(f, lo, hi, true);
+    }
+    return timeValue(f, n, positive);
+  }
+  Tick timeValue(const std::string& f, const toml::node* n, bool positive) const {
     const auto s = n->value<std::string>();
     if (!s) fail(f, "expected a time as a string with a unit, such as \"12.5s\", \"800ms\" or \"250us\"");
     Tick t = 0;
@@ -70,6 +88,14 @@ class Reader {
   std::int64_t integer(const std::string& f, std::int64_t min, std::int64_t max) const {
     const toml::node* n = t_.get(f);
     if (n == nullptr) fail(f, "missing");
+    if (const toml::table* range = rangeOf(f, n)) {
+      const std::int64_t lo = integerValue(f, range->get("min"), min, max);
+      const std::int64_t hi = integerValue(f, range->get("max"), min, max);
+      return record(f, lo, hi, false);
+    }
+    return integerValue(f, n, min, max);
+  }
+  std::int64_t integerValue(const std::string& f, const toml::node* n, std::int64_t min, std::int64_t max) const {
     if (!n->is_integer()) fail(f, "expected an integer");
     const std::int64_t v = *n->value<std::int64_t>();
     if (v < min || v > max) {
@@ -99,11 +125,31 @@ class Reader {
   }
 
  private:
+  // The {min, max} table of a ranged field (templates only), else null.
+  const toml::table* rangeOf(const std::string& f, const toml::node* n) const {
+    const toml::table* range = n->as_table();
+    if (range == nullptr) return nullptr;
+    if (ranges_ == nullptr) fail(f, "a range { min, max } is allowed only in a sweep plan's fault template");
+    for (const auto& [k, v] : *range) {
+      if (k.str() != "min" && k.str() != "max") fail(f, "a range takes only min and max");
+    }
+    if (range->get("min") == nullptr || range->get("max") == nullptr) fail(f, "a range needs both min and max");
+    return range;
+  }
+  std::int64_t record(const std::string& f, std::int64_t lo, std::int64_t hi, bool time) const {
+    if (hi < lo) fail(f, "the range's max is below its min");
+    const int line = static_cast<int>(t_.get(f)->source().begin.line);
+    ranges_->push_back(FaultRange{faultIndex_, f, lo, hi, time, line});
+    return lo;
+  }
+
   const std::string& origin_;
   const toml::table& t_;
   int line_;
   std::string kind_;
   const SectorSource* disc_;
+  std::vector<FaultRange>* ranges_;
+  std::size_t faultIndex_;
 };
 
 std::string fmtTime(Tick t) {
@@ -133,15 +179,36 @@ void rejectOverlaps(const std::string& origin, const std::vector<Fault>& faults,
 
 iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, const iop::SectorSource* disc) {
   const toml::table doc = parseTomlDocument(text, origin);
-  FaultPlan plan;
-  plan.origin = origin;
   for (const auto& [k, v] : doc) {
     if (k.str() != "fault") {
       throw ConfigError(origin + ":" + std::to_string(v.source().begin.line) + ": unknown key '" +
                         std::string(k.str()) + "': a fault plan holds only [[fault]] tables");
     }
   }
-  const toml::node* node = doc.get("fault");
+  return parseFaultArray(doc.get("fault"), origin, disc, nullptr);
+}
+
+void checkDrawnFaultPlan(const iop::FaultPlan& plan, const std::string& origin) {
+  for (const Fault& f : plan.faults) {
+    if (f.kind == Fault::Kind::random_stall && f.stallLength >= f.meanInterval) {
+      throw ConfigError(origin + ":" + std::to_string(f.line) +
+                        ": fault 'random_stall': the drawn stall is not shorter than the drawn mean_interval");
+    }
+    if (f.kind == Fault::Kind::contention && f.period > f.duration) {
+      throw ConfigError(origin + ":" + std::to_string(f.line) +
+                        ": fault 'contention': the drawn period is longer than the drawn duration");
+    }
+  }
+  rejectOverlaps(origin, plan.faults, Fault::Kind::stall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::contention);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::random_stall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::random_error);
+}
+
+iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin, const iop::SectorSource* disc,
+                               std::vector<FaultRange>* ranges) {
+  FaultPlan plan;
+  plan.origin = origin;
   if (node == nullptr) return plan;  // an empty plan: no faults
   const toml::array* arr = node->as_array();
   if (arr == nullptr) {
@@ -169,7 +236,7 @@ iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, 
       throw ConfigError(origin + ":" + std::to_string(kn->source().begin.line) + ": unknown fault kind '" + kindName +
                         "' (expected stall, read_error, seek_away, contention, random_stall or random_error)");
     }
-    Reader r(origin, *t, line, kindName, disc);
+    Reader r(origin, *t, line, kindName, disc, ranges, plan.faults.size());
     for (const auto& [fk, fv] : *t) {
       const std::string field(fk.str());
       if (field == "kind") continue;

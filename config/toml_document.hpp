@@ -7,6 +7,8 @@
 
 #include <toml++/toml.h>
 
+#include "runtime/params.hpp"
+
 namespace vbim::config {
 
 toml::table parseTomlDocument(std::string_view text, const std::string& origin);
@@ -14,5 +16,9 @@ toml::table parseTomlDocument(std::string_view text, const std::string& origin);
 // The text of a TOML file. `what` names it in errors ("fault plan", "config file"): a missing or
 // unreadable path, or a directory where the file was expected, is a ConfigError naming the path.
 std::string readTomlFile(const std::string& path, const std::string& what);
+
+// Sets the parameter `key` of `table` from `value` (type and range checked; errors name
+// origin:line: key 'key'). The step applyToml takes for each key of a document.
+void applyTomlValue(ParamTable& table, const std::string& key, const toml::node& value, const std::string& origin);
 
 }  // namespace vbim::config

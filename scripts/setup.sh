@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vbim needs, only the ones that are missing.
-# Idempotent and non-interactive; run as root (or with sudo available).
+# Idempotent and non-interactive; run as root (or with sudo available). --with-slurm adds a
+# single-node Slurm's packages (scripts/slurm-local.sh).
 set -euo pipefail
 
 PACKAGES=(
@@ -23,6 +24,11 @@ PACKAGES=(
   # portable SIMD with run-time dispatch
   libhwy-dev
 )
+
+# Only for the CI step that runs sweeps as Slurm job arrays (scripts/ci-slurm-sweep.sh).
+if [ "${1:-}" = "--with-slurm" ]; then
+  PACKAGES+=(slurm-wlm munge)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,0 +1,19 @@
+// Sweep plans from TOML (docs/sweeps.md) into the plain player::profile::SweepPlanSpec: axes,
+// fault-plan templates with their seeded draws made here, measures and probabilities. Errors name
+// file:line: key and what was expected (ConfigError).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "player/sweep_plan.hpp"
+
+namespace vbim::config {
+
+// `baseDir` resolves relative paths in the plan (streams, config, fault-plan files): the plan
+// file's folder. Throws ConfigError.
+player::profile::SweepPlanSpec parseSweepPlan(std::string_view text, const std::string& origin,
+                                              const std::string& baseDir);
+player::profile::SweepPlanSpec loadSweepPlan(const std::string& path);
+
+}  // namespace vbim::config
