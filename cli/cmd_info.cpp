@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "iop/error.hpp"
+#include "streams/disc/stream_disc.hpp"
 #include "streams/format.hpp"
 #include "streams/stream_stats.hpp"
 
@@ -109,17 +111,31 @@ void addInfo(CLI::App& app) {
       app.add_subcommand("info", "Inspect a VBIM stream: streams, frames, sectors per frame, bitrate, descriptor");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("STREAM", *path, "Stream file")->required();
+  auto file = std::make_shared<std::string>();
+  cmd->add_option("STREAM", *path, "Stream file, or an ISO 9660 disc image")->required();
+  cmd->add_option("--file", *file,
+                  "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_flag("--json", *json, "Machine-readable output");
-  cmd->callback([path, json] {
+  cmd->callback([path, json, file] {
     StreamScan scan;
+    std::optional<iop::DiscFile> onImage;  // where the stream lies on a disc image
     try {
-      scan = scanStreamFile(*path);
+      if (streams::isIsoImage(*path) || !file->empty()) {
+        streams::StreamDisc disc = streams::openStreamDisc(*path, *file);
+        onImage = disc.file;
+        scan = scanStream(streams::readDiscFile(*disc.disc, disc.file));
+      } else {
+        scan = scanStreamFile(*path);
+      }
+    } catch (const iop::DiscError& e) {
+      throw Exit(2, std::string("vbim info: ") + e.what());
     } catch (const std::exception& e) {
       throw Exit(1, std::string("vbim info: ") + e.what());
     }
+    const std::string shown =
+        onImage ? *path + " " + onImage->path + " (LBA " + std::to_string(onImage->lba) + ")" : *path;
     if (scan.pictures.empty() && scan.stats.badSectors == scan.stats.sectors) {
-      throw Exit(1, "vbim info: " + *path + ": not an MPEG-2 program stream with 2048-byte packs: " +
+      throw Exit(1, "vbim info: " + shown + ": not an MPEG-2 program stream with 2048-byte packs: " +
                         (scan.errors.empty() ? std::string("empty file") : scan.errors.front().describe()));
     }
     const bool guessed = !scan.descriptor;
@@ -131,6 +147,7 @@ void addInfo(CLI::App& app) {
     if (*json) {
       nlohmann::json j;
       j["file"] = *path;
+      if (onImage) j["disc_file"] = {{"path", onImage->path}, {"lba", onImage->lba}, {"bytes", onImage->bytes}};
       j["bytes"] = scan.fileBytes;
       j["sectors"] = scan.sectors;
       j["every_pack_2048"] = scan.every2048;
@@ -161,10 +178,10 @@ void addInfo(CLI::App& app) {
       if (!j.contains("errors")) j["errors"] = nlohmann::json::array();
       std::cout << j.dump(2) << "\n";
     } else {
-      printText(*path, scan, reports, fps, guessed);
+      printText(shown, scan, reports, fps, guessed);
     }
     if (!scan.errors.empty())
-      throw Exit(1, "vbim info: " + *path + ": " + std::to_string(scan.errors.size()) +
+      throw Exit(1, "vbim info: " + shown + ": " + std::to_string(scan.errors.size()) +
                         " defects found (first: " + scan.errors.front().describe() + ")");
   });
 }

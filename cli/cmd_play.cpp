@@ -21,10 +21,10 @@
 #include "imageio/exr_writer.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
-#include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
+#include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
 
@@ -60,13 +60,15 @@ std::string policyName(const std::string& p) {
 
 std::string runPlay(const PlayRequest& r, bool progress) {
   using namespace vbim::player;
-  // The disc: a bare stream file at kBareFileLba.
-  std::shared_ptr<iop::FileDisc> disc;
+  // The disc: an ISO 9660 image and the stream on it, or a bare stream file at kBareFileLba.
+  std::shared_ptr<iop::SectorSource> disc;
   iop::DiscFile file;
+  std::string shown = r.disc;  // the disc as the summary names it
   try {
-    auto probe = std::make_unique<iop::FileDisc>(r.disc, kBareFileLba);
-    file = probe->file();
-    disc = std::make_shared<iop::FileDisc>(r.disc, kBareFileLba, kBareFileLba + file.sectors() + kBareFilePadSectors);
+    streams::StreamDisc opened = streams::openStreamDisc(r.disc, r.file);
+    disc = std::move(opened.disc);
+    file = opened.file;
+    if (opened.image) shown += " " + file.path + " (LBA " + std::to_string(file.lba) + ")";
   } catch (const iop::DiscError& e) {
     throw Exit(2, e.what());
   }
@@ -174,7 +176,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(1);
-  s << "played " << toSeconds(o.duration) << " s of " << r.disc << " (" << tot.vsyncs << " vsyncs) in " << wall
+  s << "played " << toSeconds(o.duration) << " s of " << shown << " (" << tot.vsyncs << " vsyncs) in " << wall
     << " s of host time (" << toSeconds(o.duration) / std::max(wall, 1e-9) << "x real time)\n"
     << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
     << c.framesCaughtUp << " caught up; " << c.loopWraps << " loop wrap(s), " << c.branches << " branch(es)\n"
@@ -191,7 +193,9 @@ std::string runPlay(const PlayRequest& r, bool progress) {
 void addPlay(CLI::App& app) {
   auto r = std::make_shared<PlayRequest>();
   auto* cmd = app.add_subcommand("play", "Play a VBIM disc through the whole pipeline on the simulated clock");
-  cmd->add_option("disc", r->disc, "A VBIM stream file (a bare stream is a disc with one file)")->required();
+  cmd->add_option("disc", r->disc, "A VBIM stream file (a disc with one file) or an ISO 9660 disc image")->required();
+  cmd->add_option("--file", r->file,
+                  "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_option("--config", r->config, "Platform config (TOML; `vbim config --defaults` lists every key)");
   cmd->add_option("--faults", r->faults, "Fault plan (TOML; docs/fault-plans.md)");
   cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();
