@@ -191,8 +191,11 @@ void addDemo(CLI::App& app) {
       if (ec) throw Exit(2, dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());
       fs::create_directories(dir.path("render"));
       try {
-        *rendered = render::renderRun(render::readRunDir(dir.path("")), render::RunRenderRequest{}, dir.path("render"),
-                                      [](int, int) {});
+        // The terrain and day the stream was authored with, from the record play copied.
+        const render::RunDir run = render::readRunDir(dir.path(""));
+        render::RunRenderRequest request;
+        if (run.authoring) render::applyAuthoring(*run.authoring, "authoring.json", request);
+        *rendered = render::renderRun(run, request, dir.path("render"), [](int, int) {});
       } catch (const render::RenderError& e) {
         throw Exit(2, std::string("vbim demo: rendering failed: ") + e.what());
       }

@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
@@ -121,7 +123,18 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     throw Exit(2, std::string("platform config: ") + e.what());
   }
 
+  // How the stream was made, for `vbim render RUN_DIR` (lighting/authoring/authoring_record.hpp).
+  const std::optional<std::string> record = streams::readAuthoringRecord(*disc, file);
+
   OutputDir dir(r.out, r.force);
+  if (record) {
+    std::ofstream a(dir.path("authoring.json"), std::ios::binary);
+    try {
+      a << nlohmann::ordered_json::parse(*record).dump(2) << "\n";
+    } catch (const nlohmann::json::exception&) {
+      a << *record << "\n";  // kept as the stream holds it; render reports what is wrong with it
+    }
+  }
   std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
   std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
   timeline << timelineHeader();

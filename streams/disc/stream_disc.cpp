@@ -1,5 +1,6 @@
 #include "streams/disc/stream_disc.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include "ee/stream_probe.hpp"
 #include "iop/file_disc.hpp"
 #include "player/scenario.hpp"
+#include "streams/authoring_record.hpp"
 #include "streams/disc/iso_disc.hpp"
 
 namespace vbim::streams {
@@ -102,6 +104,22 @@ std::vector<std::uint8_t> readDiscFile(iop::SectorSource& disc, const iop::DiscF
   }
   bytes.resize(static_cast<std::size_t>(file.bytes));
   return bytes;
+}
+
+std::optional<std::string> readAuthoringRecord(iop::SectorSource& disc, const iop::DiscFile& file) {
+  std::int64_t video = 0;
+  try {
+    video = ee::probeStream(disc, file).descriptor.totalSectors;
+  } catch (const ee::StreamProbeError&) {
+    return std::nullopt;
+  }
+  // A record of a few thousand frames' hours and every lighting key fits in a handful of packs.
+  constexpr std::int64_t kMaxRecordSectors = 256;
+  iop::DiscFile tail = file;
+  tail.lba = file.lba + video;
+  tail.bytes = std::min(file.sectors() - video, kMaxRecordSectors) * static_cast<std::int64_t>(iop::kSectorBytes);
+  if (tail.bytes <= 0) return std::nullopt;
+  return findAuthoringRecord(readDiscFile(disc, tail));
 }
 
 }  // namespace vbim::streams
