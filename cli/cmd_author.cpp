@@ -219,10 +219,12 @@ void addAuthor(CLI::App& app) {
   auto terrain = std::make_shared<TerrainAuthorOptions>();
   addTerrainOptions(cmd, terrain);
   cmd->callback([o, terrain] {
-    if (!o->iso.empty() && std::filesystem::path(o->iso) == std::filesystem::path(o->out))
+    if (!o->iso.empty() && std::filesystem::path(o->iso) == std::filesystem::path(o->out)) {
       throw Exit(2, "vbim author: --iso " + o->iso + " is the --out stream file; give the image another name");
-    if (const std::string why = level1PathProblem(o->isoFile); !o->iso.empty() && !why.empty())
+    }
+    if (const std::string why = level1PathProblem(o->isoFile); !o->iso.empty() && !why.empty()) {
       throw Exit(2, "vbim author: --iso-file '" + o->isoFile + "': " + why);
+    }
     try {
       const std::string technique = firstTerrainOptionGiven(*terrain);
       if (technique.empty()) {

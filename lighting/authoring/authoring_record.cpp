@@ -52,7 +52,9 @@ Json lightingJson(DayCycleParams p) {
 void applyLighting(const Json& j, DayCycleParams& p, const std::string& where) {
   ParamTable table;
   describeParams(table, p);
-  for (const auto& [key, value] : j.items()) {
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();
+    const Json& value = item.value();
     const ParamTable::Param* param = table.find(key);
     if (param == nullptr) throw LightingError(where + ": unknown key '" + key + "'");
     const auto bad = [&](const std::string& expected) {
