@@ -13,11 +13,14 @@
 #include "cli/progress.hpp"
 #include "imageio/error.hpp"
 #include "imageio/image_reader.hpp"
+#include "iop/error.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/frame_pattern.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/synthetic_day.hpp"
 #include "streams/authoring/tone_map.hpp"
+#include "streams/disc/iso_disc.hpp"
+#include "streams/disc/iso_writer.hpp"
 
 extern "C" {
 #include <libavutil/log.h>
@@ -39,7 +42,20 @@ struct AuthorOptions {
   std::string syntheticSize = "256x256", syntheticSkySize = "128x64";
   std::string out;
   bool force = false;
+  std::string iso, isoFile = "\\DATA\\DAY.VBI;1";  // --iso: also a disc image holding the stream
 };
+
+// --iso: the stream just written, on an ISO 9660 image at --iso-file.
+void writeDiscImage(const AuthorOptions& o) {
+  try {
+    writeIsoImage(o.iso, {{o.isoFile, o.out}});
+    const auto f = IsoDisc(o.iso).find(o.isoFile);
+    std::cout << o.iso << ": ISO 9660 image, " << o.isoFile << " at LBA " << f->lba << " ("
+              << "vbim play " << o.iso << ")\n";
+  } catch (const iop::DiscError& e) {
+    throw Exit(1, std::string("vbim author: ") + e.what());
+  }
+}
 
 // NAME=VALUE options, in order of first appearance.
 std::vector<std::pair<std::string, std::string>> parsePairs(const std::vector<std::string>& in, const char* what) {
@@ -200,6 +216,9 @@ void addAuthor(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output stream file (complete or left as it was)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing output file");
+  cmd->add_option("--iso", o->iso, "Also write an ISO 9660 disc image holding the stream (made with xorriso)");
+  cmd->add_option("--iso-file", o->isoFile, "Where the stream lies on the --iso image (ISO 9660 level 1 names)")
+      ->capture_default_str();
   auto terrain = std::make_shared<TerrainAuthorOptions>();
   addTerrainOptions(cmd, terrain);
   cmd->footer(
@@ -208,10 +227,17 @@ void addAuthor(CLI::App& app) {
       "  vbim author --frames 'lm_%04d.exr' --sky 'sky_%04d.exr' --fps 1 --out day.vbim\n");
   cmd->callback([o, terrain] {
     refuseExistingOutputFile(o->out, o->force);  // before minutes of encoding, not after
+    if (!o->iso.empty() && std::filesystem::path(o->iso) == std::filesystem::path(o->out)) {
+      throw Exit(2, "vbim author: --iso " + o->iso + " is the --out stream file; give the image another name");
+    }
+    if (const std::string why = level1PathProblem(o->isoFile); !o->iso.empty() && !why.empty()) {
+      throw Exit(2, "vbim author: --iso-file '" + o->isoFile + "': " + why);
+    }
     try {
       const std::string technique = firstTerrainOptionGiven(*terrain);
       if (technique.empty()) {
         runAuthor(*o);
+        if (!o->iso.empty()) writeDiscImage(*o);
         return;
       }
       // Technique A renders its own frames: the image-sequence and synthetic options do not apply.
@@ -221,6 +247,7 @@ void addAuthor(CLI::App& app) {
                           " selects Technique A, which renders its own frames; it excludes --frames, --sky, "
                           "--variant, --variant-sky and --synthetic");
       runTerrainAuthor(*terrain, o->encode, o->out);
+      if (!o->iso.empty()) writeDiscImage(*o);
     } catch (const AuthoringError& e) {
       throw Exit(2, e.what());
     }

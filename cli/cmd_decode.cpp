@@ -13,8 +13,10 @@
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
+#include "iop/error.hpp"
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
+#include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
 namespace {
@@ -27,6 +29,7 @@ std::vector<std::uint8_t> readFile(const std::string& path) {
 
 struct Options {
   std::string input;
+  std::string file;  // the stream on a disc image
   std::string outDir;
   std::string format = "png";
   std::string stream;
@@ -59,19 +62,32 @@ void run(const Options& o) {
   streams::DecodeOptions options;
   options.threads = o.threads;
   if (!o.stream.empty()) options.streamId = parseStreamId(o.stream);
-  const std::vector<std::uint8_t> file = readFile(o.input);
+  // A disc image: the picked file's bytes, named by image and file in messages.
+  std::vector<std::uint8_t> file;
+  std::string name = o.input;
+  if (streams::isIsoImage(o.input) || !o.file.empty()) {
+    try {
+      const streams::StreamDisc disc = streams::openStreamDisc(o.input, o.file);
+      file = streams::readDiscFile(*disc.disc, disc.file);
+      name += " " + disc.file.path;
+    } catch (const iop::DiscError& e) {
+      throw Exit(2, e.what());
+    }
+  } else {
+    file = readFile(o.input);
+  }
   OutputDir dir(o.outDir, o.force);
   streams::FrameFileWriter writer(dir.directory(), formatOf(o.format), ipu::CscThresholds{o.th0, o.th1});
   streams::DecodeSummary s;
   try {
     s = streams::decodeStream(
-        file, o.input, options, [&writer](int frame, const ipu::Decoder& d) { writer.write(frame, d); },
+        file, name, options, [&writer](int frame, const ipu::Decoder& d) { writer.write(frame, d); },
         [](const std::string& line) { std::cerr << "vbim decode: " << line << "\n"; });
   } catch (const streams::DecodeError& e) {
     throw Exit(2, e.what());
   }
   if (o.strict && s.issues > 0)
-    throw Exit(2, o.input + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
+    throw Exit(2, name + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
   dir.commit();
   std::cout << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
             << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
@@ -85,9 +101,12 @@ void run(const Options& o) {
 void addDecode(CLI::App& app) {
   auto* cmd = app.add_subcommand("decode", "Decode every picture of a stream with the IPU model (no timing)");
   auto o = std::make_shared<Options>();
-  cmd->add_option("stream", o->input, "MPEG program stream (VBIM stream) or MPEG-1/2 video elementary stream")
+  cmd->add_option("stream", o->input,
+                  "MPEG program stream (VBIM stream), MPEG-1/2 video elementary stream, or an ISO 9660 disc image")
       ->required()
       ->check(inputFile());
+  cmd->add_option("--file", o->file,
+                  "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_option("--out", o->outDir, "Output directory (written completely or not at all)")->required();
   cmd->add_option("--format", o->format, "png (RGBA, GS alpha doubled), exr (half float) or yuv (planar 4:2:0)")
       ->capture_default_str()

@@ -197,9 +197,12 @@ void addDemo(CLI::App& app) {
       if (ec) throw Exit(2, dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());
       fs::create_directories(dir.path("render"));
       try {
+        // The terrain and day the stream was authored with, from the record play copied.
         render::RunDir run = render::readRunDir(dir.path(""));
         run.path = "..";  // render.json names the run as seen from render/, not the temporary directory
-        *rendered = render::renderRun(run, render::RunRenderRequest{}, dir.path("render"), [](int, int) {});
+        render::RunRenderRequest request;
+        if (run.authoring) render::applyAuthoring(*run.authoring, "authoring.json", request);
+        *rendered = render::renderRun(run, request, dir.path("render"), [](int, int) {});
       } catch (const render::RenderError& e) {
         throw Exit(1, std::string("rendering failed: ") + e.what());
       }

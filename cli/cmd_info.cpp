@@ -7,6 +7,8 @@
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
+#include "iop/error.hpp"
+#include "streams/disc/stream_disc.hpp"
 #include "streams/format.hpp"
 #include "streams/stream_stats.hpp"
 
@@ -103,6 +105,43 @@ void printText(const std::string& path, const StreamScan& scan, const std::vecto
   if (scan.errors.size() > 20) std::printf("  ... %zu more\n", scan.errors.size() - 20);
 }
 
+// A few lines from the authoring record; --json shows all of it.
+void printAuthoring(const std::optional<nlohmann::ordered_json>& r) {
+  if (!r) {
+    std::printf("\nauthoring: none recorded (made by another tool, or before streams carried a record)\n");
+    return;
+  }
+  const auto text = [&](const nlohmann::ordered_json& j, const char* key) {
+    return j.contains(key) ? (j[key].is_string() ? j[key].get<std::string>() : j[key].dump()) : std::string("?");
+  };
+  std::printf("\nauthoring: %s by vbim %s (vbim info --json shows every setting)\n", text(*r, "source").c_str(),
+              text(*r, "vbim_version").c_str());
+  if (r->contains("terrain")) {
+    const auto& t = (*r)["terrain"];
+    std::printf("  terrain %s, %sx%s texels of %s m\n", text(t, "heightfield").c_str(), text(t, "width").c_str(),
+                text(t, "height").c_str(), text(t, "cell_size_m").c_str());
+  }
+  if (r->contains("day")) {
+    const auto& d = (*r)["day"];
+    std::printf("  day %s h to %s h, %s frames per variant", text(d, "start_hour").c_str(), text(d, "end_hour").c_str(),
+                text(d, "frames").c_str());
+    if (d.contains("frame_hours") && d["frame_hours"].size() > 1) {
+      std::printf(" (frame 1 at %.2f h, last at %.2f h)", d["frame_hours"][1].get<double>(),
+                  d["frame_hours"].back().get<double>());
+    }
+    std::printf("\n");
+  }
+  if (r->contains("variants")) {
+    for (const auto& v : (*r)["variants"]) {
+      const auto& l = v.contains("lighting") ? v["lighting"] : nlohmann::ordered_json::object();
+      std::printf("  variant '%s': latitude %s deg, day %s of the year, turbidity %s, sun %s klux\n",
+                  text(v, "name").c_str(), text(l, "lighting.latitude_deg").c_str(),
+                  text(l, "lighting.day_of_year").c_str(), text(l, "lighting.turbidity").c_str(),
+                  text(l, "lighting.sun_klux").c_str());
+    }
+  }
+}
+
 }  // namespace
 
 void addInfo(CLI::App& app) {
@@ -110,21 +149,47 @@ void addInfo(CLI::App& app) {
       app.add_subcommand("info", "Inspect a VBIM stream: streams, frames, sectors per frame, bitrate, descriptor");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("STREAM", *path, "Stream file")->required()->check(inputFile());
+  auto file = std::make_shared<std::string>();
+  cmd->add_option("STREAM", *path, "Stream file, or an ISO 9660 disc image")->required()->check(inputFile());
+  cmd->add_option("--file", *file,
+                  "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_flag("--json", *json, "Machine-readable output");
   cmd->footer(
       "Examples:\n"
       "  vbim info streams/samples/day_clear.vbim\n"
       "  vbim info streams/samples/day_clear.vbim --json\n");
-  cmd->callback([path, json] {
+  cmd->callback([path, json, file] {
     StreamScan scan;
+    std::optional<iop::DiscFile> onImage;  // where the stream lies on a disc image
     try {
-      scan = scanStreamFile(*path);
+      if (streams::isIsoImage(*path) || !file->empty()) {
+        streams::StreamDisc disc = streams::openStreamDisc(*path, *file);
+        onImage = disc.file;
+        scan = scanStream(streams::readDiscFile(*disc.disc, disc.file));
+      } else {
+        scan = scanStreamFile(*path);
+      }
+    } catch (const iop::DiscError& e) {
+      throw Exit(2, std::string("vbim info: ") + e.what());
     } catch (const std::exception& e) {
       throw Exit(2, e.what());
     }
+    // How the stream was made, when it says (a record after its video sectors).
+    std::optional<nlohmann::ordered_json> record;
+    if (scan.descriptor) {
+      try {
+        const streams::StreamDisc disc = streams::openStreamDisc(*path, *file);
+        if (const auto text = streams::readAuthoringRecord(*disc.disc, disc.file)) {
+          record = nlohmann::ordered_json::parse(*text);
+        }
+      } catch (const std::exception&) {
+        // Not whole sectors or not JSON: the defects are reported below; no record shown.
+      }
+    }
+    const std::string shown =
+        onImage ? *path + " " + onImage->path + " (LBA " + std::to_string(onImage->lba) + ")" : *path;
     if (scan.pictures.empty() && scan.stats.badSectors == scan.stats.sectors) {
-      throw Exit(2, *path + ": not an MPEG-2 program stream with 2048-byte packs: " +
+      throw Exit(2, shown + ": not an MPEG-2 program stream with 2048-byte packs: " +
                         (scan.errors.empty() ? std::string("empty file") : scan.errors.front().describe()));
     }
     const bool guessed = !scan.descriptor;
@@ -136,11 +201,13 @@ void addInfo(CLI::App& app) {
     if (*json) {
       nlohmann::json j;
       j["file"] = *path;
+      if (onImage) j["disc_file"] = {{"path", onImage->path}, {"lba", onImage->lba}, {"bytes", onImage->bytes}};
       j["bytes"] = scan.fileBytes;
       j["sectors"] = scan.sectors;
       j["every_pack_2048"] = scan.every2048;
       j["mux_rate_bps"] = scan.muxRate * 400.0;
       j["descriptor"] = scan.descriptor ? descriptorJson(*scan.descriptor) : nlohmann::json(nullptr);
+      if (record) j["authoring"] = nlohmann::json::parse(record->dump());
       for (const StreamReport& r : reports) {
         nlohmann::json pictures = nlohmann::json::array();
         for (const PictureRecord& p : scan.pictures)
@@ -166,10 +233,11 @@ void addInfo(CLI::App& app) {
       if (!j.contains("errors")) j["errors"] = nlohmann::json::array();
       std::cout << j.dump(2) << "\n";
     } else {
-      printText(*path, scan, reports, fps, guessed);
+      printText(shown, scan, reports, fps, guessed);
+      printAuthoring(record);
     }
     if (!scan.errors.empty())
-      throw Exit(2, *path + ": " + std::to_string(scan.errors.size()) +
+      throw Exit(2, shown + ": " + std::to_string(scan.errors.size()) +
                         " defects found (first: " + scan.errors.front().describe() + ")");
   });
 }

@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
@@ -23,10 +25,10 @@
 #include "imageio/exr_writer.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
-#include "iop/file_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
+#include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
 
@@ -73,13 +75,15 @@ std::string policyName(const std::string& p) {
 
 std::string runPlay(const PlayRequest& r, bool progress) {
   using namespace vbim::player;
-  // The disc: a bare stream file at kBareFileLba.
-  std::shared_ptr<iop::FileDisc> disc;
+  // The disc: an ISO 9660 image and the stream on it, or a bare stream file at kBareFileLba.
+  std::shared_ptr<iop::SectorSource> disc;
   iop::DiscFile file;
+  std::string shown = r.disc;  // the disc as the summary names it
   try {
-    auto probe = std::make_unique<iop::FileDisc>(r.disc, kBareFileLba);
-    file = probe->file();
-    disc = std::make_shared<iop::FileDisc>(r.disc, kBareFileLba, kBareFileLba + file.sectors() + kBareFilePadSectors);
+    streams::StreamDisc opened = streams::openStreamDisc(r.disc, r.file);
+    disc = std::move(opened.disc);
+    file = opened.file;
+    if (opened.image) shown += " " + file.path + " (LBA " + std::to_string(file.lba) + ")";
   } catch (const iop::DiscError& e) {
     throw Exit(2, e.what());
   }
@@ -132,7 +136,18 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     throw Exit(2, (r.config.empty() ? std::string("the default platform config") : r.config) + ": " + e.what());
   }
 
+  // How the stream was made, for `vbim render RUN_DIR` (lighting/authoring/authoring_record.hpp).
+  const std::optional<std::string> record = streams::readAuthoringRecord(*disc, file);
+
   OutputDir dir(r.out, r.force);
+  if (record) {
+    std::ofstream a(dir.path("authoring.json"), std::ios::binary);
+    try {
+      a << nlohmann::ordered_json::parse(*record).dump(2) << "\n";
+    } catch (const nlohmann::json::exception&) {
+      a << *record << "\n";  // kept as the stream holds it; render reports what is wrong with it
+    }
+  }
   std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
   std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
   timeline << timelineHeader();
@@ -187,7 +202,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(1);
-  s << "played " << toSeconds(o.duration) << " s of " << (r.discLabel.empty() ? r.disc : r.discLabel) << " ("
+  s << "played " << toSeconds(o.duration) << " s of " << (r.discLabel.empty() ? shown : r.discLabel) << " ("
     << tot.vsyncs << " vsyncs) in " << wall << " s of host time (" << toSeconds(o.duration) / std::max(wall, 1e-9)
     << "x real time)\n"
     << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
@@ -205,9 +220,11 @@ std::string runPlay(const PlayRequest& r, bool progress) {
 void addPlay(CLI::App& app) {
   auto r = std::make_shared<PlayRequest>();
   auto* cmd = app.add_subcommand("play", "Play a VBIM disc through the whole pipeline on the simulated clock");
-  cmd->add_option("disc", r->disc, "A VBIM stream file (a bare stream is a disc with one file)")
+  cmd->add_option("disc", r->disc, "A VBIM stream file (a disc with one file) or an ISO 9660 disc image")
       ->required()
       ->check(inputFile());
+  cmd->add_option("--file", r->file,
+                  "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_option("--config", r->config, "Platform config (TOML; `vbim config --defaults` lists every key)")
       ->check(inputFile());
   cmd->add_option("--faults", r->faults, "Fault plan (TOML; docs/fault-plans.md)")->check(inputFile());

@@ -22,13 +22,13 @@
 #include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/error.hpp"
-#include "iop/file_disc.hpp"
 #include "iop/memory_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/profile_sweep.hpp"
 #include "player/scenario.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/transcode.hpp"
+#include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
 
@@ -38,6 +38,7 @@ using namespace vbim::cli::profile;
 
 struct ProfileRequest {
   std::vector<std::string> discs;
+  std::string file;  // the stream on each disc image (--file), or empty: its only VBIM stream
   std::string config;
   std::vector<std::string> faults;
   std::vector<std::string> rings{"4:8", "4:16", "4:32", "4:64", "5:160"};
@@ -98,11 +99,23 @@ std::shared_ptr<Stream> memoryStream(std::string label, std::vector<std::uint8_t
   return s;
 }
 
+// A disc as given: a bare stream file or the stream on an ISO 9660 image, labelled by its name.
+std::shared_ptr<Stream> discStream(const std::string& path, const std::string& file) {
+  streams::StreamDisc opened = streams::openStreamDisc(path, file);
+  auto s = std::make_shared<Stream>();
+  s->label = stem(path);
+  s->disc = std::move(opened.disc);
+  s->file = opened.file;
+  return s;
+}
+
 // The first disc re-encoded at other settings; a stream that cannot be re-encoded ends the command.
-std::vector<std::uint8_t> reencoded(const std::string& disc, const streams::EncoderSettings& e) {
+std::vector<std::uint8_t> reencoded(const Stream& disc, const std::string& name, const streams::EncoderSettings& e) {
   try {
-    return streams::transcodeStream(disc, e);
+    return streams::transcodeStream(streams::readDiscFile(*disc.disc, disc.file), name, e);
   } catch (const streams::AuthoringError& x) {
+    throw Exit(2, x.what());
+  } catch (const iop::DiscError& x) {
     throw Exit(2, x.what());
   }
 }
@@ -115,7 +128,7 @@ void runProfile(const ProfileRequest& r) {
   std::vector<std::shared_ptr<Stream>> streams;
   for (const std::string& d : r.discs) {
     try {
-      streams.push_back(bareStream(d));
+      streams.push_back(discStream(d, r.file));
     } catch (const iop::DiscError& e) {
       throw Exit(2, e.what());
     }
@@ -124,15 +137,15 @@ void runProfile(const ProfileRequest& r) {
     if (q < 1 || q > 31) throw Exit(2, "--qscale " + std::to_string(q) + ": expected 1..31");
     streams::EncoderSettings e;
     e.qscale = q;
-    streams.push_back(memoryStream(stem(r.discs[0]) + "_q" + std::to_string(q), reencoded(r.discs[0], e)));
+    streams.push_back(memoryStream(stem(r.discs[0]) + "_q" + std::to_string(q), reencoded(*streams[0], r.discs[0], e)));
   }
   for (std::int64_t b : r.bitrates) {
     if (b < 1 || b > streams::kDvdMaxVideoRate)
       throw Exit(2, "--bitrate " + std::to_string(b) + ": expected 1..9800000 bit/s");
     streams::EncoderSettings e;
     e.bitrate = b;
-    streams.push_back(
-        memoryStream(stem(r.discs[0]) + "_" + std::to_string(b / 1000) + "kbps", reencoded(r.discs[0], e)));
+    streams.push_back(memoryStream(stem(r.discs[0]) + "_" + std::to_string(b / 1000) + "kbps",
+                                   reencoded(*streams[0], r.discs[0], e)));
   }
 
   player::PlatformConfig base;
@@ -229,8 +242,11 @@ void addProfile(CLI::App& app) {
   auto r = std::make_shared<ProfileRequest>();
   auto plan = std::make_shared<PlanRequest>();
   auto* cmd = app.add_subcommand(kProfileCommand.name, kProfileCommand.summary);
-  cmd->add_option("disc", r->discs, "VBIM stream file(s); several discs are one sweep axis (not with --plan)")
+  cmd->add_option("disc", r->discs,
+                  "VBIM stream file(s) or ISO 9660 disc images; several discs are one sweep axis (not with --plan)")
       ->check(inputFile());
+  cmd->add_option("--file", r->file,
+                  "The stream on each disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_option("--config", r->config, "Platform config (TOML) the sweep starts from")->check(inputFile());
   cmd->add_option("--faults", r->faults, "Fault plan(s) to sweep (repeatable); a run without faults is always included")
       ->check(inputFile());

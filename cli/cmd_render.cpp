@@ -21,29 +21,52 @@ struct RenderOptions {
   bool force = false;
   bool noObjects = false;
   bool noVideo = false;
+  CLI::App* cmd = nullptr;  // to tell options given from defaults
 };
+
+// The request: the run's authoring record when it has one, else the defaults; options given on the
+// command line win either way.
+render::RunRenderRequest requestFor(const RenderOptions& o, const render::RunDir& run) {
+  using namespace vbim::render;
+  RunRenderRequest req = o.req;  // every option, given or default
+  if (run.authoring) {
+    applyAuthoring(*run.authoring, (run.path / "authoring.json").string(), req);
+    const auto given = [&](const char* name) { return o.cmd->get_option(name)->count() > 0; };
+    if (given("--cell-size")) req.terrain.cellSize = o.req.terrain.cellSize;
+    if (given("--vertical-scale")) req.terrain.verticalScale = o.req.terrain.verticalScale;
+    if (given("--relief")) req.terrain.procedural.reliefMetres = o.req.terrain.procedural.reliefMetres;
+    if (given("--terrain-seed")) req.terrain.procedural.seed = o.req.terrain.procedural.seed;
+    if (given("--loop-frame")) req.loopFrame = o.req.loopFrame;
+  } else {
+    std::cerr << "vbim render: note: " << run.path.string() << " has no authoring.json (its stream carried no "
+              << "authoring record): assuming the procedural terrain at the lightmap's size with 20 m cells and a "
+              << "24-frame day from 0 h to 24 h; --terrain, --cell-size and --lighting-config set them\n";
+  }
+  if (!o.terrain.empty()) req.terrain.heightfield = o.terrain;
+  if (!o.albedo.empty()) req.terrain.albedo = o.albedo;
+  if (!o.lightingConfig.empty()) loadLightingConfig(o.lightingConfig, req.day);
+  return req;
+}
 
 void runRender(RenderOptions& o) {
   using namespace vbim::render;
   try {
     if (!o.camera.empty()) o.req.settings.camera = parseCamera(o.camera);
-    if (!o.terrain.empty()) o.req.terrain.heightfield = o.terrain;
-    if (!o.albedo.empty()) o.req.terrain.albedo = o.albedo;
-    if (!o.lightingConfig.empty()) loadLightingConfig(o.lightingConfig, o.req.day);
     o.req.settings.objects = !o.noObjects;
     o.req.video = !o.noVideo;
     const RunDir run = readRunDir(o.run);
+    const RunRenderRequest req = requestFor(o, run);
     OutputDir dir(o.out, o.force);
     Progress progress("vbim render", "frames");
     const RunRenderResult r =
-        renderRun(run, o.req, dir.path(""), [&progress](int done, int total) { progress.show(done, total); });
+        renderRun(run, req, dir.path(""), [&progress](int done, int total) { progress.show(done, total); });
     progress.finish();
     dir.commit();
     std::cout << "rendered " << r.frames << " frame(s) of " << o.run << " with " << r.context << " ("
               << static_cast<int>(r.secondsPerFrame * 1000) << " ms/frame)\n"
               << "  " << dir.finalPath().string() << "/frames/render_NNNNNN.png\n"
               << "  " << dir.finalPath().string() << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
-    if (o.req.video) std::cout << "  " << dir.finalPath().string() << "/playback.mp4\n";
+    if (req.video) std::cout << "  " << dir.finalPath().string() << "/playback.mp4\n";
   } catch (const RenderError& e) {
     throw Exit(2, "vbim render: " + std::string(e.what()));
   }
@@ -54,6 +77,7 @@ void runRender(RenderOptions& o) {
 void addRender(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   auto* cmd = app.add_subcommand(kRenderCommand.name, kRenderCommand.summary);
+  o->cmd = cmd;
   cmd->add_option("run", o->run, "A `vbim play --every N --out RUN_DIR` directory")
       ->required()
       ->check(inputDirectory());
@@ -67,7 +91,9 @@ void addRender(CLI::App& app) {
   cmd->add_option("--exposure", o->req.settings.exposure, "Display scale on stream units")->capture_default_str();
   cmd->add_option("--haze", o->req.settings.hazeDistance, "Haze distance in metres (0: 1.5 x the map)");
   cmd->add_option("--lod-distance", o->req.settings.lodDistance, "Metres to the first LOD step (0: 1.5 patches)");
-  cmd->add_option("--terrain", o->terrain, "Heightfield the stream was authored from (default: the procedural one)");
+  cmd->add_option(
+      "--terrain", o->terrain,
+      "Heightfield the stream was authored from (default: the run's authoring.json, else the procedural one)");
   cmd->add_option("--albedo", o->albedo, "Colour map of the heightfield's size");
   cmd->add_option("--cell-size", o->req.terrain.cellSize, "Metres between heightfield samples")->capture_default_str();
   cmd->add_option("--vertical-scale", o->req.terrain.verticalScale, "Heightfield metres at full scale")
@@ -75,8 +101,9 @@ void addRender(CLI::App& app) {
   cmd->add_option("--relief", o->req.terrain.procedural.reliefMetres, "Procedural terrain relief, metres")
       ->capture_default_str();
   cmd->add_option("--terrain-seed", o->req.terrain.procedural.seed, "Procedural terrain seed")->capture_default_str();
-  cmd->add_option("--lighting-config", o->lightingConfig,
-                  "lighting.* TOML the stream was authored with (default: the samples' 24-frame day)")
+  cmd->add_option(
+         "--lighting-config", o->lightingConfig,
+         "lighting.* TOML over the day (default: the run's authoring.json, else a 24-frame day from 0 to 24 h)")
       ->check(inputFile());
   cmd->add_option("--loop-frame", o->req.loopFrame, "The stream's loop frame")->capture_default_str();
   cmd->add_option("--fps", o->req.videoFps, "Video frame rate")->capture_default_str();

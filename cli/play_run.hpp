@@ -16,6 +16,7 @@ namespace vbim::cli {
 struct PlayRequest {
   std::string disc;
   std::string discLabel;   // how the summary names the disc (default: the path given)
+  std::string file;        // the stream file on an ISO 9660 image (--file), or empty: the default
   std::string config;      // platform config TOML, or empty
   std::string faults;      // fault plan TOML path, or empty
   std::string faultsText;  // a fault plan given inline (the demo's built-in one), used if faults is empty

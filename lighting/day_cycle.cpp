@@ -257,12 +257,16 @@ DayCycleGenerator::DayCycleGenerator(Terrain terrain, const DayCycleParams& para
   keyHorizon_.resize(pre_.terrain.texels());
 }
 
-double DayCycleGenerator::frameHour(int frame) const {
-  const double span = params_.endHour - params_.startHour;
-  if (params_.frames <= 1) return params_.startHour;
+double frameHour(const DayCycleParams& p, int frame) {
+  const double span = p.endHour - p.startHour;
+  if (p.frames <= 1) return p.startHour;
   // A whole day loops: the last frame stops one step short of the first again.
-  const double steps = span >= 24.0 ? static_cast<double>(params_.frames) : static_cast<double>(params_.frames - 1);
-  return params_.startHour + span * frame / steps;
+  const double steps = span >= 24.0 ? static_cast<double>(p.frames) : static_cast<double>(p.frames - 1);
+  return p.startHour + span * frame / steps;
+}
+
+double DayCycleGenerator::frameHour(int frame) const {
+  return lighting::frameHour(params_, frame);
 }
 
 FrameLighting DayCycleGenerator::frameLighting(int frame) const {

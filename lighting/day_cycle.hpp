@@ -58,6 +58,8 @@ struct DayCycleParams {
 void describeParams(ParamTable& table, DayCycleParams& p);
 // Fails (LightingError naming the key and the allowed range) on any out-of-range value.
 void validateParams(const DayCycleParams& p);
+// Local solar hour of frame `frame` (DayCycleGenerator::frameHour, without a generator).
+double frameHour(const DayCycleParams& p, int frame);
 
 // What lights one frame, in normalised units.
 struct FrameLighting {

@@ -10,6 +10,8 @@
 #include "imageio/image_reader.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
+#include "lighting/authoring/authoring_record.hpp"
+#include "lighting/error.hpp"
 #include "render/contact_sheet.hpp"
 #include "render/error.hpp"
 #include "render/renderer.hpp"
@@ -38,6 +40,20 @@ void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day) 
   } catch (const ConfigError& e) {
     throw RenderError(e.what());
   }
+}
+
+void applyAuthoring(const std::string& text, const std::string& origin, RunRenderRequest& req) {
+  lighting::AuthoringRecord r;
+  try {
+    r = lighting::parseAuthoringRecord(text, origin);
+  } catch (const lighting::LightingError& e) {
+    throw RenderError(e.what());
+  }
+  req.terrain = r.terrain;
+  req.proceduralSizeFromLightmap = false;
+  req.day = r.variants.front().params;
+  req.loopFrame = static_cast<int>(r.loopFrame);
+  req.settingsFrom = origin;
 }
 
 namespace {
@@ -168,6 +184,7 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
 
   const CameraPlacement& c = renderer.camera();
   nlohmann::json doc = {{"run", run.path.string()},
+                        {"settings_from", req.settingsFrom},
                         {"gl", result.context},
                         {"size", {req.settings.width, req.settings.height}},
                         {"camera", {c.eyeX, c.eyeZ, c.eyeHeight, c.targetX, c.targetZ}},

@@ -1,10 +1,11 @@
 // `vbim render` as a library call: every frame a play run saved, rendered, plus the day's contact
-// sheet and the video. Also what `vbim demo` and `vbim play --render` call (docs/render.md).
+// sheet and the video. Also what `vbim demo` calls (docs/render.md).
 //
+//   const render::RunDir run = render::readRunDir(runDir);
 //   render::RunRenderRequest req;                         // procedural terrain, samples' day settings
+//   if (run.authoring) render::applyAuthoring(*run.authoring, runDir / "authoring.json", req);
 //   cli::OutputDir dir(out, force);                        // complete or absent
-//   render::RunRenderResult r = render::renderRun(render::readRunDir(runDir), req, dir.path(""),
-//                                                 [](int done, int total) { ... });
+//   render::RunRenderResult r = render::renderRun(run, req, dir.path(""), [](int done, int total) { ... });
 //   dir.commit();
 //
 // Writes into `outDir` (which must exist): frames/render_NNNNNN.png (NNNNNN = the vsync),
@@ -26,9 +27,9 @@ namespace vbim::render {
 
 struct RunRenderRequest {
   RenderSettings settings;
-  // The run directory does not say which terrain and lighting made the stream, so they are given
-  // here. Default: the procedural terrain at the lightmap's size (20 m cells, as the samples) and
-  // the samples' day (24 frames from 0 h to 24 h, 45 deg N, 21 June; streams/samples/README.md).
+  // The terrain and lighting that made the stream: from the run's authoring.json (applyAuthoring)
+  // when the stream carried a record. Default, for streams without one: the procedural terrain at
+  // the lightmap's size (20 m cells) and a 24-frame day from 0 h to 24 h, 45 deg N, 21 June.
   lighting::TerrainSource terrain;
   bool proceduralSizeFromLightmap = true;
   lighting::DayCycleParams day;
@@ -37,6 +38,7 @@ struct RunRenderRequest {
   int sheetColumns = 6;
   int sheetThumbWidth = 200;
   bool video = true;
+  std::string settingsFrom = "defaults";  // where terrain and day came from (render.json)
   GlContextFactory contextFactory = defaultContextFactory();
 
   RunRenderRequest();
@@ -45,6 +47,11 @@ struct RunRenderRequest {
 // Loads `path` (TOML, lighting.* keys as `vbim config --defaults` lists them) into day; throws
 // RenderError with file:line:key.
 void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day);
+
+// Takes terrain (source, cell size, size), day (the first variant's lighting.* settings: frame
+// count, hours, site, sky) and loop frame from an authoring record (`origin` names it). Throws
+// RenderError naming the origin and the field for a record that cannot be read.
+void applyAuthoring(const std::string& record, const std::string& origin, RunRenderRequest& request);
 
 struct RunRenderResult {
   int frames = 0;

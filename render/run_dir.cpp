@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -86,6 +87,9 @@ RunDir readRunDir(const std::filesystem::path& dir) {
                       ": no frames/lightmap_NNNNNN.png in this run (play it with --every N or --at TIMES)");
   }
   readTimeline(dir / "timeline.csv", run);
+  if (std::ifstream a(dir / "authoring.json", std::ios::binary); a) {
+    run.authoring = std::string(std::istreambuf_iterator<char>(a), std::istreambuf_iterator<char>());
+  }
   return run;
 }
 

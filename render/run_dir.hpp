@@ -1,11 +1,13 @@
 // What a `vbim play ... --every N --out RUN_DIR` run left behind, as the renderer needs it:
-// frames/lightmap_NNNNNN.png (+ sky_NNNNNN.png), and timeline.csv (one row per vsync, docs/player.md).
+// frames/lightmap_NNNNNN.png (+ sky_NNNNNN.png), timeline.csv (one row per vsync, docs/player.md),
+// and authoring.json (how the stream was made, when it carried a record).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace vbim::render {
@@ -30,6 +32,7 @@ struct RunDir {
   std::vector<RunFrame> frames;                  // by vsync
   std::map<std::int64_t, TimelineRow> timeline;  // by vsync; empty if timeline.csv is missing
   std::int64_t vsyncs = 0;                       // rows in timeline.csv
+  std::optional<std::string> authoring;          // authoring.json as written, if the run has one
 };
 
 // Throws RenderError: not a directory, no frames/lightmap_*.png|exr, a timeline row that does not

@@ -16,8 +16,8 @@ std::size_t capacity(std::size_t systemHeaderBytes) {
 }
 }  // namespace
 
-std::optional<DescriptorChunk> parseDescriptorChunk(std::span<const std::uint8_t> payload) {
-  if (payload.size() < kChunkHeaderBytes || std::memcmp(payload.data(), kChunkMagic, 4) != 0) return std::nullopt;
+std::optional<DescriptorChunk> parseDescriptorChunk(std::span<const std::uint8_t> payload, ChunkMagic magic) {
+  if (payload.size() < kChunkHeaderBytes || std::memcmp(payload.data(), magic.data(), 4) != 0) return std::nullopt;
   DescriptorChunk c;
   c.index = static_cast<std::uint16_t>((payload[4] << 8) | payload[5]);
   c.count = static_cast<std::uint16_t>((payload[6] << 8) | payload[7]);
@@ -55,7 +55,7 @@ void writePackHeader(std::uint8_t* p, std::int64_t scr27MHz, std::uint32_t muxRa
 
 std::vector<std::uint8_t> makeDescriptorPacks(std::span<const std::uint8_t> body,
                                               std::span<const std::uint8_t> systemHeader, std::uint32_t muxRate,
-                                              std::span<const std::int64_t> scr27MHz) {
+                                              std::span<const std::int64_t> scr27MHz, ChunkMagic magic) {
   const std::size_t count = descriptorPackCount(body.size(), systemHeader.size());
   if (count > 0xFFFF) throw std::invalid_argument("descriptor needs more than 65535 packs");
   if (scr27MHz.size() != count) throw std::invalid_argument("one SCR per descriptor pack is needed");
@@ -77,7 +77,7 @@ std::vector<std::uint8_t> makeDescriptorPacks(std::span<const std::uint8_t> body
     p[pos + 5] = static_cast<std::uint8_t>(pesLen);
     pos += kPesHeaderBytes;
     const std::size_t n = std::min(capacity(sys.size()), body.size() - done);
-    std::memcpy(p + pos, kChunkMagic, 4);
+    std::memcpy(p + pos, magic.data(), 4);
     p[pos + 4] = static_cast<std::uint8_t>(i >> 8);
     p[pos + 5] = static_cast<std::uint8_t>(i);
     p[pos + 6] = static_cast<std::uint8_t>(count >> 8);

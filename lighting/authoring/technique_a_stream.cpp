@@ -5,10 +5,12 @@
 #include <optional>
 
 #include "imageio/error.hpp"
+#include "lighting/authoring/authoring_record.hpp"
 #include "lighting/error.hpp"
 #include "lighting/image_files.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/error.hpp"
+#include "streams/authoring_record.hpp"
 
 namespace vbim::lighting {
 
@@ -176,6 +178,8 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
   }
   AuthoredStream out;
   out.bytes = writer.finish();
+  // How it was made, after the last video sector: players never read it (streams/authoring_record.hpp).
+  streams::appendAuthoringRecord(out.bytes, authoringRecordJson(s, variants, terrain));
   out.descriptor = writer.descriptor();
   out.maxQscaleUsed = writer.maxQscaleUsed();
   out.containerStretch = writer.containerStretch();

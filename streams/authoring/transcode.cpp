@@ -31,8 +31,13 @@ Rational containerRate(std::uint32_t ptsPerFrame) {
 std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, EncoderSettings encoder) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw AuthoringError(path.string() + ": cannot open the stream to re-encode");
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return transcodeStream(bytes, path.string(), encoder);
+}
+
+std::vector<std::uint8_t> transcodeStream(std::span<const std::uint8_t> stream, const std::string& name,
+                                          EncoderSettings encoder) {
   Demuxer dmx;
-  std::vector<std::uint8_t> sector(kSectorBytes);
   std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> pictures;  // (stream, global frame)
   const auto keep = [&] {
     for (Picture& p : dmx.pictures()) {
@@ -40,14 +45,14 @@ std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, Enc
     }
     dmx.pictures().clear();
   };
-  for (std::uint32_t lsn = 0; in.read(reinterpret_cast<char*>(sector.data()), kSectorBytes); ++lsn) {
-    dmx.feed(sector, lsn);
+  // Whole sectors only, as the drive reads them.
+  for (std::uint32_t lsn = 0; (lsn + 1) * std::size_t{kSectorBytes} <= stream.size(); ++lsn) {
+    dmx.feed(stream.subspan(lsn * std::size_t{kSectorBytes}, kSectorBytes), lsn);
     keep();
   }
   dmx.finish();
   keep();
-  if (!dmx.descriptor())
-    throw AuthoringError(path.string() + ": not a VBIM stream (no playback descriptor); cannot re-encode");
+  if (!dmx.descriptor()) throw AuthoringError(name + ": not a VBIM stream (no playback descriptor); cannot re-encode");
   const Descriptor& d = *dmx.descriptor();
   const bool sky = d.streamIndex(kSkyStream) >= 0;
 
@@ -55,10 +60,9 @@ std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, Enc
   const std::uint32_t frames = static_cast<std::uint32_t>(d.variants.size()) * d.framesPerVariant;
   for (std::uint32_t g = 0; g < frames; ++g) {
     if (!pictures.contains({0, g}))
-      throw AuthoringError(path.string() + ": lightmap picture of frame " + std::to_string(g) +
-                           " is missing or damaged");
+      throw AuthoringError(name + ": lightmap picture of frame " + std::to_string(g) + " is missing or damaged");
     if (sky && !pictures.contains({1, g}))
-      throw AuthoringError(path.string() + ": sky picture of frame " + std::to_string(g) + " is missing or damaged");
+      throw AuthoringError(name + ": sky picture of frame " + std::to_string(g) + " is missing or damaged");
   }
 
   AuthorSettings s;
@@ -85,7 +89,7 @@ std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, Enc
     }
     return w.finish();
   } catch (const AuthoringError& e) {
-    throw AuthoringError(path.string() + ": re-encoding failed: " + e.what());
+    throw AuthoringError(name + ": re-encoding failed: " + e.what());
   }
 }
 

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "streams/authoring/mpeg2_encoder.hpp"
@@ -16,5 +18,8 @@ namespace vbim::streams {
 // replaced by the stream's own). Throws AuthoringError naming the file when it is not a readable
 // VBIM stream or a picture is missing or undecodable.
 std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, EncoderSettings encoder);
+// The same for a stream already in memory (a file read off a disc image), named `name` in messages.
+std::vector<std::uint8_t> transcodeStream(std::span<const std::uint8_t> stream, const std::string& name,
+                                          EncoderSettings encoder);
 
 }  // namespace vbim::streams

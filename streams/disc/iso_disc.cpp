@@ -1,5 +1,6 @@
 #include "streams/disc/iso_disc.hpp"
 
+#include <cdio/ds.h>
 #include <cdio/iso9660.h>
 
 #include <filesystem>
@@ -11,6 +12,42 @@ namespace vbim::streams {
 namespace {
 iso9660_t* handle(void* p) {
   return static_cast<iso9660_t*>(p);
+}
+
+// A recorded name as sceCdSearchFile writes it: upper case, with a version (";1" when none).
+std::string searchName(std::string_view recorded) {
+  std::string r(recorded);
+  if (r.find(';') == std::string::npos) r += ";1";
+  for (char& c : r) c = static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
+  return r;
+}
+
+void listDirectory(iso9660_t* iso, const std::string& dir, const std::string& shown, int depth,
+                   std::vector<iop::DiscFile>& out) {
+  CdioList_t* entries = iso9660_ifs_readdir(iso, dir.c_str());
+  if (entries == nullptr) return;
+  struct Entry {
+    std::string name;
+    bool directory;
+    std::int64_t lba, bytes;
+  };
+  std::vector<Entry> found;
+  for (CdioListNode_t* n = _cdio_list_begin(entries); n != nullptr; n = _cdio_list_node_next(n)) {
+    const auto* st = static_cast<const iso9660_stat_t*>(_cdio_list_node_data(n));
+    const std::string name = st->filename;
+    if (name == "." || name == ".." || name.empty() || name[0] == '\0' || name[0] == '\1') continue;
+    found.push_back({name, st->type == iso9660_stat_s::_STAT_DIR, static_cast<std::int64_t>(st->lsn),
+                     static_cast<std::int64_t>(st->size)});
+  }
+  iso9660_filelist_free(entries);
+  for (const Entry& e : found) {
+    if (e.directory) {
+      // ECMA-119 6.8.2.1 allows 8 directory levels; a deeper tree is damaged or looping.
+      if (depth < 8) listDirectory(iso, dir + e.name + "/", shown + e.name + "\\", depth + 1, out);
+    } else {
+      out.push_back({shown + searchName(e.name), e.lba, e.bytes});
+    }
+  }
 }
 }  // namespace
 
@@ -77,6 +114,12 @@ iop::SectorReadResult IsoDisc::read(std::int64_t lba, iop::SectorSpan out) {
                        std::to_string(lba * static_cast<std::int64_t>(iop::kSectorBytes)) + ") failed"};
   }
   return {};
+}
+
+std::vector<iop::DiscFile> IsoDisc::files() const {
+  std::vector<iop::DiscFile> out;
+  listDirectory(handle(iso_), "/", "\\", 0, out);
+  return out;
 }
 
 std::optional<iop::DiscFile> IsoDisc::find(std::string_view path) const {

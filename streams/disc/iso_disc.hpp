@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "iop/sector_source.hpp"
 
@@ -24,6 +25,9 @@ class IsoDisc final : public iop::SectorSource {
   iop::SectorReadResult read(std::int64_t lba, iop::SectorSpan out) override;
   std::optional<iop::DiscFile> find(std::string_view path) const override;
   std::string describe() const override { return path_; }
+  // Every file on the volume, in directory order (depth first), named as sceCdSearchFile names them
+  // ("\\DATA\\DAY.VBI;1"), with its LBA and length.
+  std::vector<iop::DiscFile> files() const;
 
   // "\\VIDEO\\DAY.PSS;1" -> "/video/day.pss": the form libiso9660's translated lookup expects.
   static std::string normalisePath(std::string_view path);

@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 
+#include "streams/authoring_record.hpp"
 #include "streams/format.hpp"
 #include "streams/stream_stats.hpp"
 
@@ -26,7 +29,17 @@ void expectSample(const char* name, std::uint32_t frames, std::vector<std::strin
   ASSERT_EQ(d.streams.size(), 2u);
   EXPECT_EQ(d.streams[0].width, 256);
   EXPECT_EQ(d.streams[1].width, 128);
-  EXPECT_EQ(d.totalSectors, scan.sectors);
+  // The video ends at total_sectors; the authoring record (how the sample was made) follows it.
+  std::ifstream in(samples() / name, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t videoBytes = std::size_t{d.totalSectors} * kSectorBytes;
+  ASSERT_LE(videoBytes, bytes.size()) << name;
+  const std::span<const std::uint8_t> tail(bytes.data() + videoBytes, bytes.size() - videoBytes);
+  const auto record = findAuthoringRecord(tail);
+  ASSERT_TRUE(record) << name;
+  EXPECT_NE(record->find("\"source\":\"technique-a\""), std::string::npos) << *record;
+  EXPECT_EQ(d.totalSectors + authoringRecordSectors(record->size()), scan.sectors) << name;
+  EXPECT_FALSE(findAuthoringRecord(std::span(bytes.data(), videoBytes))) << name << ": a record among the video";
   EXPECT_EQ(scan.pictures.size(), 2 * d.totalFrames());
   for (const PictureRecord& p : scan.pictures) {
     ASSERT_TRUE(p.frame);
