@@ -24,6 +24,8 @@ struct TerrainAuthorOptions {
   lighting::DayCycleParams params;    // values given on the command line
   LightingOverrides given;            // lighting options: each overrides the config file's value when given
   std::vector<CLI::Option*> options;  // every option of this source, to tell whether it was chosen
+  CLI::Option* cellSizeOption = nullptr;       // given: overrides a DEM's cell size
+  CLI::Option* verticalScaleOption = nullptr;  // given: scales float heights and DEMs too
 };
 
 void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o);

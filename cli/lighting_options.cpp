@@ -28,6 +28,17 @@ void addLightingOptions(CLI::App* cmd, DayCycleParams& cli, bool& noMoon, Lighti
   param("--end-hour", VBIM_FIELD(endHour), "Local solar time of the last frame (0 to 24 loops a day)")
       ->default_val(defaults.endHour);
   param(names.frames, VBIM_FIELD(frames), "Frames (per variant)")->default_val(defaults.frames);
+  // The sun given directly: either option switches to a fixed sun (the other keeps its value).
+  auto sun = [&](const std::string& flags, auto field, const std::string& help) {
+    CLI::Option* opt = param(flags, field, help);
+    overrides.push_back({opt, [](DayCycleParams& dst) { dst.fixedSun = true; }});
+    return opt;
+  };
+  sun("--sun-azimuth", VBIM_FIELD(sunAzimuthDeg),
+      "Sun's compass azimuth in degrees (0 = north, 90 = east, clockwise), instead of place and time")
+      ->default_val(defaults.sunAzimuthDeg);
+  sun("--sun-elevation", VBIM_FIELD(sunElevationDeg), "Sun's elevation in degrees above the horizontal, -90..90")
+      ->default_val(defaults.sunElevationDeg);
   param("--sun-diameter", VBIM_FIELD(sunDiameterDeg), "Sun's angular diameter in degrees (larger = softer shadows)")
       ->default_val(defaults.sunDiameterDeg);
   flag("--exact-disc", VBIM_FIELD(exactDisc),

@@ -57,6 +57,12 @@ void describeParams(ParamTable& t, DayCycleParams& p) {
   t.addReal("lighting.end_hour", &p.endHour, 0, 24, "h",
             "local solar time of the last frame (0 to 24 loops a whole day)");
   t.addInt("lighting.frames", &p.frames, 1, 1000000, "frames", user);
+  t.addBool("lighting.fixed_sun", &p.fixedSun,
+            "true: the sun at sun_azimuth_deg / sun_elevation_deg in every frame instead of latitude, day and hour");
+  t.addReal("lighting.sun_azimuth_deg", &p.sunAzimuthDeg, 0, 360, "deg",
+            "compass: 0 = north, 90 = east, clockwise (with fixed_sun)");
+  t.addReal("lighting.sun_elevation_deg", &p.sunElevationDeg, -90, 90, "deg",
+            "above the horizontal (with fixed_sun)");
   t.addReal("lighting.sun_diameter_deg", &p.sunDiameterDeg, 0.01, 20, "deg",
             "real sun 0.53 deg; larger gives softer, anti-aliased shadow edges (Hoffman & Mitchell 2001)");
   t.addBool("lighting.exact_disc", &p.exactDisc,
@@ -209,6 +215,15 @@ void relight(const Precomputed& pre, const FrameLighting& light, const float* ke
   }
 }
 
+void cosineLayer(const Precomputed& pre, const Dir3& l, FloatImage& out) {
+  const Terrain& t = pre.terrain;
+  if (out.width != t.width || out.height != t.height || out.channels != 1) out = FloatImage(t.width, t.height, 1);
+  for (std::size_t i = 0; i < pre.normals.size(); ++i) {
+    const Vec3& n = pre.normals[i];
+    out.pixels[i] = static_cast<float>(std::max(0.0, n.x * l.x + n.y * l.y + n.z * l.z));
+  }
+}
+
 void renderSky(const FrameLighting& light, const DayCycleParams& params, FloatImage& sky) {
   const int w = static_cast<int>(params.skyWidth), h = std::max(1, w / 2);
   if (sky.width != w || sky.height != h || sky.channels != 3) sky = FloatImage(w, h, 3);
@@ -269,7 +284,12 @@ FrameLighting DayCycleGenerator::frameLighting(int frame) const {
   const DayCycleParams& p = params_;
   FrameLighting f;
   f.hour = frameHour(frame);
-  f.sun = sunPosition(p.latitudeDeg, static_cast<int>(p.dayOfYear), std::fmod(f.hour, 24.0));
+  if (p.fixedSun) {
+    // Compass azimuth -> grid basis (from east towards south): north is -90 degrees.
+    f.sun = positionOf(directionAt(p.sunElevationDeg * kDeg, (p.sunAzimuthDeg - 90.0) * kDeg));
+  } else {
+    f.sun = sunPosition(p.latitudeDeg, static_cast<int>(p.dayOfYear), std::fmod(f.hour, 24.0));
+  }
   f.dayWeight = smoothstep(kNightDeg * kDeg, kDayFullDeg * kDeg, f.sun.elevation);
 
   // Sky patches: Preetham radiance, cosine-weighted over each patch's sectors.

@@ -39,6 +39,11 @@ struct DayCycleParams {
   double startHour = 4.0;        // local solar time
   double endHour = 22.0;
   std::int64_t frames = 120;
+  // The sun given directly instead of by place and time: compass azimuth (0 = north, 90 = east,
+  // clockwise seen from above) and elevation above the horizontal, the same in every frame.
+  bool fixedSun = false;
+  double sunAzimuthDeg = 180.0;
+  double sunElevationDeg = 45.0;
   double sunDiameterDeg = 1.5;  // wider than the real 0.53 deg: softer edges, anti-aliasing (docs/lighting.md#sun-disc)
   bool exactDisc = false;       // circular-segment occlusion instead of the article's linear ramp
   double turbidity = 3.0;
@@ -91,6 +96,10 @@ double sunOcclusion(double horizon, double centre, double diameter, bool exactDi
 void relight(const Precomputed& pre, const FrameLighting& light, const float* keyHorizonTan, const CloudLayer& clouds,
              const DayCycleParams& params, FloatImage& lightmap, FloatImage* shadowMask = nullptr,
              WorkerPool* pool = nullptr);
+
+// Debug layer: max(0, N . L) per texel with the exact normals (not the palette's), single channel,
+// comparable with a GIS hillshade of the same light direction.
+void cosineLayer(const Precomputed& pre, const Dir3& light, FloatImage& out);
 
 // The sky dome: latitude-longitude over the upper hemisphere, width x width / 2; column 0 = north,
 // azimuth grows clockwise (east at a quarter of the width); row 0 = zenith, the last row = horizon.

@@ -7,6 +7,7 @@
 #include "imageio/error.hpp"
 #include "lighting/error.hpp"
 #include "lighting/image_files.hpp"
+#include "lighting/terrain_file.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/error.hpp"
 
@@ -60,14 +61,19 @@ WeatherVariant weatherVariant(const std::string& name, const DayCycleParams& bas
   throw AuthoringError("unknown weather '" + name + "'; expected one of " + known + " (or NAME=FILE.toml)");
 }
 
-Terrain loadTerrain(const TerrainSource& src) {
+Terrain loadTerrain(const TerrainSource& src, std::vector<std::string>* notes) {
   try {
     Terrain t;
     if (src.heightfield.empty()) {
       t = proceduralTerrain(src.procedural);
       if (src.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
     } else {
-      t = lighting::readHeightfield(src.heightfield, src.cellSize, src.verticalScale);
+      TerrainFileOptions options;
+      if (src.cellSizeGiven) options.cellSize = src.cellSize;
+      if (src.verticalScaleGiven) options.verticalScale = src.verticalScale;
+      TerrainFile file = loadTerrainFile(src.heightfield, options);
+      t = std::move(file.terrain);
+      if (notes != nullptr) *notes = std::move(file.notes);
     }
     if (!src.albedo.empty()) setAlbedo(t, lighting::readColourMap(src.albedo), src.albedo);
     return t;
@@ -132,7 +138,8 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
       throw AuthoringError("variant '" + v.name + "': " + e.what());
     }
   }
-  const Terrain terrain = loadTerrain(s.terrain);
+  std::vector<std::string> terrainNotes;
+  const Terrain terrain = loadTerrain(s.terrain, &terrainNotes);
   const std::string origin = s.terrain.heightfield.empty() ? "procedural terrain" : s.terrain.heightfield;
   checkStreamSettings(s, terrain.width, terrain.height, origin);
   FloatImage cloudTexture;
@@ -179,6 +186,7 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
   out.descriptor = writer.descriptor();
   out.maxQscaleUsed = writer.maxQscaleUsed();
   out.containerStretch = writer.containerStretch();
+  out.terrainNotes = std::move(terrainNotes);
   return out;
 }
 
