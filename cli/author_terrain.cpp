@@ -72,7 +72,7 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   track(cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
                         "Single-channel cloud density texture (implies --clouds)"));
   o->cellSizeOption = track(cmd->add_option("--cell-size", o->terrain.cellSize,
-                                             "Metres between heightfield samples (a DEM's own unless given)")
+                                            "Metres between heightfield samples (a DEM's own unless given)")
                                 ->default_val(10.0));
   o->verticalScaleOption =
       track(cmd->add_option("--vertical-scale", o->terrain.verticalScale,
@@ -127,7 +127,8 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
         progress.show(p.done, p.total, p.variant + " " + std::to_string(p.frame));
       });
   progress.finish();
-  for (const std::string& note : stream.terrainNotes) std::cout << "vbim author: " << o.terrain.heightfield << ": " << note << "\n";
+  for (const std::string& note : stream.terrainNotes)
+    std::cout << "vbim author: " << o.terrain.heightfield << ": " << note << "\n";
   const streams::Descriptor& d = stream.descriptor;
   std::cout << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
             << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width

@@ -39,7 +39,7 @@ struct LightmapOptions {
   unsigned threads = 2;
   bool force = false, noMoon = false;
   bool cellSizeGiven = false, verticalScaleGiven = false;  // set after parsing: overrides for a DEM
-  DayCycleParams params;  // values given on the command line
+  DayCycleParams params;                                   // values given on the command line
 };
 
 std::string frameName(const std::string& stem, int i, const std::string& ext) {

@@ -41,6 +41,8 @@ void addLightingOptions(CLI::App* cmd, DayCycleParams& cli, bool& noMoon, Lighti
       ->default_val(defaults.sunElevationDeg);
   param("--sun-diameter", VBIM_FIELD(sunDiameterDeg), "Sun's angular diameter in degrees (larger = softer shadows)")
       ->default_val(defaults.sunDiameterDeg);
+  flag("--shadow-rays", VBIM_FIELD(shadowRays),
+       "Shadows along each texel's own ray (right at every azimuth) instead of its sheared sweep line");
   flag("--exact-disc", VBIM_FIELD(exactDisc),
        "Occlude the sun by visible disc area instead of the article's linear ramp");
   param("--turbidity", VBIM_FIELD(turbidity), "Atmospheric turbidity (Preetham; 2-6)")->default_val(defaults.turbidity);

@@ -8,6 +8,7 @@
 
 #include "lighting/azimuth_sweep.hpp"
 #include "lighting/error.hpp"
+#include "lighting/ray_sweep.hpp"
 #include "lighting/sky_model.hpp"
 #include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"
@@ -61,12 +62,14 @@ void describeParams(ParamTable& t, DayCycleParams& p) {
             "true: the sun at sun_azimuth_deg / sun_elevation_deg in every frame instead of latitude, day and hour");
   t.addReal("lighting.sun_azimuth_deg", &p.sunAzimuthDeg, 0, 360, "deg",
             "compass: 0 = north, 90 = east, clockwise (with fixed_sun)");
-  t.addReal("lighting.sun_elevation_deg", &p.sunElevationDeg, -90, 90, "deg",
-            "above the horizontal (with fixed_sun)");
+  t.addReal("lighting.sun_elevation_deg", &p.sunElevationDeg, -90, 90, "deg", "above the horizontal (with fixed_sun)");
   t.addReal("lighting.sun_diameter_deg", &p.sunDiameterDeg, 0.01, 20, "deg",
             "real sun 0.53 deg; larger gives softer, anti-aliased shadow edges (Hoffman & Mitchell 2001)");
   t.addBool("lighting.exact_disc", &p.exactDisc,
             "false: the article's linear ramp; true: visible disc area (docs/lighting.md#sun-disc)");
+  t.addBool("lighting.shadow_rays", &p.shadowRays,
+            "true: shadows along each texel's own ray; false: its sheared sweep line "
+            "(docs/lighting.md#shadows-at-any-azimuth)");
   t.addReal("lighting.turbidity", &p.turbidity, 1.7, 10, "", "Preetham et al. 1999 (fitted for 2-6; 3 = clear)");
   t.addInt("lighting.sky_patches", &p.skyPatches, 1, kMaxSkyPatches, "patches",
            "Hoffman & Mitchell: one or two patches suffice; sectors i*P/8");
@@ -342,7 +345,11 @@ void DayCycleGenerator::renderFrame(int frame, FloatImage& lightmap, FloatImage&
     throw LightingError("frame " + std::to_string(frame) + " is outside 0.." + std::to_string(frameCount() - 1));
   }
   const FrameLighting f = frameLighting(frame);
-  sweepAzimuth(pre_.terrain, f.key.azimuth, keyHorizon_.data(), pool_);
+  if (params_.shadowRays) {
+    sweepRays(pre_.terrain, f.key.azimuth, keyHorizon_.data(), pool_);
+  } else {
+    sweepAzimuth(pre_.terrain, f.key.azimuth, keyHorizon_.data(), pool_);
+  }
   relight(pre_, f, keyHorizon_.data(), clouds_, params_, lightmap, shadowMask, pool_);
   renderSky(f, params_, sky);
 }

@@ -45,7 +45,11 @@ struct DayCycleParams {
   double sunAzimuthDeg = 180.0;
   double sunElevationDeg = 45.0;
   double sunDiameterDeg = 1.5;  // wider than the real 0.53 deg: softer edges, anti-aliasing (docs/lighting.md#sun-disc)
-  bool exactDisc = false;       // circular-segment occlusion instead of the article's linear ramp
+  bool exactDisc = false;
+  // Sun shadows along each texel's own ray (lighting/ray_sweep.hpp) instead of the texel's sheared
+  // grid line (lighting/azimuth_sweep.hpp), which over-shadows at oblique azimuths. Off by default
+  // for now: it changes the committed sample streams' lightmaps (streams/samples/).
+  bool shadowRays = false;  // circular-segment occlusion instead of the article's linear ramp
   double turbidity = 3.0;
   std::int64_t skyPatches = 2;
   double sunKlux = 128.0;       // direct normal illuminance above the atmosphere

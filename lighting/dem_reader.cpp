@@ -88,7 +88,9 @@ Grid resample(const Grid& g, int w, int h) {
       const double sx = std::clamp((x + 0.5) * g.width / w - 0.5, 0.0, g.width - 1.0);
       const int x0 = std::min(static_cast<int>(sx), g.width - 1), x1 = std::min(x0 + 1, g.width - 1);
       const double fx = sx - x0;
-      auto at = [&](int xx, int yy) { return static_cast<double>(g.values[static_cast<std::size_t>(yy) * g.width + xx]); };
+      auto at = [&](int xx, int yy) {
+        return static_cast<double>(g.values[static_cast<std::size_t>(yy) * g.width + xx]);
+      };
       const double top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
       const double bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
       out.values[static_cast<std::size_t>(y) * w + x] = static_cast<float>(top + (bottom - top) * fy);
@@ -177,8 +179,8 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
     const MetresPerDegree m = metresPerDegree(lat, a, invF);
     dx *= degrees * m.lon;
     dy *= degrees * m.lat;
-    dem.notes.push_back("geographic coordinates: " + number(m.lat) + " m per degree of latitude and " +
-                        number(m.lon) + " m per degree of longitude at latitude " + number(lat));
+    dem.notes.push_back("geographic coordinates: " + number(m.lat) + " m per degree of latitude and " + number(m.lon) +
+                        " m per degree of longitude at latitude " + number(lat));
   } else {
     const double metres = srs->GetLinearUnits();
     dx *= metres;

@@ -34,9 +34,9 @@ namespace vbim::lighting {
 
 // Where the terrain comes from.
 struct TerrainSource {
-  std::string heightfield;        // single-channel image (16-bit PNG, TIFF, EXR); empty: the procedural one
-  std::string albedo;             // optional colour map of the heightfield's size (the procedural terrain has its own)
-  std::string cloudTexture;       // optional single-channel density texture; enables clouds in every variant
+  std::string heightfield;   // single-channel image (16-bit PNG, TIFF, EXR); empty: the procedural one
+  std::string albedo;        // optional colour map of the heightfield's size (the procedural terrain has its own)
+  std::string cloudTexture;  // optional single-channel density texture; enables clouds in every variant
   // Metres between samples, and the vertical scale (metres at full scale for integer pictures, a
   // multiplier for float pictures and DEMs). A DEM's own cell size and a float file's heights are
   // used unless the matching *Given flag says the value was chosen (lighting/terrain_file.hpp).
@@ -90,7 +90,7 @@ struct AuthoredStream {
   std::vector<std::uint8_t> bytes;  // the whole stream, 2048-byte packs
   streams::Descriptor descriptor;
   int maxQscaleUsed = 0;
-  std::uint32_t containerStretch = 1;  // StreamWriter::containerStretch()
+  std::uint32_t containerStretch = 1;     // StreamWriter::containerStretch()
   std::vector<std::string> terrainNotes;  // what a terrain file said and what was overridden (for the user)
 };
 

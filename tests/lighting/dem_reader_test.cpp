@@ -30,12 +30,14 @@ const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new Remov
 std::vector<float> ramp(int w, int h, double base, double perCol, double perRow) {
   std::vector<float> v(static_cast<std::size_t>(w) * h);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) v[static_cast<std::size_t>(y) * w + x] = static_cast<float>(base + perCol * x + perRow * y);
+    for (int x = 0; x < w; ++x)
+      v[static_cast<std::size_t>(y) * w + x] = static_cast<float>(base + perCol * x + perRow * y);
   return v;
 }
 
 bool mentions(const std::vector<std::string>& notes, const std::string& text) {
-  return std::any_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+  return std::any_of(notes.begin(), notes.end(),
+                     [&](const std::string& n) { return n.find(text) != std::string::npos; });
 }
 
 TEST(DemReader, ProjectedMetresNeedNoOptions) {
@@ -52,7 +54,8 @@ TEST(DemReader, ProjectedMetresNeedNoOptions) {
   EXPECT_DOUBLE_EQ(f.terrain.cellSize, 30.0);
   ASSERT_EQ(f.terrain.width, 6);
   ASSERT_EQ(f.terrain.height, 5);
-  for (std::size_t i = 0; i < s.values.size(); ++i) EXPECT_NEAR(f.terrain.heights[i] * f.terrain.heightStep, s.values[i], 1.0 / 256);
+  for (std::size_t i = 0; i < s.values.size(); ++i)
+    EXPECT_NEAR(f.terrain.heights[i] * f.terrain.heightStep, s.values[i], 1.0 / 256);
   EXPECT_EQ(f.geo.geoTransform, s.gt);
   EXPECT_NE(f.geo.srsWkt.find("32N"), std::string::npos) << f.geo.srsWkt;
   EXPECT_TRUE(mentions(f.notes, "cell size 30 m from the file"));
@@ -150,7 +153,7 @@ TEST(DemReader, SouthUpIsFlippedAndRotatedIsRefused) {
   s.width = 3;
   s.height = 4;
   s.values = ramp(3, 4, 10.0, 0.0, 10.0);  // row 0 (the south edge here) lowest
-  s.gt = {0, 10, 0, 0, 0, 10};            // rows go north
+  s.gt = {0, 10, 0, 0, 0, 10};             // rows go north
   const fs::path p = scratch("southup.tif");
   writeDem(p, s);
   const Dem dem = readDem(p.string());

@@ -15,10 +15,10 @@ namespace vbim::lighting::testing {
 
 struct DemSpec {
   int width = 8, height = 8;
-  std::vector<float> values;                     // row-major, width * height
+  std::vector<float> values;                    // row-major, width * height
   std::array<double, 6> gt{0, 1, 0, 0, 0, -1};  // geotransform
-  int epsg = 0;                                  // 0: no spatial reference
-  std::string unit;                              // band unit type ("" = none)
+  int epsg = 0;                                 // 0: no spatial reference
+  std::string unit;                             // band unit type ("" = none)
   bool hasNodata = false;
   double nodata = -9999;
   GDALDataType type = GDT_Float32;
@@ -42,8 +42,8 @@ inline void writeDem(const std::filesystem::path& path, const DemSpec& spec, con
   if (!spec.unit.empty()) band->SetUnitType(spec.unit.c_str());
   if (spec.hasNodata) band->SetNoDataValue(spec.nodata);
   std::vector<float> values = spec.values;
-  ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, spec.width, spec.height, values.data(), spec.width, spec.height,
-                           GDT_Float32, 0, 0, nullptr),
+  ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, spec.width, spec.height, values.data(), spec.width, spec.height, GDT_Float32,
+                           0, 0, nullptr),
             CE_None);
   GDALDriver* out = GetGDALDriverManager()->GetDriverByName(driver);
   ASSERT_NE(out, nullptr);
