@@ -7,12 +7,15 @@
 #include <OpenImageIO/imageio.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "tests/lighting/gdal_dems.hpp"
 #include "tests/lighting/oiio_scratch.hpp"
 
 namespace vbim::lighting {
@@ -39,6 +42,65 @@ Result runVbim(const std::string& args) {
   std::stringstream s;
   s << in.rdbuf();
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+}
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A DEM in metres needs no option: its cell size and heights are the file's, and the debug layers
+// come back as GeoTIFF with its geotransform and SRS (read here with GDAL itself).
+TEST(LightmapCli, DemWithNoOptionsAndGeoTiffLayers) {
+  testing::DemSpec s;
+  s.width = 48;
+  s.height = 40;
+  s.values.resize(48 * 40);
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 48; ++x) s.values[static_cast<std::size_t>(y) * 48 + x] = 800.0f + 0.5f * x + 0.25f * y;
+  s.gt = {350000, 25, 0, 5100000, 0, -25};
+  s.epsg = 32631;
+  const fs::path dem = scratch("cli_dem.tif"), out = scratch("cli_dem_out"), log = scratch("cli_dem_stdout.txt");
+  testing::writeDem(dem, s);
+  fs::remove_all(out);
+  const std::string cmd = std::string(VBIM_BINARY) + " lightmap --terrain " + dem.string() +
+                          " --frames 1 --sky-width 16 --sun-azimuth 135 --sun-elevation 30 --debug all "
+                          "--layers-format tif --format tif --shadow-rays --out " +
+                          out.string() + " >" + log.string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << readText(log);
+  EXPECT_NE(readText(log).find("cell size 25 m from the file"), std::string::npos) << readText(log);
+  EXPECT_NE(readText(out / "frames.csv").find("0,4,30,135,sun"), std::string::npos) << readText(out / "frames.csv");
+
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32631);
+  for (const char* f :
+       {"sky_factor_K.tif", "horizon_SE_deg.tif", "shadow_0000.tif", "nl_0000.tif", "lightmap_0000.tif"}) {
+    GDALDataset* ds = GDALDataset::Open((out / f).string().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+    ASSERT_NE(ds, nullptr) << f;
+    std::array<double, 6> gt{};
+    ds->GetGeoTransform(gt.data());
+    EXPECT_EQ(gt, s.gt) << f;
+    ASSERT_NE(ds->GetSpatialRef(), nullptr) << f;
+    EXPECT_TRUE(ds->GetSpatialRef()->IsSame(&utm)) << f;
+    EXPECT_EQ(ds->GetRasterXSize(), 48) << f;
+    std::vector<float> v(48 * 40);
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 48, 40, v.data(), 48, 40, GDT_Float32, 0, 0, nullptr),
+              CE_None);
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    if (std::string(f) == "sky_factor_K.tif") {
+      // A gentle slope in metres sees nearly all the sky (a 1000x taller terrain would not).
+      EXPECT_GT(*lo, 0.95f);
+      EXPECT_LE(*hi, 1.0f);
+    }
+    if (std::string(f) == "nl_0000.tif") {
+      // Slope 0.02 up to the east, 0.01 up to the south, sun at 30 deg from the SE: N.L near sin 30.
+      EXPECT_NEAR(*lo, 0.5f, 0.02f);
+      EXPECT_NEAR(*hi, 0.5f, 0.02f);
+    }
+    GDALClose(ds);
+  }
 }
 
 TEST(LightmapCli, WritesFramesAndDebugLayers) {
