@@ -165,7 +165,7 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
   double dx = std::fabs(gt[1]), dy = std::fabs(gt[5]);
   const double centreY = gt[3] + gt[5] * g.height / 2;
   double verticalUnit = 1.0;
-  std::string verticalFrom = "metres (no unit in the file)";
+  std::string verticalFrom = "taken as metres (the file names no unit)";
   if (srs == nullptr) {
     dem.notes.push_back("no spatial reference: grid units taken as metres");
   } else if (srs->IsGeographic()) {
@@ -187,7 +187,7 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
     dy *= metres;
     if (metres != 1.0) {
       verticalUnit = metres;
-      verticalFrom = "the spatial reference's linear unit (" + number(metres) + " m)";
+      verticalFrom = "converted to metres from the spatial reference's linear unit (" + number(metres) + " m)";
     }
   }
   if (const std::string unit = band->GetUnitType(); !unit.empty()) {
@@ -195,7 +195,7 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
     if (verticalUnit == 0) {
       throw LightingError(path + ": the height unit '" + unit + "' is not known; expected m, ft or US survey ft");
     }
-    verticalFrom = "the band's unit '" + unit + "'";
+    verticalFrom = "converted to metres from the band's unit '" + unit + "'";
   }
   int hasScale = 0, hasOffset = 0;
   const double scale = band->GetScale(&hasScale), offset = band->GetOffset(&hasOffset);
@@ -216,7 +216,7 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
     dem.notes.push_back(std::to_string(filled) +
                         " nodata cells filled by inverse-distance interpolation from the nearest valid cells");
   }
-  dem.notes.push_back("heights in metres from " + verticalFrom);
+  dem.notes.push_back("heights " + verticalFrom);
 
   if (gt[5] > 0) {
     flipRows(g);
