@@ -47,6 +47,8 @@ void addLightingOptions(CLI::App* cmd, DayCycleParams& cli, bool& noMoon, Lighti
        "Occlude the sun by visible disc area instead of the article's linear ramp");
   param("--turbidity", VBIM_FIELD(turbidity), "Atmospheric turbidity (Preetham; 2-6)")->default_val(defaults.turbidity);
   param("--sky-patches", VBIM_FIELD(skyPatches), "Sky patches, 1..8")->default_val(defaults.skyPatches);
+  param("--sky-directions", VBIM_FIELD(skyDirections), "Sky-factor directions: 8 (the article's), 16 or 32")
+      ->default_val(defaults.skyDirections);
   param(names.exposure, VBIM_FIELD(exposureKlux), "Irradiance in klux that maps to 1.0")
       ->default_val(defaults.exposureKlux);
   flag("--multiply-albedo", VBIM_FIELD(multiplyAlbedo),

@@ -73,6 +73,8 @@ void describeParams(ParamTable& t, DayCycleParams& p) {
   t.addReal("lighting.turbidity", &p.turbidity, 1.7, 10, "", "Preetham et al. 1999 (fitted for 2-6; 3 = clear)");
   t.addInt("lighting.sky_patches", &p.skyPatches, 1, kMaxSkyPatches, "patches",
            "Hoffman & Mitchell: one or two patches suffice; sectors i*P/8");
+  t.addInt("lighting.sky_directions", &p.skyDirections, 8, 32, "directions",
+           "sky-factor sectors: 8 (Hoffman & Mitchell), 16 or 32 (docs/lighting.md#sky-directions)");
   t.addReal("lighting.sun_klux", &p.sunKlux, 1, 200, "klux",
             "assumption: extraterrestrial solar illuminance, about 128 klux");
   t.addReal("lighting.exposure_klux", &p.exposureKlux, 0.001, 1000, "klux",
@@ -117,19 +119,22 @@ void validateParams(const DayCycleParams& p) {
       throw LightingError(msg.str());
     }
   }
+  if (p.skyDirections != 8 && p.skyDirections != 16 && p.skyDirections != 32) {
+    throw LightingError("lighting.sky_directions = " + std::to_string(p.skyDirections) + " must be 8, 16 or 32");
+  }
   if (p.endHour < p.startHour) {
     throw LightingError("lighting.end_hour = " + std::to_string(p.endHour) +
                         " is before lighting.start_hour = " + std::to_string(p.startHour));
   }
 }
 
-Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool) {
+Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool, int skyDirections) {
   Precomputed pre;
   pre.terrain = std::move(terrain);
   pre.normals = terrainNormals(pre.terrain);
   pre.horizons = computeHorizons(pre.terrain, pool);
   pre.palette = buildNormalPalette(pre.normals);
-  pre.sky = computeSkyFactors(pre.terrain, pre.horizons, pre.normals, skyPatches, pool);
+  pre.sky = computeSkyFactors(pre.terrain, pre.horizons, pre.normals, skyPatches, skyDirections, pool);
   return pre;
 }
 
@@ -271,7 +276,8 @@ void toRgba8(const FloatImage& img, Rgba8Image& out) {
 DayCycleGenerator::DayCycleGenerator(Terrain terrain, const DayCycleParams& params, WorkerPool* pool,
                                      FloatImage cloudTexture)
     : params_(params), pool_(pool), clouds_((validateParams(params), params.clouds), std::move(cloudTexture)) {
-  pre_ = precompute(std::move(terrain), static_cast<int>(params_.skyPatches), pool_);
+  pre_ = precompute(std::move(terrain), static_cast<int>(params_.skyPatches), pool_,
+                    static_cast<int>(params_.skyDirections));
   keyHorizon_.resize(pre_.terrain.texels());
 }
 
@@ -299,14 +305,16 @@ FrameLighting DayCycleGenerator::frameLighting(int frame) const {
   const Dir3 evalSun = directionAt(std::max(f.sun.elevation, kDayFullDeg * kDeg), f.sun.azimuth);
   const PreethamSky model(p.turbidity, evalSun);
   const int patches = static_cast<int>(p.skyPatches);
-  constexpr int kAz = 4, kTheta = 12;
+  // The patches cover the same sectors as the sky factors' (patchOfSector); 32 azimuth samples in all.
+  const int sectors = static_cast<int>(p.skyDirections), kAz = 32 / sectors;
+  constexpr int kTheta = 12;
   std::array<Rgb, kMaxSkyPatches> sum{};
   std::array<double, kMaxSkyPatches> weight{};
   if (f.dayWeight > 0) {
-    for (int s = 0; s < 8; ++s) {
-      const int patch = patchOfSector(s, patches);
+    for (int s = 0; s < sectors; ++s) {
+      const int patch = patchOfSector(s, patches, sectors);
       for (int a = 0; a < kAz; ++a) {
-        const double az = (s - 0.5 + (a + 0.5) / kAz) * kPi / 4;
+        const double az = (s - 0.5 + (a + 0.5) / kAz) * 2 * kPi / sectors;
         for (int j = 0; j < kTheta; ++j) {
           const double theta = (j + 0.5) / kTheta * kPi / 2;
           const double w = std::cos(theta) * std::sin(theta);

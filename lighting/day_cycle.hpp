@@ -52,8 +52,9 @@ struct DayCycleParams {
   bool shadowRays = false;  // circular-segment occlusion instead of the article's linear ramp
   double turbidity = 3.0;
   std::int64_t skyPatches = 2;
-  double sunKlux = 128.0;       // direct normal illuminance above the atmosphere
-  double exposureKlux = 120.0;  // irradiance that maps to 1.0
+  std::int64_t skyDirections = 8;  // sky-factor sectors: 8 (the article's), 16 or 32
+  double sunKlux = 128.0;          // direct normal illuminance above the atmosphere
+  double exposureKlux = 120.0;     // irradiance that maps to 1.0
   bool multiplyAlbedo = false;
   std::int64_t skyWidth = 256;  // sky dome image: skyWidth x skyWidth / 2
   // Night: a dim bluish sky and, optionally, a full moon opposite the sun (normalised units).
@@ -88,7 +89,7 @@ struct Precomputed {
   SkyFactors sky;
 };
 
-Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool = nullptr);
+Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool = nullptr, int skyDirections = 8);
 
 // Sun visibility for horizon elevation `horizon`, disc centre elevation `centre`, angular
 // diameter `diameter` (radians): 1 below centre - d/2, 0 above centre + d/2; linear in between

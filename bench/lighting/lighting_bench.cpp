@@ -130,6 +130,18 @@ BENCHMARK(BM_RaySweep)
     ->Args({4096, -120})
     ->Unit(benchmark::kMillisecond);
 
+// Sky factors with 8, 16 or 32 directions (lighting.sky_directions), horizons included.
+void BM_SkyDirections512(benchmark::State& state) {
+  const Terrain& t = terrain(512);
+  const std::vector<Vec3> normals = terrainNormals(t);
+  for (auto _ : state) {
+    const HorizonMaps h = computeHorizons(t);
+    SkyFactors s = computeSkyFactors(t, h, normals, 2, static_cast<int>(state.range(0)));
+    benchmark::DoNotOptimize(s.k.data());
+  }
+}
+BENCHMARK(BM_SkyDirections512)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
+
 void BM_Precompute512(benchmark::State& state) {
   for (auto _ : state) {
     Precomputed p = precompute(terrain(512), 2);

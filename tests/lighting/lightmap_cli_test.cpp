@@ -107,10 +107,11 @@ TEST(LightmapCli, WritesFramesAndDebugLayers) {
   const fs::path out = scratch("cli_ok");
   fs::remove_all(out);
   const Result r =
-      runVbim("lightmap --size 32 --frames 3 --sky-width 16 --debug all --format both --out " + out.string());
+      runVbim("lightmap --size 32 --frames 3 --sky-width 16 --debug all --format both --sky-directions 16 --out " +
+              out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* f : {"lightmap_0000.png", "lightmap_0002.exr", "sky_0001.png", "shadow_0002.png", "horizon_NE.png",
-                        "horizon_S_deg.exr", "sky_factor_K.exr", "frames.csv"}) {
+                        "horizon_S_deg.exr", "sky_factor_K.exr", "nl_0001.exr", "frames.csv"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
   EXPECT_FALSE(fs::exists(out / "lightmap_0003.png"));
@@ -147,6 +148,9 @@ TEST(LightmapCli, BadInputGivesAClearMessageAndNonZeroExit) {
   expectFailure("lightmap --terrain " + hf.string() + " --albedo " + colour.string(),
                 "colour map is 8x6, expected the heightfield's size 8x8", out);
   expectFailure("lightmap --size 16 --debug nonsense", "unknown layer 'nonsense'", out);
+  expectFailure("lightmap --size 16 --sky-directions 12", "lighting.sky_directions = 12 must be 8, 16 or 32", out);
+  expectFailure("lightmap --size 16 --sun-elevation 95", "lighting.sun_elevation_deg = 95 is outside [-90, 90]", out);
+  expectFailure("lightmap --size 16 --layers-format png", "--layers-format must be exr or tif", out);
   const fs::path toml = scratch("bad.toml");
   std::ofstream(toml) << "[lighting]\nlatitude_deg = 200\n";
   expectFailure("lightmap --size 16 --config " + toml.string(), "latitude_deg", out);
