@@ -84,6 +84,8 @@ TerrainFile loadTerrain(const LightmapOptions& o) {
     f.geo = localGrid(o.cellSize);
   } else {
     TerrainFileOptions options;
+    options.pictureCellSize = o.cellSize;
+    options.pictureFullScale = o.verticalScale;
     if (o.cellSizeGiven) options.cellSize = o.cellSize;
     if (o.verticalScaleGiven) options.verticalScale = o.verticalScale;
     f = loadTerrainFile(o.terrain, options);

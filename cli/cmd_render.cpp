@@ -66,9 +66,13 @@ void addRender(CLI::App& app) {
   cmd->add_option("--lod-distance", o->req.settings.lodDistance, "Metres to the first LOD step (0: 1.5 patches)");
   cmd->add_option("--terrain", o->terrain, "Heightfield the stream was authored from (default: the procedural one)");
   cmd->add_option("--albedo", o->albedo, "Colour map of the heightfield's size");
-  cmd->add_option("--cell-size", o->req.terrain.cellSize, "Metres between heightfield samples")->capture_default_str();
-  cmd->add_option("--vertical-scale", o->req.terrain.verticalScale, "Heightfield metres at full scale")
-      ->capture_default_str();
+  CLI::Option* cellSize = cmd->add_option("--cell-size", o->req.terrain.cellSize,
+                                          "Metres between heightfield samples (a DEM's own unless given)")
+                              ->capture_default_str();
+  CLI::Option* verticalScale =
+      cmd->add_option("--vertical-scale", o->req.terrain.verticalScale,
+                      "Heightfield metres at full scale (integer pictures); a multiplier for float ones and DEMs")
+          ->capture_default_str();
   cmd->add_option("--relief", o->req.terrain.procedural.reliefMetres, "Procedural terrain relief, metres")
       ->capture_default_str();
   cmd->add_option("--terrain-seed", o->req.terrain.procedural.seed, "Procedural terrain seed")->capture_default_str();
@@ -79,7 +83,12 @@ void addRender(CLI::App& app) {
   cmd->add_flag("--no-objects", o->noObjects, "Terrain and sky only");
   cmd->add_flag("--no-video", o->noVideo, "Skip playback.mp4");
   cmd->add_flag("--force", o->force, "Replace a non-empty output directory");
-  cmd->callback([o] { runRender(*o); });
+  cmd->callback([o, cellSize, verticalScale] {
+    // The terrain is read as `vbim author` read it: a DEM's cell size, a float file's heights unless given.
+    o->req.terrain.cellSizeGiven = cellSize->count() > 0;
+    o->req.terrain.verticalScaleGiven = verticalScale->count() > 0;
+    runRender(*o);
+  });
 }
 
 }  // namespace vbim::cli

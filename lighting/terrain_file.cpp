@@ -15,11 +15,11 @@ TerrainFile loadTerrainFile(const std::string& path, const TerrainFileOptions& o
     f.notes = std::move(dem.notes);
     return f;
   }
-  const double cell = options.cellSize.value_or(kDefaultCellSize);
+  const double cell = options.cellSize.value_or(options.pictureCellSize);
   const bool floats = heightfieldHasFloatSamples(path);
   // Float samples are heights in metres: they are not scaled unless asked (a DEM written as a plain
   // float picture stays the right height).
-  const double scale = options.verticalScale.value_or(floats ? 1.0 : kDefaultIntegerFullScale);
+  const double scale = options.verticalScale.value_or(floats ? 1.0 : options.pictureFullScale);
   f.terrain = readHeightfield(path, cell, scale);
   f.geo = localGrid(cell);
   if (floats && options.verticalScale) f.notes.push_back("float heights multiplied by --vertical-scale");

@@ -14,8 +14,10 @@
 namespace vbim::lighting {
 
 struct TerrainFileOptions {
-  std::optional<double> cellSize;       // metres; a picture without it gets 10 m
+  std::optional<double> cellSize;       // metres; given, it overrides a DEM's
   std::optional<double> verticalScale;  // see above
+  double pictureCellSize = 10.0;        // a picture's cell size when `cellSize` is not given
+  double pictureFullScale = 1000.0;     // an integer picture's full scale when `verticalScale` is not given
 };
 
 struct TerrainFile {
@@ -24,9 +26,6 @@ struct TerrainFile {
   bool georeferenced = false;      // true for a DEM
   std::vector<std::string> notes;  // what was read from the file and what was overridden
 };
-
-inline constexpr double kDefaultCellSize = 10.0;
-inline constexpr double kDefaultIntegerFullScale = 1000.0;
 
 TerrainFile loadTerrainFile(const std::string& path, const TerrainFileOptions& options);
 

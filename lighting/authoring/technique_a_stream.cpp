@@ -69,6 +69,8 @@ Terrain loadTerrain(const TerrainSource& src, std::vector<std::string>* notes) {
       if (src.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
     } else {
       TerrainFileOptions options;
+      options.pictureCellSize = src.cellSize;  // pictures keep these as they always did
+      options.pictureFullScale = src.verticalScale;
       if (src.cellSizeGiven) options.cellSize = src.cellSize;
       if (src.verticalScaleGiven) options.verticalScale = src.verticalScale;
       TerrainFile file = loadTerrainFile(src.heightfield, options);
