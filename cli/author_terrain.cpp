@@ -69,6 +69,8 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   track(cmd->add_flag("--procedural", o->procedural,
                       "Use the built-in procedural terrain (also what any Technique A option without --terrain gets)"));
   track(cmd->add_option("--albedo", o->terrain.albedo, "Diffuse colour map of the heightfield's size"));
+  track(cmd->add_option("--bounce-albedo", o->terrain.bounceAlbedo,
+                        "Colour of the surrounding terrain for the coloured bounce light only (same size)"));
   track(cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
                         "Single-channel cloud density texture (implies --clouds)"));
   o->cellSizeOption = track(cmd->add_option("--cell-size", o->terrain.cellSize,

@@ -33,7 +33,7 @@ namespace {
 using namespace vbim::lighting;
 
 struct LightmapOptions {
-  std::string terrain, albedo, cloudTexture, config, out, format = "png", debug, layersFormat = "exr";
+  std::string terrain, albedo, bounceAlbedo, cloudTexture, config, out, format = "png", debug, layersFormat = "exr";
   double cellSize = 10.0, verticalScale = 1000.0, relief = 900.0;
   std::int64_t size = 512, seed = 1;
   unsigned threads = 2;
@@ -92,6 +92,7 @@ TerrainFile loadTerrain(const LightmapOptions& o) {
     for (const std::string& note : f.notes) std::printf("vbim lightmap: %s: %s\n", o.terrain.c_str(), note.c_str());
   }
   if (!o.albedo.empty()) setAlbedo(f.terrain, lighting::readColourMap(o.albedo), o.albedo);
+  if (!o.bounceAlbedo.empty()) setBounceAlbedo(f.terrain, lighting::readColourMap(o.bounceAlbedo), o.bounceAlbedo);
   return f;
 }
 
@@ -211,6 +212,9 @@ void addLightmap(CLI::App& app) {
   auto given = std::make_shared<LightingOverrides>();
   cmd->add_option("--terrain", o->terrain,
                   "Heightfield (single-channel; 16-bit PNG, TIFF, EXR...). Default: built-in procedural terrain");
+  cmd->add_option("--bounce-albedo", o->bounceAlbedo,
+                  "Colour (albedo) of the surrounding terrain for the coloured bounce light only, same size "
+                  "(default: the texel's own albedo)");
   cmd->add_option("--albedo", o->albedo,
                   "Diffuse colour map, same size as the heightfield (8/16-bit = sRGB, float = linear)");
   CLI::Option* cellSize =

@@ -140,8 +140,8 @@ SkyFactors computeSkyFactors(const Terrain& terrain, const HorizonMaps& h, const
       s.k[i] = static_cast<float>(k);
       for (int c = 0; c < 3; ++c) {
         // Stewart-Langer: the terrain seen from p is lit like p itself (Hoffman & Mitchell,
-        // Game Developer 2001, Eq. 3).
-        const double denom = 1.0 - terrain.albedoAt(i, c) * (1.0 - k);
+        // Game Developer 2001, Eq. 3), with the bounce albedo when one is given.
+        const double denom = 1.0 - terrain.bounceAlbedoAt(i, c) * (1.0 - k);
         for (int p = 0; p < patches; ++p) s.factor[(i * patches + p) * 3 + c] = static_cast<float>(ip[p] / denom);
       }
     }

@@ -78,6 +78,7 @@ Terrain loadTerrain(const TerrainSource& src, std::vector<std::string>* notes) {
       if (notes != nullptr) *notes = std::move(file.notes);
     }
     if (!src.albedo.empty()) setAlbedo(t, lighting::readColourMap(src.albedo), src.albedo);
+    if (!src.bounceAlbedo.empty()) setBounceAlbedo(t, lighting::readColourMap(src.bounceAlbedo), src.bounceAlbedo);
     return t;
   } catch (const LightingError& e) {
     throw AuthoringError(e.what());

@@ -36,6 +36,7 @@ namespace vbim::lighting {
 struct TerrainSource {
   std::string heightfield;   // single-channel image (16-bit PNG, TIFF, EXR); empty: the procedural one
   std::string albedo;        // optional colour map of the heightfield's size (the procedural terrain has its own)
+  std::string bounceAlbedo;  // optional colour of the surroundings, for the bounce light only
   std::string cloudTexture;  // optional single-channel density texture; enables clouds in every variant
   // Metres between samples, and the vertical scale (metres at full scale for integer pictures, a
   // multiplier for float pictures and DEMs). A DEM's own cell size and a float file's heights are

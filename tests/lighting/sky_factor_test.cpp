@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "lighting/error.hpp"
 #include "lighting/fixed_angle.hpp"
 #include "lighting/horizon_scan.hpp"
 #include "lighting/procedural_terrain.hpp"
@@ -96,6 +97,32 @@ TEST(SkyFactor, StewartLangerInterreflection) {
     EXPECT_NEAR(sumGrey, k / (1 - 0.5 * (1 - k)), 1e-5);  // S = K / (1 - rho (1 - K))
     EXPECT_GE(sumGrey, sumBlack - 1e-7);
   }
+}
+
+// A bounce albedo colours the interreflection only: a red surrounding raises the red sky factor of
+// a valley texel, leaves blue as the texel's own albedo gives it, and changes nothing where K = 1.
+TEST(SkyFactor, BounceAlbedoColoursTheInterreflection) {
+  Terrain t = testing::randomTerrain(24, 20, 9, 4000);
+  const HorizonMaps h = computeHorizons(t);
+  const std::vector<Vec3> normals = terrainNormals(t);
+  const SkyFactors plain = computeSkyFactors(t, h, normals, 1);
+  FloatImage red(24, 20, 3);
+  for (std::size_t i = 0; i < red.pixels.size(); i += 3) {
+    red.pixels[i] = 0.8f;
+    red.pixels[i + 1] = red.pixels[i + 2] = 0.3f;  // the default albedo in green and blue
+  }
+  setBounceAlbedo(t, red, "red");
+  const SkyFactors bounced = computeSkyFactors(t, h, normals, 1);
+  int raised = 0;
+  for (std::size_t i = 0; i < t.texels(); ++i) {
+    const double k = plain.k[i];
+    // S_c = K / (1 - rho_c (1 - K)) with one patch.
+    EXPECT_NEAR(bounced.factor[i * 3 + 0], k / (1 - 0.8 * (1 - k)), 1e-5);
+    EXPECT_EQ(bounced.factor[i * 3 + 2], plain.factor[i * 3 + 2]);
+    if (k < 0.99 && bounced.factor[i * 3 + 0] > plain.factor[i * 3 + 0]) ++raised;
+  }
+  EXPECT_GT(raised, 10);
+  EXPECT_THROW(setBounceAlbedo(t, FloatImage(3, 3, 3), "small"), LightingError);
 }
 
 // Sky factors with 8, 16 and 32 directions against a dense 96-direction reference (every direction
