@@ -70,12 +70,18 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
   track(cmd->add_flag("--procedural", o->procedural,
                       "Use the built-in procedural terrain (also what any Technique A option without --terrain gets)"));
   track(cmd->add_option("--albedo", o->terrain.albedo, "Diffuse colour map of the heightfield's size"));
+  track(cmd->add_option("--bounce-albedo", o->terrain.bounceAlbedo,
+                        "Colour of the surrounding terrain for the coloured bounce light only (same size)"));
   track(cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
                         "Single-channel cloud density texture (implies --clouds)"));
-  track(cmd->add_option("--cell-size", o->terrain.cellSize, "Metres between heightfield samples")->default_val(10.0));
-  track(cmd->add_option("--vertical-scale", o->terrain.verticalScale,
-                        "Metres at full scale for integer heightfields; metres per unit for float ones")
-            ->default_val(1000.0));
+  o->cellSizeOption = track(cmd->add_option("--cell-size", o->terrain.cellSize,
+                                            "Metres between heightfield samples (a DEM's own unless given)")
+                                ->default_val(10.0));
+  o->verticalScaleOption =
+      track(cmd->add_option("--vertical-scale", o->terrain.verticalScale,
+                            "Metres at full scale for integer heightfields; a multiplier for float ones and DEMs "
+                            "(heights in metres are used as they are unless given)")
+                ->default_val(1000.0));
   track(cmd->add_option("--size", o->terrain.procedural.size,
                         "Procedural terrain size in texels (multiple of 16); the default "
                         "fits the default platform config's VRAM next to the sky")
@@ -108,6 +114,8 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
     throw Exit(2, "vbim author: --procedural and --terrain exclude each other");
   lighting::TechniqueAStreamSettings s;
   s.terrain = o.terrain;
+  s.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
+  s.terrain.verticalScaleGiven = o.verticalScaleOption != nullptr && o.verticalScaleOption->count() > 0;
   s.stream = streamSettings(enc);
   s.tone = toneMapping(enc);
   s.threads = o.threads;
@@ -125,6 +133,8 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
         progress.show(p.done, p.total, p.variant + " " + std::to_string(p.frame));
       });
   progress.finish();
+  for (const std::string& note : stream.terrainNotes)
+    std::cout << "vbim author: " << o.terrain.heightfield << ": " << note << "\n";
   const streams::Descriptor& d = stream.descriptor;
   std::cout << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
             << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width

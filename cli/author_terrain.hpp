@@ -21,9 +21,11 @@ struct TerrainAuthorOptions {
   bool procedural = false, noMoon = false;
   std::string lightingConfig, weather = "clear";
   unsigned threads = 2;
-  lighting::DayCycleParams params;    // values given on the command line
-  LightingOverrides given;            // lighting options: each overrides the config file's value when given
-  std::vector<CLI::Option*> options;  // every option of this source, to tell whether it was chosen
+  lighting::DayCycleParams params;             // values given on the command line
+  LightingOverrides given;                     // lighting options: each overrides the config file's value when given
+  std::vector<CLI::Option*> options;           // every option of this source, to tell whether it was chosen
+  CLI::Option* cellSizeOption = nullptr;       // given: overrides a DEM's cell size
+  CLI::Option* verticalScaleOption = nullptr;  // given: scales float heights and DEMs too
 };
 
 void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o);

@@ -20,8 +20,10 @@
 #include "lighting/day_cycle.hpp"
 #include "lighting/error.hpp"
 #include "lighting/fixed_angle.hpp"
+#include "lighting/geotiff_layers.hpp"
 #include "lighting/image_files.hpp"
 #include "lighting/procedural_terrain.hpp"
+#include "lighting/terrain_file.hpp"
 #include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"
 
@@ -32,12 +34,13 @@ namespace {
 using namespace vbim::lighting;
 
 struct LightmapOptions {
-  std::string terrain, albedo, cloudTexture, config, out, format = "png", debug;
+  std::string terrain, albedo, bounceAlbedo, cloudTexture, config, out, format = "png", debug, layersFormat = "exr";
   double cellSize = 10.0, verticalScale = 1000.0, relief = 900.0;
   std::int64_t size = 512, seed = 1;
   unsigned threads = 2;
   bool force = false, noMoon = false;
-  DayCycleParams params;  // values given on the command line
+  bool cellSizeGiven = false, verticalScaleGiven = false;  // set after parsing: overrides for a DEM
+  DayCycleParams params;                                   // values given on the command line
 };
 
 std::string frameName(const std::string& stem, int i, const std::string& ext) {
@@ -47,7 +50,7 @@ std::string frameName(const std::string& stem, int i, const std::string& ext) {
 }
 
 struct DebugLayers {
-  bool horizons = false, sky = false, shadow = false;
+  bool horizons = false, sky = false, shadow = false, cosine = false;
 };
 
 DebugLayers parseDebug(const std::string& list) {
@@ -61,28 +64,55 @@ DebugLayers parseDebug(const std::string& list) {
       d.sky = true;
     } else if (item == "shadow") {
       d.shadow = true;
+    } else if (item == "nl") {
+      d.cosine = true;
     } else if (item == "all") {
-      d = {true, true, true};
+      d = {true, true, true, true};
     } else if (!item.empty()) {
-      throw Exit(2, "vbim lightmap: --debug: unknown layer '" + item + "'; expected horizons, sky, shadow or all");
+      throw Exit(2, "vbim lightmap: --debug: unknown layer '" + item + "'; expected horizons, sky, shadow, nl or all");
     }
   }
   return d;
 }
 
-Terrain loadTerrain(const LightmapOptions& o) {
-  Terrain t;
+// The terrain and its georeferencing (a DEM's, else a local grid in metres). A terrain file's notes
+// (what it said, what was overridden) are printed.
+TerrainFile loadTerrain(const LightmapOptions& o) {
+  TerrainFile f;
   if (o.terrain.empty()) {
-    t = proceduralTerrain({.size = o.size, .cellSize = o.cellSize, .reliefMetres = o.relief, .seed = o.seed});
-    if (o.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
+    f.terrain = proceduralTerrain({.size = o.size, .cellSize = o.cellSize, .reliefMetres = o.relief, .seed = o.seed});
+    if (o.albedo.empty()) setAlbedo(f.terrain, proceduralAlbedo(f.terrain), "procedural albedo");
+    f.geo = localGrid(o.cellSize);
   } else {
-    t = lighting::readHeightfield(o.terrain, o.cellSize, o.verticalScale);
+    TerrainFileOptions options;
+    options.pictureCellSize = o.cellSize;
+    options.pictureFullScale = o.verticalScale;
+    if (o.cellSizeGiven) options.cellSize = o.cellSize;
+    if (o.verticalScaleGiven) options.verticalScale = o.verticalScale;
+    f = loadTerrainFile(o.terrain, options);
+    for (const std::string& note : f.notes) std::printf("vbim lightmap: %s: %s\n", o.terrain.c_str(), note.c_str());
   }
-  if (!o.albedo.empty()) setAlbedo(t, lighting::readColourMap(o.albedo), o.albedo);
-  return t;
+  if (!o.albedo.empty()) setAlbedo(f.terrain, lighting::readColourMap(o.albedo), o.albedo);
+  if (!o.bounceAlbedo.empty()) setBounceAlbedo(f.terrain, lighting::readColourMap(o.bounceAlbedo), o.bounceAlbedo);
+  return f;
 }
 
-void writeDebugStatic(const DayCycleGenerator& g, const DebugLayers& d, const OutputDir& dir) {
+// A float layer as `stem`.exr, or as `stem`.tif with the terrain's georeferencing.
+struct LayerWriter {
+  const OutputDir& dir;
+  bool geotiff;
+  const Georeference& geo;
+  void operator()(const std::string& stem, const FloatImage& image, const std::string& description) const {
+    if (geotiff) {
+      writeGeoTiff(dir.path(stem + ".tif"), image, geo, description);
+    } else {
+      lighting::writeImage(dir.path(stem + ".exr"), image);
+    }
+  }
+};
+
+void writeDebugStatic(const DayCycleGenerator& g, const DebugLayers& d, const OutputDir& dir,
+                      const LayerWriter& layer) {
   const Precomputed& pre = g.precomputed();
   if (d.horizons) {
     for (int k = 0; k < kDirections; ++k) {
@@ -96,21 +126,24 @@ void writeDebugStatic(const DayCycleGenerator& g, const DebugLayers& d, const Ou
       for (std::size_t i = 0; i < deg.pixels.size(); ++i) {
         deg.pixels[i] = static_cast<float>(angleFromCode(pre.horizons.code[k][i]) * 180.0 / 3.14159265358979323846);
       }
-      lighting::writeImage(dir.path(name + "_deg.exr"), deg);
+      layer(name + "_deg", deg, std::string("horizon elevation towards ") + kDirectionNames[k] + " (degrees)");
     }
   }
   if (d.sky) {
     FloatImage k(pre.sky.width, pre.sky.height, 1);
     k.pixels = pre.sky.k;
-    lighting::writeImage(dir.path("sky_factor_K.exr"), k);
+    layer("sky_factor_K", k, "sky view factor K");
     lighting::writeImage(dir.path("sky_factor_K.png"), k);
   }
 }
 
 void run(LightmapOptions& o, const LightingOverrides& given) {
   const DebugLayers debug = parseDebug(o.debug);
-  if (o.format != "png" && o.format != "exr" && o.format != "both") {
-    throw Exit(2, "vbim lightmap: --format must be png, exr or both");
+  if (o.format != "png" && o.format != "exr" && o.format != "both" && o.format != "tif") {
+    throw Exit(2, "vbim lightmap: --format must be png, exr, tif or both");
+  }
+  if (o.layersFormat != "exr" && o.layersFormat != "tif") {
+    throw Exit(2, "vbim lightmap: --layers-format must be exr or tif");
   }
   DayCycleParams params;
   if (!o.config.empty()) {
@@ -125,28 +158,41 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
     cloudTexture = lighting::readDensityMap(o.cloudTexture);
     params.clouds.enabled = true;
   }
-  Terrain terrain = loadTerrain(o);
+  TerrainFile terrain = loadTerrain(o);
 
   OutputDir dir(o.out, o.force);
   WorkerPool pool(o.threads > 1 ? o.threads - 1 : 0);
-  DayCycleGenerator gen(std::move(terrain), params, &pool, std::move(cloudTexture));
-  writeDebugStatic(gen, debug, dir);
+  DayCycleGenerator gen(std::move(terrain.terrain), params, &pool, std::move(cloudTexture));
+  const LayerWriter layer{dir, o.layersFormat == "tif", terrain.geo};
+  writeDebugStatic(gen, debug, dir, layer);
 
   std::ofstream csv(dir.path("frames.csv"));
   csv << "frame,hour,sun_elevation_deg,sun_azimuth_compass_deg,key_light\n";
   Progress progress("vbim lightmap", "frames");
   progress.show(0, gen.frameCount());
-  FloatImage light, sky, mask;
+  FloatImage light, sky, mask, cosine;
   for (int i = 0; i < gen.frameCount(); ++i) {
     gen.renderFrame(i, light, sky, debug.shadow ? &mask : nullptr);
     const FrameLighting f = gen.frameLighting(i);
     csv << i << "," << f.hour << "," << f.sun.elevation * 180.0 / 3.14159265358979323846 << ","
         << compassDegrees(f.sun.azimuth) << "," << (f.keyIsMoon ? "moon" : "sun") << "\n";
+    if (o.format == "tif") {
+      // Lightmaps on the map, georeferenced; the sky dome is not on the ground: EXR.
+      writeGeoTiff(dir.path(frameName("lightmap", i, ".tif")), light, terrain.geo, "lightmap (1.0 = exposure)");
+      lighting::writeImage(dir.path(frameName("sky", i, ".exr")), sky);
+    }
     for (const char* ext : {".png", ".exr"}) {
       if (o.format != "both" && o.format != std::string(ext + 1)) continue;
       lighting::writeImage(dir.path(frameName("lightmap", i, ext)), light);
       lighting::writeImage(dir.path(frameName("sky", i, ext)), sky);
-      if (debug.shadow) lighting::writeImage(dir.path(frameName("shadow", i, ext)), mask);
+      if (debug.shadow && !layer.geotiff) lighting::writeImage(dir.path(frameName("shadow", i, ext)), mask);
+    }
+    if (debug.shadow && (layer.geotiff || o.format == "tif")) {
+      layer(frameName("shadow", i, ""), mask, "sun visibility (shadow mask)");
+    }
+    if (debug.cosine) {
+      cosineLayer(gen.precomputed(), f.key.direction, cosine);
+      layer(frameName("nl", i, ""), cosine, "N.L, cosine of the key light on the terrain normal");
     }
     progress.show(i + 1, gen.frameCount());
   }
@@ -167,12 +213,19 @@ void addLightmap(CLI::App& app) {
   auto given = std::make_shared<LightingOverrides>();
   cmd->add_option("--terrain", o->terrain,
                   "Heightfield (single-channel; 16-bit PNG, TIFF, EXR...). Default: built-in procedural terrain");
+  cmd->add_option("--bounce-albedo", o->bounceAlbedo,
+                  "Colour (albedo) of the surrounding terrain for the coloured bounce light only, same size "
+                  "(default: the texel's own albedo)");
   cmd->add_option("--albedo", o->albedo,
                   "Diffuse colour map, same size as the heightfield (8/16-bit = sRGB, float = linear)");
-  cmd->add_option("--cell-size", o->cellSize, "Metres between heightfield samples")->default_val(10.0);
-  cmd->add_option("--vertical-scale", o->verticalScale,
-                  "Metres at full scale for integer heightfields; metres per unit for float ones")
-      ->default_val(1000.0);
+  CLI::Option* cellSize =
+      cmd->add_option("--cell-size", o->cellSize, "Metres between heightfield samples (a DEM's own unless given)")
+          ->default_val(10.0);
+  CLI::Option* verticalScale =
+      cmd->add_option("--vertical-scale", o->verticalScale,
+                      "Metres at full scale for integer heightfields; a multiplier for float ones and DEMs (heights "
+                      "in metres are used as they are unless given)")
+          ->default_val(1000.0);
   cmd->add_option("--size", o->size, "Procedural terrain size in texels")->default_val(512);
   cmd->add_option("--seed", o->seed, "Procedural terrain seed")->default_val(1);
   cmd->add_option("--relief", o->relief, "Procedural terrain relief in metres")->default_val(900.0);
@@ -180,8 +233,15 @@ void addLightmap(CLI::App& app) {
   addLightingOptions(cmd, o->params, o->noMoon, *given, LightingOptionNames{}, [](CLI::Option*) {});
   cmd->add_option("--config", o->config, "TOML file of lighting.* parameters (command-line values win)")
       ->check(inputFile());
-  cmd->add_option("--format", o->format, "png, exr or both")->default_val("png");
-  cmd->add_option("--debug", o->debug, "Extra layers: horizons, sky (factor K), shadow (sun mask), or all");
+  cmd->add_option("--format", o->format,
+                  "png, exr, both (png and exr), or tif (lightmaps as GeoTIFF with the DEM's georeferencing, sky "
+                  "domes as exr)")
+      ->default_val("png");
+  cmd->add_option("--debug", o->debug,
+                  "Extra layers: horizons, sky (factor K), shadow (sun mask), nl (N.L of the key light), or all");
+  cmd->add_option("--layers-format", o->layersFormat,
+                  "Float debug layers as exr, or tif (GeoTIFF with the DEM's georeferencing)")
+      ->default_val("exr");
   cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")->default_val(2);
   cmd->add_option("--out", o->out, "Output directory (complete or absent)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing non-empty output directory");
@@ -189,7 +249,9 @@ void addLightmap(CLI::App& app) {
       "Examples:\n"
       "  vbim lightmap --out lm/\n"
       "  vbim lightmap --size 256 --frames 24 --debug all --format both --out lm/\n");
-  cmd->callback([o, given] {
+  cmd->callback([o, given, cellSize, verticalScale] {
+    o->cellSizeGiven = cellSize->count() > 0;
+    o->verticalScaleGiven = verticalScale->count() > 0;
     try {
       run(*o, *given);
     } catch (const LightingError& e) {

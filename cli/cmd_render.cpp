@@ -95,9 +95,13 @@ void addRender(CLI::App& app) {
       "--terrain", o->terrain,
       "Heightfield the stream was authored from (default: the run's authoring.json, else the procedural one)");
   cmd->add_option("--albedo", o->albedo, "Colour map of the heightfield's size");
-  cmd->add_option("--cell-size", o->req.terrain.cellSize, "Metres between heightfield samples")->capture_default_str();
-  cmd->add_option("--vertical-scale", o->req.terrain.verticalScale, "Heightfield metres at full scale")
-      ->capture_default_str();
+  CLI::Option* cellSize = cmd->add_option("--cell-size", o->req.terrain.cellSize,
+                                          "Metres between heightfield samples (a DEM's own unless given)")
+                              ->capture_default_str();
+  CLI::Option* verticalScale =
+      cmd->add_option("--vertical-scale", o->req.terrain.verticalScale,
+                      "Heightfield metres at full scale (integer pictures); a multiplier for float ones and DEMs")
+          ->capture_default_str();
   cmd->add_option("--relief", o->req.terrain.procedural.reliefMetres, "Procedural terrain relief, metres")
       ->capture_default_str();
   cmd->add_option("--terrain-seed", o->req.terrain.procedural.seed, "Procedural terrain seed")->capture_default_str();
@@ -114,7 +118,12 @@ void addRender(CLI::App& app) {
       "Examples:\n"
       "  vbim render run/ --out pictures/\n"
       "  (run/ written by: vbim play streams/samples/day_clear.vbim --every 300 --out run/)\n");
-  cmd->callback([o] { runRender(*o); });
+  cmd->callback([o, cellSize, verticalScale] {
+    // The terrain is read as `vbim author` read it: a DEM's cell size, a float file's heights unless given.
+    o->req.terrain.cellSizeGiven = cellSize->count() > 0;
+    o->req.terrain.verticalScaleGiven = verticalScale->count() > 0;
+    runRender(*o);
+  });
 }
 
 }  // namespace vbim::cli

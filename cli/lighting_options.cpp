@@ -28,12 +28,27 @@ void addLightingOptions(CLI::App* cmd, DayCycleParams& cli, bool& noMoon, Lighti
   param("--end-hour", VBIM_FIELD(endHour), "Local solar time of the last frame (0 to 24 loops a day)")
       ->default_val(defaults.endHour);
   param(names.frames, VBIM_FIELD(frames), "Frames (per variant)")->default_val(defaults.frames);
+  // The sun given directly: either option switches to a fixed sun (the other keeps its value).
+  auto sun = [&](const std::string& flags, auto field, const std::string& help) {
+    CLI::Option* opt = param(flags, field, help);
+    overrides.push_back({opt, [](DayCycleParams& dst) { dst.fixedSun = true; }});
+    return opt;
+  };
+  sun("--sun-azimuth", VBIM_FIELD(sunAzimuthDeg),
+      "Sun's compass azimuth in degrees (0 = north, 90 = east, clockwise), instead of place and time")
+      ->default_val(defaults.sunAzimuthDeg);
+  sun("--sun-elevation", VBIM_FIELD(sunElevationDeg), "Sun's elevation in degrees above the horizontal, -90..90")
+      ->default_val(defaults.sunElevationDeg);
   param("--sun-diameter", VBIM_FIELD(sunDiameterDeg), "Sun's angular diameter in degrees (larger = softer shadows)")
       ->default_val(defaults.sunDiameterDeg);
+  flag("--shadow-rays", VBIM_FIELD(shadowRays),
+       "Shadows along each texel's own ray (right at every azimuth) instead of its sheared sweep line");
   flag("--exact-disc", VBIM_FIELD(exactDisc),
        "Occlude the sun by visible disc area instead of the article's linear ramp");
   param("--turbidity", VBIM_FIELD(turbidity), "Atmospheric turbidity (Preetham; 2-6)")->default_val(defaults.turbidity);
   param("--sky-patches", VBIM_FIELD(skyPatches), "Sky patches, 1..8")->default_val(defaults.skyPatches);
+  param("--sky-directions", VBIM_FIELD(skyDirections), "Sky-factor directions: 8 (the article's), 16 or 32")
+      ->default_val(defaults.skyDirections);
   param(names.exposure, VBIM_FIELD(exposureKlux), "Irradiance in klux that maps to 1.0")
       ->default_val(defaults.exposureKlux);
   flag("--multiply-albedo", VBIM_FIELD(multiplyAlbedo),

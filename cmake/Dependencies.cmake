@@ -55,6 +55,8 @@ if(NOT VBIM_MODEL_ONLY)
   # openimageio-tools binaries, neither of which libopenimageio-dev installs, so its generate step
   # fails (docs/dependencies.md#openimageio-cmake-config).
   vbim_require_pkgconfig(OIIO libopenimageio-dev OpenImageIO)
+  # DEMs in and georeferenced debug layers out (lighting/dem_reader, lighting/geotiff_layers).
+  vbim_require_pkgconfig(GDAL libgdal-dev gdal)
 endif()
 
 if(VBIM_BUILD_TESTS)

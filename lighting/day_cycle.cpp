@@ -8,6 +8,7 @@
 
 #include "lighting/azimuth_sweep.hpp"
 #include "lighting/error.hpp"
+#include "lighting/ray_sweep.hpp"
 #include "lighting/sky_model.hpp"
 #include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"
@@ -57,13 +58,23 @@ void describeParams(ParamTable& t, DayCycleParams& p) {
   t.addReal("lighting.end_hour", &p.endHour, 0, 24, "h",
             "local solar time of the last frame (0 to 24 loops a whole day)");
   t.addInt("lighting.frames", &p.frames, 1, 1000000, "frames", user);
+  t.addBool("lighting.fixed_sun", &p.fixedSun,
+            "true: the sun at sun_azimuth_deg / sun_elevation_deg in every frame instead of latitude, day and hour");
+  t.addReal("lighting.sun_azimuth_deg", &p.sunAzimuthDeg, 0, 360, "deg",
+            "compass: 0 = north, 90 = east, clockwise (with fixed_sun)");
+  t.addReal("lighting.sun_elevation_deg", &p.sunElevationDeg, -90, 90, "deg", "above the horizontal (with fixed_sun)");
   t.addReal("lighting.sun_diameter_deg", &p.sunDiameterDeg, 0.01, 20, "deg",
             "real sun 0.53 deg; larger gives softer, anti-aliased shadow edges (Hoffman & Mitchell 2001)");
   t.addBool("lighting.exact_disc", &p.exactDisc,
             "false: the article's linear ramp; true: visible disc area (docs/lighting.md#sun-disc)");
+  t.addBool("lighting.shadow_rays", &p.shadowRays,
+            "true: shadows along each texel's own ray; false: its sheared sweep line "
+            "(docs/lighting.md#shadows-at-any-azimuth)");
   t.addReal("lighting.turbidity", &p.turbidity, 1.7, 10, "", "Preetham et al. 1999 (fitted for 2-6; 3 = clear)");
   t.addInt("lighting.sky_patches", &p.skyPatches, 1, kMaxSkyPatches, "patches",
            "Hoffman & Mitchell: one or two patches suffice; sectors i*P/8");
+  t.addInt("lighting.sky_directions", &p.skyDirections, 8, 32, "directions",
+           "sky-factor sectors: 8 (Hoffman & Mitchell), 16 or 32 (docs/lighting.md#sky-directions)");
   t.addReal("lighting.sun_klux", &p.sunKlux, 1, 200, "klux",
             "assumption: extraterrestrial solar illuminance, about 128 klux");
   t.addReal("lighting.exposure_klux", &p.exposureKlux, 0.001, 1000, "klux",
@@ -108,19 +119,22 @@ void validateParams(const DayCycleParams& p) {
       throw LightingError(msg.str());
     }
   }
+  if (p.skyDirections != 8 && p.skyDirections != 16 && p.skyDirections != 32) {
+    throw LightingError("lighting.sky_directions = " + std::to_string(p.skyDirections) + " must be 8, 16 or 32");
+  }
   if (p.endHour < p.startHour) {
     throw LightingError("lighting.end_hour = " + std::to_string(p.endHour) +
                         " is before lighting.start_hour = " + std::to_string(p.startHour));
   }
 }
 
-Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool) {
+Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool, int skyDirections) {
   Precomputed pre;
   pre.terrain = std::move(terrain);
   pre.normals = terrainNormals(pre.terrain);
   pre.horizons = computeHorizons(pre.terrain, pool);
   pre.palette = buildNormalPalette(pre.normals);
-  pre.sky = computeSkyFactors(pre.terrain, pre.horizons, pre.normals, skyPatches, pool);
+  pre.sky = computeSkyFactors(pre.terrain, pre.horizons, pre.normals, skyPatches, skyDirections, pool);
   return pre;
 }
 
@@ -209,6 +223,15 @@ void relight(const Precomputed& pre, const FrameLighting& light, const float* ke
   }
 }
 
+void cosineLayer(const Precomputed& pre, const Dir3& l, FloatImage& out) {
+  const Terrain& t = pre.terrain;
+  if (out.width != t.width || out.height != t.height || out.channels != 1) out = FloatImage(t.width, t.height, 1);
+  for (std::size_t i = 0; i < pre.normals.size(); ++i) {
+    const Vec3& n = pre.normals[i];
+    out.pixels[i] = static_cast<float>(std::max(0.0, n.x * l.x + n.y * l.y + n.z * l.z));
+  }
+}
+
 void renderSky(const FrameLighting& light, const DayCycleParams& params, FloatImage& sky) {
   const int w = static_cast<int>(params.skyWidth), h = std::max(1, w / 2);
   if (sky.width != w || sky.height != h || sky.channels != 3) sky = FloatImage(w, h, 3);
@@ -253,7 +276,8 @@ void toRgba8(const FloatImage& img, Rgba8Image& out) {
 DayCycleGenerator::DayCycleGenerator(Terrain terrain, const DayCycleParams& params, WorkerPool* pool,
                                      FloatImage cloudTexture)
     : params_(params), pool_(pool), clouds_((validateParams(params), params.clouds), std::move(cloudTexture)) {
-  pre_ = precompute(std::move(terrain), static_cast<int>(params_.skyPatches), pool_);
+  pre_ = precompute(std::move(terrain), static_cast<int>(params_.skyPatches), pool_,
+                    static_cast<int>(params_.skyDirections));
   keyHorizon_.resize(pre_.terrain.texels());
 }
 
@@ -273,21 +297,28 @@ FrameLighting DayCycleGenerator::frameLighting(int frame) const {
   const DayCycleParams& p = params_;
   FrameLighting f;
   f.hour = frameHour(frame);
-  f.sun = sunPosition(p.latitudeDeg, static_cast<int>(p.dayOfYear), std::fmod(f.hour, 24.0));
+  if (p.fixedSun) {
+    // Compass azimuth -> grid basis (from east towards south): north is -90 degrees.
+    f.sun = positionOf(directionAt(p.sunElevationDeg * kDeg, (p.sunAzimuthDeg - 90.0) * kDeg));
+  } else {
+    f.sun = sunPosition(p.latitudeDeg, static_cast<int>(p.dayOfYear), std::fmod(f.hour, 24.0));
+  }
   f.dayWeight = smoothstep(kNightDeg * kDeg, kDayFullDeg * kDeg, f.sun.elevation);
 
   // Sky patches: Preetham radiance, cosine-weighted over each patch's sectors.
   const Dir3 evalSun = directionAt(std::max(f.sun.elevation, kDayFullDeg * kDeg), f.sun.azimuth);
   const PreethamSky model(p.turbidity, evalSun);
   const int patches = static_cast<int>(p.skyPatches);
-  constexpr int kAz = 4, kTheta = 12;
+  // The patches cover the same sectors as the sky factors' (patchOfSector); 32 azimuth samples in all.
+  const int sectors = static_cast<int>(p.skyDirections), kAz = 32 / sectors;
+  constexpr int kTheta = 12;
   std::array<Rgb, kMaxSkyPatches> sum{};
   std::array<double, kMaxSkyPatches> weight{};
   if (f.dayWeight > 0) {
-    for (int s = 0; s < 8; ++s) {
-      const int patch = patchOfSector(s, patches);
+    for (int s = 0; s < sectors; ++s) {
+      const int patch = patchOfSector(s, patches, sectors);
       for (int a = 0; a < kAz; ++a) {
-        const double az = (s - 0.5 + (a + 0.5) / kAz) * kPi / 4;
+        const double az = (s - 0.5 + (a + 0.5) / kAz) * 2 * kPi / sectors;
         for (int j = 0; j < kTheta; ++j) {
           const double theta = (j + 0.5) / kTheta * kPi / 2;
           const double w = std::cos(theta) * std::sin(theta);
@@ -326,7 +357,11 @@ void DayCycleGenerator::renderFrame(int frame, FloatImage& lightmap, FloatImage&
     throw LightingError("frame " + std::to_string(frame) + " is outside 0.." + std::to_string(frameCount() - 1));
   }
   const FrameLighting f = frameLighting(frame);
-  sweepAzimuth(pre_.terrain, f.key.azimuth, keyHorizon_.data(), pool_);
+  if (params_.shadowRays) {
+    sweepRays(pre_.terrain, f.key.azimuth, keyHorizon_.data(), pool_);
+  } else {
+    sweepAzimuth(pre_.terrain, f.key.azimuth, keyHorizon_.data(), pool_);
+  }
   relight(pre_, f, keyHorizon_.data(), clouds_, params_, lightmap, shadowMask, pool_);
   renderSky(f, params_, sky);
 }

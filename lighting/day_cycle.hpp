@@ -39,12 +39,22 @@ struct DayCycleParams {
   double startHour = 4.0;        // local solar time
   double endHour = 22.0;
   std::int64_t frames = 120;
+  // The sun given directly instead of by place and time: compass azimuth (0 = north, 90 = east,
+  // clockwise seen from above) and elevation above the horizontal, the same in every frame.
+  bool fixedSun = false;
+  double sunAzimuthDeg = 180.0;
+  double sunElevationDeg = 45.0;
   double sunDiameterDeg = 1.5;  // wider than the real 0.53 deg: softer edges, anti-aliasing (docs/lighting.md#sun-disc)
-  bool exactDisc = false;       // circular-segment occlusion instead of the article's linear ramp
+  bool exactDisc = false;
+  // Sun shadows along each texel's own ray (lighting/ray_sweep.hpp) instead of the texel's sheared
+  // grid line (lighting/azimuth_sweep.hpp), which over-shadows at oblique azimuths. Off by default
+  // for now: it changes the committed sample streams' lightmaps (streams/samples/).
+  bool shadowRays = false;  // circular-segment occlusion instead of the article's linear ramp
   double turbidity = 3.0;
   std::int64_t skyPatches = 2;
-  double sunKlux = 128.0;       // direct normal illuminance above the atmosphere
-  double exposureKlux = 120.0;  // irradiance that maps to 1.0
+  std::int64_t skyDirections = 8;  // sky-factor sectors: 8 (the article's), 16 or 32
+  double sunKlux = 128.0;          // direct normal illuminance above the atmosphere
+  double exposureKlux = 120.0;     // irradiance that maps to 1.0
   bool multiplyAlbedo = false;
   std::int64_t skyWidth = 256;  // sky dome image: skyWidth x skyWidth / 2
   // Night: a dim bluish sky and, optionally, a full moon opposite the sun (normalised units).
@@ -81,7 +91,7 @@ struct Precomputed {
   SkyFactors sky;
 };
 
-Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool = nullptr);
+Precomputed precompute(Terrain terrain, int skyPatches, WorkerPool* pool = nullptr, int skyDirections = 8);
 
 // Sun visibility for horizon elevation `horizon`, disc centre elevation `centre`, angular
 // diameter `diameter` (radians): 1 below centre - d/2, 0 above centre + d/2; linear in between
@@ -93,6 +103,10 @@ double sunOcclusion(double horizon, double centre, double diameter, bool exactDi
 void relight(const Precomputed& pre, const FrameLighting& light, const float* keyHorizonTan, const CloudLayer& clouds,
              const DayCycleParams& params, FloatImage& lightmap, FloatImage* shadowMask = nullptr,
              WorkerPool* pool = nullptr);
+
+// Debug layer: max(0, N . L) per texel with the exact normals (not the palette's), single channel,
+// comparable with a GIS hillshade of the same light direction.
+void cosineLayer(const Precomputed& pre, const Dir3& light, FloatImage& out);
 
 // The sky dome: latitude-longitude over the upper hemisphere, width x width / 2; column 0 = north,
 // azimuth grows clockwise (east at a quarter of the width); row 0 = zenith, the last row = horizon.

@@ -52,6 +52,11 @@ Terrain readHeightfield(const std::string& path, double cellSize, double vertica
   return terrainFromMetres(info.width, info.height, metres, cellSize, path);
 }
 
+bool heightfieldHasFloatSamples(const std::string& path) {
+  const ImageReader in(path, "heightfield");
+  return in.info().stored != SampleType::UInt8 && in.info().stored != SampleType::UInt16;
+}
+
 FloatImage readColourMap(const std::string& path) {
   ImageReader in(path, "colour map");
   const int channels = in.info().channels;

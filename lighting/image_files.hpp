@@ -19,6 +19,9 @@ namespace vbim::lighting {
 // metres, so a 16-bit count is verticalScale / 65535 m); float samples are metres / verticalScale.
 Terrain readHeightfield(const std::string& path, double cellSize, double verticalScale);
 
+// True when the heightfield's samples are floating point (heights), false for integer counts.
+bool heightfieldHasFloatSamples(const std::string& path);
+
 // An RGB colour (albedo) map, linear. 8/16-bit files are taken as sRGB-encoded and linearised,
 // float files as linear. One channel is grey; a fourth channel (alpha) is ignored.
 FloatImage readColourMap(const std::string& path);

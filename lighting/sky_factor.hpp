@@ -26,11 +26,23 @@ namespace vbim::lighting {
 
 inline constexpr int kMaxSkyPatches = 8;
 
-int patchOfSector(int sector, int patches);  // floor(sector * patches / 8)
+int patchOfSector(int sector, int patches, int sectors = 8);  // floor(sector * patches / sectors)
 
 // K = I / pi for one texel from its 8 horizon codes and its unit normal, with both clamps.
 // `perPatch` (optional, `patches` entries) receives I_p / pi.
 double skyViewFactor(const std::uint16_t codes[8], const Vec3& normal, int patches = 1, double* perPatch = nullptr);
+
+// The same with `sectors` equal sectors (any count from 4): sector i is centred on azimuth
+// i * 2 pi / sectors and the z term of v_i is (pi / sectors) sin^2 phi. More sectors follow the
+// horizon more closely between the 8 grid directions (docs/lighting.md#sky-directions).
+double skyViewFactorSectors(const std::uint16_t* codes, int sectors, const Vec3& normal, int patches = 1,
+                            double* perPatch = nullptr);
+
+// Horizon codes for `sectors` directions (8, 16 or 32): the 8 grid directions come from `horizons`
+// exactly, the others from the per-texel ray sweep (lighting/ray_sweep.hpp) at azimuth
+// i * 2 pi / sectors. One vector of width * height codes per direction.
+std::vector<std::vector<std::uint16_t>> skyHorizons(const Terrain& terrain, const HorizonMaps& horizons, int sectors,
+                                                    WorkerPool* pool = nullptr);
 
 struct SkyFactors {
   int width = 0, height = 0, patches = 1;
@@ -40,5 +52,9 @@ struct SkyFactors {
 
 SkyFactors computeSkyFactors(const Terrain& terrain, const HorizonMaps& horizons, const std::vector<Vec3>& normals,
                              int patches, WorkerPool* pool = nullptr);
+
+// With 8, 16 or 32 sky directions (`lighting.sky_directions`); 8 is the function above.
+SkyFactors computeSkyFactors(const Terrain& terrain, const HorizonMaps& horizons, const std::vector<Vec3>& normals,
+                             int patches, int sectors, WorkerPool* pool = nullptr);
 
 }  // namespace vbim::lighting

@@ -95,6 +95,14 @@ void setAlbedo(Terrain& terrain, FloatImage albedo, const std::string& origin) {
   terrain.albedo = std::move(albedo);
 }
 
+void setBounceAlbedo(Terrain& terrain, FloatImage albedo, const std::string& origin) {
+  Terrain check;  // the same checks and clamp, without touching the terrain's own albedo
+  check.width = terrain.width;
+  check.height = terrain.height;
+  setAlbedo(check, std::move(albedo), origin);
+  terrain.bounceAlbedo = std::move(check.albedo);
+}
+
 std::vector<Vec3> terrainNormals(const Terrain& t) {
   std::vector<Vec3> n(t.texels());
   const double k = t.heightStep / t.cellSize;

@@ -32,6 +32,9 @@ struct Terrain {
   std::vector<std::int32_t> heights;  // width * height, row-major
   FloatImage albedo;                  // RGB, linear, width x height; empty = uniform `defaultAlbedo`
   float defaultAlbedo = 0.3f;         // assumption: typical vegetated terrain, 0.15-0.35
+  // Optional albedo of the terrain a texel sees, for the coloured bounce light of the Stewart-Langer
+  // term only (docs/lighting.md#interreflection); empty = the texel's own albedo.
+  FloatImage bounceAlbedo;
 
   std::int32_t at(int x, int y) const { return heights[static_cast<std::size_t>(y) * width + x]; }
   double metresAt(int x, int y) const { return at(x, y) * heightStep; }
@@ -39,6 +42,9 @@ struct Terrain {
   // Albedo of texel i, channel c (0..2).
   float albedoAt(std::size_t i, int c) const {
     return albedo.empty() ? defaultAlbedo : albedo.pixels[i * 3 + static_cast<std::size_t>(c)];
+  }
+  float bounceAlbedoAt(std::size_t i, int c) const {
+    return bounceAlbedo.empty() ? albedoAt(i, c) : bounceAlbedo.pixels[i * 3 + static_cast<std::size_t>(c)];
   }
 };
 
@@ -54,6 +60,8 @@ Terrain terrainFromCounts(int width, int height, const std::vector<std::uint32_t
 
 // Attaches an RGB albedo map; it must have the terrain's size and 3 channels, values finite.
 void setAlbedo(Terrain& terrain, FloatImage albedo, const std::string& origin);
+// The same for the bounce-light albedo (`Terrain::bounceAlbedo`).
+void setBounceAlbedo(Terrain& terrain, FloatImage albedo, const std::string& origin);
 
 // Unit surface normals in the (col, row, up) basis: N ~ (-dz/dcol, -dz/drow, 1) with central
 // differences (one-sided at the border) scaled by the cell size.

@@ -15,6 +15,8 @@ PACKAGES=(
   libopenimageio-dev libpng-dev libopenexr-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libmpeg2-4-dev
+  # DEMs (GeoTIFF, ASCII grid, SRTM .hgt) and GeoTIFF debug layers for the lighting generator
+  libgdal-dev
   # disc images
   libiso9660-dev libcdio-dev xorriso
   # pictures

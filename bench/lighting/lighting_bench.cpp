@@ -11,6 +11,7 @@
 #include "lighting/day_cycle.hpp"
 #include "lighting/horizon_scan.hpp"
 #include "lighting/procedural_terrain.hpp"
+#include "lighting/ray_sweep.hpp"
 #include "runtime/worker_pool.hpp"
 
 namespace vbim::lighting {
@@ -111,6 +112,35 @@ void BM_SunSweep512(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SunSweep512)->Arg(-170)->Arg(-120)->Arg(-90)->Unit(benchmark::kMicrosecond);
+
+// The per-texel ray sweep (lighting/ray_sweep.hpp): sizes 512 and 4096, one core.
+void BM_RaySweep(benchmark::State& state) {
+  const Terrain& t = terrain(static_cast<int>(state.range(0)));
+  std::vector<float> out(t.texels());
+  const double azimuth = state.range(1) * std::numbers::pi / 180.0;
+  for (auto _ : state) {
+    sweepRays(t, azimuth, out.data());
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+BENCHMARK(BM_RaySweep)
+    ->Args({512, -170})
+    ->Args({512, -120})
+    ->Args({512, -90})
+    ->Args({4096, -120})
+    ->Unit(benchmark::kMillisecond);
+
+// Sky factors with 8, 16 or 32 directions (lighting.sky_directions), horizons included.
+void BM_SkyDirections512(benchmark::State& state) {
+  const Terrain& t = terrain(512);
+  const std::vector<Vec3> normals = terrainNormals(t);
+  for (auto _ : state) {
+    const HorizonMaps h = computeHorizons(t);
+    SkyFactors s = computeSkyFactors(t, h, normals, 2, static_cast<int>(state.range(0)));
+    benchmark::DoNotOptimize(s.k.data());
+  }
+}
+BENCHMARK(BM_SkyDirections512)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
 
 void BM_Precompute512(benchmark::State& state) {
   for (auto _ : state) {

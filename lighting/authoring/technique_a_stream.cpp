@@ -8,6 +8,7 @@
 #include "lighting/authoring/authoring_record.hpp"
 #include "lighting/error.hpp"
 #include "lighting/image_files.hpp"
+#include "lighting/terrain_file.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring_record.hpp"
@@ -62,16 +63,24 @@ WeatherVariant weatherVariant(const std::string& name, const DayCycleParams& bas
   throw AuthoringError("unknown weather '" + name + "'; expected one of " + known + " (or NAME=FILE.toml)");
 }
 
-Terrain loadTerrain(const TerrainSource& src) {
+Terrain loadTerrain(const TerrainSource& src, std::vector<std::string>* notes) {
   try {
     Terrain t;
     if (src.heightfield.empty()) {
       t = proceduralTerrain(src.procedural);
       if (src.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
     } else {
-      t = lighting::readHeightfield(src.heightfield, src.cellSize, src.verticalScale);
+      TerrainFileOptions options;
+      options.pictureCellSize = src.cellSize;  // pictures keep these as they always did
+      options.pictureFullScale = src.verticalScale;
+      if (src.cellSizeGiven) options.cellSize = src.cellSize;
+      if (src.verticalScaleGiven) options.verticalScale = src.verticalScale;
+      TerrainFile file = loadTerrainFile(src.heightfield, options);
+      t = std::move(file.terrain);
+      if (notes != nullptr) *notes = std::move(file.notes);
     }
     if (!src.albedo.empty()) setAlbedo(t, lighting::readColourMap(src.albedo), src.albedo);
+    if (!src.bounceAlbedo.empty()) setBounceAlbedo(t, lighting::readColourMap(src.bounceAlbedo), src.bounceAlbedo);
     return t;
   } catch (const LightingError& e) {
     throw AuthoringError(e.what());
@@ -134,7 +143,8 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
       throw AuthoringError("variant '" + v.name + "': " + e.what());
     }
   }
-  const Terrain terrain = loadTerrain(s.terrain);
+  std::vector<std::string> terrainNotes;
+  const Terrain terrain = loadTerrain(s.terrain, &terrainNotes);
   const std::string origin = s.terrain.heightfield.empty() ? "procedural terrain" : s.terrain.heightfield;
   checkStreamSettings(s, terrain.width, terrain.height, origin);
   FloatImage cloudTexture;
@@ -183,6 +193,7 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
   out.descriptor = writer.descriptor();
   out.maxQscaleUsed = writer.maxQscaleUsed();
   out.containerStretch = writer.containerStretch();
+  out.terrainNotes = std::move(terrainNotes);
   return out;
 }
 

@@ -34,11 +34,17 @@ namespace vbim::lighting {
 
 // Where the terrain comes from.
 struct TerrainSource {
-  std::string heightfield;        // single-channel image (16-bit PNG, TIFF, EXR); empty: the procedural one
-  std::string albedo;             // optional colour map of the heightfield's size (the procedural terrain has its own)
-  std::string cloudTexture;       // optional single-channel density texture; enables clouds in every variant
-  double cellSize = 10.0;         // metres between samples
-  double verticalScale = 1000.0;  // metres at full scale (integer files) or per unit (float files)
+  std::string heightfield;   // single-channel image (16-bit PNG, TIFF, EXR); empty: the procedural one
+  std::string albedo;        // optional colour map of the heightfield's size (the procedural terrain has its own)
+  std::string bounceAlbedo;  // optional colour of the surroundings, for the bounce light only
+  std::string cloudTexture;  // optional single-channel density texture; enables clouds in every variant
+  // Metres between samples, and the vertical scale (metres at full scale for integer pictures, a
+  // multiplier for float pictures and DEMs). A DEM's own cell size and a float file's heights are
+  // used unless the matching *Given flag says the value was chosen (lighting/terrain_file.hpp).
+  double cellSize = 10.0;
+  double verticalScale = 1000.0;
+  bool cellSizeGiven = false;
+  bool verticalScaleGiven = false;
   ProceduralTerrainParams procedural;  // 512x512 by default, as `vbim lightmap`
 };
 
@@ -85,11 +91,13 @@ struct AuthoredStream {
   std::vector<std::uint8_t> bytes;  // the whole stream, 2048-byte packs
   streams::Descriptor descriptor;
   int maxQscaleUsed = 0;
-  std::uint32_t containerStretch = 1;  // StreamWriter::containerStretch()
+  std::uint32_t containerStretch = 1;     // StreamWriter::containerStretch()
+  std::vector<std::string> terrainNotes;  // what a terrain file said and what was overridden (for the user)
 };
 
-// Loads (or builds) the terrain, with its albedo. Throws streams::AuthoringError.
-Terrain loadTerrain(const TerrainSource& source);
+// Loads (or builds) the terrain, with its albedo. Throws streams::AuthoringError. `notes`
+// (optional) receives what the terrain file said (a DEM's cell size, units...) and any override.
+Terrain loadTerrain(const TerrainSource& source, std::vector<std::string>* notes = nullptr);
 
 // Checks everything that can be checked before any heavy work: every variant's settings in range,
 // equal frame counts and sky widths, frame sizes the encoder takes (multiples of 16, at most 4080),

@@ -7,6 +7,7 @@
 #include "lighting/azimuth_sweep.hpp"
 #include "lighting/fixed_angle.hpp"
 #include "lighting/horizon_scan.hpp"
+#include "lighting/ray_sweep.hpp"
 #include "runtime/worker_pool.hpp"
 #include "tests/lighting/test_terrains.hpp"
 
@@ -120,6 +121,52 @@ TEST(AzimuthSweep, FlatGroundHasAZeroHorizon) {
   const Terrain t = flatTerrain(16, 16);
   std::vector<float> tangent(t.texels(), 1.0f);
   sweepAzimuth(t, 0.9, tangent.data());
+  for (float v : tangent) EXPECT_EQ(v, 0.0f);
+}
+
+TEST(RaySweep, FastEqualsBruteForceExactlyAtAnyAzimuth) {
+  const Terrain t = randomTerrain(37, 26, 78, 500);
+  for (double a : {0.0, 0.3, std::numbers::pi / 4, 1.2, std::numbers::pi / 2, 2.5, std::numbers::pi, -0.7, -2.9,
+                   -std::numbers::pi / 2, 4.0, 0.01}) {
+    std::vector<float> fast(t.texels(), -1.0f), brute(t.texels(), -2.0f);
+    sweepRays(t, a, fast.data());
+    sweepRaysBruteForce(t, a, brute.data());
+    EXPECT_EQ(fast, brute) << "azimuth " << a;
+  }
+}
+
+TEST(RaySweep, ParallelEqualsSerialAndCoversEveryTexel) {
+  const Terrain t = randomTerrain(90, 70, 5, 800);
+  WorkerPool pool(2);
+  for (double a : {2.2, -0.4}) {
+    std::vector<float> x(t.texels(), -1.0f), y(t.texels(), -1.0f);
+    sweepRays(t, a, x.data());
+    sweepRays(t, a, y.data(), &pool);
+    EXPECT_EQ(x, y);
+    for (float v : x) EXPECT_GE(v, 0.0f);  // every texel written, zero clamp
+  }
+}
+
+// Along the grid axes every ray runs through texel centres: the same horizons as the exact grid scan.
+// On the diagonals the distance is the exact sqrt(2) cells (the sheared sweep's fixed-point
+// direction (2896, 2896) made it 1.1e-4 short).
+TEST(RaySweep, AgreesWithTheGridScanAlongAxesAndDiagonals) {
+  const Terrain t = randomTerrain(33, 33, 3, 2000);
+  for (int d = 0; d < kDirections; ++d) {
+    std::vector<std::uint16_t> grid(t.texels());
+    scanHorizon(t, d, grid.data());
+    std::vector<float> tangent(t.texels());
+    sweepRays(t, d * std::numbers::pi / 4, tangent.data());
+    for (std::size_t i = 0; i < t.texels(); ++i) {
+      EXPECT_LE(std::abs(codeFromTangent(tangent[i]) - grid[i]), 1) << "direction " << d << " texel " << i;
+    }
+  }
+}
+
+TEST(RaySweep, FlatGroundHasAZeroHorizon) {
+  const Terrain t = flatTerrain(16, 16);
+  std::vector<float> tangent(t.texels(), 1.0f);
+  sweepRays(t, 0.9, tangent.data());
   for (float v : tangent) EXPECT_EQ(v, 0.0f);
 }
 

@@ -7,12 +7,15 @@
 #include <OpenImageIO/imageio.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "tests/lighting/gdal_dems.hpp"
 #include "tests/lighting/oiio_scratch.hpp"
 
 namespace vbim::lighting {
@@ -41,14 +44,74 @@ Result runVbim(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
 }
 
+std::string readText(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A DEM in metres needs no option: its cell size and heights are the file's, and the debug layers
+// come back as GeoTIFF with its geotransform and SRS (read here with GDAL itself).
+TEST(LightmapCli, DemWithNoOptionsAndGeoTiffLayers) {
+  testing::DemSpec s;
+  s.width = 48;
+  s.height = 40;
+  s.values.resize(48 * 40);
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 48; ++x) s.values[static_cast<std::size_t>(y) * 48 + x] = 800.0f + 0.5f * x + 0.25f * y;
+  s.gt = {350000, 25, 0, 5100000, 0, -25};
+  s.epsg = 32631;
+  const fs::path dem = scratch("cli_dem.tif"), out = scratch("cli_dem_out"), log = scratch("cli_dem_stdout.txt");
+  testing::writeDem(dem, s);
+  fs::remove_all(out);
+  const std::string cmd = std::string(VBIM_BINARY) + " lightmap --terrain " + dem.string() +
+                          " --frames 1 --sky-width 16 --sun-azimuth 135 --sun-elevation 30 --debug all "
+                          "--layers-format tif --format tif --shadow-rays --out " +
+                          out.string() + " >" + log.string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << readText(log);
+  EXPECT_NE(readText(log).find("cell size 25 m from the file"), std::string::npos) << readText(log);
+  EXPECT_NE(readText(out / "frames.csv").find("0,4,30,135,sun"), std::string::npos) << readText(out / "frames.csv");
+
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32631);
+  for (const char* f :
+       {"sky_factor_K.tif", "horizon_SE_deg.tif", "shadow_0000.tif", "nl_0000.tif", "lightmap_0000.tif"}) {
+    GDALDataset* ds = GDALDataset::Open((out / f).string().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+    ASSERT_NE(ds, nullptr) << f;
+    std::array<double, 6> gt{};
+    ds->GetGeoTransform(gt.data());
+    EXPECT_EQ(gt, s.gt) << f;
+    ASSERT_NE(ds->GetSpatialRef(), nullptr) << f;
+    EXPECT_TRUE(ds->GetSpatialRef()->IsSame(&utm)) << f;
+    EXPECT_EQ(ds->GetRasterXSize(), 48) << f;
+    std::vector<float> v(48 * 40);
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 48, 40, v.data(), 48, 40, GDT_Float32, 0, 0, nullptr),
+              CE_None);
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    if (std::string(f) == "sky_factor_K.tif") {
+      // A gentle slope in metres sees nearly all the sky (a 1000x taller terrain would not).
+      EXPECT_GT(*lo, 0.95f);
+      EXPECT_LE(*hi, 1.0f);
+    }
+    if (std::string(f) == "nl_0000.tif") {
+      // Slope 0.02 up to the east, 0.01 up to the south, sun at 30 deg from the SE: N.L near sin 30.
+      EXPECT_NEAR(*lo, 0.5f, 0.02f);
+      EXPECT_NEAR(*hi, 0.5f, 0.02f);
+    }
+    GDALClose(ds);
+  }
+}
+
 TEST(LightmapCli, WritesFramesAndDebugLayers) {
   const fs::path out = scratch("cli_ok");
   fs::remove_all(out);
   const Result r =
-      runVbim("lightmap --size 32 --frames 3 --sky-width 16 --debug all --format both --out " + out.string());
+      runVbim("lightmap --size 32 --frames 3 --sky-width 16 --debug all --format both --sky-directions 16 --out " +
+              out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* f : {"lightmap_0000.png", "lightmap_0002.exr", "sky_0001.png", "shadow_0002.png", "horizon_NE.png",
-                        "horizon_S_deg.exr", "sky_factor_K.exr", "frames.csv"}) {
+                        "horizon_S_deg.exr", "sky_factor_K.exr", "nl_0001.exr", "frames.csv"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
   EXPECT_FALSE(fs::exists(out / "lightmap_0003.png"));
@@ -85,6 +148,11 @@ TEST(LightmapCli, BadInputGivesAClearMessageAndNonZeroExit) {
   expectFailure("lightmap --terrain " + hf.string() + " --albedo " + colour.string(),
                 "colour map is 8x6, expected the heightfield's size 8x8", out);
   expectFailure("lightmap --size 16 --debug nonsense", "unknown layer 'nonsense'", out);
+  expectFailure("lightmap --size 16 --sky-directions 12", "lighting.sky_directions = 12 must be 8, 16 or 32", out);
+  expectFailure("lightmap --size 16 --sun-elevation 95", "lighting.sun_elevation_deg = 95 is outside [-90, 90]", out);
+  expectFailure("lightmap --size 16 --layers-format png", "--layers-format must be exr or tif", out);
+  expectFailure("lightmap --terrain " + hf.string() + " --bounce-albedo " + colour.string(),
+                "cli_colour.png: colour map is", out);
   const fs::path toml = scratch("bad.toml");
   std::ofstream(toml) << "[lighting]\nlatitude_deg = 200\n";
   expectFailure("lightmap --size 16 --config " + toml.string(), "latitude_deg", out);

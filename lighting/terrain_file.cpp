@@ -1,0 +1,29 @@
+#include "lighting/terrain_file.hpp"
+
+#include "lighting/dem_reader.hpp"
+#include "lighting/image_files.hpp"
+
+namespace vbim::lighting {
+
+TerrainFile loadTerrainFile(const std::string& path, const TerrainFileOptions& options) {
+  TerrainFile f;
+  if (isGeoreferencedRaster(path)) {
+    Dem dem = readDem(path, {options.cellSize, options.verticalScale});
+    f.terrain = std::move(dem.terrain);
+    f.geo = std::move(dem.geo);
+    f.georeferenced = true;
+    f.notes = std::move(dem.notes);
+    return f;
+  }
+  const double cell = options.cellSize.value_or(options.pictureCellSize);
+  const bool floats = heightfieldHasFloatSamples(path);
+  // Float samples are heights in metres: they are not scaled unless asked (a DEM written as a plain
+  // float picture stays the right height).
+  const double scale = options.verticalScale.value_or(floats ? 1.0 : options.pictureFullScale);
+  f.terrain = readHeightfield(path, cell, scale);
+  f.geo = localGrid(cell);
+  if (floats && options.verticalScale) f.notes.push_back("float heights multiplied by --vertical-scale");
+  return f;
+}
+
+}  // namespace vbim::lighting
