@@ -36,7 +36,8 @@ IpuUnit::IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer, DecoderOption
 Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
   TimedPicture result;
   result.started = s_.now();
-  Job job;
+  const JobRef shared = std::make_shared<Job>(s_);
+  Job& job = *shared;
   result.report = decoder_.decode(bytes, nullptr, RgbaOutput{&job.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();
@@ -65,12 +66,11 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
   if (out.width != decoder_.width() || out.height != decoder_.height())
     out = Rgba8Image(decoder_.width(), decoder_.height());
   job.out = &out;
-  Event finished(s_);
-  job.finished = &finished;
-  co_await toIpuJobs_.push(&job);
-  co_await coreJobs_.push(&job);
-  co_await fromIpuJobs_.push(&job);
-  while (!job.done) co_await finished.wait();
+  co_await toIpuJobs_.push(shared);
+  co_await coreJobs_.push(shared);
+  co_await fromIpuJobs_.push(shared);
+  while (!job.done) co_await job.finished.wait();
+  job.out = nullptr;  // the caller's image: only fromIPU wrote it, and it is done
   result.finished = s_.now();
   result.outputStalls = job.stalls;
   co_return result;
@@ -78,7 +78,7 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
 
 Task<void> IpuUnit::toIpuLoop(IpuUnit& u) {
   for (;;) {
-    Job* job = co_await u.toIpuJobs_.pop();
+    const JobRef job = co_await u.toIpuJobs_.pop();
     for (std::uint32_t q = 0; q < job->inQwords; ++q) {
       co_await u.s_.delay(u.p_.toipu_cycles_per_qword);
       co_await u.in_.push(q);
@@ -88,7 +88,7 @@ Task<void> IpuUnit::toIpuLoop(IpuUnit& u) {
 
 Task<void> IpuUnit::coreLoop(IpuUnit& u) {
   for (;;) {
-    Job* job = co_await u.coreJobs_.pop();
+    const JobRef job = co_await u.coreJobs_.pop();
     co_await u.s_.delay(u.p_.idec_start_cycles);
     std::uint32_t pulled = 0;
     std::uint32_t q = 0;
@@ -129,7 +129,7 @@ Task<void> IpuUnit::coreLoop(IpuUnit& u) {
 
 Task<void> IpuUnit::fromIpuLoop(IpuUnit& u) {
   for (;;) {
-    Job* job = co_await u.fromIpuJobs_.pop();
+    const JobRef job = co_await u.fromIpuJobs_.pop();
     const std::uint32_t total = static_cast<std::uint32_t>(job->needQwords.size()) * kQwordsPerMacroblock;
     for (std::uint32_t n = 0; n < total; ++n) {
       const std::uint32_t q = co_await u.out_.pop();
@@ -137,7 +137,7 @@ Task<void> IpuUnit::fromIpuLoop(IpuUnit& u) {
       u.writeQword(*job, q);
     }
     job->done = true;
-    job->finished->notify();
+    job->finished.notify();
   }
 }
 
