@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/host_threads.hpp"
 #include "cli/output_dir.hpp"
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
@@ -91,7 +92,8 @@ void addDecode(CLI::App& app) {
   cmd->add_option("--format", o->format, "png (RGBA, GS alpha doubled), exr (half float) or yuv (planar 4:2:0)")
       ->check(CLI::IsMember({"png", "exr", "yuv"}));
   cmd->add_option("--stream-id", o->stream, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
-  cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)");
+  cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)")
+      ->check(hostThreads());
   cmd->add_option("--th0", o->th0, "SETTH TH0: pixels with R, G, B all below it become transparent black")
       ->check(CLI::Range(0, 511));
   cmd->add_option("--th1", o->th1, "SETTH TH1: pixels with R, G, B all below it get alpha 0x40")

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/host_threads.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
@@ -180,7 +181,9 @@ void addLightmap(CLI::App& app) {
   cmd->add_option("--config", o->config, "TOML file of lighting.* parameters (command-line values win)");
   cmd->add_option("--format", o->format, "png, exr or both")->default_val("png");
   cmd->add_option("--debug", o->debug, "Extra layers: horizons, sky (factor K), shadow (sun mask), or all");
-  cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")->default_val(2);
+  cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")
+      ->default_val(2)
+      ->check(hostThreads());
   cmd->add_option("--out", o->out, "Output directory (complete or absent)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing non-empty output directory");
   cmd->callback([o, given] {
