@@ -57,6 +57,19 @@ std::vector<std::string> hashColumn(const fs::path& p) {
   return out;
 }
 
+// A duration past the tick counter used to wrap ("played 19.8 s") or hang; now it is refused.
+TEST(PlayCli, DurationBeyondTheTickCounterIsRefused) {
+  const fs::path out = scratch("huge");
+  for (const char* d : {"125099989669s", "999999999999.999999999s"}) {
+    const auto r = play(kSample + " --duration " + d + " --out " + out.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(std::string("--duration '") + d + "': longer than the simulated clock can count"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
 TEST(PlayCli, WritesEveryFileAndPicturesMatchTheirHashes) {
   const fs::path out = scratch("run");
   const auto r = play(kSample + " --duration 10s --every 120 --out " + out.string());
