@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cli/command.hpp"
+#include "cli/host_threads.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
@@ -100,7 +101,9 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
                         "Variants: presets clear, overcast, or NAME=FILE.toml (lighting.* over the base), "
                         "comma-separated")
             ->capture_default_str());
-  track(cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")->default_val(2));
+  track(cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")
+            ->default_val(2)
+            ->check(hostThreads()));
 }
 
 std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o) {

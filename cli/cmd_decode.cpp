@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "iop/error.hpp"
@@ -113,7 +114,8 @@ void addDecode(CLI::App& app) {
       ->check(CLI::IsMember({"png", "exr", "yuv"}));
   cmd->add_option("--stream-id", o->stream, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
   cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(hostThreads());
   cmd->add_option("--th0", o->th0, "SETTH TH0: pixels with R, G, B all below it become transparent black")
       ->check(CLI::Range(0, 511));
   cmd->add_option("--th1", o->th1, "SETTH TH1: pixels with R, G, B all below it get alpha 0x40")

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/host_threads.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
@@ -242,7 +243,9 @@ void addLightmap(CLI::App& app) {
   cmd->add_option("--layers-format", o->layersFormat,
                   "Float debug layers as exr, or tif (GeoTIFF with the DEM's georeferencing)")
       ->default_val("exr");
-  cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")->default_val(2);
+  cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")
+      ->default_val(2)
+      ->check(hostThreads());
   cmd->add_option("--out", o->out, "Output directory (complete or absent)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing non-empty output directory");
   cmd->footer(

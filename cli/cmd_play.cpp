@@ -172,6 +172,16 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     ++images;
   });
 
+  // The trace streams to its files as the run goes (memory independent of the run's length).
+  std::ofstream traceJson;
+  std::ofstream traceVcd;
+  if (r.trace) {
+    traceJson.open(dir.path("trace.json"), std::ios::binary);
+    traceVcd.open(dir.path("signals.vcd"), std::ios::binary);
+    player->tracer().streamTo(traceJson, traceVcd,
+                              r.traceDetail == "full" ? TraceDetail::kFull : TraceDetail::kCoalesced);
+  }
+
   const auto wall0 = std::chrono::steady_clock::now();  // host time: the summary only
   const Tick step = fromMs(1'000);
   Progress bar("vbim play", "s");
@@ -189,10 +199,10 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     writeStatsJson(*player, f);
   }
   if (r.trace) {
-    std::ofstream t(dir.path("trace.json"), std::ios::binary);
-    player->tracer().writeChromeJson(t);
-    std::ofstream v(dir.path("signals.vcd"), std::ios::binary);
-    player->tracer().writeVcd(v);
+    player->tracer().finish();
+    traceJson.close();
+    traceVcd.close();
+    if (!traceJson || !traceVcd) throw Exit(1, dir.path("trace.json").string() + ": cannot write the trace files");
   }
   if (r.beforeCommit) r.beforeCommit(dir);
   dir.commit();
@@ -239,7 +249,11 @@ void addPlay(CLI::App& app) {
   cmd->add_option("--branch", r->branches, "Switch to a variant at a time: 12.5s=1 (repeatable)");
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
   cmd->add_flag_callback(
-      "--no-trace", [r] { r->trace = false; }, "Skip trace.json and signals.vcd (they grow with the run)");
+      "--no-trace", [r] { r->trace = false; }, "Skip trace.json and signals.vcd (written as the run goes)");
+  cmd->add_option("--trace-detail", r->traceDetail,
+                  "coalesced: signals.vcd keeps the value each signal ends an instant with; full: every change")
+      ->check(CLI::IsMember({"coalesced", "full"}))
+      ->capture_default_str();
   cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
   cmd->footer(
       "Examples:\n"

@@ -29,6 +29,7 @@ struct PlayRequest {
   std::vector<std::string> branches;  // "12.5s=1": switch to variant 1 at 12.5 s
   bool force = false;
   bool trace = true;
+  std::string traceDetail = "coalesced";  // or "full": every same-instant toggle in signals.vcd
   std::string out;
   // Hooks for callers that add outputs (vbim demo's profile plots): every recorded vsync, and the
   // output directory just before it is committed.

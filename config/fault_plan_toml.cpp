@@ -285,7 +285,7 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
         f.share = r.integer("share", 1, 99);
         f.period = r.has("period") ? r.time("period", true) : fromMs(100);
         f.lba = r.location(false);
-        if (f.period * f.share / 100 < 1) r.fail("period", "too short: a share of it must last at least one tick");
+        if (iop::contentionSlice(f) < 1) r.fail("period", "too short: a share of it must last at least one tick");
         if (f.period > f.duration) r.fail("period", "is longer than the contention's duration");
         break;
       case Fault::Kind::random_stall:

@@ -148,10 +148,10 @@ Task<void> Drive::execute(DriveCommand& c) {
 
 Task<void> Drive::waitOutStall() {
   for (;;) {
+    refreshStalls();
     Tick until = -1;
-    for (const Stall& st : stalls_) {
-      if (st.begin <= s_.now() && s_.now() < st.end) until = st.end;
-    }
+    auto it = stalls_.upper_bound(s_.now());
+    if (it != stalls_.begin() && s_.now() < std::prev(it)->second) until = std::prev(it)->second;
     if (until < 0) co_return;
     if (tracer_ != nullptr) tracer_->span(track_, s_.now(), until, "stall");
     stats_.stalled += until - s_.now();
@@ -165,13 +165,8 @@ Task<void> Drive::work(Tick d, std::string_view what) {
   Tick remaining = d;
   while (remaining > 0) {
     co_await waitOutStall();
-    Tick nextStall = kNever;
-    for (const Stall& st : stalls_) {
-      if (st.begin > s_.now()) {
-        nextStall = st.begin;
-        break;
-      }
-    }
+    const auto next = stalls_.upper_bound(s_.now());
+    const Tick nextStall = next == stalls_.end() ? kNever : next->first;
     const Tick step = std::min(remaining, nextStall - s_.now());
     const Tick begin = s_.now();
     co_await s_.delay(step);
@@ -180,10 +175,33 @@ Task<void> Drive::work(Tick d, std::string_view what) {
   }
 }
 
-Tick Drive::stallOverlap(Tick from, Tick to) const {
+Tick Drive::stallOverlap(Tick from, Tick to) {
+  refreshStalls();
   Tick sum = 0;
-  for (const Stall& st : stalls_) sum += std::max<Tick>(0, std::min(to, st.end) - std::max(from, st.begin));
+  auto it = stalls_.upper_bound(from);
+  if (it != stalls_.begin()) --it;
+  for (; it != stalls_.end() && it->first < to; ++it)
+    sum += std::max<Tick>(0, std::min(to, it->second) - std::max(from, it->first));
   return sum;
+}
+
+void Drive::refreshStalls() {
+  const Tick now = s_.now();
+  for (StallSeries& series : stallSeries_) {
+    while (!series.ended && series.lastBegin <= now) {
+      const std::optional<StallSpan> st = series.next();
+      if (!st) {
+        series.ended = true;
+        break;
+      }
+      series.lastBegin = st->begin;
+      addStall(st->begin, st->end);
+    }
+  }
+  // Queries look at the clock and after, and back to when the drive last went idle; a stall from
+  // a series always begins after the last query, so a forgotten one can never need merging.
+  const Tick horizon = std::min(now, lastEnd_);
+  while (!stalls_.empty() && stalls_.begin()->second < horizon) stalls_.erase(stalls_.begin());
 }
 
 std::int64_t Drive::readAheadSectors(Tick idle) const {
@@ -316,17 +334,23 @@ Task<void> Drive::executeRead(DriveCommand& c) {
 
 void Drive::addStall(Tick begin, Tick end) {
   if (end <= begin) return;
-  stalls_.push_back(Stall{begin, end});
-  std::sort(stalls_.begin(), stalls_.end(), [](const Stall& a, const Stall& b) { return a.begin < b.begin; });
-  std::vector<Stall> merged;
-  for (const Stall& st : stalls_) {
-    if (!merged.empty() && st.begin <= merged.back().end) {
-      merged.back().end = std::max(merged.back().end, st.end);
-    } else {
-      merged.push_back(st);
-    }
+  // Merge with every stored stall it overlaps or touches: the one before it, and those after.
+  auto it = stalls_.upper_bound(begin);
+  if (it != stalls_.begin() && std::prev(it)->second >= begin) {
+    --it;
+    begin = it->first;
+    end = std::max(end, it->second);
+    it = stalls_.erase(it);
   }
-  stalls_.swap(merged);
+  while (it != stalls_.end() && it->first <= end) {
+    end = std::max(end, it->second);
+    it = stalls_.erase(it);
+  }
+  stalls_.emplace_hint(it, begin, end);
+}
+
+void Drive::addStallSeries(std::function<std::optional<StallSpan>()> next) {
+  stallSeries_.push_back(StallSeries{std::move(next)});
 }
 
 void Drive::addSectorFault(std::int64_t lba, std::int64_t attempts, Tick from) {

@@ -13,8 +13,11 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
+#include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,8 +79,17 @@ class Drive {
   // sceCdSync(0): resumes when the drive has nothing running or queued.
   Task<void> sync();
 
-  // Fault hooks (see iop/fault_plan.hpp). Stalls may overlap; they are merged.
+  // Fault hooks (see iop/fault_plan.hpp). Stalls may overlap; they are merged (log time each).
   void addStall(Tick begin, Tick end);
+  // A series of stalls generated as the clock reaches them (random_stall): `next` returns them in
+  // increasing begin order, or nothing when the series ends. The drive asks for the next one once
+  // the clock has reached the begin of the last it got, so it always knows the next stall ahead
+  // of it and memory stays bounded by what is still ahead.
+  struct StallSpan {
+    Tick begin;
+    Tick end;
+  };
+  void addStallSeries(std::function<std::optional<StallSpan>()> next);
   // The sector at `lba` fails its next `attempts` read attempts, counted from time `from`.
   void addSectorFault(std::int64_t lba, std::int64_t attempts, Tick from = 0);
   // Between from and to, each sector read fails with probability ppm / 1e6, for `attempts` attempts.
@@ -98,9 +110,10 @@ class Drive {
   Process& process() { return *proc_; }
 
  private:
-  struct Stall {
-    Tick begin;
-    Tick end;
+  struct StallSeries {
+    std::function<std::optional<StallSpan>()> next;
+    Tick lastBegin = std::numeric_limits<Tick>::min();
+    bool ended = false;
   };
   struct RandomErrors {
     Tick from;
@@ -120,7 +133,8 @@ class Drive {
   Task<void> waitOutStall();
   void finish(DriveCommand& c);
   std::int64_t readAheadSectors(Tick idle) const;
-  Tick stallOverlap(Tick from, Tick to) const;
+  Tick stallOverlap(Tick from, Tick to);
+  void refreshStalls();  // pulls the series up to the clock, forgets stalls no query can reach
   bool attemptFails(std::int64_t lba);
   std::int64_t maxRetries() const { return p_.retry_count == 0 ? 256 : p_.retry_count; }
 
@@ -138,10 +152,11 @@ class Drive {
   std::deque<std::shared_ptr<DriveCommand>> queue_;
   std::shared_ptr<DriveCommand> running_;
   bool spinning_;
-  std::int64_t head_ = 0;      // next sector under the head after the last read
-  bool headValid_ = false;     // read-ahead continues from head_ only after a read
-  Tick lastEnd_ = 0;           // when the drive last went idle
-  std::vector<Stall> stalls_;  // sorted, disjoint
+  std::int64_t head_ = 0;        // next sector under the head after the last read
+  bool headValid_ = false;       // read-ahead continues from head_ only after a read
+  Tick lastEnd_ = 0;             // when the drive last went idle
+  std::map<Tick, Tick> stalls_;  // begin -> end: disjoint, touching ones merged
+  std::vector<StallSeries> stallSeries_;
   std::map<std::int64_t, SectorFault> sectorFaults_;
   std::vector<RandomErrors> randomErrors_;
   DriveStats stats_;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
+#include <optional>
+#include <queue>
 #include <set>
 #include <sstream>
 
@@ -33,7 +36,9 @@ const char* toString(Fault::Kind k) {
 Tick parseDuration(std::string_view text) {
   std::size_t i = 0;
   if (!text.empty() && text[0] == '-') throw std::invalid_argument("a time cannot be negative");
-  std::int64_t num = 0;
+  // 12 integer digits and 9 decimals do not fit an int64 numerator: count in 128 bits and refuse
+  // what the 64-bit tick counter cannot hold (it used to wrap, or hang the run).
+  __int128 num = 0;
   std::int64_t den = 1;
   int intDigits = 0;
   int fracDigits = 0;
@@ -60,28 +65,73 @@ Tick parseDuration(std::string_view text) {
     throw std::invalid_argument(unit.empty() ? "missing unit (s, ms or us)"
                                              : "unknown unit '" + std::string(unit) + "' (expected s, ms or us)");
   }
-  return fromSecondsRational(num, den);
+  const __int128 ticks = (2 * num * kBusHz + den) / (2 * static_cast<__int128>(den));  // nearest tick
+  if (ticks > kMaxTime) {
+    throw std::invalid_argument("longer than the simulated clock can count (at most " +
+                                std::to_string(kMaxTime / kBusHz) + "s)");
+  }
+  return static_cast<Tick>(ticks);
+}
+
+Tick contentionSlice(const Fault& f) {
+  return static_cast<Tick>(static_cast<__int128>(f.period) * f.share / 100);  // period may be near kMaxTime
 }
 
 namespace {
 
-struct ForeignEvent {
-  Tick at;
-  std::shared_ptr<DriveCommand> cmd;
+// One entry's commands of another IOP client, made as the clock reaches them: a seek_away is one
+// command, a contention entry one hold slice per period.
+struct ForeignSeries {
+  Fault fault;
+  Tick next;  // time of the next command
 };
 
-// Another IOP client: at each event's time it waits for the drive and issues its command.
-Task<void> foreignClient(Scheduler& s, Drive& drive, std::vector<ForeignEvent> events) {
-  for (ForeignEvent& e : events) {
-    co_await s.until(e.at);
-    drive.enqueue(e.cmd);
+std::shared_ptr<DriveCommand> foreignCommand(const Fault& f) {
+  auto c = std::make_shared<DriveCommand>();
+  c->foreign = true;
+  c->lsn = f.lba;
+  if (f.kind == Fault::Kind::seek_away) {
+    c->sectors = f.sectors;
+  } else {
+    c->kind = DriveCommand::Kind::hold;
+    c->holdFor = contentionSlice(f);
   }
+  return c;
+}
+
+// Another IOP client: at each command's time it waits for the drive and issues the command. The
+// series are merged by time, ties in plan order (a heap of one entry per series: log time per
+// command, memory per entry, not per command).
+Task<void> foreignClient(Scheduler& s, Drive& drive, std::vector<ForeignSeries> series) {
+  using Head = std::pair<Tick, std::size_t>;  // (time, index in plan order)
+  std::priority_queue<Head, std::vector<Head>, std::greater<>> heads;
+  for (std::size_t i = 0; i < series.size(); ++i) heads.emplace(series[i].next, i);
+  while (!heads.empty()) {
+    const auto [at, i] = heads.top();
+    heads.pop();
+    co_await s.until(at);
+    const Fault& f = series[i].fault;
+    drive.enqueue(foreignCommand(f));
+    if (f.kind == Fault::Kind::contention && at + f.period < f.at + f.duration) heads.emplace(at + f.period, i);
+  }
+}
+
+// random_stall: gaps uniform in [0, 2 x mean) drawn from this entry's own stream, one stall at a
+// time as the drive asks for it.
+std::function<std::optional<Drive::StallSpan>()> randomStalls(const Fault& f, Rng r) {
+  return [f, r, t = f.at]() mutable -> std::optional<Drive::StallSpan> {
+    t += static_cast<Tick>(r.below(static_cast<std::uint64_t>(2 * f.meanInterval)));
+    if (t >= f.at + f.duration) return std::nullopt;
+    const Drive::StallSpan st{t, t + f.stallLength};
+    t += f.stallLength;
+    return st;
+  };
 }
 
 }  // namespace
 
 void applyFaults(Scheduler& s, Drive& drive, const FaultPlan& plan, Rng rng) {
-  std::vector<ForeignEvent> events;
+  std::vector<ForeignSeries> foreign;
   int index = 0;
   for (const Fault& f : plan.faults) {
     ++index;
@@ -95,41 +145,16 @@ void applyFaults(Scheduler& s, Drive& drive, const FaultPlan& plan, Rng rng) {
       case Fault::Kind::random_error:
         drive.addRandomErrors(f.at, f.at + f.duration, f.perMillion, f.attempts);
         break;
-      case Fault::Kind::random_stall: {
-        // Gaps uniform in [0, 2 x mean): integer draws from this entry's own stream.
-        Rng r = rng.fork("faults.random_stall." + std::to_string(index));
-        Tick t = f.at;
-        for (;;) {
-          t += static_cast<Tick>(r.below(static_cast<std::uint64_t>(2 * f.meanInterval)));
-          if (t >= f.at + f.duration) break;
-          drive.addStall(t, t + f.stallLength);
-          t += f.stallLength;
-        }
+      case Fault::Kind::random_stall:
+        drive.addStallSeries(randomStalls(f, rng.fork("faults.random_stall." + std::to_string(index))));
         break;
-      }
-      case Fault::Kind::seek_away: {
-        auto c = std::make_shared<DriveCommand>();
-        c->lsn = f.lba;
-        c->sectors = f.sectors;
-        c->foreign = true;
-        events.push_back({f.at, c});
-        break;
-      }
+      case Fault::Kind::seek_away:
       case Fault::Kind::contention:
-        for (Tick t = f.at; t < f.at + f.duration; t += f.period) {
-          auto c = std::make_shared<DriveCommand>();
-          c->kind = DriveCommand::Kind::hold;
-          c->holdFor = f.period * f.share / 100;
-          c->lsn = f.lba;
-          c->foreign = true;
-          events.push_back({t, c});
-        }
+        if (f.kind == Fault::Kind::seek_away || f.duration > 0) foreign.push_back({f, f.at});
         break;
     }
   }
-  std::stable_sort(events.begin(), events.end(),
-                   [](const ForeignEvent& a, const ForeignEvent& b) { return a.at < b.at; });
-  if (!events.empty()) s.spawn("faults", foreignClient(s, drive, std::move(events)));
+  if (!foreign.empty()) s.spawn("faults", foreignClient(s, drive, std::move(foreign)));
 }
 
 }  // namespace vbim::iop

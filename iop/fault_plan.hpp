@@ -51,13 +51,22 @@ struct FaultPlan {
 
 const char* toString(Fault::Kind k);
 
+// The longest time a plan, a duration or an instant may give: 10^10 s (317 years). Sums of a few
+// such times (from + duration, the lead before playback, a stall after it) stay far below the
+// largest tick count (2^63 - 1 ticks = 6.2 x 10^10 s).
+inline constexpr Tick kMaxTime = 10'000'000'000 * kBusHz;
+
 // Parses "12.5s", "800ms", "250us" into ticks (nearest tick, integer arithmetic). Throws
-// std::invalid_argument with the reason.
+// std::invalid_argument with the reason, also for a time longer than kMaxTime.
 Tick parseDuration(std::string_view text);
 
+// A contention entry's slice of each period: period x share / 100, in 128 bits.
+Tick contentionSlice(const Fault& f);
+
 // Arms the plan on a drive: stalls and sector faults become drive hooks; random stalls are drawn
-// now from `rng` (a fork of the run seed); seek-aways and contention slices are issued by a
-// process named "faults" as another IOP client would.
+// from `rng` (a fork of the run seed) as the clock reaches them; seek-aways and contention slices
+// are issued, as the clock reaches them, by a process named "faults" as another IOP client would.
+// Cost: memory per plan entry and time per fault that falls in the simulated time played.
 void applyFaults(Scheduler& s, Drive& drive, const FaultPlan& plan, Rng rng);
 
 }  // namespace vbim::iop

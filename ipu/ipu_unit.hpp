@@ -56,7 +56,12 @@ class IpuUnit {
   const Decoder& decoder() const { return decoder_; }
 
  private:
+  // One command's data. The three loops share it: decode() returns when the output is in memory,
+  // but toIPU may still be moving, and the core dropping, input after the last macroblock (stuffing,
+  // or the rest of a picture whose last macroblocks were concealed), so each loop holds the job
+  // until it is done with it.
   struct Job {
+    explicit Job(Scheduler& s) : finished(s) {}
     std::uint32_t inQwords = 0;
     // Per macroblock in output order: input qwords needed before it can start, and its bits.
     std::vector<std::uint32_t> needQwords;
@@ -66,8 +71,9 @@ class IpuUnit {
     Rgba8Image* out = nullptr;
     std::int64_t stalls = 0;
     bool done = false;
-    Event* finished = nullptr;
+    Event finished;
   };
+  using JobRef = std::shared_ptr<Job>;
   static Task<void> toIpuLoop(IpuUnit& u);
   static Task<void> coreLoop(IpuUnit& u);
   static Task<void> fromIpuLoop(IpuUnit& u);
@@ -78,9 +84,9 @@ class IpuUnit {
   Tracer* tracer_;
   Tracer::TrackId track_ = 0;
   Decoder decoder_;
-  Fifo<Job*> toIpuJobs_;
-  Fifo<Job*> coreJobs_;
-  Fifo<Job*> fromIpuJobs_;
+  Fifo<JobRef> toIpuJobs_;
+  Fifo<JobRef> coreJobs_;
+  Fifo<JobRef> fromIpuJobs_;
   Fifo<std::uint32_t> in_;
   Fifo<std::uint32_t> out_;
   Process* toIpu_ = nullptr;

@@ -78,6 +78,7 @@ void Player::onVsync(std::int64_t n) {
   if (row.lightmap.behind) ++totals_.behindVsyncs;
   if (tracer_.enabled() && ref_) tracer_.value(lagCounter_, row.at, row.lag);
   if (sink_) sink_(row, lm.lightmap(), sky ? &sky->lightmap() : nullptr);
+  tracer_.advance(row.at);  // a streamed trace writes what is now final
   last_ = std::move(row);
 }
 

@@ -2,7 +2,7 @@
 // fault plan is not empty, a fault-free reference pipeline with the same seed beside it, so the lag
 // of every vsync is exact), and records every vsync: a 64-bit hash of the lightmap and sky, the
 // presenters' records, pop, lag and ring occupancy. Rows stream to a sink as they happen, so memory
-// does not grow with the run's length (the trace does, when enabled).
+// does not grow with the run's length (nor does the trace when it is streamed to files).
 #pragma once
 
 #include <cstdint>
@@ -97,6 +97,7 @@ class Player {
   bool hasReference() const { return ref_ != nullptr; }
   Pipeline* reference() { return ref_.get(); }
   const Tracer& tracer() const { return tracer_; }
+  Tracer& tracer() { return tracer_; }  // e.g. to stream it to files (Tracer::streamTo) before the run
   const Scheduler& scheduler() const { return sched_; }
   const RunTotals& totals() const { return totals_; }
   const std::optional<VsyncRow>& lastRow() const { return last_; }

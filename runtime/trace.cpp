@@ -2,56 +2,42 @@
 
 #include <algorithm>
 #include <ostream>
+#include <stdexcept>
 
 #include "runtime/json.hpp"
 
 namespace vbim {
 
-namespace {
+using namespace trace_format;
 
-std::string micros(Tick t) {
-  char buf[40];
-  formatMicros(t, buf, sizeof buf);
-  return buf;
+Tracer::~Tracer() = default;
+
+void Tracer::streamTo(std::ostream& json, std::ostream& vcd, TraceDetail detail, Tick window) {
+  if (!enabled_) return;
+  stream_ = std::make_unique<TraceStream>(json, vcd, detail, window);
+  detail_ = detail;
+  headerWritten_ = false;
 }
 
-// VCD time unit is 1 ps; one tick is 6,781.9 ps, so distinct ticks stay distinct.
-long long vcdPicoseconds(Tick t) {
-  const __int128 a = static_cast<__int128>(t) * 1'000'000'000;  // ps = t * 1e12 / 147456000
-  return static_cast<long long>((a + 73'728) / 147'456);
-}
-
-// VCD identifier codes: printable ASCII 33..126, base 94.
-std::string vcdId(std::size_t n) {
-  std::string id;
-  do {
-    id.push_back(static_cast<char>(33 + n % 94));
-    n /= 94;
-  } while (n != 0);
-  return id;
-}
-
-std::string vcdName(std::string s) {
-  for (char& c : s) {
-    if (c == ' ' || c == '\t') c = '_';
+TraceStream* Tracer::live() {
+  if (!stream_) return nullptr;
+  if (!headerWritten_) {
+    headerWritten_ = true;
+    stream_->header(tracks_, counters_, labels_);
   }
-  return s;
+  return stream_.get();
 }
 
-std::string binary(std::int64_t v) {
-  auto u = static_cast<std::uint64_t>(v);
-  std::string s;
-  do {
-    s.push_back(static_cast<char>('0' + (u & 1)));
-    u >>= 1;
-  } while (u != 0);
-  std::reverse(s.begin(), s.end());
-  return s;
+void Tracer::advance(Tick now) {
+  if (TraceStream* st = live()) st->advance(now);
 }
 
-}  // namespace
+void Tracer::finish() {
+  if (TraceStream* st = live()) st->finish();
+}
 
 Tracer::TrackId Tracer::track(std::string name) {
+  if (headerWritten_) throw std::logic_error("Tracer::track('" + name + "') after the trace stream started");
   tracks_.push_back(std::move(name));
   open_.emplace_back();
   lastSpan_.push_back(static_cast<std::size_t>(-1));
@@ -59,6 +45,7 @@ Tracer::TrackId Tracer::track(std::string name) {
 }
 
 Tracer::CounterId Tracer::counter(std::string name) {
+  if (headerWritten_) throw std::logic_error("Tracer::counter('" + name + "') after the trace stream started");
   counters_.push_back(std::move(name));
   last_.push_back(0);
   hasLast_.push_back(false);
@@ -70,12 +57,17 @@ std::uint32_t Tracer::intern(std::string_view s) {
     if (labels_[i] == s) return static_cast<std::uint32_t>(i);
   }
   labels_.emplace_back(s);
+  if (stream_ && headerWritten_) stream_->labelAdded(s);
   return static_cast<std::uint32_t>(labels_.size() - 1);
 }
 
 void Tracer::span(TrackId track, Tick b, Tick e, std::string_view what) {
   if (!enabled_ || e < b) return;
   const std::uint32_t label = intern(what);
+  if (TraceStream* st = live()) {
+    st->span(track, b, e, label);
+    return;
+  }
   const std::size_t last = lastSpan_[track];
   if (last != static_cast<std::size_t>(-1)) {
     Span& prev = spans_[last];
@@ -102,7 +94,12 @@ void Tracer::end(TrackId track, Tick t) {
 
 void Tracer::instant(TrackId track, Tick t, std::string_view what) {
   if (!enabled_) return;
-  spans_.push_back(Span{track, t, t, intern(what), true});
+  const std::uint32_t label = intern(what);
+  if (TraceStream* st = live()) {
+    st->instant(track, t, label);
+    return;
+  }
+  spans_.push_back(Span{track, t, t, label, true});
 }
 
 void Tracer::value(CounterId c, Tick t, std::int64_t v) {
@@ -110,10 +107,15 @@ void Tracer::value(CounterId c, Tick t, std::int64_t v) {
   if (hasLast_[c] && last_[c] == v) return;
   hasLast_[c] = true;
   last_[c] = v;
+  if (TraceStream* st = live()) {
+    st->value(c, t, v);
+    return;
+  }
   samples_.push_back(Sample{c, t, v});
 }
 
 Tick Tracer::busyTime(TrackId track, Tick from, Tick to) const {
+  if (stream_) return headerWritten_ ? stream_->busyTime(track, from, to) : 0;
   Tick sum = 0;
   for (const Span& s : spans_) {
     if (s.track != track || s.instant) continue;
@@ -149,16 +151,16 @@ void Tracer::writeChromeJson(std::ostream& out) const {
   for (const Span& s : spans_) {
     sep();
     if (s.instant) {
-      out << R"({"name":)" << quoted[s.label] << R"(,"ph":"i","s":"t","pid":1,"tid":)" << s.track + 1 << R"(,"ts":)"
-          << micros(s.begin) << "}";
+      out << R"({"name":)" << quoted[s.label] << R"(,"ph":"i","pid":1,"tid":)" << s.track + 1 << R"(,"ts":)"
+          << micros(nanos(s.begin)) << "}";
     } else {
       out << R"({"name":)" << quoted[s.label] << R"(,"ph":"X","pid":1,"tid":)" << s.track + 1 << R"(,"ts":)"
-          << micros(s.begin) << R"(,"dur":)" << micros(s.end - s.begin) << "}";
+          << micros(nanos(s.begin)) << R"(,"dur":)" << micros(nanos(s.end) - nanos(s.begin)) << "}";
     }
   }
   for (const Sample& s : samples_) {
     sep();
-    out << R"({"name":)" << json::quote(counters_[s.counter]) << R"(,"ph":"C","pid":1,"ts":)" << micros(s.t)
+    out << R"({"name":)" << json::quote(counters_[s.counter]) << R"(,"ph":"C","pid":1,"ts":)" << micros(nanos(s.t))
         << R"(,"args":{"value":)" << s.v << "}}";
   }
   out << "\n]}\n";

@@ -5,11 +5,13 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "runtime/clock.hpp"
+#include "runtime/trace_stream.hpp"
 
 namespace vbim {
 
@@ -19,6 +21,9 @@ class Tracer {
   using CounterId = std::uint32_t;
 
   explicit Tracer(bool enabled = true) : enabled_(enabled) {}
+  Tracer(Tracer&&) = default;
+  Tracer& operator=(Tracer&&) = default;
+  ~Tracer();
   bool enabled() const { return enabled_; }
 
   // A row of busy spans: one per component ("drive", "sif", "ipu", ...).
@@ -37,11 +42,27 @@ class Tracer {
   // A zero-length marker on a track ("stall", "underrun").
   void instant(TrackId track, Tick t, std::string_view what);
 
+  // In memory (the default): every record is kept until one of these writes the whole trace.
   void writeChromeJson(std::ostream& out) const;
   void writeVcd(std::ostream& out) const;
 
-  std::size_t spanCount() const { return spans_.size(); }
-  // Sum of span lengths on a track within [from, to).
+  // Streaming (runtime/trace_stream.hpp): records go to `json` and `vcd` as they become final and
+  // are not kept, so memory does not grow with the run. Call before the first record, with every
+  // track and counter created; then advance(now) as the clock moves (VCD changes more than
+  // `window` before it are written) and finish() at the end. The streams must outlive the Tracer's
+  // use of them.
+  void streamTo(std::ostream& json, std::ostream& vcd, TraceDetail detail = TraceDetail::kCoalesced,
+                Tick window = fromMs(10'000));
+  void advance(Tick now);
+  void finish();
+  bool streaming() const { return stream_ != nullptr; }
+  // kFull in memory; streamTo's choice when streaming. Components may record coarser spans when
+  // it is kCoalesced (the IPU: one span per busy stretch instead of two per macroblock).
+  TraceDetail detail() const { return detail_; }
+  const TraceStream* stream() const { return stream_.get(); }
+
+  std::size_t spanCount() const { return spans_.size(); }  // in memory only
+  // Sum of span lengths on a track within [from, to) (streaming: see TraceStream::busyTime).
   Tick busyTime(TrackId track, Tick from, Tick to) const;
 
  private:
@@ -62,6 +83,7 @@ class Tracer {
     std::uint32_t label = 0;
   };
   std::uint32_t intern(std::string_view s);
+  TraceStream* live();  // the stream, its header written; null when in memory
 
   bool enabled_;
   std::vector<std::string> tracks_;
@@ -73,6 +95,9 @@ class Tracer {
   std::vector<std::string> labels_;
   std::vector<Span> spans_;
   std::vector<Sample> samples_;
+  std::unique_ptr<TraceStream> stream_;
+  bool headerWritten_ = false;
+  TraceDetail detail_ = TraceDetail::kFull;
 };
 
 }  // namespace vbim

@@ -1,13 +1,32 @@
 #include "runtime/worker_pool.hpp"
 
+#include <string>
+#include <system_error>
+
+#include "runtime/error.hpp"
+
 namespace vbim {
 
+// A thread the host cannot start (thread or memory limits) is an error the caller reports: the
+// threads already running are stopped and joined first (destroying a joinable std::thread would
+// call std::terminate).
 WorkerPool::WorkerPool(unsigned threads, std::chrono::microseconds spin) : spin_(spin) {
   workers_.reserve(threads);
-  for (unsigned i = 0; i < threads; ++i) workers_.emplace_back([this] { workerLoop(); });
+  try {
+    for (unsigned i = 0; i < threads; ++i) workers_.emplace_back([this] { workerLoop(); });
+  } catch (const std::system_error& e) {
+    const std::size_t started = workers_.size();
+    stop();
+    throw Error("cannot start host thread " + std::to_string(started + 1) + " of " + std::to_string(threads) + ": " +
+                e.what() + " (use fewer threads, or raise the process or memory limit)");
+  }
 }
 
 WorkerPool::~WorkerPool() {
+  stop();
+}
+
+void WorkerPool::stop() {
   {
     std::lock_guard lock(mu_);
     stopping_ = true;
@@ -15,6 +34,7 @@ WorkerPool::~WorkerPool() {
   }
   work_.notify_all();
   for (auto& t : workers_) t.join();
+  workers_.clear();
 }
 
 std::shared_ptr<WorkerPool::Batch> WorkerPool::submit(std::size_t count, std::function<void(std::size_t)> fn) {

@@ -50,6 +50,7 @@ class WorkerPool {
 
   // threads = number of host threads besides the caller; 0 runs everything on the caller.
   // spin = how long an idle thread (or a waiting caller) polls before it sleeps; 0 never polls.
+  // Throws vbim::Error (runtime/error.hpp) if the host cannot start one of the threads.
   explicit WorkerPool(unsigned threads, std::chrono::microseconds spin = kDefaultSpin);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
@@ -63,6 +64,7 @@ class WorkerPool {
   void parallelFor(std::size_t count, std::function<void(std::size_t)> fn);
 
  private:
+  void stop();  // wakes and joins every worker
   bool runOne(std::unique_lock<std::mutex>& lock);
   void workerLoop();
   template <class Ready>

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -55,6 +56,45 @@ std::vector<std::string> hashColumn(const fs::path& p) {
     out.push_back(hash);
   }
   return out;
+}
+
+// A duration past the tick counter used to wrap ("played 19.8 s") or hang; now it is refused.
+TEST(PlayCli, DurationBeyondTheTickCounterIsRefused) {
+  const fs::path out = scratch("huge");
+  for (const char* d : {"125099989669s", "999999999999.999999999s"}) {
+    const auto r = play(kSample + " --duration " + d + " --out " + out.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(std::string("--duration '") + d + "': longer than the simulated clock can count"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The trace is streamed; by default the ipu track has one span per busy stretch and signals.vcd
+// leaves out same-instant toggles. --trace-detail full keeps both; the hashes do not depend on it.
+TEST(PlayCli, TraceDetailFullKeepsMacroblockSpansAndEveryToggle) {
+  const fs::path a = scratch("coarse");
+  const fs::path b = scratch("full");
+  ASSERT_EQ(play(kSample + " --duration 3s --out " + a.string()).status, 0);
+  ASSERT_EQ(play(kSample + " --duration 3s --trace-detail full --out " + b.string()).status, 0);
+  const std::string coarse = slurp(a / "trace.json");
+  const std::string full = slurp(b / "trace.json");
+  EXPECT_NE(coarse.find(R"("name":"decode","ph":"X")"), std::string::npos);
+  EXPECT_EQ(coarse.find(R"("name":"idec")"), std::string::npos);
+  EXPECT_NE(full.find(R"("name":"idec","ph":"X")"), std::string::npos);
+  EXPECT_LT(fs::file_size(a / "signals.vcd"), fs::file_size(b / "signals.vcd"));
+  EXPECT_EQ(slurp(a / "hashes.txt"), slurp(b / "hashes.txt"));
+  EXPECT_EQ(full.substr(full.size() - 4), "\n]}\n");
+  const auto r = play(kSample + " --duration 3s --trace-detail some --out " + a.string() + "x");
+  EXPECT_EQ(r.status, 2) << r.output;
+  fs::remove_all(a);
+  fs::remove_all(b);
 }
 
 TEST(PlayCli, WritesEveryFileAndPicturesMatchTheirHashes) {

@@ -267,5 +267,51 @@ TEST(FaultPlan, DocumentedExamplesParse) {
   EXPECT_EQ(blocks, 4);
 }
 
+// Times the 64-bit tick counter cannot hold were wrapped (a 10^11 s `at` was accepted) or, with
+// 21 digits, overflowed the parser's numerator; now they are refused with the limit.
+TEST(FaultPlan, TimesBeyondTheTickCounterAreRefused) {
+  const std::string e = errorOf("[[fault]]\nkind = \"stall\"\nat = \"99999999999s\"\nduration = \"1s\"\n");
+  EXPECT_NE(e.find("plan.toml:3: fault 'stall', field 'at': '99999999999s' is not a valid time: longer than the "
+                   "simulated clock can count (at most 10000000000s)"),
+            std::string::npos)
+      << e;
+  EXPECT_THROW(parseDuration("999999999999.999999999s"), std::invalid_argument);
+  EXPECT_THROW(parseDuration("125099989669s"), std::invalid_argument);
+  EXPECT_EQ(parseDuration("10000000000s"), kMaxTime);
+  EXPECT_THROW(parseDuration("10000000000.00000001s"), std::invalid_argument);  // one tick more
+  EXPECT_EQ(parseDuration("0.000000001s"), 0);  // rounds to the nearest tick
+  // The longest contention period's slice is computed without overflow.
+  const FaultPlan p = config::parseFaultPlan(
+      "[[fault]]\nkind = \"contention\"\nfrom = \"0s\"\nduration = \"10000000000s\"\nshare = 99\n"
+      "period = \"10000000000s\"\n",
+      "p");
+  EXPECT_EQ(contentionSlice(p.faults.at(0)), kMaxTime / 100 * 99);
+}
+
+// Dense faults over a window far longer than the run: generated as the clock reaches them, so
+// arming costs nothing and a short run only pays for its own faults. Expanded up front this plan
+// was ~10^9 contention commands and ~5 x 10^8 stalls (bad_alloc, or hours of re-sorting).
+TEST(FaultPlan, DenseFaultsOverAHugeWindowCostOnlyWhatIsPlayed) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  r.build(kLayer, false);
+  applyFaults(r.s, *r.drive,
+              config::parseFaultPlan("[[fault]]\nkind = \"random_stall\"\nfrom = \"0s\"\nduration = \"1000000s\"\n"
+                                     "mean_interval = \"1ms\"\nstall = \"100us\"\n\n"
+                                     "[[fault]]\nkind = \"contention\"\nfrom = \"0s\"\nduration = \"1000000s\"\n"
+                                     "share = 50\nperiod = \"1ms\"\n",
+                                     "p"),
+              Rng(1));
+  auto c = std::make_shared<DriveCommand>();
+  c->lsn = 0;
+  c->sectors = 400;
+  r.drive->enqueue(c);
+  r.s.runUntil(fromMs(2000));
+  EXPECT_TRUE(c->done);
+  // About one stall per 1.1 ms while the drive works, and one contention command per period.
+  EXPECT_GT(r.drive->stats().stalled, fromMs(20));
+  EXPECT_GE(r.drive->stats().commands, 1900);
+}
+
 }  // namespace
 }  // namespace vbim::iop::test

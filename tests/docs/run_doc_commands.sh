@@ -3,7 +3,8 @@
 #
 # 1. Every fenced ```sh block is run with `sh -e`, blocks of one page in page order, in a scratch
 #    directory of that page where the repository's top-level folders are linked (so
-#    streams/samples/day_clear.vbim resolves) and BIN_DIR (the built vbim) is first on PATH.
+#    streams/samples/day_clear.vbim resolves; `build` is the build BIN_DIR belongs to) and BIN_DIR
+#    (the built vbim) is first on PATH.
 #    The line right before a fence may say, as an HTML comment readers do not see:
 #      <!-- doc-test: skip: REASON -->       the block is not run here (REASON says where it is run)
 #      <!-- doc-test: file NAME -->          the block is written to NAME for later blocks of the page
@@ -32,6 +33,7 @@ for page in "$@"; do
     case "$(basename "$entry")" in build* | out) continue ;; esac
     ln -s "$entry" "$work/$(basename "$entry")"
   done
+  ln -s "$(dirname "$bin")" "$work/build"  # the build BIN_DIR belongs to, for `scripts/x.sh build`
   # Block n: $blocks/n (its text), $blocks/n.setup (setup lines); $blocks/list: "n kind lang line arg".
   awk -v dir="$blocks" '
     inside && /^```/ { inside = 0; close(dir "/" n); next }

@@ -198,5 +198,56 @@ TEST(DriveStall, WorkOverlappingAStallIsPushedBackByTheOverlap) {
   EXPECT_EQ(r.drive->stats().stalled, fromMs(300));
 }
 
+// Stalls given in any order, overlapping or touching, freeze the drive for their union.
+TEST(DriveStall, OverlappingAndTouchingStallsMerge) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  r.build(kLayer, false);
+  std::vector<Done> out;
+  r.s.spawn("script", script(r.s, *r.drive, {{0, 0, 4000}}, out));  // 3.7 s of reading
+  const Tick ms = fromMs(1);
+  r.drive->addStall(300 * ms, 400 * ms);
+  r.drive->addStall(100 * ms, 150 * ms);
+  r.drive->addStall(140 * ms, 200 * ms);  // overlaps the one before it
+  r.drive->addStall(200 * ms, 250 * ms);  // touches it
+  r.drive->addStall(90 * ms, 500 * ms);   // swallows all of them
+  r.drive->addStall(600 * ms, 600 * ms);  // empty: ignored
+  r.drive->addStall(700 * ms, 710 * ms);
+  r.s.run();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(r.drive->stats().stalled, 420 * ms);
+  EXPECT_EQ(out[0].finished - out[0].issued, contiguousReadTicks(0, 4000, clvSector) + 420 * ms);
+}
+
+// A series of stalls pulled as the clock reaches them freezes the drive exactly as the same
+// stalls given up front: the drive always knows the next one before it starts work across it.
+TEST(DriveStall, StallSeriesEqualsTheSameStallsUpFront) {
+  const auto stallsOf = [](int i) { return Drive::StallSpan{fromMs(37 * i + 5), fromMs(37 * i + 5) + 1000 + 77 * i}; };
+  Tick finished[2] = {0, 0};
+  Tick stalled[2] = {0, 0};
+  for (int lazy = 0; lazy < 2; ++lazy) {
+    Rig r;
+    r.p.drive.spindle = "clv";
+    r.build(kLayer, false);
+    std::vector<Done> out;
+    r.s.spawn("script", script(r.s, *r.drive, {{0, 0, 1000}, {fromMs(30), 5000, 1000}}, out));
+    if (lazy) {
+      r.drive->addStallSeries([i = 0, &stallsOf]() mutable -> std::optional<Drive::StallSpan> {
+        if (i == 60) return std::nullopt;
+        return stallsOf(i++);
+      });
+    } else {
+      for (int i = 0; i < 60; ++i) r.drive->addStall(stallsOf(i).begin, stallsOf(i).end);
+    }
+    r.s.run();
+    ASSERT_EQ(out.size(), 2u);
+    finished[lazy] = out[1].finished;
+    stalled[lazy] = r.drive->stats().stalled;
+  }
+  EXPECT_EQ(finished[0], finished[1]);
+  EXPECT_EQ(stalled[0], stalled[1]);
+  EXPECT_GT(stalled[0], 30 * 1000);
+}
+
 }  // namespace
 }  // namespace vbim::iop::test

@@ -83,6 +83,19 @@ TEST(IpuCli, DecodesAnElementaryStreamToPngAndYuv) {
   fs::remove_all(d);
 }
 
+// More threads than the machine has is a usage error with a clear message (it used to abort in
+// the worker pool once thread creation failed).
+TEST(IpuCli, ThreadCountAboveTheMachineIsRefused) {
+  const fs::path d = scratch();
+  writeFile(d / "a.m2v", stream(40, 24, 1));
+  const Result r = runTool("decode " + (d / "a.m2v").string() + " --out " + (d / "png").string() + " --threads 100000");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--threads: 100000: this machine has"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("terminate"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(d / "png"));
+  fs::remove_all(d);
+}
+
 TEST(IpuCli, DecodesTheSecondVideoStreamOfAProgramStream) {
   const fs::path d = scratch();
   std::vector<std::uint8_t> ps;

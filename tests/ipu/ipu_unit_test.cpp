@@ -117,6 +117,39 @@ TEST(IpuUnit, SlowInputDmaBoundsDecode) {
   EXPECT_GT(r.result.finished, fast.result.finished);
 }
 
+// Input left after the last macroblock (stuffing, or what follows a picture whose last
+// macroblocks were concealed) is still being moved by the toIPU DMA and dropped by the core when
+// the output is complete and decode() returns. The two loops must not read the finished command
+// after that (under ASan this read of the released coroutine frame was a use after free), and the
+// next command must start on its own input.
+Task<void> decodeTwice(IpuUnit& unit, const std::vector<std::uint8_t>& first, const std::vector<std::uint8_t>& second,
+                       TimedRun& a, TimedRun& b) {
+  a.result = co_await unit.decode(first, a.image);
+  b.result = co_await unit.decode(second, b.image);
+}
+
+TEST(IpuUnit, TrailingInputOutlivesTheCommandSafely) {
+  const std::vector<std::uint8_t> bytes = firstPicture();
+  std::vector<std::uint8_t> padded = bytes;
+  constexpr Tick kTrailingQwords = 4096;
+  padded.resize(bytes.size() + kTrailingQwords * 16, 0);  // zero stuffing after the picture
+  Scheduler s;
+  IpuUnit unit(s, IpuParams{});
+  TimedRun a;
+  TimedRun b;
+  s.spawn("player", decodeTwice(unit, padded, bytes, a, b));
+  s.run();
+  ASSERT_TRUE(a.result.report.produced);
+  ASSERT_TRUE(b.result.report.produced);
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+  // The first command returned with its trailing qwords still queued (the input FIFO holds only
+  // a few): the second command's decode waited while the core dropped them, one per DMA cycle.
+  const TimedRun alone = runWith(IpuParams{}, bytes);
+  const Tick waited = (b.result.finished - b.result.started) - (alone.result.finished - alone.result.started);
+  EXPECT_GT(waited, kTrailingQwords / 2 * IpuParams{}.toipu_cycles_per_qword);
+  EXPECT_LE(waited, kTrailingQwords * IpuParams{}.toipu_cycles_per_qword);
+}
+
 TEST(IpuUnit, ParamsAreRegisteredWithSources) {
   ParamTable t;
   IpuParams p;

@@ -2,6 +2,8 @@
 //   - independent of the stream's length: `vbim play --no-trace` on a long stream played to its end
 //     peaks no higher than on a short one, within 3 MiB (the player streams sectors through the
 //     ring, never loads a whole file, and its per-vsync rows go to files, not memory);
+//   - independent of the run's length with tracing on (the default): trace.json and signals.vcd are
+//     written as the run goes (issue #16: 370 MB at 600 s, 2 GB at 1 h when they were kept);
 //   - the speed bench's case (512x512 lightmap + 256x128 sky, 59.94 Hz, 2 s per frame) under 64 MB
 //     for `vbim play` as the user runs it, the program's libraries included (`vbim` links the model
 //     and small libraries only; OpenImageIO, FFmpeg and Mesa live in vbim-full, cli/command.hpp).
@@ -113,6 +115,25 @@ TEST_F(PlayerMemory, BenchCaseStaysUnder64MB) {
   ASSERT_GT(peak, 0) << "vbim play failed";
   std::cout << "peak RSS of vbim play on the bench case, 60 s: " << peak << " KiB\n";
   EXPECT_LT(peak, 64L * 1024);
+}
+
+TEST_F(PlayerMemory, PeakDoesNotGrowWithTheRunsLengthWithTracing) {
+#ifdef VBIM_ASAN
+  GTEST_SKIP() << "AddressSanitizer's quarantine keeps freed records resident";
+#endif
+  const auto traced = [&](const std::string& duration, const std::string& out) {
+    return peakKiB({VBIM_CLI, "play", VBIM_SAMPLE, "--duration", duration, "--force", "--out", (dir_ / out).string()},
+                   dir_);
+  };
+  const long shortPeak = traced("60s", "traced_short");
+  const long longPeak = traced("900s", "traced_long");
+  ASSERT_GT(shortPeak, 0) << "vbim play failed";
+  ASSERT_GT(longPeak, 0) << "vbim play failed";
+  const auto traceBytes = static_cast<long>(fs::file_size(dir_ / "traced_long" / "trace.json"));
+  std::cout << "peak RSS of vbim play with tracing: 60 s " << shortPeak << " KiB, 900 s " << longPeak
+            << " KiB (trace.json " << traceBytes / 1024 << " KiB)\n";
+  ASSERT_GT(traceBytes, 8L << 20) << "the long run's trace must dwarf the slack for the test to mean anything";
+  EXPECT_LE(longPeak, shortPeak + 2048);
 }
 
 }  // namespace

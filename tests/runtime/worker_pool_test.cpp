@@ -1,6 +1,7 @@
 #include "runtime/worker_pool.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <atomic>
 #include <chrono>
@@ -10,8 +11,43 @@
 #include <stdexcept>
 #include <vector>
 
+#include "runtime/error.hpp"
+
 namespace vbim {
 namespace {
+
+// In a child process (the limit must not outlive the test): with the address space limited to
+// what is in use plus a few thread stacks, the pool cannot start 64 threads. It must report that
+// as a vbim::Error after joining the threads it did start; before, the joinable threads were
+// destroyed during the unwind and std::terminate aborted the process.
+TEST(WorkerPoolDeathTest, ThreadThatCannotStartIsAnErrorNotAnAbort) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "sanitizer shadow memory does not fit under an address-space limit";
+#else
+  EXPECT_EXIT(
+      {
+        WorkerPool warm(1);  // the runtime's first-thread allocations, outside the limit
+        rlimit limit{};
+        getrlimit(RLIMIT_AS, &limit);
+        std::size_t inUse = 0;
+        if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+          if (std::fscanf(f, "%zu", &inUse) != 1) inUse = 0;
+          std::fclose(f);
+        }
+        inUse *= 4096;
+        limit.rlim_cur = inUse + 48u * 1024 * 1024;  // room for a few 8 MiB stacks, not 64
+        setrlimit(RLIMIT_AS, &limit);
+        try {
+          WorkerPool pool(64);
+        } catch (const Error& e) {
+          std::fprintf(stderr, "%s\n", e.what());
+          std::exit(3);
+        }
+        std::exit(0);
+      },
+      testing::ExitedWithCode(3), "cannot start host thread [0-9]+ of 64");
+#endif
+}
 
 TEST(WorkerPool, ParallelForCoversEveryIndexOnce) {
   for (unsigned threads : {0u, 1u, 2u, 4u}) {

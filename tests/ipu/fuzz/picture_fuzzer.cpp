@@ -2,7 +2,7 @@
 // units. The decoder must not crash, read out of bounds (ASan) or hang; the Highway kernels must
 // give the same frame as the scalar reference; the slice-parallel path the same frame, and an RGBA
 // image of the decoded picture's size equal to the conversion of that frame. Built with
-// -DVBIM_FUZZ=ON and clang; scripts/fuzz-ipu.sh runs it for a bounded time from the seed corpus
+// -DVBIM_FUZZ=ON and clang; scripts/fuzz.sh runs it for a bounded time from the seed corpus
 // next to this file.
 #include <cstddef>
 #include <cstdint>

@@ -1,0 +1,225 @@
+#include "runtime/trace_stream.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "runtime/json.hpp"
+
+namespace vbim {
+
+namespace trace_format {
+
+long long nanos(Tick t) {
+  // t ticks = t * 1e9 / 147456000 ns = t * 15625 / 2304 ns, rounded half away from zero.
+  const bool neg = t < 0;
+  const __int128 a = static_cast<__int128>(neg ? -t : t) * 15625;
+  const auto ns = static_cast<long long>((a + 1152) / 2304);
+  return neg ? -ns : ns;
+}
+
+std::string micros(long long ns) {
+  char buf[40];
+  const bool neg = ns < 0;
+  const long long a = neg ? -ns : ns;
+  std::snprintf(buf, sizeof buf, "%s%lld.%03lld", neg ? "-" : "", a / 1000, a % 1000);
+  return buf;
+}
+
+// VCD time unit is 1 ps; one tick is 6,781.9 ps, so distinct ticks stay distinct.
+long long vcdPicoseconds(Tick t) {
+  const __int128 a = static_cast<__int128>(t) * 1'000'000'000;  // ps = t * 1e12 / 147456000
+  return static_cast<long long>((a + 73'728) / 147'456);
+}
+
+// VCD identifier codes: printable ASCII 33..126, base 94.
+std::string vcdId(std::size_t n) {
+  std::string id;
+  do {
+    id.push_back(static_cast<char>(33 + n % 94));
+    n /= 94;
+  } while (n != 0);
+  return id;
+}
+
+std::string vcdName(std::string s) {
+  for (char& c : s) {
+    if (c == ' ' || c == '\t') c = '_';
+  }
+  return s;
+}
+
+std::string binary(std::int64_t v) {
+  auto u = static_cast<std::uint64_t>(v);
+  std::string s;
+  do {
+    s.push_back(static_cast<char>('0' + (u & 1)));
+    u >>= 1;
+  } while (u != 0);
+  std::reverse(s.begin(), s.end());
+  return s;
+}
+
+}  // namespace trace_format
+
+using namespace trace_format;
+
+TraceStream::TraceStream(std::ostream& json, std::ostream& vcd, TraceDetail detail, Tick window)
+    : json_(json), vcd_(vcd), detail_(detail), window_(window) {}
+
+void TraceStream::header(const std::vector<std::string>& tracks, const std::vector<std::string>& counters,
+                         const std::vector<std::string>& labels) {
+  tracks_ = tracks.size();
+  counterNames_ = counters;
+  for (const std::string& l : labels) labelAdded(l);
+  held_.assign(tracks_, Held{});
+  busy_.assign(tracks_, 0);
+  shown_.assign(tracks_ + counters.size(), 0);
+  for (std::size_t i = 0; i < shown_.size(); ++i) ids_.push_back(vcdId(i));
+
+  json_ << "{\"displayTimeUnit\":\"ns\",\"otherData\":{\"clock\":\"vbim simulated bus clock\",\"tick_hz\":" << kBusHz
+        << "},\n\"traceEvents\":[\n";
+  sep();
+  json_ << R"({"name":"process_name","ph":"M","pid":1,"tid":0,"args":{"name":"vbim model"}})";
+  for (std::size_t i = 0; i < tracks_; ++i) {
+    sep();
+    json_ << R"({"name":"thread_name","ph":"M","pid":1,"tid":)" << i + 1 << R"(,"args":{"name":)"
+          << json::quote(tracks[i]) << "}}";
+    sep();
+    json_ << R"({"name":"thread_sort_index","ph":"M","pid":1,"tid":)" << i + 1 << R"(,"args":{"sort_index":)" << i
+          << "}}";
+  }
+
+  vcd_ << "$comment vbim simulated bus clock, 147.456 MHz; times in ps $end\n";
+  vcd_ << "$timescale 1ps $end\n$scope module vbim $end\n";
+  // One 1-bit "busy" wire per track, one 64-bit integer per counter.
+  for (std::size_t i = 0; i < tracks_; ++i)
+    vcd_ << "$var wire 1 " << ids_[i] << ' ' << vcdName(tracks[i]) << "_busy $end\n";
+  for (std::size_t i = 0; i < counters.size(); ++i)
+    vcd_ << "$var integer 64 " << ids_[tracks_ + i] << ' ' << vcdName(counters[i]) << " $end\n";
+  vcd_ << "$upscope $end\n$enddefinitions $end\n";
+  vcd_ << "#0\n$dumpvars\n";
+  for (std::size_t i = 0; i < tracks_; ++i) vcd_ << "0" << ids_[i] << "\n";
+  for (std::size_t i = 0; i < counters.size(); ++i) vcd_ << "b0 " << ids_[tracks_ + i] << "\n";
+  vcd_ << "$end\n";
+}
+
+void TraceStream::labelAdded(std::string_view label) {
+  quoted_.push_back(json::quote(std::string(label)));
+}
+
+void TraceStream::sep() {
+  if (!first_) json_ << ",\n";
+  first_ = false;
+}
+
+void TraceStream::span(std::uint32_t track, Tick begin, Tick end, std::uint32_t label) {
+  Held& h = held_[track];
+  if (h.begin >= 0 && h.end == begin && h.label == label) {
+    h.end = end;  // back to back with the same label: one span
+    return;
+  }
+  if (h.begin >= 0) release(track);
+  held_[track] = Held{begin, end, label};
+  change(begin, track, 1);
+}
+
+void TraceStream::release(std::uint32_t track) {
+  Held& h = held_[track];
+  // The duration is the difference of the rounded ends, so spans that follow each other on a
+  // track never overlap in the file (begin + a rounded duration could pass the next begin by 1 ns).
+  const long long b = nanos(h.begin);
+  sep();
+  json_ << R"({"name":)" << quoted_[h.label] << R"(,"ph":"X","pid":1,"tid":)" << track + 1 << R"(,"ts":)" << micros(b)
+        << R"(,"dur":)" << micros(nanos(h.end) - b) << "}";
+  busy_[track] += h.end - h.begin;
+  change(h.end, track, 0);
+  h.begin = -1;
+}
+
+void TraceStream::instant(std::uint32_t track, Tick t, std::uint32_t label) {
+  sep();
+  json_ << R"({"name":)" << quoted_[label] << R"(,"ph":"i","pid":1,"tid":)" << track + 1 << R"(,"ts":)"
+        << micros(nanos(t)) << "}";
+}
+
+void TraceStream::value(std::uint32_t counter, Tick t, std::int64_t v) {
+  sep();
+  json_ << R"({"name":)" << json::quote(counterNames_[counter]) << R"(,"ph":"C","pid":1,"ts":)" << micros(nanos(t))
+        << R"(,"args":{"value":)" << v << "}}";
+  change(t, static_cast<std::uint32_t>(tracks_ + counter), v);
+}
+
+void TraceStream::change(Tick t, std::uint32_t var, std::int64_t v) {
+  if (t < written_) {
+    ++late_;
+    t = written_;
+  }
+  pending_.push(Change{t, seq_++, var, v});
+}
+
+void TraceStream::advance(Tick now) {
+  const Tick limit = now - window_;
+  if (limit <= written_) return;
+  for (std::uint32_t track = 0; track < tracks_; ++track) {
+    if (held_[track].begin >= 0 && held_[track].end < limit) release(track);
+  }
+  flushBefore(limit);
+}
+
+void TraceStream::finish() {
+  for (std::uint32_t track = 0; track < tracks_; ++track) {
+    if (held_[track].begin >= 0) release(track);
+  }
+  flushBefore(kNever);
+  json_ << "\n]}\n";
+}
+
+void TraceStream::flushBefore(Tick limit) {
+  std::vector<Change> group;
+  while (!pending_.empty() && pending_.top().t < limit) {
+    const Tick t = pending_.top().t;
+    group.clear();
+    while (!pending_.empty() && pending_.top().t == t) {
+      group.push_back(pending_.top());
+      pending_.pop();
+    }
+    writeGroup(t, group);
+  }
+  written_ = std::max(written_, limit);
+}
+
+void TraceStream::writeGroup(Tick t, std::vector<Change>& group) {
+  if (detail_ == TraceDetail::kCoalesced) {
+    // Per variable, the value it ends the instant with, in the order of its last change.
+    std::vector<Change> last;
+    for (const Change& c : group) {
+      auto it = std::find_if(last.begin(), last.end(), [&](const Change& l) { return l.var == c.var; });
+      if (it != last.end()) last.erase(it);
+      last.push_back(c);
+    }
+    std::erase_if(last, [&](const Change& c) { return shown_[c.var] == c.v; });
+    group.swap(last);
+  }
+  for (const Change& c : group) {
+    const long long ps = vcdPicoseconds(t);
+    if (ps != lastPs_) {
+      vcd_ << '#' << ps << '\n';
+      lastPs_ = ps;
+    }
+    if (c.var < tracks_) {
+      vcd_ << (c.v ? '1' : '0') << ids_[c.var] << '\n';
+    } else {
+      vcd_ << 'b' << binary(c.v) << ' ' << ids_[c.var] << '\n';
+    }
+    shown_[c.var] = c.v;
+  }
+}
+
+Tick TraceStream::busyTime(std::uint32_t track, Tick from, Tick to) const {
+  Tick sum = busy_[track];
+  const Held& h = held_[track];
+  if (h.begin >= 0) sum += std::max<Tick>(0, std::min(h.end, to) - std::max(h.begin, from));
+  return sum;
+}
+
+}  // namespace vbim
