@@ -14,6 +14,7 @@
 #include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/progress.hpp"
 #include "iop/error.hpp"
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
@@ -80,10 +81,19 @@ void run(const Options& o) {
   OutputDir dir(o.outDir, o.force);
   streams::FrameFileWriter writer(dir.directory(), formatOf(o.format), ipu::CscThresholds{o.th0, o.th1});
   streams::DecodeSummary s;
+  Progress progress("vbim decode", "pictures");
+  int pictures = 0;
   try {
     s = streams::decodeStream(
-        file, name, options, [&writer](int frame, const ipu::Decoder& d) { writer.write(frame, d); },
-        [](const std::string& line) { std::cerr << "vbim decode: " << line << "\n"; });
+        file, name, options,
+        [&](int frame, const ipu::Decoder& d) {
+          writer.write(frame, d);
+          progress.show(++pictures, 0);
+        },
+        [&progress](const std::string& line) {
+          progress.finish();  // a report starts on a line of its own
+          std::cerr << "vbim decode: " << line << "\n";
+        });
   } catch (const streams::DecodeError& e) {
     throw Exit(2, e.what());
   }

@@ -42,7 +42,18 @@ Tick parseTime(const std::string& what, const std::string& text) {
   }
 }
 
-void writeImage(const std::filesystem::path& path, const Rgba8Image& img, bool exr) {
+// --alpha opaque (the default) writes alpha 255, so viewers show the picture as the GS uses it (the
+// lightmap's alpha is not blended on screen); --alpha gs writes the texels as they are in VRAM
+// (0x80 is the GS's 1.0: GS User's Manual, ALPHA register), which is what hashes.txt hashes.
+Rgba8Image withAlpha(const Rgba8Image& img, bool gsAlpha) {
+  if (gsAlpha) return img;
+  Rgba8Image out = img;
+  for (std::size_t i = 3; i < out.pixels.size(); i += 4) out.pixels[i] = 255;
+  return out;
+}
+
+void writeImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha) {
+  const Rgba8Image img = withAlpha(texels, gsAlpha);
   try {
     if (exr) {
       std::vector<float> scaled(img.pixels.size());  // 8-bit texels as 0..1 (alpha 0x80 = 0.502)
@@ -167,8 +178,11 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     if (!shoot) return;
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
-    writeImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr);
-    if (sky != nullptr) writeImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr);
+    const bool gsAlpha = r.alpha == "gs";
+    writeImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, gsAlpha);
+    if (sky != nullptr) {
+      writeImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, gsAlpha);
+    }
     ++images;
   });
 
@@ -246,6 +260,11 @@ void addPlay(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--at", r->at, "Write the images at these times (12.5s,30s,...)")->delimiter(',');
   cmd->add_option("--format", r->format, "Image format: png or exr")->capture_default_str();
+  cmd->add_option("--alpha", r->alpha,
+                  "Alpha of the pictures: opaque (255, for viewers) or gs (the texels as in VRAM: 0x80 is 1.0, "
+                  "the bytes hashes.txt hashes)")
+      ->check(CLI::IsMember({"opaque", "gs"}))
+      ->capture_default_str();
   cmd->add_option("--branch", r->branches, "Switch to a variant at a time: 12.5s=1 (repeatable)");
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
   cmd->add_flag_callback(

@@ -26,6 +26,7 @@ struct PlayRequest {
   std::int64_t every = 0;
   std::vector<std::string> at;
   std::string format = "png";
+  std::string alpha = "opaque";       // pictures' alpha: opaque (255) or gs (the texels as in VRAM)
   std::vector<std::string> branches;  // "12.5s=1": switch to variant 1 at 12.5 s
   bool force = false;
   bool trace = true;

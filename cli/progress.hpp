@@ -1,13 +1,16 @@
-// The one progress line of the long commands (play, render, lightmap, author):
+// The one progress line of the long commands (play, render, lightmap, author, decode, profile):
 //
-//   vbim lightmap [############..................] 48/120 frames  note
+//   vbim lightmap [############..................] 48/120 frames  9.6 frames/s, 8 s left  note
 //
 // redrawn in place ("\r") on stderr, and only when stderr is a terminal, so logs, pipes and tests
-// stay clean; finished with a newline. Asked for explicitly (`always`), it also writes to a
-// non-terminal, one line per call (the caller decides how often: a batch job's log). Libraries never print: they report
-// through a plain callback (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command forwards here.
+// stay clean; finished with a newline. Asked for explicitly (`always`, or VBIM_PROGRESS=1 in the
+// environment), it also writes to a non-terminal: whole lines, at most one every 5 s (a batch
+// job's log). Rate and time left come from the host's clock: shown to the user, never hashed. Libraries never print:
+// they report through a plain callback (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command
+// forwards here.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -23,7 +26,8 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  // Redraws the line: `done` of `total` (whole numbers print without decimals), then `note`.
+  // Redraws the line: `done` of `total` (whole numbers print without decimals; a total of 0: not
+  // known, the count alone), then `note`.
   void show(double done, double total, std::string_view note = {});
   // Ends the line (once).
   void finish();
@@ -34,6 +38,8 @@ class Progress {
   bool terminal_;
   bool always_;
   bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point lastLog_{};
   std::size_t lastLength_ = 0;  // to blank what a longer previous line left behind
 };
 

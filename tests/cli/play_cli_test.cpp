@@ -99,7 +99,8 @@ TEST(PlayCli, TraceDetailFullKeepsMacroblockSpansAndEveryToggle) {
 
 TEST(PlayCli, WritesEveryFileAndPicturesMatchTheirHashes) {
   const fs::path out = scratch("run");
-  const auto r = play(kSample + " --duration 10s --every 120 --out " + out.string());
+  // --alpha gs: the texels as they are in VRAM, the bytes the hashes hash.
+  const auto r = play(kSample + " --duration 10s --every 120 --alpha gs --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* f : {"hashes.txt", "stats.json", "trace.json", "signals.vcd", "timeline.csv"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
@@ -216,3 +217,29 @@ TEST(PlayCli, BadInputIsRefusedClearlyAndLeavesNoOutput) {
 }
 
 }  // namespace
+
+// By default the pictures are opaque (alpha 255, as viewers expect); their colours are the texels'.
+TEST(PlayCli, PicturesAreOpaqueByDefaultWithTheTexelsColours) {
+  const fs::path gs = scratch("alpha_gs");
+  const fs::path opaque = scratch("alpha_opaque");
+  ASSERT_EQ(play(kSample + " --duration 2s --every 60 --alpha gs --out " + gs.string()).status, 0);
+  ASSERT_EQ(play(kSample + " --duration 2s --every 60 --out " + opaque.string()).status, 0);
+  for (const char* name : {"lightmap_000060.png", "sky_000060.png"}) {
+    const vbim::Rgba8Image a = readPng(gs / "frames" / name);
+    const vbim::Rgba8Image b = readPng(opaque / "frames" / name);
+    ASSERT_GT(a.width, 0) << name;
+    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << name;
+    bool gsAlphaSeen = false;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+      if (i % 4 == 3) {
+        EXPECT_EQ(b.pixels[i], 255) << name << " byte " << i;
+        gsAlphaSeen = gsAlphaSeen || a.pixels[i] == 0x80;
+      } else {
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << name << " byte " << i;
+      }
+    }
+    EXPECT_TRUE(gsAlphaSeen) << name << ": --alpha gs should keep the GS's 0x80";
+  }
+  fs::remove_all(gs);
+  fs::remove_all(opaque);
+}
