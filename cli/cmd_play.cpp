@@ -17,6 +17,7 @@
 #include "cli/platform_params.hpp"
 #include "cli/play_run.hpp"
 #include "cli/progress.hpp"
+#include "cli/provenance.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
@@ -65,6 +66,29 @@ void writeImage(const std::filesystem::path& path, const Rgba8Image& texels, boo
   } catch (const imageio::ImageIoError& e) {
     throw Exit(1, e.what());
   }
+}
+
+// stats.json's "run": the version, the settings and every input with its SHA-256.
+json::Value provenance(const PlayRequest& r, const player::PlayerOptions& o) {
+  json::Value run = json::object({{"vbim_version", VBIM_VERSION}, {"command", "play"}});
+  json::Value disc = inputJson(r.disc);
+  if (!r.file.empty()) disc["file"] = r.file;
+  run["disc"] = disc;
+  run["config"] = r.config.empty() ? json::Value("defaults") : inputJson(r.config);
+  if (!r.faults.empty()) {
+    run["faults"] = inputJson(r.faults);
+  } else if (!r.faultsText.empty()) {
+    run["faults"] = json::object({{"path", "<built-in>"}, {"sha256", sha256Text(r.faultsText)}});
+  } else {
+    run["faults"] = "none";
+  }
+  run["seed"] = o.seed;
+  run["duration"] = r.duration;
+  run["policy"] = o.config.gs.catchup;
+  json::Value branches = json::Value::array();
+  for (const std::string& b : r.branches) branches.push(b);
+  run["branches"] = branches;
+  return run;
 }
 
 // The variant after '=' in --branch: a plain index (0 is the first variant).
@@ -210,7 +234,8 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   timeline.close();
   {
     std::ofstream f(dir.path("stats.json"), std::ios::binary);
-    writeStatsJson(*player, f);
+    const json::Value run = provenance(r, o);
+    writeStatsJson(*player, f, &run);
   }
   if (r.trace) {
     player->tracer().finish();

@@ -27,6 +27,8 @@ if(NOT VBIM_MODEL_ONLY)
   vbim_require_config(CLI11 libcli11-dev)
   vbim_require_config(nlohmann_json nlohmann-json3-dev)
   vbim_require_pkgconfig(TOMLPP libtomlplusplus-dev tomlplusplus)
+  # SHA-256 digests of a run's inputs, recorded in stats.json (cli/provenance.cpp).
+  vbim_require_pkgconfig(LIBCRYPTO libssl-dev libcrypto)
   vbim_require_pkgconfig(LIBAV "libavcodec-dev libavformat-dev libavutil-dev libswscale-dev"
                          libavformat libavcodec libavutil libswscale)
   vbim_require_pkgconfig(LIBMPEG2 libmpeg2-4-dev libmpeg2 libmpeg2convert)

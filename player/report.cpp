@@ -74,7 +74,7 @@ std::string timelineLine(const VsyncRow& r) {
   return s;
 }
 
-void writeStatsJson(const Player& player, std::ostream& out) {
+void writeStatsJson(const Player& player, std::ostream& out, const json::Value* run) {
   const Pipeline& p = player.pipeline();
   const Tick elapsed = player.now();
   const RunTotals& t = player.totals();
@@ -112,6 +112,7 @@ void writeStatsJson(const Player& player, std::ostream& out) {
                                    {"bank_reads", rs.bankReads}});
 
   json::Value j;
+  if (run != nullptr) j["run"] = *run;
   j["simulated_s"] = json::Value::decimal(seconds(elapsed));
   j["simulated_ticks"] = elapsed;
   j["seed"] = o.seed;

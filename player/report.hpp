@@ -8,6 +8,7 @@
 #include <string>
 
 #include "player/player.hpp"
+#include "runtime/json.hpp"
 
 namespace vbim::player {
 
@@ -16,6 +17,8 @@ std::string hashesLine(const VsyncRow& row);
 std::string timelineHeader();
 std::string timelineLine(const VsyncRow& row);
 // Everything stats.json holds, for a run that has been run to its end (or to now()).
-void writeStatsJson(const Player& player, std::ostream& out);
+// `run`, when given, is written first as "run": where the run came from (the command's inputs and
+// their digests, the vbim version: cli/provenance.hpp), so the totals can be traced to their inputs.
+void writeStatsJson(const Player& player, std::ostream& out, const json::Value* run = nullptr);
 
 }  // namespace vbim::player

@@ -9,6 +9,8 @@ PACKAGES=(
   build-essential cmake pkg-config git clang libclang-rt-14-dev clang-format clang-tidy
   # command line, config, JSON (header-only)
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  # SHA-256 of a run's inputs in stats.json (cli/provenance.cpp)
+  libssl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # media around the model: images, encoding, the comparison decoders, ffprobe

@@ -243,3 +243,23 @@ TEST(PlayCli, PicturesAreOpaqueByDefaultWithTheTexelsColours) {
   fs::remove_all(gs);
   fs::remove_all(opaque);
 }
+
+// stats.json says where the run came from: the version and each input with its SHA-256 (the digest
+// `sha256sum` prints), with or without tracing.
+TEST(PlayCli, StatsRecordTheInputsAndTheirDigests) {
+  const fs::path out = scratch("provenance");
+  const std::string plan = std::string(VBIM_SOURCE_DIR) + "/examples/fault-plans/stall.toml";
+  const auto r = play(kSample + " --duration 2s --no-trace --faults " + plan + " --seed 9 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string stats = slurp(out / "stats.json");
+  const auto sha = [](const std::string& path) {
+    const auto s = runCommand("sha256sum " + path);
+    return s.output.substr(0, 64);
+  };
+  EXPECT_NE(stats.find("\"sha256\": \"" + sha(kSample) + "\""), std::string::npos) << stats;
+  EXPECT_NE(stats.find("\"sha256\": \"" + sha(plan) + "\""), std::string::npos) << stats;
+  EXPECT_NE(stats.find("\"vbim_version\": \""), std::string::npos) << stats;
+  EXPECT_NE(stats.find("\"config\": \"defaults\""), std::string::npos) << stats;
+  EXPECT_NE(stats.find("\"seed\": 9"), std::string::npos) << stats;
+  fs::remove_all(out);
+}

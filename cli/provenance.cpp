@@ -1,0 +1,62 @@
+#include "cli/provenance.hpp"
+
+#include <openssl/evp.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "cli/command.hpp"
+
+namespace vbim::cli {
+
+namespace {
+
+using DigestContext = std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)>;
+
+DigestContext newContext() {
+  DigestContext ctx(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
+  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1) throw Exit(1, "SHA-256: cannot start a digest");
+  return ctx;
+}
+
+std::string finish(EVP_MD_CTX* ctx) {
+  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
+  unsigned int length = 0;
+  if (EVP_DigestFinal_ex(ctx, digest.data(), &length) != 1) throw Exit(1, "SHA-256: cannot finish a digest");
+  std::string hex;
+  for (unsigned int i = 0; i < length; ++i) {
+    char two[3];
+    std::snprintf(two, sizeof two, "%02x", digest[i]);
+    hex += two;
+  }
+  return hex;
+}
+
+}  // namespace
+
+std::string sha256File(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Exit(2, path.string() + ": cannot be read");
+  DigestContext ctx = newContext();
+  std::array<char, 1 << 16> buffer{};
+  while (in) {
+    in.read(buffer.data(), buffer.size());
+    if (in.gcount() > 0) EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) throw Exit(2, path.string() + ": read failed");
+  return finish(ctx.get());
+}
+
+std::string sha256Text(const std::string& bytes) {
+  DigestContext ctx = newContext();
+  EVP_DigestUpdate(ctx.get(), bytes.data(), bytes.size());
+  return finish(ctx.get());
+}
+
+json::Value inputJson(const std::filesystem::path& path) {
+  return json::object({{"path", path.string()}, {"sha256", sha256File(path)}});
+}
+
+}  // namespace vbim::cli
