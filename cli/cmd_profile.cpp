@@ -23,9 +23,11 @@
 #include "gs/blend_simd.hpp"
 #include "gs/error.hpp"
 #include "iop/memory_disc.hpp"
+#include "iop/params.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/profile_sweep.hpp"
 #include "player/scenario.hpp"
+#include "runtime/params.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/transcode.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -78,8 +80,22 @@ RingSize parseRing(const std::string& text) {
   } catch (const std::exception&) {
     throw Exit(2, "--ring '" + text + "': expected BANKS:SECTORS (ring.bankmax:ring.bufmax_sectors), e.g. 4:32");
   }
-  if (r.bankmax < 1 || r.bufmax < r.bankmax)
-    throw Exit(2, "--ring '" + text + "': needs at least one bank and one sector per bank");
+  // The ranges `vbim config --check` and `play` apply (iop/params.cpp): a ring they refuse (2 banks
+  // deadlock under SDK-ST's hold rule) is refused here too, before any case runs.
+  iop::RingParams ring;
+  ParamTable table;
+  iop::describeParams(table, ring);
+  for (const auto& [key, value] : {std::pair<const char*, std::int64_t>{"ring.bankmax", r.bankmax},
+                                   std::pair<const char*, std::int64_t>{"ring.bufmax_sectors", r.bufmax}}) {
+    const ParamTable::Param* p = table.find(key);
+    if (p != nullptr && (static_cast<double>(value) < p->min || static_cast<double>(value) > p->max)) {
+      throw Exit(2, "--ring '" + text + "': " + key + " = " + std::to_string(value) + " is outside [" +
+                        std::to_string(static_cast<std::int64_t>(p->min)) + ", " +
+                        std::to_string(static_cast<std::int64_t>(p->max)) + "] (" + p->source + ")");
+    }
+  }
+  if (r.bufmax < r.bankmax)
+    throw Exit(2, "--ring '" + text + "': ring.bufmax_sectors must be at least ring.bankmax (one sector per bank)");
   return r;
 }
 

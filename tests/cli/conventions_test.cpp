@@ -213,3 +213,15 @@ TEST(CliConventions, ExistingOutputsAreRefusedBeforeAnyWorkUnlessForced) {
 }
 
 }  // namespace
+
+namespace {
+
+// A ring that `vbim config --check` refuses (two banks deadlock) is refused by profile too, up front.
+TEST(CliConventions, ProfileRefusesARingTheConfigCheckRefuses) {
+  const Result r = run("profile " + kSample + " --ring 2:8 --out " + scratch("ring").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("ring.bankmax = 2 is outside [3, 512]"), std::string::npos) << r.output;
+  EXPECT_EQ(lines(r.output), 1) << r.output;
+}
+
+}  // namespace
