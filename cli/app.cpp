@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "cli/command.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "runtime/error.hpp"
 
@@ -92,6 +93,7 @@ std::vector<char*> helpAsOption(int argc, char** argv) {
 }
 
 int runApp(CLI::App& app, int argc, char** argv) {
+  installInterruptHandlers();
   checkNumbersStrictly(app);
   const std::vector<char*> args = helpAsOption(argc, argv);
   argc = static_cast<int>(args.size()) - 1;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
@@ -226,6 +227,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   for (Tick t = step;; t += step) {
     player->runTo(std::min(t, o.duration));
     if (progress) bar.show(toSeconds(player->now()), toSeconds(o.duration));
+    checkInterrupted();
     if (t >= o.duration) break;
   }
   bar.finish();

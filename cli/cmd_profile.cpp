@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
@@ -221,11 +222,13 @@ void runProfile(const ProfileRequest& r) {
   plan.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
   SweepObserver progress;
   progress.onRun = [](const SweepRun& run) {
+    checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
     std::cout << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax << "  faults "
               << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate << ", pop max "
               << run.result.pop.value << ", lag max " << run.result.totals.lag.value << "\n";
   };
   progress.onStall = [](const StallRow& row) {
+    checkInterrupted();
     std::cout << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
               << row.policy << "  " << toString(row.criterion) << ": "
               << (row.result.longest

@@ -1,5 +1,7 @@
 #include "cli/progress.hpp"
 
+#include "cli/interrupt.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -52,6 +54,7 @@ Progress::~Progress() {
 }
 
 void Progress::show(double done, double total, std::string_view note) {
+  checkInterrupted();  // every long loop passes here: Ctrl-C stops it and unwinds (cli/interrupt.hpp)
   if (!terminal_ && !always_) return;
   const auto now = std::chrono::steady_clock::now();
   const bool last = total > 0 && done >= total;
