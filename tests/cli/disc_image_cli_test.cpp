@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -87,18 +86,23 @@ TEST_F(DiscImageCli, TheDriveReadsTheFileAtTheImagesLbas) {
   ASSERT_LT(lba, 2048);
   const fs::path plan = dir_ / "scratch.toml";
   std::ofstream(plan) << "[[fault]]\nkind = \"read_error\"\nlba = " << lba << "\nattempts = 3\n";
-  const std::regex retries("drive retries ([0-9]+)");
-  std::smatch m;
+  // The count after "drive retries " in play's summary ("" when absent). Plain string search: GCC 12
+  // warns falsely inside <regex> in the -O1 sanitizer build, which -Werror turns into an error.
+  const auto retries = [](const std::string& out) {
+    const std::string key = "drive retries ";
+    const auto at = out.find(key);
+    if (at == std::string::npos) return std::string();
+    const auto begin = at + key.size();
+    return out.substr(begin, out.find_first_not_of("0123456789", begin) - begin);
+  };
   const auto onImage = vbim("play " + iso_.string() + " --faults " + plan.string() +
                             " --duration 30s --no-trace --out " + (dir_ / "a").string());
   ASSERT_EQ(onImage.status, 0) << onImage.output;
-  ASSERT_TRUE(std::regex_search(onImage.output, m, retries)) << onImage.output;
-  EXPECT_EQ(m[1], "3");
+  EXPECT_EQ(retries(onImage.output), "3") << onImage.output;
   const auto bare = vbim("play " + kSample + " --faults " + plan.string() + " --duration 30s --no-trace --out " +
                          (dir_ / "b").string());
   ASSERT_EQ(bare.status, 0) << bare.output;
-  ASSERT_TRUE(std::regex_search(bare.output, m, retries)) << bare.output;
-  EXPECT_EQ(m[1], "0");
+  EXPECT_EQ(retries(bare.output), "0") << bare.output;
 }
 
 TEST_F(DiscImageCli, AMissingFileIsRefusedWithTheCandidates) {
