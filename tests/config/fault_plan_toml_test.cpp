@@ -279,7 +279,7 @@ TEST(FaultPlan, TimesBeyondTheTickCounterAreRefused) {
   EXPECT_THROW(parseDuration("125099989669s"), std::invalid_argument);
   EXPECT_EQ(parseDuration("10000000000s"), kMaxTime);
   EXPECT_THROW(parseDuration("10000000000.00000001s"), std::invalid_argument);  // one tick more
-  EXPECT_EQ(parseDuration("0.000000001s"), 0);  // rounds to the nearest tick
+  EXPECT_EQ(parseDuration("0.000000001s"), 0);                                  // rounds to the nearest tick
   // The longest contention period's slice is computed without overflow.
   const FaultPlan p = config::parseFaultPlan(
       "[[fault]]\nkind = \"contention\"\nfrom = \"0s\"\nduration = \"10000000000s\"\nshare = 99\n"
