@@ -4,11 +4,14 @@
 //   exit 2                       bad usage or bad input (an argument, a file, a config, a stream)
 //   exit 1                       a failure while running (a file that cannot be written, ...)
 // A usage error prints one line and `see 'vbim CMD --help'`, not the whole help.
+#include <algorithm>
+#include <cctype>
 #include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <new>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -52,9 +55,24 @@ class HelpFormatter : public CLI::Formatter {
  public:
   std::string make_option_opts(const CLI::Option* opt) const override {
     std::string s = CLI::Formatter::make_option_opts(opt);
-    if (const auto colon = s.find(':'); colon != std::string::npos && s.rfind(' ', colon) == 0) {
-      const auto end = s.find_first_of("= ", colon);
-      s.erase(colon, end == std::string::npos ? std::string::npos : end - colon);
+    // The type name is "UINT:<description>:<description>..."; descriptions may hold spaces.
+    const std::string typeName = opt->get_type_name();
+    const auto colon = typeName.find(':');
+    const auto at = s.find(typeName);
+    if (colon == std::string::npos || at == std::string::npos) return s;
+    const std::string base = typeName.substr(0, colon);
+    std::string kept;  // descriptions that say something: a range, a limit
+    std::istringstream parts(typeName.substr(colon + 1));
+    for (std::string part; std::getline(parts, part, ':');) {
+      if (part.rfind(base + " ", 0) == 0) part.erase(0, base.size() + 1);  // "INT in [0 - 511]"
+      const bool bareName = std::none_of(part.begin(), part.end(), [](unsigned char c) { return std::islower(c); });
+      if (!bareName) kept += (kept.empty() ? "" : ", ") + part;
+    }
+    s.erase(at + colon, typeName.size() - colon);
+    if (!kept.empty()) {
+      std::size_t end = at + colon;  // after "=DEFAULT" when there is one
+      if (end < s.size() && s[end] == '=') end = std::min(s.find(' ', end), s.size());
+      s.insert(end, " (" + kept + ")");
     }
     return s;
   }

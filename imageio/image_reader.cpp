@@ -60,6 +60,14 @@ ImageReader::ImageReader(const fs::path& path, std::string what, AlphaMode alpha
                 std::to_string(spec.nchannels) + " channels)");
   }
   if (spec.depth > 1) throw error("is a volume; expected a 2-D image");
+  // A damaged or hostile header can claim any size; refuse before allocating for it.
+  const auto samples = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height) *
+                       static_cast<std::uint64_t>(spec.nchannels);
+  if (samples > kMaxImageSamples) {
+    throw error("is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " with " +
+                std::to_string(spec.nchannels) + " channels, more than the " + std::to_string(kMaxImageSamples) +
+                " samples vbim reads from one picture");
+  }
   impl_->info = {spec.width, spec.height, spec.nchannels, sampleTypeOf(spec.format), spec.format.is_floating_point()};
 }
 

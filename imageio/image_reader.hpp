@@ -14,6 +14,10 @@
 
 namespace vbim::imageio {
 
+// The most samples (width x height x channels) one picture may hold: 2^28, a 16384x16384 grey
+// heightfield, or 1 GiB once read as floats. Larger headers are refused before any allocation.
+inline constexpr std::uint64_t kMaxImageSamples = std::uint64_t{1} << 28;
+
 enum class SampleType { UInt8, UInt16, Half, Float, Other };
 
 // What a file holds.

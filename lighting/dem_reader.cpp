@@ -26,6 +26,16 @@ std::string number(double v) {
   return s.str();
 }
 
+void checkGridSize(const std::string& path, int width, int height) {
+  if (width <= 0 || height <= 0) {
+    throw LightingError(path + ": the DEM is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  }
+  if (static_cast<std::int64_t>(width) * height > kMaxDemCells) {
+    throw LightingError(path + ": the DEM is " + std::to_string(width) + "x" + std::to_string(height) +
+                        " cells, more than the " + std::to_string(kMaxDemCells) + " vbim reads; crop it first");
+  }
+}
+
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
@@ -147,9 +157,13 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
     throw LightingError(path + ": the DEM's grid is rotated or sheared (geotransform terms " + number(gt[2]) + ", " +
                         number(gt[4]) + "); expected a north-up grid (warp it first, e.g. gdalwarp)");
   }
+  for (const double term : gt) {
+    if (!std::isfinite(term)) throw LightingError(path + ": the DEM's geotransform has a term that is not a number");
+  }
   if (gt[1] == 0 || gt[5] == 0) throw LightingError(path + ": the DEM's geotransform has a zero pixel size");
 
   Grid g{ds->GetRasterXSize(), ds->GetRasterYSize(), {}};
+  checkGridSize(path, g.width, g.height);
   GDALRasterBand* band = ds->GetRasterBand(1);
   g.values.resize(static_cast<std::size_t>(g.width) * g.height);
   {
@@ -233,8 +247,15 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
   double cell = dx;
   if (std::fabs(dx - dy) > 1e-9 * std::max(dx, dy)) {
     cell = std::min(dx, dy);
-    const int w = std::max(1, static_cast<int>(std::lround(g.width * dx / cell)));
-    const int h = std::max(1, static_cast<int>(std::lround(g.height * dy / cell)));
+    const double wide = std::max(1.0, std::round(g.width * dx / cell));
+    const double high = std::max(1.0, std::round(g.height * dy / cell));
+    if (!(wide * high <= static_cast<double>(kMaxDemCells))) {
+      throw LightingError(path + ": square cells of " + number(cell) + " m would need " + number(wide) + " x " +
+                          number(high) + " cells, more than the " + std::to_string(kMaxDemCells) +
+                          " vbim reads; crop the DEM or give --cell-size");
+    }
+    const int w = static_cast<int>(wide);
+    const int h = static_cast<int>(high);
     gt[1] *= static_cast<double>(g.width) / w;
     gt[5] *= static_cast<double>(g.height) / h;
     dem.notes.push_back("cells of " + number(dx) + " x " + number(dy) + " m resampled bilinearly from " +

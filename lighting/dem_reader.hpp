@@ -14,6 +14,7 @@
 // Overrides are explicit and reported in `Dem::notes`.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,10 @@
 #include "lighting/terrain.hpp"
 
 namespace vbim::lighting {
+
+// The most cells a DEM may have, read or after resampling to square cells: 2^28 (16384 x 16384),
+// 1 GiB of float heights. Larger grids are refused before any allocation.
+inline constexpr std::int64_t kMaxDemCells = std::int64_t{1} << 28;
 
 struct DemOverrides {
   std::optional<double> cellSize;       // metres between texels, instead of the file's

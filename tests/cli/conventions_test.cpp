@@ -57,6 +57,14 @@ TEST(CliConventions, HelpCommandIsTheCommandsHelp) {
     EXPECT_EQ(help.output.find(":NONNEGATIVE"), std::string::npos) << help.output;
     EXPECT_EQ(help.output.find("{false}"), std::string::npos) << help.output;
     EXPECT_EQ(help.output.find("TEXT:FILE"), std::string::npos) << help.output;
+    // A validator's description is kept whole, after the default (it once lost its first word).
+    if (help.output.find("--threads") != std::string::npos) {
+      const auto option = help.output.find("--threads UINT=");
+      ASSERT_NE(option, std::string::npos) << help.output;
+      EXPECT_EQ(help.output.find(" (at most the machine's hardware threads)", option),
+                help.output.find_first_of(' ', option + 15))
+          << help.output;
+    }
   }
   EXPECT_EQ(run("help").code, 0);
 }

@@ -84,6 +84,23 @@ TEST_F(ImageReaderTest, IntegerFilesReadAsTheirOwnTypeGiveTheStoredCounts) {
   EXPECT_EQ(in.readUInt16().samples, codes);
 }
 
+TEST_F(ImageReaderTest, AHeaderClaimingAHugePictureIsRefusedBeforeReading) {
+  // A 20000 x 20000 PNM header over 4 bytes of samples: 4e8 samples, more than kMaxImageSamples.
+  {
+    std::ofstream out(path("huge.pgm"), std::ios::binary);
+    out << "P5\n20000 20000\n255\n" << std::string(4, '\x7f');
+  }
+  try {
+    ImageReader in(path("huge.pgm"), "heightfield");
+    FAIL() << "a 20000x20000 header was accepted";
+  } catch (const ImageIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.pgm: the heightfield is 20000x20000 with 1 channels, more than the "
+                                         "268435456 samples"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(ImageReaderTest, OtherExtensionsGoThroughOpenImageIo) {
   const std::vector<std::uint8_t> px = {1, 2, 3, 4, 5, 6};
   writeImage(path("a.tif"), ImageView<std::uint8_t>{2, 1, 3, px.data()});

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 
@@ -146,6 +147,42 @@ TEST(DemReader, NodataIsFilledFromTheNeighboursAndAnAsciiGridReads) {
   std::fill(all.values.begin(), all.values.end(), -9999.0f);
   writeDem(scratch("void.asc"), all, "AAIGrid");
   EXPECT_THROW(readDem(scratch("void.asc").string()), LightingError);
+}
+
+TEST(DemReader, HugeOrNonFiniteGridsAreRefusedFromTheHeader) {
+  // An ASCII grid whose header claims 20000 x 20000 cells (4e8, above kMaxDemCells) over one row.
+  const fs::path huge = scratch("huge.asc");
+  {
+    std::ofstream out(huge);
+    out << "ncols 20000\nnrows 20000\nxllcorner 0\nyllcorner 0\ncellsize 30\n1 2 3\n";
+  }
+  try {
+    readDem(huge.string());
+    FAIL() << "a 20000x20000 grid was accepted";
+  } catch (const LightingError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.asc: the DEM is 20000x20000 cells, more than the 268435456"),
+              std::string::npos)
+        << e.what();
+  }
+  // A geographic grid at the pole: at 89.99 degrees, cells of 0.001 degrees are ~0.02 m east-west
+  // and ~111 m north-south, so square cells would need ~5,700 times as many rows (4000 x ~114,000).
+  // Refused, not resampled.
+  DemSpec s;
+  s.width = 4000;
+  s.height = 20;
+  s.values.assign(static_cast<std::size_t>(s.width) * s.height, 10.0f);
+  s.gt = {0, 0.001, 0, 90.0, 0, -0.001};
+  s.epsg = 4326;
+  const fs::path polar = scratch("polar.tif");
+  writeDem(polar, s);
+  try {
+    readDem(polar.string());
+    FAIL() << "a resampled grid above the limit was accepted";
+  } catch (const LightingError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the 268435456 vbim reads; crop the DEM or give --cell-size"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(DemReader, SouthUpIsFlippedAndRotatedIsRefused) {
