@@ -26,6 +26,12 @@ Tick DmaStalls::deferSlow(Tick t) const {
   return t <= it->to ? it->to : t;
 }
 
+bool DmaStalls::clearSlow(Tick from, Tick to) const {
+  // Disjoint and in order: the first window not over before `from` is the only candidate.
+  auto it = std::partition_point(windows_.begin(), windows_.end(), [&](const Window& w) { return w.to < from; });
+  return it == windows_.end() || it->from > to;
+}
+
 IpuTimeline::IpuTimeline(const IpuParams& p)
     : p_(p),
       // The internal bit buffer holds qwords taken from the FIFO ahead of the decoder.
@@ -113,6 +119,9 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
     return q;
   };
 
+  const bool drainKeepsUp = dout_ >= static_cast<std::uint64_t>(kQwordsPerRow) &&
+                            kQwordsPerRow * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
+
   // The core: per macroblock its cost spread over the input qwords it pops, then CSC row by row.
   Tick t = std::max(st_.coreFree, arrival) + p_.idec_start_cycles;
   std::uint32_t pulled = 0;
@@ -127,6 +136,35 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
       ++pulled;
     }
     c.mbDecoded[i] = t;
+    if (drainKeepsUp) {
+      // The stretch where no FIFO can block: fromIPU has taken the earlier rows when a row is
+      // ready, and drains each row before the next (4 DMA periods <= a row's CSC time, and the
+      // FIFO holds a row), so row r's qwords go in at its ready time R and out at R + n periods.
+      while (taken < pushed) takeOutput();
+      const Tick firstRow = t + p_.csc_cycles_per_mb / kRowsPerMacroblock;
+      if (fromFree <= firstRow && out.clear(firstRow, t + p_.csc_cycles_per_mb + kQwordsPerRow * outPeriod)) {
+        const Tick begin = t;
+        for (int row = 0; row < kRowsPerMacroblock; ++row) {
+          t = begin + p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock;
+          for (int n = 0; n < kQwordsPerRow; ++n) {
+            takes[takeSlot] = t + n * outPeriod;
+            if (recordQwords) {
+              log.outEnter.push_back(t);
+              log.outLeave.push_back(t + n * outPeriod);
+            }
+            if (++takeSlot == ring) takeSlot = 0;
+          }
+        }
+        constexpr std::uint64_t kPerMacroblock = kRowsPerMacroblock * kQwordsPerRow;
+        pushed += kPerMacroblock;
+        taken += kPerMacroblock;
+        pushSlot = takeSlot;
+        lastResume = t + (kQwordsPerRow - 1) * outPeriod;
+        fromFree = t + kQwordsPerRow * outPeriod;
+        c.mbEnd[i] = t;
+        continue;
+      }
+    }
     for (int row = 0; row < kRowsPerMacroblock; ++row) {
       t += p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock - p_.csc_cycles_per_mb * row / kRowsPerMacroblock;
       const Tick ready = t;

@@ -31,6 +31,8 @@ class DmaStalls {
   // A stall from `now` for `duration`; a stall still in progress is not extended (as
   // Scheduler::suspend on a suspended process). Returns whether a stall was added.
   bool add(Tick now, Tick duration);
+  // No stall holds any time in [from, to].
+  bool clear(Tick from, Tick to) const { return windows_.empty() || clearSlow(from, to); }
   // The time a wake-up due at t happens.
   Tick defer(Tick t) const {
     if (windows_.empty() || t < windows_.front().from) return t;
@@ -43,6 +45,7 @@ class DmaStalls {
     Tick to;
   };
   Tick deferSlow(Tick t) const;
+  bool clearSlow(Tick from, Tick to) const;
   std::vector<Window> windows_;  // in time order, disjoint
 };
 
