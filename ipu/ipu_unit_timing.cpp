@@ -155,7 +155,7 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
             if (++takeSlot == ring) takeSlot = 0;
           }
         }
-        constexpr std::uint64_t kPerMacroblock = kRowsPerMacroblock * kQwordsPerRow;
+        constexpr auto kPerMacroblock = static_cast<std::uint64_t>(kRowsPerMacroblock) * kQwordsPerRow;
         pushed += kPerMacroblock;
         taken += kPerMacroblock;
         pushSlot = takeSlot;

@@ -110,6 +110,7 @@ Levels collapse(const std::vector<reference::FifoSample>& samples) {
 
 Levels levelsOf(const std::vector<Tick>& enter, const std::vector<Tick>& leave) {
   std::vector<std::pair<Tick, int>> changes;
+  changes.reserve(enter.size() + leave.size());
   for (Tick t : enter) changes.emplace_back(t, 1);
   for (Tick t : leave) changes.emplace_back(t, -1);
   std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -228,7 +229,7 @@ Scenario randomScenario(std::mt19937_64& rng) {
     const auto qwords = static_cast<Tick>(pic.size() / 16 + 1);
     const Tick mbs = 99;  // at most (176x144)
     horizon += gap + qwords * p.toipu_cycles_per_qword +
-               mbs * (p.mb_base_cycles + 2 * 600 + p.csc_cycles_per_mb + 64 * p.fromipu_cycles_per_qword);
+               mbs * (p.mb_base_cycles + Tick{1200} + p.csc_cycles_per_mb + 64 * p.fromipu_cycles_per_qword);
     sc.pictures.push_back(std::move(pic));
     sc.gaps.push_back(gap);
   }
