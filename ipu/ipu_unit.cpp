@@ -6,9 +6,6 @@
 namespace vbim::ipu {
 namespace {
 
-constexpr std::uint32_t kQwordsPerMacroblock = 64;  // RGB32: 16 x 16 x 4 bytes / 16 (docs/hardware.md#idec)
-constexpr std::uint32_t kQwordsPerRow = 4;
-
 DecoderOptions withTrace(DecoderOptions o) {
   o.recordMacroblocks = true;
   return o;
@@ -21,139 +18,132 @@ IpuUnit::IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer, DecoderOption
       p_(p),
       tracer_(tracer && tracer->enabled() ? tracer : nullptr),
       decoder_(withTrace(options)),
-      toIpuJobs_(s, 1, "ipu.toipu_jobs"),
-      coreJobs_(s, 1, "ipu.core_jobs"),
-      fromIpuJobs_(s, 1, "ipu.fromipu_jobs"),
-      // The internal bit buffer holds qwords taken from the FIFO ahead of the decoder.
-      in_(s, static_cast<std::size_t>(p.in_fifo_qwords + p.in_buffer_qwords), "ipu.in"),
-      out_(s, static_cast<std::size_t>(p.out_fifo_qwords), "ipu.out") {
+      timeline_(p),
+      commands_(s, 1, "ipu.commands") {
   if (tracer_) track_ = tracer_->track("ipu");
-  toIpu_ = &s_.spawn("ipu.toIPU", toIpuLoop(*this));
-  core_ = &s_.spawn("ipu", coreLoop(*this));
-  fromIpu_ = &s_.spawn("ipu.fromIPU", fromIpuLoop(*this));
+  s_.spawn("ipu", run(*this));
 }
 
 Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
   TimedPicture result;
   result.started = s_.now();
-  const JobRef shared = std::make_shared<Job>(s_);
-  Job& job = *shared;
-  result.report = decoder_.decode(bytes, nullptr, RgbaOutput{&job.staged, th, true});
+  const CommandRef shared = std::make_shared<Command>(s_);
+  Command& cmd = *shared;
+  result.report = decoder_.decode(bytes, nullptr, RgbaOutput{&cmd.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();
     co_return result;
   }
   const FrameStore& fs = decoder_.frame();
-  job.mbWidth = fs.mbWidth;
   const std::size_t mbs = static_cast<std::size_t>(fs.mbWidth) * fs.mbHeight;
-  job.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
+  CommandTiming& tm = cmd.timing;
+  tm.arrival = s_.now();
+  tm.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
   // Per macroblock (raster order): the qwords holding its last bit, and its bit count. Concealed
   // macroblocks cost the base only and need no further input.
   std::vector<std::uint32_t> endByte(mbs, 0);
-  job.bits.assign(mbs, 0);
+  tm.bits.assign(mbs, 0);
   for (const MacroblockBits& m : decoder_.macroblockTrace()) {
     if (m.address < mbs) {
       endByte[m.address] = m.endByte;
-      job.bits[m.address] = m.bits;
+      tm.bits[m.address] = m.bits;
     }
   }
-  job.needQwords.resize(mbs);
+  tm.needQwords.resize(mbs);
   std::uint32_t need = 0;
   for (std::size_t i = 0; i < mbs; ++i) {
-    need = std::max(need, std::min(job.inQwords, (endByte[i] + 15) / 16));
-    job.needQwords[i] = need;
+    need = std::max(need, std::min(tm.inQwords, (endByte[i] + 15) / 16));
+    tm.needQwords[i] = need;
   }
+  retire();
+  cmd.before = timeline_.state();
+  timeline_.plan(tm, inStalls_, outStalls_, recordQwords_);
+  inFlight_.push_back(shared);
+  if (recordQwords_) recorded_.push_back(shared);
+  co_await commands_.push(shared);
+  while (!cmd.done) co_await cmd.finishedEvent.wait();
+  // The picture is in memory: the caller sees it whole (no one reads it while the DMA runs).
   if (out.width != decoder_.width() || out.height != decoder_.height())
     out = Rgba8Image(decoder_.width(), decoder_.height());
-  job.out = &out;
-  co_await toIpuJobs_.push(shared);
-  co_await coreJobs_.push(shared);
-  co_await fromIpuJobs_.push(shared);
-  while (!job.done) co_await job.finished.wait();
-  job.out = nullptr;  // the caller's image: only fromIPU wrote it, and it is done
+  for (int y = 0; y < out.height; ++y)
+    std::memcpy(out.row(y), cmd.staged.row(y), static_cast<std::size_t>(out.width) * 4);
   result.finished = s_.now();
-  result.outputStalls = job.stalls;
+  result.outputStalls = tm.stalls;
   co_return result;
 }
 
-Task<void> IpuUnit::toIpuLoop(IpuUnit& u) {
+// Sleeps from one observable event of the command to the next: the end of each trace span (as the
+// qword-stepping model recorded them, at the tick they ended) and the last qword's write. Each time
+// is read again on waking: a DMA stall may have moved it later.
+Task<void> IpuUnit::run(IpuUnit& u) {
+  Scheduler& s = u.s_;
   for (;;) {
-    const JobRef job = co_await u.toIpuJobs_.pop();
-    for (std::uint32_t q = 0; q < job->inQwords; ++q) {
-      co_await u.s_.delay(u.p_.toipu_cycles_per_qword);
-      co_await u.in_.push(q);
-    }
-  }
-}
-
-Task<void> IpuUnit::coreLoop(IpuUnit& u) {
-  for (;;) {
-    const JobRef job = co_await u.coreJobs_.pop();
-    co_await u.s_.delay(u.p_.idec_start_cycles);
-    std::uint32_t pulled = 0;
-    std::uint32_t q = 0;
-    const std::size_t mbs = job->needQwords.size();
-    for (std::size_t i = 0; i < mbs; ++i) {
-      // The decoder consumes the macroblock's qwords while it works: the cost is spread over them,
-      // so the toIPU DMA refills the FIFO during the decode and only a slower DMA makes it wait.
-      const Tick begin = u.s_.now();
-      const Tick cost = u.p_.mb_base_cycles + u.p_.mb_cycles_per_bit * job->bits[i];
-      const std::uint32_t k = job->needQwords[i] - pulled;
-      if (k == 0) co_await u.s_.delay(cost);
-      for (std::uint32_t j = 1; j <= k; ++j) {
-        co_await u.s_.delay(cost * j / k - cost * (j - 1) / k);
-        co_await u.in_.pop();
-        ++pulled;
-      }
-      const Tick decoded = u.s_.now();
+    const CommandRef ref = co_await u.commands_.pop();
+    const CommandTiming& tm = ref->timing;
+    if (u.tracer_) {
       // Per macroblock (a few us) only in full detail; otherwise the same label throughout, so the
       // tracer joins a busy stretch into one span (at 290 macroblocks/s the two spans per macroblock
       // were 150 MB of trace.json per simulated hour).
-      const bool fine = u.tracer_ != nullptr && u.tracer_->detail() == TraceDetail::kFull;
-      if (u.tracer_) u.tracer_->span(u.track_, begin, decoded, fine ? "idec" : "decode");
-      // CSC emits the macroblock row by row; each row's qwords wait for room in the output FIFO.
-      for (int row = 0; row < 16; ++row) {
-        co_await u.s_.delay(u.p_.csc_cycles_per_mb * (row + 1) / 16 - u.p_.csc_cycles_per_mb * row / 16);
-        const Tick ready = u.s_.now();
-        for (std::uint32_t k = 0; k < kQwordsPerRow; ++k) co_await u.out_.push(q++);
-        if (u.s_.now() != ready) {
-          ++job->stalls;
-          if (fine) u.tracer_->span(u.track_, ready, u.s_.now(), "out stall");
+      const bool fine = u.tracer_->detail() == TraceDetail::kFull;
+      std::size_t stall = 0;
+      for (std::size_t i = 0; i < tm.mbEnd.size(); ++i) {
+        while (s.now() < tm.mbDecoded[i]) co_await s.until(tm.mbDecoded[i]);
+        u.tracer_->span(u.track_, tm.mbBegin[i], tm.mbDecoded[i], fine ? "idec" : "decode");
+        // CSC rows that waited for room (full detail), then the macroblock's end. A stall that
+        // starts while this sleeps can add a row stall ending before the tick it wakes at: that
+        // span is recorded then, in order, with its own times.
+        for (;;) {
+          if (fine && stall < tm.rowStalls.size() && tm.rowStalls[stall].mb == i) {
+            if (s.now() < tm.rowStalls[stall].end) {
+              co_await s.until(tm.rowStalls[stall].end);
+              continue;
+            }
+            u.tracer_->span(u.track_, tm.rowStalls[stall].ready, tm.rowStalls[stall].end, "out stall");
+            ++stall;
+            continue;
+          }
+          if (s.now() >= tm.mbEnd[i]) break;
+          co_await s.until(tm.mbEnd[i]);
         }
+        u.tracer_->span(u.track_, tm.mbDecoded[i], tm.mbEnd[i], fine ? "csc" : "decode");
       }
-      if (u.tracer_) u.tracer_->span(u.track_, decoded, u.s_.now(), fine ? "csc" : "decode");
     }
-    // Bytes after the last macroblock (stuffing, the next start code) are read and dropped.
-    while (pulled < job->inQwords) {
-      co_await u.in_.pop();
-      ++pulled;
-    }
+    // The last qword's DMA period starts where the stepping model started it, so the caller
+    // resumes in the same order among the events of that tick.
+    while (s.now() < tm.lastResume) co_await s.until(tm.lastResume);
+    while (s.now() < tm.finished) co_await s.until(tm.finished);
+    ref->done = true;
+    ref->finishedEvent.notify();
   }
 }
 
-Task<void> IpuUnit::fromIpuLoop(IpuUnit& u) {
-  for (;;) {
-    const JobRef job = co_await u.fromIpuJobs_.pop();
-    const std::uint32_t total = static_cast<std::uint32_t>(job->needQwords.size()) * kQwordsPerMacroblock;
-    for (std::uint32_t n = 0; n < total; ++n) {
-      const std::uint32_t q = co_await u.out_.pop();
-      co_await u.s_.delay(u.p_.fromipu_cycles_per_qword);
-      u.writeQword(*job, q);
-    }
-    job->done = true;
-    job->finished.notify();
+void IpuUnit::retire() {
+  while (!inFlight_.empty() && inFlight_.front()->timing.quietAfter < s_.now()) inFlight_.pop_front();
+}
+
+// A stall moves nothing before now: plan again from the oldest command with an event still ahead.
+void IpuUnit::replan() {
+  retire();
+  if (inFlight_.empty()) return;
+  timeline_.restore(inFlight_.front()->before);
+  for (const CommandRef& c : inFlight_) {
+    c->before = timeline_.state();
+    timeline_.plan(c->timing, inStalls_, outStalls_, recordQwords_);
   }
 }
 
-void IpuUnit::writeQword(const Job& job, std::uint32_t q) {
-  const std::uint32_t mb = q / kQwordsPerMacroblock;
-  const std::uint32_t within = q % kQwordsPerMacroblock;
-  const int px = static_cast<int>(mb % job.mbWidth) * 16 + static_cast<int>(within % kQwordsPerRow) * 4;
-  const int py = static_cast<int>(mb / job.mbWidth) * 16 + static_cast<int>(within / kQwordsPerRow);
-  Rgba8Image& out = *job.out;
-  if (py >= out.height || px >= out.width) return;
-  const int n = std::min(4, out.width - px);
-  std::memcpy(out.row(py) + 4 * px, job.staged.row(py) + 4 * px, static_cast<std::size_t>(n) * 4);
+void IpuUnit::stallInputDma(Tick duration) {
+  if (inStalls_.add(s_.now(), duration)) replan();
+}
+
+void IpuUnit::stallOutputDma(Tick duration) {
+  if (outStalls_.add(s_.now(), duration)) replan();
+}
+
+std::vector<CommandTiming::Qwords> IpuUnit::qwordLog() const {
+  std::vector<CommandTiming::Qwords> log;
+  for (const CommandRef& c : recorded_) log.push_back(c->timing.qwords);
+  return log;
 }
 
 }  // namespace vbim::ipu

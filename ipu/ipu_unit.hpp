@@ -1,14 +1,15 @@
-// The IPU on the simulated clock: three cooperating threads, as on the console.
+// The IPU on the simulated clock, as on the console three channels working at once:
 //
-//   "ipu.toIPU"   DMAC channel 4: picture bytes from EE memory into the 8-qword input FIFO
-//   "ipu"         IDEC: per macroblock, waits for its bits, then base + per-bit cycles (VLC, IQ,
-//                 IDCT), then CSC row by row, each row's 4 qwords pushed into the 8-qword output
-//                 FIFO (blocking when it is full: decode stalls when the output is not drained)
-//   "ipu.fromIPU" DMAC channel 3: output FIFO to EE memory, writing the pixels of each qword into
-//                 the caller's image when that qword lands
+//   toIPU   DMAC channel 4: picture bytes from EE memory into the 8-qword input FIFO
+//   IDEC    per macroblock, waits for its bits, then base + per-bit cycles (VLC, IQ, IDCT), then
+//           CSC row by row, each row's 4 qwords pushed into the 8-qword output FIFO (blocking when
+//           it is full: decode stalls when the output is not drained)
+//   fromIPU DMAC channel 3: output FIFO to EE memory
 //
 // The pixels come from the functional decoder (ipu/picture_decoder.hpp), computed on the host when
-// the command starts and released qword by qword at the modelled times. The player (issue #7)
+// the command starts. The qword timing of all three channels is computed on the host too
+// (ipu/ipu_unit_timing.hpp); one process, "ipu", sleeps from one observable event to the next (a
+// trace span ends, the command completes) instead of stepping every qword. The player (issue #7)
 // calls `co_await unit.decode(bytes, image)`.
 #pragma once
 
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "ipu/csc.hpp"
+#include "ipu/ipu_unit_timing.hpp"
 #include "ipu/params.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "runtime/event.hpp"
@@ -48,50 +50,46 @@ class IpuUnit {
   // One command at a time: callers serialise (as the EE does with IPU_CMD).
   Task<TimedPicture> decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th = {});
 
-  // For fault injection: suspending this process stops the output drain (D_CTRL stall, or an EE
-  // that does not service the DMA), so the output FIFO fills and the decode stalls.
-  Process& fromIpuProcess() { return *fromIpu_; }
-  Process& toIpuProcess() { return *toIpu_; }
-  Process& coreProcess() { return *core_; }
+  // Fault injection: the DMA channel moves nothing from now for `duration` ticks (a D_CTRL stall,
+  // or an EE that does not service the channel). A stalled fromIPU lets the output FIFO fill and
+  // the decode stall; a stalled toIPU starves it. A stall still in progress is not extended.
+  // Takes effect from the start of the current tick: call it from a process that runs before the
+  // IPU's events of that tick (as a fault process scheduled in advance does).
+  void stallInputDma(Tick duration);
+  void stallOutputDma(Tick duration);
   const Decoder& decoder() const { return decoder_; }
 
+  // Tests: keep when every qword entered and left each FIFO, one entry per command from now on.
+  void recordQwords() { recordQwords_ = true; }
+  std::vector<CommandTiming::Qwords> qwordLog() const;
+
  private:
-  // One command's data. The three loops share it: decode() returns when the output is in memory,
-  // but toIPU may still be moving, and the core dropping, input after the last macroblock (stuffing,
-  // or the rest of a picture whose last macroblocks were concealed), so each loop holds the job
-  // until it is done with it.
-  struct Job {
-    explicit Job(Scheduler& s) : finished(s) {}
-    std::uint32_t inQwords = 0;
-    // Per macroblock in output order: input qwords needed before it can start, and its bits.
-    std::vector<std::uint32_t> needQwords;
-    std::vector<std::uint32_t> bits;
-    int mbWidth = 0;
-    Rgba8Image staged;  // the IPU's output, whole macroblocks
-    Rgba8Image* out = nullptr;
-    std::int64_t stalls = 0;
+  // One command: what the timing needs, its schedule, and the output waiting for its time.
+  struct Command {
+    explicit Command(Scheduler& s) : finishedEvent(s) {}
+    CommandTiming timing;
+    IpuTimeline::State before;  // the timeline before this command, to plan it again after a stall
+    Rgba8Image staged;          // the IPU's output, whole macroblocks
     bool done = false;
-    Event finished;
+    Event finishedEvent;
   };
-  using JobRef = std::shared_ptr<Job>;
-  static Task<void> toIpuLoop(IpuUnit& u);
-  static Task<void> coreLoop(IpuUnit& u);
-  static Task<void> fromIpuLoop(IpuUnit& u);
-  void writeQword(const Job& job, std::uint32_t q);
+  using CommandRef = std::shared_ptr<Command>;
+  static Task<void> run(IpuUnit& u);
+  void retire();
+  void replan();
 
   Scheduler& s_;
   IpuParams p_;
   Tracer* tracer_;
   Tracer::TrackId track_ = 0;
   Decoder decoder_;
-  Fifo<JobRef> toIpuJobs_;
-  Fifo<JobRef> coreJobs_;
-  Fifo<JobRef> fromIpuJobs_;
-  Fifo<std::uint32_t> in_;
-  Fifo<std::uint32_t> out_;
-  Process* toIpu_ = nullptr;
-  Process* core_ = nullptr;
-  Process* fromIpu_ = nullptr;
+  IpuTimeline timeline_;
+  DmaStalls inStalls_;
+  DmaStalls outStalls_;
+  std::deque<CommandRef> inFlight_;  // planned commands whose last event is not yet past
+  Fifo<CommandRef> commands_;
+  bool recordQwords_ = false;
+  std::vector<CommandRef> recorded_;
 };
 
 }  // namespace vbim::ipu

@@ -34,9 +34,9 @@ Task<void> decodeOnce(IpuUnit& unit, const std::vector<std::uint8_t>& bytes, Tim
   run.trace = unit.decoder().macroblockTrace();
 }
 
-Task<void> suspendLater(Scheduler& s, Process& p, Tick at, Tick duration) {
+Task<void> stallOutputLater(Scheduler& s, IpuUnit& unit, Tick at, Tick duration) {
   co_await s.until(at);
-  s.suspendFor(p, duration);
+  unit.stallOutputDma(duration);
 }
 
 TimedRun runWith(const IpuParams& p, const std::vector<std::uint8_t>& bytes, Tick stallAt = -1, Tick stallFor = 0) {
@@ -45,7 +45,7 @@ TimedRun runWith(const IpuParams& p, const std::vector<std::uint8_t>& bytes, Tic
   IpuUnit unit(s, p, &tracer);
   TimedRun run;
   s.spawn("player", decodeOnce(unit, bytes, run));
-  if (stallAt >= 0) s.spawn("fault", suspendLater(s, unit.fromIpuProcess(), stallAt, stallFor));
+  if (stallAt >= 0) s.spawn("fault", stallOutputLater(s, unit, stallAt, stallFor));
   s.run();
   return run;
 }

@@ -1,0 +1,196 @@
+#include "ipu/ipu_unit_timing.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace vbim::ipu {
+namespace {
+
+// Before the first qword: a slot freed "long ago".
+constexpr Tick kLongAgo = std::numeric_limits<Tick>::min() / 4;
+constexpr int kRowsPerMacroblock = 16;
+constexpr int kQwordsPerRow = 4;  // RGB32: 16 pixels x 4 bytes (docs/hardware.md#idec)
+
+}  // namespace
+
+bool DmaStalls::add(Tick now, Tick duration) {
+  if (!windows_.empty() && now < windows_.back().to) return false;
+  windows_.push_back({now, now + std::max<Tick>(duration, 0)});
+  return true;
+}
+
+Tick DmaStalls::deferSlow(Tick t) const {
+  // The last window starting at or before t holds it if t is not past its end.
+  auto it = std::upper_bound(windows_.begin(), windows_.end(), t, [](Tick v, const Window& w) { return v < w.from; });
+  --it;  // exists: t >= front().from
+  return t <= it->to ? it->to : t;
+}
+
+bool DmaStalls::clearSlow(Tick from, Tick to) const {
+  // Disjoint and in order: the first window not over before `from` is the only candidate.
+  auto it = std::partition_point(windows_.begin(), windows_.end(), [&](const Window& w) { return w.to < from; });
+  return it == windows_.end() || it->from > to;
+}
+
+IpuTimeline::IpuTimeline(const IpuParams& p)
+    : p_(p),
+      // The internal bit buffer holds qwords taken from the FIFO ahead of the decoder.
+      din_(static_cast<std::uint64_t>(p.in_fifo_qwords + p.in_buffer_qwords)),
+      dout_(static_cast<std::uint64_t>(p.out_fifo_qwords)) {
+  st_.inPops.assign(din_, kLongAgo);
+  st_.outTakes.assign(dout_ + 1, kLongAgo);
+  outPushes_.assign(dout_ + 1, 0);
+}
+
+void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& out, bool recordQwords) {
+  const Tick arrival = c.arrival;
+  const Tick inPeriod = p_.toipu_cycles_per_qword;
+  const Tick outPeriod = p_.fromipu_cycles_per_qword;
+  const std::size_t mbs = c.needQwords.size();
+  const std::uint64_t outTotal = static_cast<std::uint64_t>(mbs) * kRowsPerMacroblock * kQwordsPerRow;
+  c.mbBegin.assign(mbs, 0);
+  c.mbDecoded.assign(mbs, 0);
+  c.mbEnd.assign(mbs, 0);
+  c.rowStalls.clear();
+  c.stalls = 0;
+  CommandTiming::Qwords& log = c.qwords;
+  log = {};
+
+  // A channel waiting for the command wakes when it arrives; one still busy with the previous
+  // command's input takes it when done.
+  Tick inFree = arrival > st_.toIpuFree ? in.defer(arrival) : st_.toIpuFree;
+  Tick fromFree = arrival > st_.fromIpuFree ? out.defer(arrival) : st_.fromIpuFree;
+  Tick lastResume = fromFree;
+
+  // Input: toIPU moves qword x once the FIFO has room (qword x - Din popped), the core pops it.
+  Tick* const pops = st_.inPops.data();
+  std::uint64_t inSlot = st_.inCount % din_;
+  auto popInput = [&](Tick request) {
+    const Tick arrive = in.defer(inFree + inPeriod);
+    const Tick freed = pops[inSlot];
+    Tick enter = arrive;
+    if (freed > arrive) {  // the channel waited for room: its qword goes in when one is popped
+      enter = freed;
+      inFree = in.defer(freed);
+    } else {
+      inFree = arrive;
+    }
+    const Tick popped = std::max(request, enter);
+    pops[inSlot] = popped;
+    if (++inSlot == din_) inSlot = 0;
+    if (recordQwords) {
+      log.inEnter.push_back(enter);
+      log.inLeave.push_back(popped);
+    }
+    return popped;
+  };
+
+  // Output: the core pushes qword y once qword y - Dout was taken; fromIPU takes each in turn.
+  const std::uint64_t ring = dout_ + 1;
+  Tick* const takes = st_.outTakes.data();
+  Tick* const pushes = outPushes_.data();
+  std::uint64_t pushSlot = st_.outCount % ring;
+  std::uint64_t takeSlot = pushSlot;
+  std::uint64_t pushed = 0;
+  std::uint64_t taken = 0;
+  auto takeOutput = [&] {
+    const Tick q = pushes[takeSlot];
+    const Tick r = fromFree;
+    // Waiting on an empty FIFO, the channel is handed the qword at once and wakes when it may.
+    const Tick resumed = q <= r ? r : out.defer(q);
+    fromFree = out.defer(resumed + outPeriod);
+    lastResume = resumed;
+    takes[takeSlot] = std::max(r, q);
+    if (recordQwords) {
+      log.outEnter.push_back(q);
+      log.outLeave.push_back(takes[takeSlot]);
+    }
+    if (++takeSlot == ring) takeSlot = 0;
+    ++taken;
+  };
+  auto pushOutput = [&](Tick request) {
+    while (taken + dout_ <= pushed) takeOutput();
+    std::uint64_t older = pushSlot + 1;  // the slot of qword y - Dout
+    if (older == ring) older = 0;
+    const Tick q = std::max(request, takes[older]);
+    pushes[pushSlot] = q;
+    pushSlot = older;
+    ++pushed;
+    return q;
+  };
+
+  const bool drainKeepsUp = dout_ >= static_cast<std::uint64_t>(kQwordsPerRow) &&
+                            kQwordsPerRow * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
+
+  // The core: per macroblock its cost spread over the input qwords it pops, then CSC row by row.
+  Tick t = std::max(st_.coreFree, arrival) + p_.idec_start_cycles;
+  std::uint32_t pulled = 0;
+  for (std::size_t i = 0; i < mbs; ++i) {
+    c.mbBegin[i] = t;
+    const Tick cost = p_.mb_base_cycles + p_.mb_cycles_per_bit * c.bits[i];
+    const std::uint32_t k = c.needQwords[i] - pulled;
+    if (k == 0) t += cost;
+    for (std::uint32_t j = 1; j <= k; ++j) {
+      t += cost * j / k - cost * (j - 1) / k;
+      t = popInput(t);
+      ++pulled;
+    }
+    c.mbDecoded[i] = t;
+    if (drainKeepsUp) {
+      // The stretch where no FIFO can block: fromIPU has taken the earlier rows when a row is
+      // ready, and drains each row before the next (4 DMA periods <= a row's CSC time, and the
+      // FIFO holds a row), so row r's qwords go in at its ready time R and out at R + n periods.
+      while (taken < pushed) takeOutput();
+      const Tick firstRow = t + p_.csc_cycles_per_mb / kRowsPerMacroblock;
+      if (fromFree <= firstRow && out.clear(firstRow, t + p_.csc_cycles_per_mb + kQwordsPerRow * outPeriod)) {
+        const Tick begin = t;
+        for (int row = 0; row < kRowsPerMacroblock; ++row) {
+          t = begin + p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock;
+          for (int n = 0; n < kQwordsPerRow; ++n) {
+            takes[takeSlot] = t + n * outPeriod;
+            if (recordQwords) {
+              log.outEnter.push_back(t);
+              log.outLeave.push_back(t + n * outPeriod);
+            }
+            if (++takeSlot == ring) takeSlot = 0;
+          }
+        }
+        constexpr auto kPerMacroblock = static_cast<std::uint64_t>(kRowsPerMacroblock) * kQwordsPerRow;
+        pushed += kPerMacroblock;
+        taken += kPerMacroblock;
+        pushSlot = takeSlot;
+        lastResume = t + (kQwordsPerRow - 1) * outPeriod;
+        fromFree = t + kQwordsPerRow * outPeriod;
+        c.mbEnd[i] = t;
+        continue;
+      }
+    }
+    for (int row = 0; row < kRowsPerMacroblock; ++row) {
+      t += p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock - p_.csc_cycles_per_mb * row / kRowsPerMacroblock;
+      const Tick ready = t;
+      for (int n = 0; n < kQwordsPerRow; ++n) t = pushOutput(t);
+      if (t != ready) {
+        ++c.stalls;
+        c.rowStalls.push_back({static_cast<std::uint32_t>(i), ready, t});
+      }
+    }
+    c.mbEnd[i] = t;
+  }
+  // Bytes after the last macroblock (stuffing, the next start code) are read and dropped.
+  while (pulled < c.inQwords) {
+    t = popInput(t);
+    ++pulled;
+  }
+  while (taken < outTotal) takeOutput();
+
+  c.lastResume = lastResume;
+  c.finished = fromFree;
+  c.quietAfter = std::max({fromFree, t, inFree});
+  st_.toIpuFree = inFree;
+  st_.coreFree = t;
+  st_.fromIpuFree = fromFree;
+  st_.inCount += c.inQwords;
+  st_.outCount += outTotal;
+}
+
+}  // namespace vbim::ipu
