@@ -119,6 +119,7 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   s.terrain = o.terrain;
   s.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
   s.terrain.verticalScaleGiven = o.verticalScaleOption != nullptr && o.verticalScaleOption->count() > 0;
+  s.terrain.procedural.cellSize = s.terrain.cellSize;  // --cell-size sizes the procedural terrain's cells too
   s.stream = streamSettings(enc);
   s.tone = toneMapping(enc);
   s.threads = o.threads;

@@ -41,6 +41,7 @@ struct TerrainSource {
   // Metres between samples, and the vertical scale (metres at full scale for integer pictures, a
   // multiplier for float pictures and DEMs). A DEM's own cell size and a float file's heights are
   // used unless the matching *Given flag says the value was chosen (lighting/terrain_file.hpp).
+  // The procedural terrain has its own (`procedural.cellSize`; `vbim author` sets both).
   double cellSize = 10.0;
   double verticalScale = 1000.0;
   bool cellSizeGiven = false;

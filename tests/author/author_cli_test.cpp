@@ -216,6 +216,35 @@ TEST(AuthorCli, ProceduralWithTwoWeathersAndAConfigFile) {
   fs::remove(out);
 }
 
+// `--cell-size` sizes the procedural terrain's cells as it does a picture's (it used to keep 10 m):
+// the record, which holds the cell size the frames were lit with, says so.
+TEST(AuthorCli, ProceduralTerrainTakesTheCellSize) {
+  const fs::path out = dir() / "cells.vbim";
+  const Outcome r =
+      run("author --procedural --size 32 --cell-size 30 --sky-width 32 --frame-count 2 --fps 1 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const Outcome info = run("info " + out.string());
+  ASSERT_EQ(info.status, 0) << info.out;
+  EXPECT_NE(info.out.find("terrain procedural, 32x32 texels of 30.0 m"), std::string::npos) << info.out;
+  fs::remove(out);
+}
+
+// Shadow rays are the default; --no-shadow-rays brings the sheared lines back. The record holds
+// every lighting.* value the frames were lit with.
+TEST(AuthorCli, ShadowRaysByDefaultAndNoShadowRaysTurnsThemOff) {
+  const fs::path out = dir() / "rays.vbim";
+  for (const bool off : {false, true}) {
+    const Outcome r = run("author --procedural --size 32 --sky-width 32 --frame-count 2 --fps 1 --force" +
+                          std::string(off ? " --no-shadow-rays" : "") + " --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    const Outcome info = run("info --json " + out.string());
+    ASSERT_EQ(info.status, 0) << info.out;
+    const nlohmann::json record = nlohmann::json::parse(info.out)["authoring"];
+    EXPECT_EQ(record["variants"][0]["lighting"]["lighting.shadow_rays"], !off) << info.out;
+  }
+  fs::remove(out);
+}
+
 struct BadCase {
   std::string name, args, words;
 };
