@@ -26,6 +26,7 @@
 
 #include "lighting/day_cycle.hpp"
 #include "lighting/procedural_terrain.hpp"
+#include "lighting/terrain_fit.hpp"
 #include "runtime/image.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/tone_map.hpp"
@@ -47,6 +48,10 @@ struct TerrainSource {
   bool cellSizeGiven = false;
   bool verticalScaleGiven = false;
   ProceduralTerrainParams procedural;  // 512x512 by default, as `vbim lightmap`
+  // Sides that are not multiples of 16 (whole macroblocks): cropped (centred), padded or left for
+  // the encoder to refuse (lighting/terrain_fit.hpp). Colour maps of the heightfield file's size
+  // follow the heightfield (cropped, padded, or resampled with a DEM's grid).
+  TerrainFit fit = TerrainFit::Crop;
 };
 
 // One weather of the stream: its name (1..23 bytes) and the generator's settings.
