@@ -1,6 +1,7 @@
 #include "cli/author_terrain.hpp"
 
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "cli/command.hpp"
@@ -67,10 +68,19 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
     return opt;
   };
   track(cmd->add_option("--terrain", o->terrain.heightfield,
-                        "Heightfield (single-channel 16-bit PNG, TIFF, EXR...); sides multiples of 16"));
+                        "Heightfield: a DEM GDAL reads (GeoTIFF, ASCII grid, .hgt...) or a single-channel picture "
+                        "(16-bit PNG, TIFF, EXR...)"));
   track(cmd->add_flag("--procedural", o->procedural,
                       "Use the built-in procedural terrain (also what any Technique A option without --terrain gets)"));
-  track(cmd->add_option("--albedo", o->terrain.albedo, "Diffuse colour map of the heightfield's size"));
+  const std::map<std::string, lighting::TerrainFit> fits{
+      {"crop", lighting::TerrainFit::Crop}, {"pad", lighting::TerrainFit::Pad}, {"none", lighting::TerrainFit::None}};
+  track(cmd->add_option("--terrain-fit", o->terrain.fit,
+                        "Sides not multiples of 16: crop (centred), pad (edges repeated) or none (refused)")
+            ->transform(CLI::CheckedTransformer(fits))
+            ->default_str("crop"));
+  track(cmd->add_option(
+      "--albedo", o->terrain.albedo,
+      "Diffuse colour map of the terrain's size or of the heightfield file's (then resampled with it)"));
   track(cmd->add_option("--bounce-albedo", o->terrain.bounceAlbedo,
                         "Colour of the surrounding terrain for the coloured bounce light only (same size)"));
   track(cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
@@ -119,6 +129,7 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   s.terrain = o.terrain;
   s.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
   s.terrain.verticalScaleGiven = o.verticalScaleOption != nullptr && o.verticalScaleOption->count() > 0;
+  s.terrain.procedural.cellSize = s.terrain.cellSize;  // --cell-size sizes the procedural terrain's cells too
   s.stream = streamSettings(enc);
   s.tone = toneMapping(enc);
   s.threads = o.threads;

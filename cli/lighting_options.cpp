@@ -42,7 +42,11 @@ void addLightingOptions(CLI::App* cmd, DayCycleParams& cli, bool& noMoon, Lighti
   param("--sun-diameter", VBIM_FIELD(sunDiameterDeg), "Sun's angular diameter in degrees (larger = softer shadows)")
       ->default_val(defaults.sunDiameterDeg);
   flag("--shadow-rays", VBIM_FIELD(shadowRays),
-       "Shadows along each texel's own ray (right at every azimuth) instead of its sheared sweep line");
+       "Shadows along each texel's own ray, right at every azimuth (the default)");
+  bind(cmd->add_flag_callback(
+           "--no-shadow-rays", [source] { source->shadowRays = false; },
+           "Shadows along each texel's sheared sweep line instead (cheaper; over-shadows at oblique azimuths)"),
+       VBIM_FIELD(shadowRays));
   flag("--exact-disc", VBIM_FIELD(exactDisc),
        "Occlude the sun by visible disc area instead of the article's linear ramp");
   param("--turbidity", VBIM_FIELD(turbidity), "Atmospheric turbidity (Preetham; 2-6)")->default_val(defaults.turbidity);

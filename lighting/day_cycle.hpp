@@ -45,11 +45,11 @@ struct DayCycleParams {
   double sunAzimuthDeg = 180.0;
   double sunElevationDeg = 45.0;
   double sunDiameterDeg = 1.5;  // wider than the real 0.53 deg: softer edges, anti-aliasing (docs/lighting.md#sun-disc)
-  bool exactDisc = false;
-  // Sun shadows along each texel's own ray (lighting/ray_sweep.hpp) instead of the texel's sheared
-  // grid line (lighting/azimuth_sweep.hpp), which over-shadows at oblique azimuths. Off by default
-  // for now: it changes the committed sample streams' lightmaps (streams/samples/).
-  bool shadowRays = false;  // circular-segment occlusion instead of the article's linear ramp
+  bool exactDisc = false;       // circular-segment occlusion instead of the article's linear ramp
+  // Sun shadows along each texel's own ray (lighting/ray_sweep.hpp); false: along the texel's
+  // sheared grid line (lighting/azimuth_sweep.hpp), which over-shadows at oblique azimuths
+  // (docs/lighting.md#shadows-at-any-azimuth).
+  bool shadowRays = true;
   double turbidity = 3.0;
   std::int64_t skyPatches = 2;
   std::int64_t skyDirections = 8;  // sky-factor sectors: 8 (the article's), 16 or 32

@@ -164,6 +164,9 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
 
   Grid g{ds->GetRasterXSize(), ds->GetRasterYSize(), {}};
   checkGridSize(path, g.width, g.height);
+  dem.fileWidth = g.width;
+  dem.fileHeight = g.height;
+  bool flippedRows = false, flippedColumns = false;
   GDALRasterBand* band = ds->GetRasterBand(1);
   g.values.resize(static_cast<std::size_t>(g.width) * g.height);
   {
@@ -236,12 +239,14 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
     flipRows(g);
     gt[3] += gt[5] * g.height;
     gt[5] = -gt[5];
+    flippedRows = true;
     dem.notes.push_back("south-up grid flipped to north-up");
   }
   if (gt[1] < 0) {
     flipColumns(g);
     gt[0] += gt[1] * g.width;
     gt[1] = -gt[1];
+    flippedColumns = true;
     dem.notes.push_back("east-to-west grid flipped to west-to-east");
   }
   double cell = dx;
@@ -262,6 +267,15 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
                         std::to_string(g.width) + "x" + std::to_string(g.height) + " to " + std::to_string(w) + "x" +
                         std::to_string(h) + " square cells of " + number(cell) + " m");
     g = resample(g, w, h);
+  }
+  {
+    // Texel x of the (resampled) grid sits at x' = (x + 0.5) W / w - 0.5 of the flipped file grid
+    // (resample() above), and at W - 1 - x' of the file when the columns were flipped; rows alike.
+    const double sx = static_cast<double>(dem.fileWidth) / g.width, sy = static_cast<double>(dem.fileHeight) / g.height;
+    GridMapping& m = dem.toFile;
+    m = {0.5 * sx - 0.5, sx, 0.5 * sy - 0.5, sy};
+    if (flippedColumns) m = {dem.fileWidth - 1 - m.x0, -m.dx, m.y0, m.dy};
+    if (flippedRows) m = {m.x0, m.dx, dem.fileHeight - 1 - m.y0, -m.dy};
   }
   if (overrides.verticalScale) {
     if (!(*overrides.verticalScale > 0) || !std::isfinite(*overrides.verticalScale)) {

@@ -21,6 +21,7 @@
 
 #include "lighting/georeference.hpp"
 #include "lighting/terrain.hpp"
+#include "lighting/terrain_fit.hpp"
 
 namespace vbim::lighting {
 
@@ -37,6 +38,10 @@ struct Dem {
   Terrain terrain;
   Georeference geo;                // of the terrain's grid (after flipping and resampling)
   std::vector<std::string> notes;  // what was taken from the file and what was overridden
+  // The file's own grid, and where the terrain's texels lie on it (flips and resampling undone):
+  // a colour map on the file's grid follows the terrain with it (lighting/terrain_fit.hpp).
+  int fileWidth = 0, fileHeight = 0;
+  GridMapping toFile;
 };
 
 // True when GDAL opens `path` as a raster with a geotransform: a DEM, not a picture.

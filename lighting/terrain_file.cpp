@@ -13,6 +13,9 @@ TerrainFile loadTerrainFile(const std::string& path, const TerrainFileOptions& o
     f.geo = std::move(dem.geo);
     f.georeferenced = true;
     f.notes = std::move(dem.notes);
+    f.fileWidth = dem.fileWidth;
+    f.fileHeight = dem.fileHeight;
+    f.toFile = dem.toFile;
     return f;
   }
   const double cell = options.cellSize.value_or(options.pictureCellSize);
@@ -22,6 +25,8 @@ TerrainFile loadTerrainFile(const std::string& path, const TerrainFileOptions& o
   const double scale = options.verticalScale.value_or(floats ? 1.0 : options.pictureFullScale);
   f.terrain = readHeightfield(path, cell, scale);
   f.geo = localGrid(cell);
+  f.fileWidth = f.terrain.width;
+  f.fileHeight = f.terrain.height;
   if (floats && options.verticalScale) f.notes.push_back("float heights multiplied by --vertical-scale");
   return f;
 }

@@ -10,6 +10,7 @@
 
 #include "lighting/georeference.hpp"
 #include "lighting/terrain.hpp"
+#include "lighting/terrain_fit.hpp"
 
 namespace vbim::lighting {
 
@@ -22,9 +23,11 @@ struct TerrainFileOptions {
 
 struct TerrainFile {
   Terrain terrain;
-  Georeference geo;                // the DEM's, or a local grid in metres for a picture
-  bool georeferenced = false;      // true for a DEM
-  std::vector<std::string> notes;  // what was read from the file and what was overridden
+  Georeference geo;                   // the DEM's, or a local grid in metres for a picture
+  bool georeferenced = false;         // true for a DEM
+  std::vector<std::string> notes;     // what was read from the file and what was overridden
+  int fileWidth = 0, fileHeight = 0;  // the file's own grid (a DEM's before flipping or resampling)
+  GridMapping toFile;                 // the terrain's texels on the file's grid
 };
 
 TerrainFile loadTerrainFile(const std::string& path, const TerrainFileOptions& options);

@@ -99,6 +99,7 @@ std::string authoringRecordJson(const TechniqueAStreamSettings& s, const std::ve
   t["cloud_texture"] = s.terrain.cloudTexture;
   t["cell_size_m"] = terrain.cellSize;
   t["vertical_scale_m"] = s.terrain.verticalScale;
+  if (s.terrain.fit != TerrainFit::Crop) t["fit"] = terrainFitName(s.terrain.fit);  // only when not the default
   if (procedural) {
     t["procedural_size"] = s.terrain.procedural.size;
     t["procedural_seed"] = s.terrain.procedural.seed;
@@ -153,6 +154,7 @@ AuthoringRecord parseAuthoringRecord(const std::string& text, const std::string&
     r.terrain.cloudTexture = t.value("cloud_texture", "");
     r.terrain.cellSize = t.at("cell_size_m").get<double>();
     r.terrain.verticalScale = t.at("vertical_scale_m").get<double>();
+    r.terrain.fit = parseTerrainFit(t.value("fit", "crop"), origin + ": terrain.fit");
     r.terrainWidth = t.at("width").get<int>();
     r.terrainHeight = t.at("height").get<int>();
     if (r.procedural) {

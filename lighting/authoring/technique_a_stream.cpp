@@ -63,12 +63,37 @@ WeatherVariant weatherVariant(const std::string& name, const DayCycleParams& bas
   throw AuthoringError("unknown weather '" + name + "'; expected one of " + known + " (or NAME=FILE.toml)");
 }
 
-Terrain loadTerrain(const TerrainSource& src, std::vector<std::string>* notes) {
+namespace {
+
+// A colour map on the terrain's grid: as it is when it has the terrain's size; on the heightfield
+// file's grid, carried through the same flips, resampling, crop or pad (`toFile`); refused otherwise.
+FloatImage colourMapOnTerrain(const std::string& path, const Terrain& t, int fileWidth, int fileHeight,
+                              const GridMapping& toFile, std::vector<std::string>& notes) {
+  FloatImage map = readColourMap(path);
+  if (map.width == t.width && map.height == t.height) return map;
+  auto size = [](int w, int h) { return std::to_string(w) + "x" + std::to_string(h); };
+  if (map.width == fileWidth && map.height == fileHeight) {
+    notes.push_back(path + ": " + size(map.width, map.height) +
+                    " on the heightfield file's grid, resampled with it to " + size(t.width, t.height));
+    return resampleImage(map, toFile, t.width, t.height);
+  }
+  throw LightingError(path + ": colour map is " + size(map.width, map.height) + "; expected the terrain's size " +
+                      size(t.width, t.height) + " or the heightfield file's " + size(fileWidth, fileHeight));
+}
+
+}  // namespace
+
+Terrain loadTerrain(const TerrainSource& src, std::vector<std::string>* notesOut) {
+  std::vector<std::string> notes;
   try {
     Terrain t;
+    int fileWidth = 0, fileHeight = 0;
+    GridMapping toFile;
     if (src.heightfield.empty()) {
       t = proceduralTerrain(src.procedural);
       if (src.albedo.empty()) setAlbedo(t, proceduralAlbedo(t), "procedural albedo");
+      fileWidth = t.width;
+      fileHeight = t.height;
     } else {
       TerrainFileOptions options;
       options.pictureCellSize = src.cellSize;  // pictures keep these as they always did
@@ -77,10 +102,34 @@ Terrain loadTerrain(const TerrainSource& src, std::vector<std::string>* notes) {
       if (src.verticalScaleGiven) options.verticalScale = src.verticalScale;
       TerrainFile file = loadTerrainFile(src.heightfield, options);
       t = std::move(file.terrain);
-      if (notes != nullptr) *notes = std::move(file.notes);
+      notes = std::move(file.notes);
+      fileWidth = file.fileWidth;
+      fileHeight = file.fileHeight;
+      toFile = file.toFile;
     }
-    if (!src.albedo.empty()) setAlbedo(t, lighting::readColourMap(src.albedo), src.albedo);
-    if (!src.bounceAlbedo.empty()) setBounceAlbedo(t, lighting::readColourMap(src.bounceAlbedo), src.bounceAlbedo);
+    const std::string origin = src.heightfield.empty() ? "procedural terrain" : src.heightfield;
+    const GridWindow window = fitWindow(t.width, t.height, src.fit, origin);
+    if (window.width != t.width || window.height != t.height) {
+      const bool crop = src.fit == TerrainFit::Crop;
+      notes.push_back(std::string(crop ? "cropped" : "padded") + " from " + std::to_string(t.width) + "x" +
+                      std::to_string(t.height) + " to " + std::to_string(window.width) + "x" +
+                      std::to_string(window.height) + " texels (whole 16x16 macroblocks), centred: " +
+                      (crop ? "first kept texel (" : "the heightfield starts at texel (") +
+                      std::to_string(crop ? window.x0 : -window.x0) + ", " +
+                      std::to_string(crop ? window.y0 : -window.y0) + ")" +
+                      (crop ? "" : ", the edges repeated outwards") + "; --terrain-fit " + (crop ? "pad" : "crop") +
+                      " or none for the other choices");
+      t = windowTerrain(t, window);
+      toFile = windowMapping(toFile, window);
+    }
+    if (!src.albedo.empty()) {
+      setAlbedo(t, colourMapOnTerrain(src.albedo, t, fileWidth, fileHeight, toFile, notes), src.albedo);
+    }
+    if (!src.bounceAlbedo.empty()) {
+      setBounceAlbedo(t, colourMapOnTerrain(src.bounceAlbedo, t, fileWidth, fileHeight, toFile, notes),
+                      src.bounceAlbedo);
+    }
+    if (notesOut != nullptr) *notesOut = std::move(notes);
     return t;
   } catch (const LightingError& e) {
     throw AuthoringError(e.what());

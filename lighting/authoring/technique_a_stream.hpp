@@ -26,6 +26,7 @@
 
 #include "lighting/day_cycle.hpp"
 #include "lighting/procedural_terrain.hpp"
+#include "lighting/terrain_fit.hpp"
 #include "runtime/image.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/tone_map.hpp"
@@ -41,11 +42,16 @@ struct TerrainSource {
   // Metres between samples, and the vertical scale (metres at full scale for integer pictures, a
   // multiplier for float pictures and DEMs). A DEM's own cell size and a float file's heights are
   // used unless the matching *Given flag says the value was chosen (lighting/terrain_file.hpp).
+  // The procedural terrain has its own (`procedural.cellSize`; `vbim author` sets both).
   double cellSize = 10.0;
   double verticalScale = 1000.0;
   bool cellSizeGiven = false;
   bool verticalScaleGiven = false;
   ProceduralTerrainParams procedural;  // 512x512 by default, as `vbim lightmap`
+  // Sides that are not multiples of 16 (whole macroblocks): cropped (centred), padded or left for
+  // the encoder to refuse (lighting/terrain_fit.hpp). Colour maps of the heightfield file's size
+  // follow the heightfield (cropped, padded, or resampled with a DEM's grid).
+  TerrainFit fit = TerrainFit::Crop;
 };
 
 // One weather of the stream: its name (1..23 bytes) and the generator's settings.

@@ -216,6 +216,73 @@ TEST(AuthorCli, ProceduralWithTwoWeathersAndAConfigFile) {
   fs::remove(out);
 }
 
+// `--cell-size` sizes the procedural terrain's cells as it does a picture's (it used to keep 10 m):
+// the record, which holds the cell size the frames were lit with, says so.
+TEST(AuthorCli, ProceduralTerrainTakesTheCellSize) {
+  const fs::path out = dir() / "cells.vbim";
+  const Outcome r =
+      run("author --procedural --size 32 --cell-size 30 --sky-width 32 --frame-count 2 --fps 1 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const Outcome info = run("info " + out.string());
+  ASSERT_EQ(info.status, 0) << info.out;
+  EXPECT_NE(info.out.find("terrain procedural, 32x32 texels of 30.0 m"), std::string::npos) << info.out;
+  fs::remove(out);
+}
+
+// A real DEM of 95x90 geographic cells (resampled to 95x139 square ones): neither side is whole
+// macroblocks, so it is cropped (centred) or padded, with a note; colour maps on the DEM file's own
+// grid are resampled with it, maps of another size refused.
+TEST(AuthorCli, ARealDemIsFittedToMacroblocksAndItsAlbedoFollows) {
+  const std::string dem = std::string(VBIM_SOURCE_DIR) + "/tests/lighting/data/luxembourg_elev.tif";
+  const fs::path onFileGrid = dir() / "lux_albedo.png", other = dir() / "other_albedo.png";
+  writeImage(onFileGrid, 95, 90, 3, OIIO::TypeDesc::UINT8, std::vector<std::uint8_t>(95 * 90 * 3, 120));
+  writeImage(other, 95, 139 / 2, 3, OIIO::TypeDesc::UINT8, std::vector<std::uint8_t>(95 * 69 * 3, 120));
+  const std::string small = " --sky-width 32 --frame-count 2 --fps 1 --sun-azimuth 135 --sun-elevation 20";
+  const fs::path out = dir() / "lux.vbim";
+
+  Outcome r = run("author --terrain " + dem + " --albedo " + onFileGrid.string() + small + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("cropped from 95x139 to 80x128 texels (whole 16x16 macroblocks), centred: first kept texel "
+                       "(7, 5)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("lux_albedo.png: 95x90 on the heightfield file's grid, resampled with it to 80x128"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("lightmap 80x128"), std::string::npos) << r.out;
+  fs::remove(out);
+
+  r = run("author --terrain " + dem + " --terrain-fit pad" + small + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("padded from 95x139 to 96x144 texels"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lightmap 96x144"), std::string::npos) << r.out;
+  fs::remove(out);
+
+  r = run("author --terrain " + dem + " --albedo " + other.string() + small + " --out " + out.string());
+  EXPECT_NE(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("other_albedo.png: colour map is 95x69; expected the terrain's size 80x128 or the heightfield "
+                       "file's 95x90"),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(streamFiles().empty());
+}
+
+// Shadow rays are the default; --no-shadow-rays brings the sheared lines back. The record holds
+// every lighting.* value the frames were lit with.
+TEST(AuthorCli, ShadowRaysByDefaultAndNoShadowRaysTurnsThemOff) {
+  const fs::path out = dir() / "rays.vbim";
+  for (const bool off : {false, true}) {
+    const Outcome r = run("author --procedural --size 32 --sky-width 32 --frame-count 2 --fps 1 --force" +
+                          std::string(off ? " --no-shadow-rays" : "") + " --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    const Outcome info = run("info --json " + out.string());
+    ASSERT_EQ(info.status, 0) << info.out;
+    const nlohmann::json record = nlohmann::json::parse(info.out)["authoring"];
+    EXPECT_EQ(record["variants"][0]["lighting"]["lighting.shadow_rays"], !off) << info.out;
+  }
+  fs::remove(out);
+}
+
 struct BadCase {
   std::string name, args, words;
 };
@@ -236,7 +303,8 @@ TEST(AuthorCli, BadInputsFailClearlyAndLeaveNothing) {
   const std::vector<BadCase> cases = {
       {"RGB heightfield", "--terrain " + rgb.string() + small, "rgb.png"},
       {"NaN height", "--terrain " + nan.string() + small, "nan.exr"},
-      {"size not whole macroblocks", "--terrain " + odd.string() + small, "multiple of 16"},
+      {"size not whole macroblocks", "--terrain " + odd.string() + " --terrain-fit none" + small, "multiple of 16"},
+      {"unknown fit", "--terrain " + odd.string() + " --terrain-fit stretch" + small, "--terrain-fit"},
       {"unreadable heightfield", "--terrain " + junk.string() + small, "junk.png"},
       {"missing heightfield", "--terrain " + (dir() / "absent.png").string() + small, "absent.png"},
       {"albedo of another size", "--terrain " + hf.string() + " --albedo " + albedo.string() + small, "albedo.png"},

@@ -178,10 +178,31 @@ TEST(AuthorTechniqueA, BadSettingsFailWithTheKeyAndWriteNothing) {
   expectRejected(s, "multiple of 16");
   s = small();
   s.terrain.procedural.size = 40;
+  s.terrain.fit = TerrainFit::None;
   expectRejected(s, "procedural terrain: width is 40");
   s = small();
   s.terrain.heightfield = "/nonexistent/hf.png";
   expectRejected(s, "/nonexistent/hf.png");
+}
+
+TEST(AuthorTechniqueA, SidesNotWholeMacroblocksAreCroppedCentredWithANote) {
+  TerrainSource src;
+  src.procedural.size = 40;
+  std::vector<std::string> notes;
+  const Terrain t = loadTerrain(src, &notes);
+  ASSERT_EQ(t.width, 32);
+  ASSERT_EQ(t.height, 32);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("cropped from 40x40 to 32x32 texels"), std::string::npos) << notes[0];
+  const Terrain whole = proceduralTerrain(src.procedural);
+  const FloatImage albedo = proceduralAlbedo(whole);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      ASSERT_EQ(t.at(x, y), whole.at(x + 4, y + 4)) << x << ", " << y;  // 4 texels off each side
+      ASSERT_EQ(t.albedo.at(x, y)[1], albedo.at(x + 4, y + 4)[1]) << x << ", " << y;
+    }
+  src.fit = TerrainFit::Pad;
+  EXPECT_EQ(loadTerrain(src).width, 48);
 }
 
 TEST(AuthorTechniqueA, UnknownWeatherNamesThePresets) {

@@ -235,6 +235,33 @@ TEST(DemReader, SrtmHgtTileReads) {
   EXPECT_NEAR(dem.terrain.metresAt(100, 0), 0.0, 1.0 / 256);
 }
 
+// A colour map on the file's grid lands where the terrain's texels are: sampled through
+// `Dem::toFile`, the file's own values give the terrain's heights back (the reader flips and
+// resamples them the same way), on a geographic grid stored south-up and east to west.
+TEST(DemReader, TheFileGridMappingUndoesFlipsAndResampling) {
+  DemSpec s;
+  s.width = 12;
+  s.height = 7;
+  s.values.resize(12 * 7);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 12; ++x) s.values[static_cast<std::size_t>(y) * 12 + x] = static_cast<float>(x * x + 7 * y);
+  const double arcsec = 1.0 / 3600;
+  s.gt = {7.0 + 12 * arcsec, -arcsec, 0, 45.0, 0, arcsec};  // east to west, south-up
+  s.epsg = 4326;
+  const fs::path p = scratch("flipped_geographic.tif");
+  writeDem(p, s);
+  const Dem dem = readDem(p.string());
+  EXPECT_EQ(dem.fileWidth, 12);
+  EXPECT_EQ(dem.fileHeight, 7);
+  ASSERT_NE(dem.terrain.height, 7);  // resampled to square cells
+  FloatImage file(12, 7, 1);
+  file.pixels = s.values;
+  const FloatImage onTerrain = resampleImage(file, dem.toFile, dem.terrain.width, dem.terrain.height);
+  for (int y = 0; y < dem.terrain.height; ++y)
+    for (int x = 0; x < dem.terrain.width; ++x)
+      ASSERT_NEAR(onTerrain.at(x, y)[0], dem.terrain.metresAt(x, y), 1.0 / 256) << x << ", " << y;
+}
+
 TEST(DemReader, RealExcerptGeographicWithNodata) {
   const fs::path p = fs::path(VBIM_SOURCE_DIR) / "tests/lighting/data/luxembourg_elev.tif";
   const Dem dem = readDem(p.string());
