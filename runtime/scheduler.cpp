@@ -33,21 +33,21 @@ void Scheduler::scheduleAt(Tick t, void* target, Process* p) {
     pushReady(target, p);
     return;
   }
-  heapPush(Entry{makeKey(t, seq_++), target, p});
+  heapPush(makeKey(t, seq_++), target, p);
 }
 
-// A binary min-heap with hole-based sifting: the queue holds a handful of entries in typical
-// models, and this loop is the kernel's hottest path.
-void Scheduler::heapPush(const Entry& e) {
-  heap_.push_back(e);
+// The queue holds a handful of entries in typical models (one per waiting process), and this is the
+// kernel's hottest path: hole-based sifting, children of i at 4i+1..4i+4.
+void Scheduler::heapPush(unsigned __int128 key, void* target, Process* p) {
+  heap_.emplace_back();
   std::size_t i = heap_.size() - 1;
   while (i > 0) {
-    const std::size_t parent = (i - 1) / 2;
-    if (heap_[parent].key <= e.key) break;
+    const std::size_t parent = (i - 1) / 4;
+    if (heap_[parent].key <= key) break;
     heap_[i] = heap_[parent];
     i = parent;
   }
-  heap_[i] = e;
+  heap_[i] = Entry{key, target, p};
 }
 
 Scheduler::Entry Scheduler::heapPop() {
@@ -58,9 +58,13 @@ Scheduler::Entry Scheduler::heapPop() {
   if (n != 0) {
     std::size_t i = 0;
     for (;;) {
-      std::size_t child = 2 * i + 1;
-      if (child >= n) break;
-      if (child + 1 < n && heap_[child + 1].key < heap_[child].key) ++child;
+      const std::size_t first = 4 * i + 1;
+      if (first >= n) break;
+      std::size_t child = first;
+      const std::size_t end = std::min(first + 4, n);
+      for (std::size_t c = first + 1; c < end; ++c) {
+        if (heap_[c].key < heap_[child].key) child = c;
+      }
       if (last.key <= heap_[child].key) break;
       heap_[i] = heap_[child];
       i = child;
@@ -141,12 +145,14 @@ void Scheduler::finishProcess(Process& p) {
 }
 
 Tick Scheduler::run() {
+  limit_ = kNever;
   Entry e;
   while (popNext(kNever, e)) dispatch(e);
   return now_;
 }
 
 void Scheduler::runUntil(Tick t) {
+  limit_ = t;
   Entry e;
   while (popNext(t, e)) dispatch(e);
   if (t > now_) now_ = t;
