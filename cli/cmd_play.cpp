@@ -5,6 +5,7 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <set>
@@ -257,8 +258,9 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   s.setf(std::ios::fixed);
   s.precision(1);
   s << "played " << toSeconds(o.duration) << " s of " << (r.discLabel.empty() ? shown : r.discLabel) << " ("
-    << tot.vsyncs << " vsyncs) in " << wall << " s of host time (" << toSeconds(o.duration) / std::max(wall, 1e-9)
-    << "x real time), " << cpu << " s of CPU time (" << toSeconds(o.duration) / std::max(cpu, 1e-9) << "x real time)\n"
+    << tot.vsyncs << " vsyncs) in " << std::setprecision(2) << wall << " s of host time (" << std::setprecision(1)
+    << toSeconds(o.duration) / std::max(wall, 1e-9) << "x real time), " << std::setprecision(2) << cpu
+    << " s of CPU time (" << std::setprecision(1) << toSeconds(o.duration) / std::max(cpu, 1e-9) << "x real time)\n"
     << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
     << c.framesCaughtUp << " caught up; " << c.loopWraps << " loop wrap(s), " << c.branches << " branch(es)\n"
     << "  pop max " << tot.pop.value << " at " << toSeconds(tot.pop.at) << " s; lag max " << tot.lag.value;
