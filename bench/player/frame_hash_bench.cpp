@@ -21,15 +21,15 @@ struct Frame {
   }
 };
 
-void BM_FrameHash(benchmark::State& state) {
+void hashFrame(benchmark::State& state) {
   const Frame f;
   for (auto _ : state) benchmark::DoNotOptimize(vbim::player::frameHash(f.lightmap, &f.sky));
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(f.lightmap.pixels.size() + f.sky.pixels.size()));
 }
-BENCHMARK(BM_FrameHash)->Unit(benchmark::kMicrosecond);
+BENCHMARK(hashFrame)->Unit(benchmark::kMicrosecond);
 
-void BM_FrameSnapshot(benchmark::State& state) {
+void snapshotFrame(benchmark::State& state) {
   const Frame f;
   Frame copy;
   for (auto _ : state) {
@@ -40,7 +40,7 @@ void BM_FrameSnapshot(benchmark::State& state) {
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(f.lightmap.pixels.size() + f.sky.pixels.size()));
 }
-BENCHMARK(BM_FrameSnapshot)->Unit(benchmark::kMicrosecond);
+BENCHMARK(snapshotFrame)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
