@@ -102,9 +102,8 @@ class Scheduler {
   static unsigned __int128 makeKey(Tick t, std::uint64_t seq) {
     return (static_cast<unsigned __int128>(t) << 64) | seq;
   }
-  // A 4-ary min-heap: half the levels of a binary one, and a node's four children share a cache
-  // line pair. The key is passed by value: building an Entry on the stack and loading it back as
-  // one 128-bit value stalls store forwarding.
+  // The key is passed by value: building an Entry on the stack and loading it back as one 128-bit
+  // value stalls store forwarding.
   void heapPush(unsigned __int128 key, void* target, Process* p);
   Entry heapPop();
   // True (and time advanced to t, the wake-up counted) when the running process's wake-up at t
@@ -131,7 +130,7 @@ class Scheduler {
   std::uint64_t events_ = 0;
   Process* current_ = nullptr;
   Tick limit_ = 0;            // the time run()/runUntil() stops at (entries after it wait)
-  std::vector<Entry> heap_;   // future entries, 4-ary min-heap on (time, seq)
+  std::vector<Entry> heap_;   // future entries, min-heap on (time, seq)
   std::vector<Entry> ready_;  // entries due at now_, FIFO (ring buffer, power-of-two size)
   std::size_t readyHead_ = 0;
   std::size_t readyTail_ = 0;

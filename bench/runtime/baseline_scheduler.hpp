@@ -1,4 +1,4 @@
-// The kernel's scheduler as it was before the 4-ary heap and direct continuation (runtime/scheduler.*
+// The kernel's scheduler as it was before direct continuation (runtime/scheduler.*
 // at commit 4ddf135): a binary min-heap on a 128-bit (time, seq) key and a FIFO ring of entries due
 // now. Kept as the baseline of bench_scheduler_cost and as the order reference of
 // tests/runtime/scheduler_order_test.cpp. Trimmed to what those use: spawn, delay/until, wakeNow,
