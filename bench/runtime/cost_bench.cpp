@@ -63,6 +63,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
   void ReportRuns(const std::vector<Run>& runs) override {
     ConsoleReporter::ReportRuns(runs);
     for (const Run& r : runs) {
+      // One figure per benchmark: the median when repeated, the single run otherwise.
+      if (r.run_type == Run::RT_Aggregate && r.aggregate_name != "median") continue;
       const auto it = r.counters.find("ns/event");
       if (it != r.counters.end()) nsPerEvent()[r.run_name.function_name] = it->second;
     }
