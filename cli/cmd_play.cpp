@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <ctime>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <set>
@@ -222,6 +224,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   }
 
   const auto wall0 = std::chrono::steady_clock::now();  // host time: the summary only
+  const std::clock_t cpu0 = std::clock();               // CPU time of every thread: the summary only
   const Tick step = fromMs(1'000);
   Progress bar("vbim play", "s");
   for (Tick t = step;; t += step) {
@@ -232,6 +235,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   }
   bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   hashes.close();
   timeline.close();
   {
@@ -254,8 +258,9 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   s.setf(std::ios::fixed);
   s.precision(1);
   s << "played " << toSeconds(o.duration) << " s of " << (r.discLabel.empty() ? shown : r.discLabel) << " ("
-    << tot.vsyncs << " vsyncs) in " << wall << " s of host time (" << toSeconds(o.duration) / std::max(wall, 1e-9)
-    << "x real time)\n"
+    << tot.vsyncs << " vsyncs) in " << std::setprecision(2) << wall << " s of host time (" << std::setprecision(1)
+    << toSeconds(o.duration) / std::max(wall, 1e-9) << "x real time), " << std::setprecision(2) << cpu
+    << " s of CPU time (" << std::setprecision(1) << toSeconds(o.duration) / std::max(cpu, 1e-9) << "x real time)\n"
     << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
     << c.framesCaughtUp << " caught up; " << c.loopWraps << " loop wrap(s), " << c.branches << " branch(es)\n"
     << "  pop max " << tot.pop.value << " at " << toSeconds(tot.pop.at) << " s; lag max " << tot.lag.value;

@@ -70,10 +70,12 @@ class Scheduler {
 
   // co_await sched.delay(t): resumes the caller t ticks from now (t >= 0; 0 yields to everything
   // else due now).
+  // When the caller's wake-up would be the very next entry run anyway, it continues without
+  // suspending (see continueAt): the same order and times, without a queue round trip.
   struct DelayAwaiter {
     Scheduler& s;
     Tick d;
-    bool await_ready() const noexcept { return false; }
+    bool await_ready() const noexcept { return s.continueAt(s.now_ + d); }
     void await_suspend(std::coroutine_handle<> h) const { s.scheduleAt(s.now_ + d, h.address(), s.current_); }
     void await_resume() const noexcept {}
   };
@@ -100,8 +102,21 @@ class Scheduler {
   static unsigned __int128 makeKey(Tick t, std::uint64_t seq) {
     return (static_cast<unsigned __int128>(t) << 64) | seq;
   }
-  void heapPush(const Entry& e);
+  // The key is passed by value: building an Entry on the stack and loading it back as one 128-bit
+  // value stalls store forwarding.
+  void heapPush(unsigned __int128 key, void* target, Process* p);
   Entry heapPop();
+  // True (and time advanced to t, the wake-up counted) when the running process's wake-up at t
+  // would be the next entry dispatched: nothing ready now, nothing in the queue at or before t, t
+  // within the current run limit, the process not suspended.
+  bool continueAt(Tick t) {
+    if (current_ == nullptr || readyCount() != 0 || t > limit_ || current_->suspended_) return false;
+    if (!heap_.empty() && heap_.front().time() <= t) return false;
+    now_ = t;
+    ++seq_;
+    ++events_;
+    return true;
+  }
 
   void scheduleAt(Tick t, void* target, Process* p);
   void pushReady(void* target, Process* p);
@@ -114,6 +129,7 @@ class Scheduler {
   std::uint64_t seq_ = 0;
   std::uint64_t events_ = 0;
   Process* current_ = nullptr;
+  Tick limit_ = 0;            // the time run()/runUntil() stops at (entries after it wait)
   std::vector<Entry> heap_;   // future entries, min-heap on (time, seq)
   std::vector<Entry> ready_;  // entries due at now_, FIFO (ring buffer, power-of-two size)
   std::size_t readyHead_ = 0;

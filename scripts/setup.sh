@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vbim needs, only the ones that are missing.
 # Idempotent and non-interactive; run as root (or with sudo available). --with-slurm adds a
-# single-node Slurm's packages (scripts/slurm-local.sh).
+# single-node Slurm's packages (scripts/slurm-local.sh); --with-bench adds SystemC for the
+# scheduler-cost benchmark.
 set -euo pipefail
 
 PACKAGES=(
@@ -30,8 +31,12 @@ PACKAGES=(
 )
 
 # Only for the CI step that runs sweeps as Slurm job arrays (scripts/ci-slurm-sweep.sh).
-if [ "${1:-}" = "--with-slurm" ]; then
+if [[ " $* " == *" --with-slurm "* ]]; then
   PACKAGES+=(slurm-wlm munge)
+fi
+# Only for benchmark builds: bench_scheduler_cost compares the kernel with SystemC 2.3.4.
+if [[ " $* " == *" --with-bench "* ]]; then
+  PACKAGES+=(libsystemc-dev)
 fi
 
 missing=()

@@ -80,6 +80,21 @@ TEST(FrameHash, FastPathMatchesTheWordByWordReference) {
   EXPECT_EQ(frameHash(big, &sky), referenceHash({&big, &sky}));
 }
 
+// Random sizes, so that each image starts at a random lane (count of words so far mod 4) and ends
+// with half or all of its last word filled.
+TEST(FrameHash, FastPathMatchesTheReferenceOnRandomSizes) {
+  std::mt19937 rng(1717);
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto side = [&rng] { return 1 + static_cast<int>(rng() % 97); };
+    Rgba8Image lm(side(), side());
+    Rgba8Image sky(side(), side());
+    for (auto& px : lm.pixels) px = static_cast<std::uint8_t>(rng());
+    for (auto& px : sky.pixels) px = static_cast<std::uint8_t>(rng());
+    ASSERT_EQ(frameHash(lm, &sky), referenceHash({&lm, &sky}))
+        << lm.width << "x" << lm.height << " + " << sky.width << "x" << sky.height;
+  }
+}
+
 TEST(FrameHash, EveryByteCounts) {
   Rgba8Image img = pattern(8, 8, 3, 1, false);
   const std::uint64_t before = frameHash(img, nullptr);

@@ -1,0 +1,52 @@
+#!/bin/sh
+# x-real-time of `vbim play` on Technique A streams (issue #17): a 512x512 lightmap + 256x128 sky and
+# a 256x256 + 128x64 one (the demo's size), one lightmap frame per simulated second, 600 s
+# simulated, default options (tracing included). Reports the medians over RUNS (default 5) of the
+# CPU time and the wall time the play summary gives (the simulation loop, every thread).
+#   play_speed.sh VBIM [RUNS] [WORKDIR]
+# WORKDIR keeps the authored streams between invocations (authoring the 512x512 one takes ~30 s of
+# CPU); a temporary directory otherwise.
+set -eu
+vbim=${1:?usage: play_speed.sh VBIM [RUNS] [WORKDIR]}
+runs=${2:-5}
+work=${3:-}
+if [ -z "$work" ]; then
+  work=$(mktemp -d "${TMPDIR:-/tmp}/vbim-play-speed.XXXXXX")
+  trap 'rm -rf "$work"' EXIT
+fi
+mkdir -p "$work"
+seconds=600
+
+# A 512x512 lightmap next to two 640x448 frame buffers fits VRAM only with strip uploads and a
+# 256x128 sky texture (docs/player.md, "Speed and memory").
+printf '[gs]\nupload_mode = "strips"\nsky_height = 128\n' >"$work/512.toml"
+: >"$work/256.toml"
+
+author() {  # SIZE SKY_WIDTH
+  out="$work/ta$1.vbim"
+  [ -f "$out" ] || "$vbim" author --procedural --size "$1" --sky-width "$2" --frame-count "$seconds" --fps 1 \
+    --out "$out" >/dev/null
+}
+
+median() { sort -n | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo "?")
+echo "vbim play, ${seconds} s simulated, default options, $runs runs each; load average $load before"
+for size in 512 256; do
+  author "$size" $((size / 2))
+  : >"$work/cpu$size"
+  : >"$work/wall$size"
+  i=0
+  while [ "$i" -lt "$runs" ]; do
+    line=$("$vbim" play "$work/ta$size.vbim" --config "$work/$size.toml" --duration "${seconds}s" --force \
+      --out "$work/run$size" | head -n 1)
+    # "played 600.0 s of X (N vsyncs) in W s of host time (..x real time), C s of CPU time (..x real time)"
+    echo "$line" | sed -n 's/.* in \([0-9.]*\) s of host time.*/\1/p' >>"$work/wall$size"
+    echo "$line" | sed -n 's/.*, \([0-9.]*\) s of CPU time.*/\1/p' >>"$work/cpu$size"
+    i=$((i + 1))
+  done
+  cpu=$(median <"$work/cpu$size")
+  wall=$(median <"$work/wall$size")
+  awk -v s="$size" -v t="$seconds" -v c="$cpu" -v w="$wall" 'BEGIN {
+    printf "%dx%d + %dx%d: CPU %.2f s (%.0fx real time), wall %.2f s (%.0fx real time)\n", s, s, s / 2, s / 4, c, t / c, w, t / w }'
+done
