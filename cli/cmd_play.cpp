@@ -1,5 +1,5 @@
 // vbim play: a disc through the whole pipeline on the simulated clock; writes images, hashes.txt,
-// stats.json, trace.json, signals.vcd and timeline.csv into --out (docs/player.md).
+// stats.json, trace.json, signals.vcd, timeline.csv and arrivals.csv into --out (docs/player.md).
 #include <algorithm>
 #include <charconv>
 #include <chrono>
@@ -28,6 +28,7 @@
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "player/replay.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -54,7 +55,9 @@ Rgba8Image withAlpha(const Rgba8Image& img, bool gsAlpha) {
   return out;
 }
 
-void writeImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha) {
+}  // namespace
+
+void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha) {
   const Rgba8Image img = withAlpha(texels, gsAlpha);
   try {
     if (exr) {
@@ -68,6 +71,8 @@ void writeImage(const std::filesystem::path& path, const Rgba8Image& texels, boo
     throw Exit(1, e.what());
   }
 }
+
+namespace {
 
 // stats.json's "run": the version, the settings and every input with its SHA-256.
 json::Value provenance(const PlayRequest& r, const player::PlayerOptions& o) {
@@ -187,6 +192,13 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
   std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
   timeline << timelineHeader();
+  // Each frame the presenters receive, as a port would log it: `vbim replay` reproduces hashes.txt.
+  std::ofstream arrivals(dir.path("arrivals.csv"), std::ios::binary);
+  arrivals << arrivalsHeader();
+  const VsyncClock vsyncs = player->pipeline().lightmap().clock();
+  player->pipeline().setArrivalHook([&](bool sky, int variant, std::int64_t seq, Tick readyAt) {
+    arrivals << arrivalLine(ReplayArrival{gs::firstVsyncAtOrAfter(vsyncs, readyAt), sky, variant, seq});
+  });
   std::filesystem::create_directories(dir.path("frames"));
   const bool exr = r.format == "exr";
   std::int64_t images = 0;
@@ -204,9 +216,9 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
     const bool gsAlpha = r.alpha == "gs";
-    writeImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, gsAlpha);
+    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, gsAlpha);
     if (sky != nullptr) {
-      writeImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, gsAlpha);
+      writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, gsAlpha);
     }
     ++images;
   });
@@ -234,6 +246,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   hashes.close();
   timeline.close();
+  arrivals.close();
   {
     std::ofstream f(dir.path("stats.json"), std::ios::binary);
     const json::Value run = provenance(r, o);
