@@ -93,7 +93,7 @@ void addVectors(CLI::App& app) {
   cmd->footer(
       "Examples:\n"
       "  vbim vectors --out tests/vectors --force\n"
-      "  vbim vectors --check port-capture/\n");
+      "  vbim vectors --check tests/vectors\n");
   cmd->callback([r] { run(*r); });
 }
 
