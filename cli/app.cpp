@@ -97,6 +97,8 @@ void addCoreCommands(CLI::App& app) {
   addInfo(app);
   addDecode(app);
   addConfig(app);
+  addVectors(app);
+  addReplay(app);
 }
 
 std::vector<char*> helpAsOption(int argc, char** argv) {

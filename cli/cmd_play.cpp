@@ -1,5 +1,5 @@
 // vbim play: a disc through the whole pipeline on the simulated clock; writes images, hashes.txt,
-// stats.json, trace.json, signals.vcd and timeline.csv into --out (docs/player.md).
+// stats.json, trace.json, signals.vcd, timeline.csv and arrivals.csv into --out (docs/player.md).
 #include <algorithm>
 #include <charconv>
 #include <chrono>
@@ -30,6 +30,7 @@
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "player/replay.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -56,7 +57,9 @@ Rgba8Image withAlpha(const Rgba8Image& img, bool gsAlpha) {
   return out;
 }
 
-void writeImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha) {
+}  // namespace
+
+void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha) {
   const Rgba8Image img = withAlpha(texels, gsAlpha);
   try {
     if (exr) {
@@ -70,6 +73,8 @@ void writeImage(const std::filesystem::path& path, const Rgba8Image& texels, boo
     throw Exit(1, e.what());
   }
 }
+
+namespace {
 
 // stats.json's "run": the version, the settings and every input with its SHA-256.
 json::Value provenance(const PlayRequest& r, const player::PlayerOptions& o) {
@@ -189,6 +194,13 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
   std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
   timeline << timelineHeader();
+  // Each frame the presenters receive, as a port would log it: `vbim replay` reproduces hashes.txt.
+  std::ofstream arrivals(dir.path("arrivals.csv"), std::ios::binary);
+  arrivals << arrivalsHeader();
+  const VsyncClock vsyncs = player->pipeline().lightmap().clock();
+  player->pipeline().setArrivalHook([&](bool sky, int variant, std::int64_t seq, Tick readyAt) {
+    arrivals << arrivalLine(ReplayArrival{gs::firstVsyncAtOrAfter(vsyncs, readyAt), sky, variant, seq});
+  });
   std::filesystem::create_directories(dir.path("frames"));
   const bool exr = r.format == "exr";
   std::int64_t images = 0;
@@ -206,9 +218,9 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
     const bool gsAlpha = r.alpha == "gs";
-    writeImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, gsAlpha);
+    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, gsAlpha);
     if (sky != nullptr) {
-      writeImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, gsAlpha);
+      writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, gsAlpha);
     }
     ++images;
   });
@@ -238,6 +250,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   hashes.close();
   timeline.close();
+  arrivals.close();
   {
     std::ofstream f(dir.path("stats.json"), std::ios::binary);
     const json::Value run = provenance(r, o);
@@ -266,7 +279,8 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     << "  pop max " << tot.pop.value << " at " << toSeconds(tot.pop.at) << " s; lag max " << tot.lag.value;
   if (tot.lag.vsync >= 0) s << " at " << toSeconds(tot.lag.at) << " s";
   s << (player->hasReference() ? " (against a fault-free reference run)" : " (no faults: no reference needed)")
-    << "\n  ring underruns " << player->pipeline().ring().stats().underruns << ", drive retries "
+    << "\n  ring underruns " << player->pipeline().ring().stats().underruns << " ("
+    << player->pipeline().ring().stats().startupPolls << " while the stream started), drive retries "
     << player->pipeline().drive().stats().retries << ", damaged/lost frames "
     << player->pipeline().demux().counters().picturesDamaged + player->pipeline().demux().counters().framesLost
     << ", images written " << images << "\n";

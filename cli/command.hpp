@@ -53,7 +53,7 @@ void configureApp(CLI::App& app);
 int runApp(CLI::App& app, int argc, char** argv);
 // argv with `vbim help CMD ...` turned into `vbim CMD ... --help` (null-terminated, for exec too).
 std::vector<char*> helpAsOption(int argc, char** argv);
-// The commands both programs have: play, info, decode, config.
+// The commands both programs have: play, info, decode, config, vectors, replay.
 void addCoreCommands(CLI::App& app);
 
 void addDemo(CLI::App& app);
@@ -65,5 +65,7 @@ void addDecode(CLI::App& app);
 void addLightmap(CLI::App& app);
 void addRender(CLI::App& app);
 void addConfig(CLI::App& app);
+void addVectors(CLI::App& app);
+void addReplay(CLI::App& app);
 
 }  // namespace vbim::cli

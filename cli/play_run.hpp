@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -40,5 +41,9 @@ struct PlayRequest {
 
 // Returns a one-paragraph summary; throws cli::Exit on bad input.
 std::string runPlay(const PlayRequest& r, bool progress);
+
+// A lightmap or sky picture of a run: PNG or EXR (`exr`), alpha 255 unless `gsAlpha` (the texels as
+// in VRAM). Throws cli::Exit(1) when it cannot be written.
+void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha);
 
 }  // namespace vbim::cli

@@ -6,30 +6,35 @@ void describeParams(ParamTable& t, DriveParams& p) {
   t.addChoice("drive.spindle", &p.spindle, {"cav", "clv"},
               "SDK-CD spindle modes: SpinMax/SpinStm = DVD 4x CAV (cav), Spin1p6 = DVD 1.6x CLV (clv)");
   t.addInt("drive.cav_outer_sectors_per_s", &p.cav_outer_sectors_per_s, 1, 100'000, "sectors/s",
-           "P-CDVDi DVD_SECTORS_PERSECOND 675 x 4 (DVD 4x at the outer edge)");
+           "P-CDVDi DVD_SECTORS_PERSECOND 675 x 4 (DVD 4x at the outer edge) [E]");
   t.addInt("drive.cav_inner_percent", &p.cav_inner_percent, 1, 100, "%",
-           "P-CDVD CAV factor 0.40 + 0.60 * LSN / layer: 40 % of the outer rate at LSN 0 (1080 sectors/s)");
+           "P-CDVD CAV factor 0.40 + 0.60 * LSN / layer: 40 % of the outer rate at LSN 0 (1080 sectors/s) [E]");
   t.addInt("drive.clv_sectors_per_s", &p.clv_sectors_per_s, 1, 100'000, "sectors/s",
-           "P-CDVD CLV speed capped at 1.6x: 675 x 1.6");
+           "P-CDVD CLV speed capped at 1.6x: 675 x 1.6 [E]");
   t.addInt("drive.layer_sectors", &p.layer_sectors, 1, 1'000'000'000, "sectors",
-           "P-CDVD single-layer DVD size, the scale of the CAV position factor");
-  t.addInt(
-      "drive.contiguous_window_sectors", &p.contiguous_window_sectors, 0, 1'000'000, "sectors",
-      "P-CDVDi: a jump under 16 sectors is no seek (source calls it an arbitrary assumption); here forward jumps only");
+           "P-CDVD single-layer DVD size, the scale of the CAV position factor [E]");
+  t.addInt("drive.contiguous_window_sectors", &p.contiguous_window_sectors, 0, 1'000'000, "sectors",
+           "P-CDVDi: a jump under 16 sectors is no seek (source calls it an arbitrary assumption); here forward jumps "
+           "only [E]");
   t.addInt("drive.fast_seek_window_sectors", &p.fast_seek_window_sectors, 0, 1'000'000'000, "sectors",
-           "P-CDVDi DVD single layer fast-seek range 14,764 sectors");
-  t.addInt("drive.fast_seek_us", &p.fast_seek_us, 0, 10'000'000, "us", "P-CDVDi Cdvd_FastSeek_Cycles = 30 ms");
-  t.addInt("drive.full_seek_us", &p.full_seek_us, 0, 10'000'000, "us", "P-CDVDi Cdvd_FullSeek_Cycles = 100 ms");
+           "P-CDVDi DVD single layer fast-seek range 14,764 sectors [E]");
+  t.addInt("drive.fast_seek_us", &p.fast_seek_us, 0, 10'000'000, "us",
+           "P-CDVDi Cdvd_FastSeek_Cycles = 30 ms [E]; PCSX2's own comment estimates a real fast seek at 35-40 ms "
+           "(unmeasured)");
+  t.addInt("drive.full_seek_us", &p.full_seek_us, 0, 10'000'000, "us",
+           "P-CDVDi Cdvd_FullSeek_Cycles = 100 ms [E]; PCSX2's own comment estimates a real seek at 120-160 ms "
+           "(unmeasured)");
   t.addInt("drive.revolution_us", &p.revolution_us, 1, 1'000'000, "us",
            "assumption: latency drawn uniform in [0, 1 revolution); 16 ms gives an 8 ms mean, between PCSX2's "
            "4.95 ms and the ~13 ms physical estimate (docs/hardware.md#rotational-latency)");
-  t.addInt("drive.spin_up_ms", &p.spin_up_ms, 0, 100'000, "ms", "P-CDVD spin-up from stopped PSXCLK/3 = 333 ms");
+  t.addInt("drive.spin_up_ms", &p.spin_up_ms, 0, 100'000, "ms", "P-CDVD spin-up from stopped PSXCLK/3 = 333 ms [E]");
   t.addBool("drive.initially_spinning", &p.initially_spinning,
             "assumption: a run starts with the disc stopped, so the first read pays the spin-up");
   t.addInt("drive.read_ahead_sectors", &p.read_ahead_sectors, 0, 4096, "sectors",
-           "P-CDVD nextSectorsBuffered < 16: the drive buffers up to 16 sectors ahead while idle");
+           "P-CDVD nextSectorsBuffered < 16: the drive buffers up to 16 sectors ahead while idle [E]");
   t.addInt("drive.dma_iop_cycles_per_sector", &p.dma_iop_cycles_per_sector, 0, 10'000'000, "IOP cycles",
-           "P-CDVD IOP DMA ch3: (2064 / 4) x 12 = 6,192 IOP cycles (168 us) per sector, overlapping the next read");
+           "P-CDVD IOP DMA ch3: (2064 / 4) x 12 = 6,192 IOP cycles (168 us) per sector, overlapping the next read "
+           "[E]; 2,064 is the raw DVD sector, a streamed sector is 2,048 bytes");
   t.addInt("drive.retry_count", &p.retry_count, 0, 255, "retries",
            "P-CDVD N_DVD_READ param 8 (sceCdRMode.trycount): retries per failing sector, 0 means 256; each costs a "
            "revolution");

@@ -131,6 +131,7 @@ void StreamRing::callback(std::uint32_t err) {
   }
   if (filled >= 0) {
     ++stats_.banksFilled;
+    bankSinceStart_ = true;
     publish();
   }
   if (stmstart_ == 2) {
@@ -153,6 +154,7 @@ Task<bool> StreamRing::start(std::int64_t lbn) {
   lsn_ = lbn;
   offs_ = cur_ = gp_ = 0;
   retryerr_ = 0;
+  bankSinceStart_ = false;
   co_await drive_.sync();
   stmstart_ = 1;
   owner_ = true;
@@ -263,6 +265,7 @@ Task<std::uint32_t> StreamRing::read(std::uint32_t n, std::span<std::uint8_t> de
   }
   if (count < n && owner_) {
     ++stats_.underruns;
+    if (!bankSinceStart_) ++stats_.startupPolls;
     if (stats_.firstUnderrunAt < 0) stats_.firstUnderrunAt = s_.now();
     if (tracer_ != nullptr) tracer_->instant(track_, s_.now(), "underrun");
   }

@@ -46,7 +46,11 @@ struct RingStats {
   std::int64_t issueFailures = 0;  // sceCdRE refused (drive busy)
   std::int64_t timeouts = 0;
   std::int64_t errors = 0;     // drive errors seen by the producer
-  std::int64_t underruns = 0;  // reads that returned fewer sectors than asked
+  std::int64_t underruns = 0;  // reads that returned fewer sectors than asked (startupPolls included)
+  // Of those, the reads made after sceCdStStart and before its first bank was visible: the EE
+  // polling while the drive spins up and seeks, not a stream running dry during playback.
+  std::int64_t startupPolls = 0;
+  std::int64_t playbackUnderruns() const { return underruns - startupPolls; }
   Tick firstUnderrunAt = -1;
 };
 
@@ -119,7 +123,8 @@ class StreamRing {
   int stmstart_ = 0;       // 0 streaming, 1 just started, 2 repositioning (seekDeferred)
   std::int64_t retrycnt_ = 0;
   std::uint32_t retryerr_ = 0;
-  bool owner_ = false;  // the stream owns the drive (sceCdSC(2)); false before start, when paused/stopped
+  bool bankSinceStart_ = false;  // a bank became visible since sceCdStStart (startupPolls)
+  bool owner_ = false;           // the stream owns the drive (sceCdSC(2)); false before start, when paused/stopped
 
   Wait wait_ = Wait::none;
   std::shared_ptr<DriveCommand> cmd_;

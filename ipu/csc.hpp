@@ -1,6 +1,7 @@
 // Colour space conversion as the IPU's CSC stage does it (P-IPU yuv2rgb.cpp and
-// IPUdither.cpp): BT.601 integer matrix with coefficients x64, each term >> 6, then (sum + 1) >> 1
-// and a clamp to 0..255; alpha 0x80 (1.0 for the GS); SETTH alpha thresholds; RGB16 5:5:5:1 with
+// IPUdither.cpp): BT.601 integer matrix with coefficients x128 (0x95 = 1.164 x 128), each term >> 6
+// (one extra bit kept), then (sum + 1) >> 1 and a clamp to 0..255 (bit-exact to PCSX2, unconfirmed on
+// hardware); alpha 0x80 (1.0 for the GS); SETTH alpha thresholds; RGB16 5:5:5:1 with
 // the 4x4 ordered dither; and the raw YCbCr planes for conformance checks.
 #pragma once
 

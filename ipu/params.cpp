@@ -4,8 +4,8 @@ namespace vbim::ipu {
 
 void describeParams(ParamTable& t, IpuParams& p) {
   t.addInt("ipu.mb_base_cycles", &p.mb_base_cycles, 0, 1'000'000, "bus cycles",
-           "assumption: no published IPU rate; 400 + 1/bit gives ~1,000 cycles for a 600-bit intra macroblock "
-           "(~147k MB/s), well above DVD-Video's 40.5k MB/s (docs/hardware.md#ipu-decode-cost)");
+           "assumption: no published IPU rate; 400 + 1/bit + 256 (CSC) gives 1,256 cycles for a 600-bit intra "
+           "macroblock (~117k MB/s), well above DVD-Video's 40.5k MB/s (docs/hardware.md#ipu-decode-cost)");
   t.addInt("ipu.mb_cycles_per_bit", &p.mb_cycles_per_bit, 0, 1'000, "bus cycles/bit",
            "assumption: VLD at 1 bit per cycle; PCSX2's flat 64 EE cycles per MB is known too fast "
            "(docs/hardware.md#ipu-decode-cost)");

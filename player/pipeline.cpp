@@ -60,11 +60,18 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
       gs_(s) {
   const auto depth = static_cast<std::size_t>(config.ee.decoded_frames);
   lmFrames_ = std::make_unique<ee::DecodedFrames>(s, streamInfos(stream, stream.lightmapIndex), depth, *this);
+  const auto recorder = [this](bool sky) {
+    return [this, sky](int variant, std::int64_t seq, Tick readyAt) {
+      if (arrivalHook_) arrivalHook_(sky, variant, seq, readyAt);
+    };
+  };
+  lmSource_ = std::make_unique<gs::RecordingSource>(*lmFrames_, recorder(false));
   lightmap_ =
-      std::make_unique<gs::Presenter>(s, *lmFrames_, config.gs, presenterOptions(t0_, kernels, tracer_, "gs", gs_));
+      std::make_unique<gs::Presenter>(s, *lmSource_, config.gs, presenterOptions(t0_, kernels, tracer_, "gs", gs_));
   if (stream.skyIndex >= 0) {
     skyFrames_ = std::make_unique<ee::DecodedFrames>(s, streamInfos(stream, stream.skyIndex), depth, *this);
-    sky_ = std::make_unique<gs::Presenter>(s, *skyFrames_, config.gs,
+    skySource_ = std::make_unique<gs::RecordingSource>(*skyFrames_, recorder(true));
+    sky_ = std::make_unique<gs::Presenter>(s, *skySource_, config.gs,
                                            presenterOptions(t0_, kernels, tracer_, "gs.sky", gs_));
   }
   feeder_ = std::make_unique<ee::IpuFeeder>(s, std::array<ee::CompressedBuffer*, 2>{&lmCompressed_, &skyCompressed_},

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "ee/ipu_feeder.hpp"
 #include "ee/stream_probe.hpp"
 #include "ee/timeline.hpp"
+#include "gs/arrival_source.hpp"
 #include "gs/blend.hpp"
 #include "gs/presenter.hpp"
 #include "iop/drive.hpp"
@@ -52,6 +54,9 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   void start(Tick end);
   // At the first vsync at or after `at`, both presenters switch to `variant` (same time of day).
   void scheduleBranch(Tick at, int variant);
+  // Called the first time a presenter receives each frame (the arrivals a port would log).
+  using ArrivalHook = std::function<void(bool sky, int variant, std::int64_t seq, Tick readyAt)>;
+  void setArrivalHook(ArrivalHook hook) { arrivalHook_ = std::move(hook); }
 
   gs::Presenter& lightmap() { return *lightmap_; }
   gs::Presenter* sky() { return sky_.get(); }
@@ -87,6 +92,10 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   std::unique_ptr<ee::DecodedFrames> skyFrames_;
   // Built after the frame buffers it fills, from the track created first (feederTrack_).
   std::unique_ptr<ee::IpuFeeder> feeder_;
+  // The presenters read the decoded frames through these, which report each frame's arrival.
+  std::unique_ptr<gs::RecordingSource> lmSource_;
+  std::unique_ptr<gs::RecordingSource> skySource_;
+  ArrivalHook arrivalHook_;
   SerialUnit gs_;  // the one GS both presenters draw on
   std::unique_ptr<gs::Presenter> lightmap_;
   std::unique_ptr<gs::Presenter> sky_;

@@ -106,6 +106,8 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
                                    {"banks_max", t.ringMax},
                                    {"histogram_banks", hist},
                                    {"underruns", rs.underruns},
+                                   {"startup_polls", rs.startupPolls},
+                                   {"playback_underruns", rs.playbackUnderruns()},
                                    {"full_polls", rs.fullPolls},
                                    {"timeouts", rs.timeouts},
                                    {"errors", rs.errors},

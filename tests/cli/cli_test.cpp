@@ -36,7 +36,8 @@ std::string readAll(const fs::path& p) {
 TEST(Cli, HelpListsSubcommands) {
   const Result r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* sub : {"demo", "play", "profile", "author", "info", "decode", "lightmap", "render", "config"})
+  for (const char* sub :
+       {"demo", "play", "profile", "author", "info", "decode", "lightmap", "render", "config", "vectors", "replay"})
     EXPECT_NE(r.output.find(sub), std::string::npos) << sub;
 }
 

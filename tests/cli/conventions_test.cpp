@@ -47,7 +47,8 @@ void expectUsageError(const std::string& args, const std::string& command, const
 }
 
 TEST(CliConventions, HelpCommandIsTheCommandsHelp) {
-  for (const char* cmd : {"play", "info", "decode", "config", "profile", "author", "render", "demo", "lightmap"}) {
+  for (const char* cmd :
+       {"play", "info", "decode", "config", "vectors", "replay", "profile", "author", "render", "demo", "lightmap"}) {
     const Result help = run(std::string("help ") + cmd);
     const Result option = run(std::string(cmd) + " --help");
     EXPECT_EQ(help.code, 0) << cmd << "\n" << help.output;

@@ -351,3 +351,31 @@ TEST(StreamRing, RejectsASizeThatMakesNoBank) {
 
 }  // namespace
 }  // namespace vbim::iop::test
+
+namespace vbim::iop::test {
+namespace {
+
+// The EE's polls while the drive spins up are counted apart from real underruns: startupPolls is
+// exactly the short reads before the first one that returned data, and the rest are playback.
+TEST(StreamRing, PollsDuringSpinUpAreStartupPollsNotPlaybackUnderruns) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  r.p.drive.initially_spinning = false;  // the first read pays the 333 ms spin-up
+  r.build();
+  r.s.spawn("start", starter(*r.ring, 0));
+  std::vector<Call> calls;
+  r.s.spawn("ee", consumer(r.s, *r.ring, fromMs(1), fromMs(1), 900, 16, 0, calls));
+  r.s.runUntil(fromMs(1000));
+  std::int64_t before = 0;
+  for (const Call& c : calls) {
+    if (stCount(c.result) > 0) break;
+    ++before;
+  }
+  EXPECT_GT(before, 300);  // 333 ms of spin-up, polled every 1 ms
+  EXPECT_EQ(r.ring->stats().startupPolls, before);
+  EXPECT_GT(r.ring->stats().playbackUnderruns(), 0);  // 16 sectors a ms outruns the 1.6x drive
+  EXPECT_EQ(r.ring->stats().underruns, r.ring->stats().startupPolls + r.ring->stats().playbackUnderruns());
+}
+
+}  // namespace
+}  // namespace vbim::iop::test

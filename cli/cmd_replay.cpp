@@ -1,0 +1,128 @@
+// vbim replay: the GS side of a run (blend and present at every vsync, with the GS's timing) fed by
+// an arrival schedule, a port's log or the arrivals.csv of `vbim play`; writes hashes.txt and
+// pictures like play (docs/porting.md, "Replay").
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <memory>
+#include <set>
+
+#include "cli/command.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/output_dir.hpp"
+#include "cli/platform_params.hpp"
+#include "cli/play_run.hpp"
+#include "config/platform_config.hpp"
+#include "gs/blend_simd.hpp"
+#include "gs/error.hpp"
+#include "iop/fault_plan.hpp"
+#include "ipu/simd/simd_kernels.hpp"
+#include "player/replay.hpp"
+#include "player/report.hpp"
+
+namespace vbim::cli {
+
+namespace {
+
+struct ReplayRequest {
+  std::string stream;
+  std::string arrivals;
+  std::string config;
+  std::string duration = "60s";
+  std::string policy;
+  std::int64_t every = 0;
+  std::string format = "png";
+  std::string alpha = "opaque";
+  bool force = false;
+  std::string out;
+};
+
+std::string readAll(const std::string& path, const char* what) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Exit(2, std::string(what) + " " + path + ": cannot open");
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+void run(const ReplayRequest& r) {
+  using namespace vbim::player;
+  ReplayOptions o;
+  try {
+    if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
+    if (!r.policy.empty()) o.config.gs.catchup = catchupPolicy(r.policy);
+    o.duration = iop::parseDuration(r.duration);
+  } catch (const ConfigError& e) {
+    throw Exit(2, e.what());
+  } catch (const std::exception& e) {
+    throw Exit(2, "--duration '" + r.duration + "': " + e.what() + " (expected a time with a unit, e.g. 60s)");
+  }
+  if (o.duration <= 0) throw Exit(2, "--duration must be positive");
+  if (r.format != "png" && r.format != "exr") throw Exit(2, "--format '" + r.format + "': expected png or exr");
+  o.kernels.blend = &gs::simd::kernels();
+  o.kernels.ipu = &ipu::simdKernels();
+  const std::string file = readAll(r.stream, "stream");
+  std::unique_ptr<Replay> replay;
+  try {
+    const std::vector<ReplayArrival> arrivals = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(file.data());
+    replay = std::make_unique<Replay>(std::span<const std::uint8_t>(bytes, file.size()), r.stream, arrivals, o);
+  } catch (const ConfigError& e) {
+    throw Exit(2, e.what());
+  } catch (const gs::GsError& e) {
+    throw Exit(2, e.what());
+  }
+  OutputDir dir(r.out, r.force);
+  std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
+  std::filesystem::create_directories(dir.path("frames"));
+  std::int64_t rows = 0;
+  replay->setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
+    hashes << hashesLine(row);
+    ++rows;
+    if (r.every <= 0 || row.vsync % r.every != 0) return;
+    char name[64];
+    std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
+    const bool exr = r.format == "exr";
+    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, r.alpha == "gs");
+    if (sky != nullptr) {
+      writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, r.alpha == "gs");
+    }
+  });
+  replay->run();
+  hashes.close();
+  if (!hashes) throw Exit(1, dir.path("hashes.txt").string() + ": cannot write");
+  dir.commit();
+  std::cout << "replayed " << rows << " vsyncs of " << r.stream << " from " << r.arrivals << " into " << r.out;
+  if (replay->missingPictures() > 0) {
+    std::cout << " (" << replay->missingPictures() << " arrivals named pictures the stream lacks: shown black)";
+  }
+  std::cout << "\n";
+}
+
+}  // namespace
+
+void addReplay(CLI::App& app) {
+  auto r = std::make_shared<ReplayRequest>();
+  auto* cmd = app.add_subcommand(
+      "replay", "Blend and present a stream on the simulated GS from an arrival log (vsync,stream,frame)");
+  cmd->add_option("stream", r->stream, "A VBIM stream file")->required()->check(inputFile());
+  cmd->add_option("--arrivals", r->arrivals, "Arrival log: CSV vsync,stream,frame (play writes arrivals.csv)")
+      ->required()
+      ->check(inputFile());
+  cmd->add_option("--config", r->config, "Platform config (TOML), as given to play")->check(inputFile());
+  cmd->add_option("--duration", r->duration, "Simulated time to present (e.g. 60s)")->capture_default_str();
+  cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late");
+  cmd->add_option("--every", r->every, "Write the lightmap and sky every N vsyncs (0: never)")
+      ->check(nonNegativeInteger())
+      ->capture_default_str();
+  cmd->add_option("--format", r->format, "Image format: png or exr")->capture_default_str();
+  cmd->add_option("--alpha", r->alpha, "Alpha of the pictures: opaque (255) or gs (the texels as in VRAM)")
+      ->check(CLI::IsMember({"opaque", "gs"}))
+      ->capture_default_str();
+  cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
+  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
+  cmd->footer(
+      "Examples:\n"
+      "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --duration 10s --out replayed/\n");
+  cmd->callback([r] { run(*r); });
+}
+
+}  // namespace vbim::cli

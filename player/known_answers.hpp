@@ -1,0 +1,60 @@
+// Known-answer vectors a console port can reproduce, independent of every timing constant
+// (docs/porting.md, "Known-answer vectors"): the IPU's output per picture of the sample streams, in
+// raster and macroblock order; GS blend steps; sceCdStRead result sequences for scripted ring
+// scenarios; the frame hash itself. `vbim vectors --out DIR` writes them, `vbim vectors --check DIR`
+// compares a port's captured files against them.
+//
+// Every file is text: lines starting with '#' are comments, every other line is `KEY VALUE`
+// (one space; the key names the input, the value is the answer). Keys are unique within a file.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "runtime/image.hpp"
+
+namespace vbim::player {
+
+struct VectorFile {
+  std::string name;  // file name, e.g. "blend.txt"
+  std::string text;
+};
+
+// A stream file whose pictures become IPU vectors: `label` names it in the keys (e.g. "day_clear").
+struct VectorStream {
+  std::string label;
+  std::span<const std::uint8_t> bytes;
+};
+
+// The four files, in a fixed order: frame_hash.txt, blend.txt, cdstread.txt, ipu.txt.
+std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& streams);
+
+VectorFile frameHashVectors();
+VectorFile blendVectors();
+VectorFile streamReadVectors();
+// Throws ConfigError when a stream holds no descriptor or no picture.
+VectorFile ipuVectors(const std::vector<VectorStream>& streams);
+
+// The frame hash (player/frame_hash.hpp) of `bytes` read as an RGBA8 image `width` pixels (4 bytes
+// each) wide: how the vectors hash any IPU output (RGB16 output is read as 2 pixels per 4 bytes).
+std::uint64_t hashAsImage(std::span<const std::uint8_t> bytes, int width, int height);
+
+// The image of the frame-hash vectors: byte i is (i * 131 + seed * 7 + (i >> 8)) & 0xFF.
+Rgba8Image patternImage(int width, int height, int seed);
+
+struct VectorDifference {
+  std::string file;
+  std::string entry;  // the key, or the line number of a malformed line
+  std::string expected;
+  std::string found;  // "(missing)" when the port's file lacks the entry
+};
+
+// The first difference between an expected vector file and a port's (`found` is null when the
+// port's directory has no such file). Entries are compared in the expected file's order; a key the
+// expected file does not have is a difference too.
+std::optional<VectorDifference> compareVectors(const VectorFile& expected, const std::string* found);
+
+}  // namespace vbim::player

@@ -1,0 +1,121 @@
+// The porting reference end to end: `vbim vectors` regenerates exactly the committed tests/vectors
+// and --check names a flipped byte; `vbim replay` of play's arrivals.csv reproduces play's
+// hashes.txt (both samples, a drive stall, a branch and a loop wrap).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tests/support/run_command.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const vbim::testing::CommandResult r =
+      vbim::testing::runCommand("cd " VBIM_SOURCE_DIR " && " + std::string(VBIM_BINARY) + " " + args);
+  return {r.status, r.output};
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("vbim_port_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+std::string readAll(const fs::path& p) {
+  return vbim::testing::readFileBytes(p);
+}
+
+const char* const kVectorFiles[] = {"frame_hash.txt", "blend.txt", "cdstread.txt", "ipu.txt"};
+
+TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
+  const fs::path out = scratch("vectors");
+  const Result r = run("vectors --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : kVectorFiles) {
+    EXPECT_EQ(readAll(out / f), readAll(fs::path(VBIM_SOURCE_DIR) / "tests/vectors" / f))
+        << f << " differs: regenerate with `vbim vectors --out tests/vectors --force` if the change is intended";
+  }
+  const Result check = run("vectors --check tests/vectors");
+  EXPECT_EQ(check.code, 0) << check.output;
+  fs::remove_all(out);
+}
+
+TEST(PortReference, CheckNamesTheFirstDifference) {
+  const fs::path dir = scratch("check");
+  fs::create_directories(dir);
+  for (const char* f : kVectorFiles) fs::copy_file(fs::path(VBIM_SOURCE_DIR) / "tests/vectors" / f, dir / f);
+  // Flip one byte of one answer: the last hex digit of the first RGB32 hash.
+  std::string ipu = readAll(dir / "ipu.txt");
+  const std::string key = "ipu/day_clear/lightmap/frame=0/rgb32/raster ";
+  const auto at = ipu.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t digit = at + key.size() + 15;
+  const std::string expected = ipu.substr(at + key.size(), 16);
+  ipu[digit] = ipu[digit] == '0' ? '1' : '0';
+  const std::string found = ipu.substr(at + key.size(), 16);
+  std::ofstream(dir / "ipu.txt", std::ios::binary) << ipu;
+  const Result r = run("vectors --check " + dir.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("ipu.txt: entry 'ipu/day_clear/lightmap/frame=0/rgb32/raster': expected '" + expected +
+                          "', found '" + found + "'"),
+            std::string::npos)
+      << r.output;
+  fs::remove(dir / "blend.txt");
+  const Result missing = run("vectors --check " + dir.string());
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_NE(missing.output.find("blend.txt"), std::string::npos) << missing.output;
+  fs::remove_all(dir);
+}
+
+// play, then replay of its arrivals: the same hashes.txt, byte for byte.
+void expectReplayMatchesPlay(const std::string& stream, const std::string& extra) {
+  const fs::path dir = scratch("replay");
+  fs::create_directories(dir);
+  {
+    std::ofstream plan(dir / "stall.toml");
+    plan << "[[fault]]\nkind = \"stall\"\nat = \"5s\"\nduration = \"9s\"\n";
+  }
+  const Result p = run("play " + stream + " --faults " + (dir / "stall.toml").string() + " " + extra +
+                       " --duration 30s --no-trace --out " + (dir / "play").string());
+  ASSERT_EQ(p.code, 0) << p.output;
+  EXPECT_NE(p.output.find("1 loop wrap(s)"), std::string::npos) << p.output;
+  const Result r = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() +
+                       " --duration 30s --out " + (dir / "replay").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string played = readAll(dir / "play/hashes.txt");
+  EXPECT_GT(played.size(), 1000u);
+  EXPECT_EQ(readAll(dir / "replay/hashes.txt"), played) << stream;
+  fs::remove_all(dir);
+}
+
+TEST(PortReference, ReplayOfPlaysArrivalsReproducesItsHashesDayClear) {
+  expectReplayMatchesPlay("streams/samples/day_clear.vbim", "");
+}
+
+TEST(PortReference, ReplayOfPlaysArrivalsReproducesItsHashesDayWeatherWithBranch) {
+  expectReplayMatchesPlay("streams/samples/day_weather.vbim", "--branch 8s=1");
+}
+
+TEST(PortReference, ReplayNamesABadArrivalLine) {
+  const fs::path dir = scratch("badarrivals");
+  fs::create_directories(dir);
+  std::ofstream(dir / "a.csv") << "vsync,stream,frame\n3,lightmap:0,1\n4,moon:0,2\n";
+  const Result r = run("replay streams/samples/day_clear.vbim --arrivals " + (dir / "a.csv").string() + " --out " +
+                       (dir / "out").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("a.csv:3: stream 'moon:0'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
