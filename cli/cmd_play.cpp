@@ -169,7 +169,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
-    throw Exit(2, (r.config.empty() ? std::string("the default platform config") : r.config) + ": " + e.what());
+    throw Exit(2, gsConfigMessage(e, r.config));
   }
 
   // How the stream was made, for `vbim render RUN_DIR` (lighting/authoring/authoring_record.hpp).

@@ -244,7 +244,7 @@ void runProfile(const ProfileRequest& r) {
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
-    throw Exit(2, (r.config.empty() ? std::string("the default platform config") : r.config) + ": " + e.what());
+    throw Exit(2, gsConfigMessage(e, r.config));
   }
 
   const std::vector<std::string> written = writeProfileOutputs(data, dir);
