@@ -92,8 +92,7 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
                                    {"demux", share(dm.busy, elapsed)},
                                    {"ipu", share(dc.busy, elapsed)},
                                    {"gs", share(gsBusy, elapsed)}});
-  busy["drive"] =
-      player.tracer().enabled() ? share(player.tracer().busyTime(p.driveTrack(), 0, elapsed), elapsed) : json::Value();
+  busy["drive"] = share(p.drive().busyTime(elapsed), elapsed);
   std::int64_t stalls = 0;
   for (const iop::Fault& f : o.faults.faults) stalls += f.kind == iop::Fault::Kind::stall ? 1 : 0;
 
