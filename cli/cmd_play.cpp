@@ -265,6 +265,11 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     << player->pipeline().drive().stats().retries << ", damaged/lost frames "
     << player->pipeline().demux().counters().picturesDamaged + player->pipeline().demux().counters().framesLost
     << ", images written " << images << "\n";
+  // A run that completed but stopped showing frames says so loudly (stderr) as well as in the summary.
+  if (const std::string warning = healthWarning(runHealth(c, tot)); !warning.empty()) {
+    s << "  " << warning << "\n";
+    std::cerr << "vbim play: " << warning << "\n";
+  }
   return s.str();
 }
 

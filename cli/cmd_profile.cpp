@@ -27,6 +27,7 @@
 #include "iop/params.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/profile_sweep.hpp"
+#include "player/report.hpp"
 #include "player/scenario.hpp"
 #include "runtime/params.hpp"
 #include "streams/authoring/error.hpp"
@@ -225,7 +226,14 @@ void runProfile(const ProfileRequest& r) {
     checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
     std::cout << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax << "  faults "
               << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate << ", pop max "
-              << run.result.pop.value << ", lag max " << run.result.totals.lag.value << "\n";
+              << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
+    // A run that stopped showing frames is flagged on its line and warned about on stderr.
+    if (const auto h = player::runHealth(run.result.lightmap, run.result.totals); h.verdict != "ok") {
+      std::cout << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
+      std::cerr << "vbim profile: " << run.stream << " ring " << run.ring.bankmax << ":" << run.ring.bufmax << " "
+                << run.policy << ": " << player::healthWarning(h) << "\n";
+    }
+    std::cout << "\n";
   };
   progress.onStall = [](const StallRow& row) {
     checkInterrupted();
