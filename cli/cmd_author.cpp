@@ -53,7 +53,7 @@ void writeDiscImage(const AuthorOptions& o) {
     std::cout << o.iso << ": ISO 9660 image, " << o.isoFile << " at LBA " << f->lba << " ("
               << "vbim play " << o.iso << ")\n";
   } catch (const iop::DiscError& e) {
-    throw Exit(1, std::string("vbim author: ") + e.what());
+    throw Exit(1, e.what());
   }
 }
 
@@ -138,7 +138,7 @@ void runAuthor(const AuthorOptions& o) {
   } else {
     if (o.frames.empty())
       throw Exit(2,
-                 "vbim author: give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
+                 "give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
                  "--synthetic");
     std::vector<VariantInput> inputs;
     inputs.push_back(VariantInput{o.name, expandFramePattern(o.frames), {}});
@@ -228,10 +228,10 @@ void addAuthor(CLI::App& app) {
   cmd->callback([o, terrain] {
     refuseExistingOutputFile(o->out, o->force);  // before minutes of encoding, not after
     if (!o->iso.empty() && std::filesystem::path(o->iso) == std::filesystem::path(o->out)) {
-      throw Exit(2, "vbim author: --iso " + o->iso + " is the --out stream file; give the image another name");
+      throw Exit(2, "--iso " + o->iso + " is the --out stream file; give the image another name");
     }
     if (const std::string why = level1PathProblem(o->isoFile); !o->iso.empty() && !why.empty()) {
-      throw Exit(2, "vbim author: --iso-file '" + o->isoFile + "': " + why);
+      throw Exit(2, "--iso-file '" + o->isoFile + "': " + why);
     }
     try {
       const std::string technique = firstTerrainOptionGiven(*terrain);

@@ -170,7 +170,7 @@ void addInfo(CLI::App& app) {
         scan = scanStreamFile(*path);
       }
     } catch (const iop::DiscError& e) {
-      throw Exit(2, std::string("vbim info: ") + e.what());
+      throw Exit(2, e.what());
     } catch (const std::exception& e) {
       throw Exit(2, e.what());
     }

@@ -68,7 +68,7 @@ void runRender(RenderOptions& o) {
               << "  " << dir.finalPath().string() << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
     if (req.video) std::cout << "  " << dir.finalPath().string() << "/playback.mp4\n";
   } catch (const RenderError& e) {
-    throw Exit(2, "vbim render: " + std::string(e.what()));
+    throw Exit(2, e.what());
   }
 }
 
