@@ -221,12 +221,23 @@ void runProfile(const ProfileRequest& r) {
   plan.searchStalls = r.search;
   plan.search = search;
   plan.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
+  // Each line counts n/N over every sweep run and stall search, with the host time left at the
+  // rate so far (the same count plan mode's progress line shows; host time is never hashed).
+  const std::size_t shape = plan.streams.size() * plan.policies.size() * plan.rings.size();
+  const std::size_t total = shape * plan.plans.size() + (plan.searchStalls ? shape * 2 : 0);
+  const auto started = std::chrono::steady_clock::now();
+  auto count = [total, started, done = std::size_t{0}]() mutable {
+    ++done;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - std::min(done, total));
+    return "[" + std::to_string(done) + "/" + std::to_string(total) + ", " + fixed(left, 0) + " s left] ";
+  };
   SweepObserver progress;
-  progress.onRun = [](const SweepRun& run) {
+  progress.onRun = [&count](const SweepRun& run) {
     checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
-    std::cout << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax << "  faults "
-              << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate << ", pop max "
-              << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
+    std::cout << count() << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax
+              << "  faults " << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate
+              << ", pop max " << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
     // A run that stopped showing frames is flagged on its line and warned about on stderr.
     if (const auto h = player::runHealth(run.result.lightmap, run.result.totals); h.verdict != "ok") {
       std::cout << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
@@ -235,9 +246,9 @@ void runProfile(const ProfileRequest& r) {
     }
     std::cout << "\n";
   };
-  progress.onStall = [](const StallRow& row) {
+  progress.onStall = [&count](const StallRow& row) {
     checkInterrupted();
-    std::cout << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
+    std::cout << count() << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
               << row.policy << "  " << toString(row.criterion) << ": "
               << (row.result.longest
                       ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"

@@ -81,6 +81,10 @@ TEST_F(HealthCli, ProfileFlagsEachStuckCase) {
       << r.output;
   EXPECT_NE(r.output.find("vbim profile: day_clear ring 4:8 blend-through: warning: stuck run"), std::string::npos)
       << r.output;
+  // Each line counts the runs, as plan mode's progress does: 2 rings x (no faults, the stall).
+  EXPECT_NE(r.output.find("[1/4, "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\n[4/4, 0 s left] sweep  day_clear  ring 5:160  faults stall"), std::string::npos)
+      << r.output;
   const std::string csv = readFileBytes(dir_ / "prof" / "sweep.csv");
   EXPECT_NE(csv.find(",frames_lost,health\n"), std::string::npos) << csv;
   EXPECT_NE(csv.find("day_clear,188416,4,8,stall,blend-through,"), std::string::npos) << csv;
