@@ -39,16 +39,6 @@ std::string prefixFor(CLI::App& app, int argc, char** argv) {
   return "vbim: ";
 }
 
-// Messages may already start with "vbim CMD: " (library code that names the command): print it once.
-std::string withPrefix(const std::string& prefix, std::string message) {
-  const std::string bare = prefix.substr(0, prefix.size() - 2);  // "vbim play"
-  for (const std::string& p : {prefix, bare + ":"}) {
-    if (message.rfind(p, 0) == 0) message = message.substr(p.size());
-  }
-  while (!message.empty() && message.front() == ' ') message.erase(0, 1);
-  return prefix + message;
-}
-
 // --help lines show `--seed UINT=1`: CLI11 would append its validators' names to the type
 // (`INT:NONNEGATIVE`, `TEXT:FILE`), which say nothing to a user; the help text says the range.
 class HelpFormatter : public CLI::Formatter {
@@ -130,16 +120,16 @@ int runApp(CLI::App& app, int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() != 0) {
-      std::cerr << withPrefix(prefix, e.what()) << "; " << seeHelp << "\n";
+      std::cerr << prefix << e.what() << "; " << seeHelp << "\n";
       return 2;
     }
     return app.exit(e);  // --help, --version
   } catch (const Exit& e) {
-    std::cerr << withPrefix(prefix, e.what()) << "\n";
+    std::cerr << prefix << e.what() << "\n";
     return e.code();
   } catch (const Error& e) {
     // The project's own errors name the input and what was expected: bad input.
-    std::cerr << withPrefix(prefix, e.what()) << "\n";
+    std::cerr << prefix << e.what() << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << prefix << "out of memory (the input or the options ask for more than this machine has)\n";

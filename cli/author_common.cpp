@@ -43,9 +43,9 @@ ToneMapping toneMapping(const EncodeOptions& o) {
     tone.curve = parseCurve(o.tone);
     parseTransfer(o.transfer, tone);
   } catch (const AuthoringError& e) {
-    throw Exit(2, std::string("vbim author: ") + e.what());
+    throw Exit(2, e.what());
   }
-  if (!(o.white >= 1 && o.white <= 255)) throw Exit(2, "vbim author: --white must be in 1..255");
+  if (!(o.white >= 1 && o.white <= 255)) throw Exit(2, "--white must be in 1..255");
   return tone;
 }
 
@@ -61,17 +61,16 @@ Rational parseRational(const std::string& s, const char* what) {
       if (used != s.size() - slash - 1) throw std::invalid_argument(s);
     }
   } catch (const std::exception&) {
-    throw Exit(2, std::string("vbim author: ") + what + " '" + s + "': expected N or N/D (e.g. 1, 25, 30000/1001)");
+    throw Exit(2, std::string(what) + " '" + s + "': expected N or N/D (e.g. 1, 25, 30000/1001)");
   }
-  if (r.num == 0 || r.den == 0) throw Exit(2, std::string("vbim author: ") + what + " '" + s + "' must be positive");
+  if (r.num == 0 || r.den == 0) throw Exit(2, std::string(what) + " '" + s + "' must be positive");
   return r;
 }
 
 void parseSize(const std::string& s, int& w, int& h, const char* what) {
   char x = 0;
   std::istringstream in(s);
-  if (!(in >> w >> x >> h) || x != 'x' || !in.eof())
-    throw Exit(2, std::string("vbim author: ") + what + " '" + s + "': expected WxH");
+  if (!(in >> w >> x >> h) || x != 'x' || !in.eof()) throw Exit(2, std::string(what) + " '" + s + "': expected WxH");
 }
 
 std::string containerStretchNote(std::uint32_t stretch, streams::Rational containerFps) {

@@ -47,14 +47,14 @@ std::vector<lighting::WeatherVariant> parseWeather(const std::string& list, cons
       continue;
     }
     if (eq == 0 || eq + 1 == item.size())
-      throw Exit(2, "vbim author: --weather '" + item + "': expected a preset name or NAME=FILE.toml");
+      throw Exit(2, "--weather '" + item + "': expected a preset name or NAME=FILE.toml");
     lighting::WeatherVariant v{item.substr(0, eq), base};
     ParamTable table;
     lighting::describeParams(table, v.params);
     config::applyTomlFile(table, item.substr(eq + 1));
     out.push_back(std::move(v));
   }
-  if (out.empty()) throw Exit(2, "vbim author: --weather names no variant");
+  if (out.empty()) throw Exit(2, "--weather names no variant");
   return out;
 }
 
@@ -123,8 +123,7 @@ std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o) {
 }
 
 void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, const std::string& out) {
-  if (o.procedural && !o.terrain.heightfield.empty())
-    throw Exit(2, "vbim author: --procedural and --terrain exclude each other");
+  if (o.procedural && !o.terrain.heightfield.empty()) throw Exit(2, "--procedural and --terrain exclude each other");
   lighting::TechniqueAStreamSettings s;
   s.terrain = o.terrain;
   s.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
@@ -137,7 +136,7 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
     s.base = baseParams(o);
     s.variants = parseWeather(o.weather, s.base);
   } catch (const ConfigError& e) {
-    throw Exit(2, std::string("vbim author: ") + e.what());
+    throw Exit(2, e.what());
   }
 
   av_log_set_level(AV_LOG_ERROR);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include <nlohmann/json.hpp>
 #include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
@@ -14,11 +15,13 @@
 #include "imageio/error.hpp"
 #include "imageio/image_reader.hpp"
 #include "iop/error.hpp"
+
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/frame_pattern.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/synthetic_day.hpp"
 #include "streams/authoring/tone_map.hpp"
+#include "streams/authoring_record.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "streams/disc/iso_writer.hpp"
 
@@ -53,7 +56,7 @@ void writeDiscImage(const AuthorOptions& o) {
     std::cout << o.iso << ": ISO 9660 image, " << o.isoFile << " at LBA " << f->lba << " ("
               << "vbim play " << o.iso << ")\n";
   } catch (const iop::DiscError& e) {
-    throw Exit(1, std::string("vbim author: ") + e.what());
+    throw Exit(1, e.what());
   }
 }
 
@@ -87,6 +90,31 @@ struct VariantInput {
   std::string name;
   std::vector<FrameFile> lightmaps, skies;
 };
+
+// The authoring record of a stream made from image files or by the synthetic day generator: what is
+// known of it (the source, the frame sizes and times, the encoder settings), in the form Technique A
+// streams carry (lighting/authoring/authoring_record.hpp) but without a terrain, which these sources
+// do not have. `vbim info` shows it, `vbim play` copies it, `vbim render` notes that no terrain is
+// recorded and keeps its defaults. Appended after the video, so players never read it.
+std::string frameStreamRecord(const std::string& source, const AuthorSettings& s, std::uint32_t framesPerVariant,
+                              std::pair<int, int> lightmap, std::optional<std::pair<int, int>> sky,
+                              nlohmann::ordered_json variants) {
+  nlohmann::ordered_json j;
+  j["record"] = "vbim-authoring";
+  j["record_version"] = 1;
+  j["vbim_version"] = VBIM_VERSION;
+  j["source"] = source;
+  j["stream"] = {{"game_fps", {s.gameFps.num, s.gameFps.den}},
+                 {"loop_frame", s.loopFrame},
+                 {"frames_per_variant", framesPerVariant},
+                 {"frame_period_s", static_cast<double>(s.gameFps.den) / static_cast<double>(s.gameFps.num)},
+                 {"qscale", s.encoder.qscale},
+                 {"bitrate", s.encoder.bitrate}};
+  j["frames"] = {{"lightmap", {lightmap.first, lightmap.second}}};
+  j["frames"]["sky"] = sky ? nlohmann::ordered_json{sky->first, sky->second} : nlohmann::ordered_json();
+  j["variants"] = std::move(variants);
+  return j.dump();
+}
 
 void runAuthor(const AuthorOptions& o) {
   AuthorSettings settings = streamSettings(o.encode);
@@ -135,10 +163,16 @@ void runAuthor(const AuthorOptions& o) {
     progress.finish();
     bytes = writer.finish();
     stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
+    nlohmann::ordered_json variants = nlohmann::ordered_json::array();
+    for (const std::string& w : weathers) variants.push_back({{"name", w}, {"weather", w}});
+    std::optional<std::pair<int, int>> sky;
+    if (settings.withSky) sky = std::pair<int, int>(day.skyWidth, day.skyHeight);
+    streams::appendAuthoringRecord(
+        bytes, frameStreamRecord("synthetic", settings, day.frames, {day.width, day.height}, sky, std::move(variants)));
   } else {
     if (o.frames.empty())
       throw Exit(2,
-                 "vbim author: give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
+                 "give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
                  "--synthetic");
     std::vector<VariantInput> inputs;
     inputs.push_back(VariantInput{o.name, expandFramePattern(o.frames), {}});
@@ -171,6 +205,8 @@ void runAuthor(const AuthorOptions& o) {
     }
     StreamWriter writer(settings);
     std::size_t done = 0;
+    std::pair<int, int> lmSize{0, 0};  // of the first frames, for the authoring record
+    std::optional<std::pair<int, int>> skySize;
     Progress progress("vbim author", "frames");
     for (const VariantInput& v : inputs) {
       writer.beginVariant(v.name);
@@ -179,6 +215,10 @@ void runAuthor(const AuthorOptions& o) {
         const Rgba8Image lm = loadFrame(lmPath, enc, tone);
         std::optional<Rgba8Image> sky;
         if (settings.withSky) sky = loadFrame(v.skies[i].path, enc, tone);
+        if (done == 0) {
+          lmSize = {lm.width, lm.height};
+          if (sky) skySize = std::pair<int, int>(sky->width, sky->height);
+        }
         try {
           writer.addFrame(lm, sky ? &*sky : nullptr);
         } catch (const AuthoringError& e) {
@@ -191,6 +231,17 @@ void runAuthor(const AuthorOptions& o) {
     progress.finish();
     bytes = writer.finish();
     stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
+    nlohmann::ordered_json variants = nlohmann::ordered_json::array();
+    for (const VariantInput& v : inputs) {
+      nlohmann::ordered_json files = {{"name", v.name},
+                                      {"first_lightmap", v.lightmaps.front().path.filename().string()},
+                                      {"last_lightmap", v.lightmaps.back().path.filename().string()}};
+      if (!v.skies.empty()) files["first_sky"] = v.skies.front().path.filename().string();
+      variants.push_back(std::move(files));
+    }
+    streams::appendAuthoringRecord(bytes, frameStreamRecord("image-sequence", settings,
+                                                            static_cast<std::uint32_t>(inputs.front().lightmaps.size()),
+                                                            lmSize, skySize, std::move(variants)));
   }
   writeStreamFile(o.out, bytes);
   std::cout << o.out << ": " << bytes.size() / 2048 << " sectors (" << bytes.size() << " bytes)\n" << stretchNote;
@@ -228,10 +279,10 @@ void addAuthor(CLI::App& app) {
   cmd->callback([o, terrain] {
     refuseExistingOutputFile(o->out, o->force);  // before minutes of encoding, not after
     if (!o->iso.empty() && std::filesystem::path(o->iso) == std::filesystem::path(o->out)) {
-      throw Exit(2, "vbim author: --iso " + o->iso + " is the --out stream file; give the image another name");
+      throw Exit(2, "--iso " + o->iso + " is the --out stream file; give the image another name");
     }
     if (const std::string why = level1PathProblem(o->isoFile); !o->iso.empty() && !why.empty()) {
-      throw Exit(2, "vbim author: --iso-file '" + o->isoFile + "': " + why);
+      throw Exit(2, "--iso-file '" + o->isoFile + "': " + why);
     }
     try {
       const std::string technique = firstTerrainOptionGiven(*terrain);

@@ -1,5 +1,7 @@
 // vbim config: prints the platform config with every default and its source, or checks a config
-// file (and optionally a fault plan) the way `vbim play` will read them.
+// file (and optionally a fault plan) the way `vbim play` will read them: the same key ranges, the
+// same relations between keys, and the same GS checks (gs::checkParams) for the stream given with
+// --stream, or for the smallest lightmap when none is given (a config no stream can play).
 #include <iostream>
 
 #include "cli/command.hpp"
@@ -7,7 +9,12 @@
 #include "cli/platform_params.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/params_toml.hpp"
+#include "ee/error.hpp"
+#include "ee/stream_probe.hpp"
+#include "gs/presenter.hpp"
+#include "iop/error.hpp"
 #include "iop/fault_plan.hpp"
+#include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
 
@@ -18,7 +25,39 @@ struct ConfigOptions {
   bool markdown = false;
   std::string check;
   std::string faults;
+  std::string stream;
+  std::string file;
 };
+
+// The sizes the presenters of a run would be given: the lightmap's and the sky's (when the stream has
+// one) of `o.stream`, or with no stream the smallest lightmap a stream can have (one 32x32 page).
+std::vector<std::pair<int, int>> presentedSizes(const ConfigOptions& o) {
+  if (o.stream.empty()) return {{gs::kTileHeight, gs::kTileHeight}};
+  try {
+    streams::StreamDisc disc = streams::openStreamDisc(o.stream, o.file);
+    const ee::ProbedStream probed = ee::probeStream(*disc.disc, disc.file);
+    std::vector<std::pair<int, int>> sizes;
+    for (const int index : {probed.lightmapIndex, probed.skyIndex}) {
+      if (index < 0) continue;
+      const auto& e = probed.descriptor.streams[static_cast<std::size_t>(index)];
+      sizes.emplace_back(e.width, e.height);
+    }
+    return sizes;
+  } catch (const iop::DiscError& e) {
+    throw Exit(2, e.what());
+  } catch (const ee::StreamProbeError& e) {
+    throw Exit(2, e.what());
+  }
+}
+
+// The GS checks `vbim play` makes when it builds the presenters (gs::Presenter calls checkParams).
+void checkPresenters(const ConfigOptions& o, const PlatformParams& params) {
+  try {
+    for (const auto& [width, height] : presentedSizes(o)) gs::checkParams(params.gs, width, height);
+  } catch (const gs::GsError& e) {
+    throw Exit(2, gsConfigMessage(e, o.check));
+  }
+}
 
 void runConfig(const ConfigOptions& o) {
   PlatformParams params;
@@ -29,16 +68,18 @@ void runConfig(const ConfigOptions& o) {
       config::applyTomlFile(table, o.check);
       validatePlatform(params);
     }
+    if (!o.check.empty() || !o.stream.empty()) checkPresenters(o, params);
     if (!o.faults.empty()) {
       const iop::FaultPlan plan = config::loadFaultPlan(o.faults);
       std::cerr << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
     }
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
-  } catch (const std::exception& e) {
-    throw Exit(2, e.what());
   }
-  if (!o.check.empty()) std::cerr << o.check << ": valid; the effective config follows\n";
+  if (!o.check.empty() || !o.stream.empty()) {
+    std::cerr << (o.check.empty() ? std::string("the default platform config") : o.check)
+              << (o.stream.empty() ? "" : " with " + o.stream) << ": valid; the effective config follows\n";
+  }
   if (o.markdown) {
     table.writeMarkdown(std::cout);
   } else {
@@ -59,10 +100,16 @@ void addConfig(CLI::App& app) {
   cmd->add_option("--check", opts->check, "A platform config (TOML) to validate; prints the effective config")
       ->check(inputFile());
   cmd->add_option("--faults", opts->faults, "A fault plan (TOML) to validate")->check(inputFile());
+  cmd->add_option("--stream", opts->stream,
+                  "Check the GS settings against this stream or disc image's frame sizes (VRAM layout), as "
+                  "`vbim play` will; without it, against the smallest lightmap")
+      ->check(inputFile());
+  cmd->add_option("--file", opts->file, "The stream on a disc image given with --stream (default: its only one)");
   cmd->footer(
       "Examples:\n"
       "  vbim config > platform.toml\n"
-      "  vbim config --check platform.toml --faults plan.toml\n");
+      "  vbim config --check platform.toml --faults plan.toml\n"
+      "  vbim config --check platform.toml --stream streams/samples/day_clear.vbim\n");
   cmd->callback([opts] { runConfig(*opts); });
 }
 

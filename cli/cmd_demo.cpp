@@ -68,7 +68,7 @@ std::filesystem::path authorDemoStream(const std::filesystem::path& out) {
   try {
     app.parse(args);
   } catch (const CLI::ParseError& e) {
-    throw Exit(1, std::string("vbim demo: internal error in the authoring recipe: ") + e.what());
+    throw Exit(1, std::string("internal error in the authoring recipe: ") + e.what());
   }
   return out;
 }

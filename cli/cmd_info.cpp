@@ -131,9 +131,20 @@ void printAuthoring(const std::optional<nlohmann::ordered_json>& r) {
     }
     std::printf("\n");
   }
+  if (!r->contains("terrain") && r->contains("frames") && r->contains("stream")) {
+    // A stream made from image files or the synthetic generator: no terrain or day is recorded.
+    const auto& f = (*r)["frames"];
+    std::printf("  frames: lightmap %s, sky %s; %s per variant, one every %s s of game time\n",
+                text(f, "lightmap").c_str(), text(f, "sky").c_str(), text((*r)["stream"], "frames_per_variant").c_str(),
+                text((*r)["stream"], "frame_period_s").c_str());
+  }
   if (r->contains("variants")) {
     for (const auto& v : (*r)["variants"]) {
-      const auto& l = v.contains("lighting") ? v["lighting"] : nlohmann::ordered_json::object();
+      if (!v.contains("lighting")) {
+        std::printf("  variant '%s': %s\n", text(v, "name").c_str(), v.dump().c_str());
+        continue;
+      }
+      const auto& l = v["lighting"];
       std::printf("  variant '%s': latitude %s deg, day %s of the year, turbidity %s, sun %s klux\n",
                   text(v, "name").c_str(), text(l, "lighting.latitude_deg").c_str(),
                   text(l, "lighting.day_of_year").c_str(), text(l, "lighting.turbidity").c_str(),
@@ -170,7 +181,7 @@ void addInfo(CLI::App& app) {
         scan = scanStreamFile(*path);
       }
     } catch (const iop::DiscError& e) {
-      throw Exit(2, std::string("vbim info: ") + e.what());
+      throw Exit(2, e.what());
     } catch (const std::exception& e) {
       throw Exit(2, e.what());
     }

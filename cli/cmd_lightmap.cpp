@@ -70,7 +70,7 @@ DebugLayers parseDebug(const std::string& list) {
     } else if (item == "all") {
       d = {true, true, true, true};
     } else if (!item.empty()) {
-      throw Exit(2, "vbim lightmap: --debug: unknown layer '" + item + "'; expected horizons, sky, shadow, nl or all");
+      throw Exit(2, "--debug: unknown layer '" + item + "'; expected horizons, sky, shadow, nl or all");
     }
   }
   return d;
@@ -141,10 +141,10 @@ void writeDebugStatic(const DayCycleGenerator& g, const DebugLayers& d, const Ou
 void run(LightmapOptions& o, const LightingOverrides& given) {
   const DebugLayers debug = parseDebug(o.debug);
   if (o.format != "png" && o.format != "exr" && o.format != "both" && o.format != "tif") {
-    throw Exit(2, "vbim lightmap: --format must be png, exr, tif or both");
+    throw Exit(2, "--format must be png, exr, tif or both");
   }
   if (o.layersFormat != "exr" && o.layersFormat != "tif") {
-    throw Exit(2, "vbim lightmap: --layers-format must be exr or tif");
+    throw Exit(2, "--layers-format must be exr or tif");
   }
   DayCycleParams params;
   if (!o.config.empty()) {
@@ -258,11 +258,11 @@ void addLightmap(CLI::App& app) {
     try {
       run(*o, *given);
     } catch (const LightingError& e) {
-      throw Exit(2, std::string("vbim lightmap: ") + e.what());
+      throw Exit(2, e.what());
     } catch (const imageio::ImageIoError& e) {
-      throw Exit(2, std::string("vbim lightmap: ") + e.what());
+      throw Exit(2, e.what());
     } catch (const ConfigError& e) {
-      throw Exit(2, std::string("vbim lightmap: ") + e.what());
+      throw Exit(2, e.what());
     }
   });
 }

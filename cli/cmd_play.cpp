@@ -176,7 +176,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
-    throw Exit(2, (r.config.empty() ? std::string("the default platform config") : r.config) + ": " + e.what());
+    throw Exit(2, gsConfigMessage(e, r.config));
   }
 
   // How the stream was made, for `vbim render RUN_DIR` (lighting/authoring/authoring_record.hpp).
@@ -284,6 +284,11 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     << player->pipeline().drive().stats().retries << ", damaged/lost frames "
     << player->pipeline().demux().counters().picturesDamaged + player->pipeline().demux().counters().framesLost
     << ", images written " << images << "\n";
+  // A run that completed but stopped showing frames says so loudly (stderr) as well as in the summary.
+  if (const std::string warning = healthWarning(runHealth(c, tot)); !warning.empty()) {
+    s << "  " << warning << "\n";
+    std::cerr << "vbim play: " << warning << "\n";
+  }
   return s.str();
 }
 

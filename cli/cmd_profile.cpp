@@ -27,6 +27,7 @@
 #include "iop/params.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/profile_sweep.hpp"
+#include "player/report.hpp"
 #include "player/scenario.hpp"
 #include "runtime/params.hpp"
 #include "streams/authoring/error.hpp"
@@ -220,16 +221,34 @@ void runProfile(const ProfileRequest& r) {
   plan.searchStalls = r.search;
   plan.search = search;
   plan.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
-  SweepObserver progress;
-  progress.onRun = [](const SweepRun& run) {
-    checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
-    std::cout << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax << "  faults "
-              << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate << ", pop max "
-              << run.result.pop.value << ", lag max " << run.result.totals.lag.value << "\n";
+  // Each line counts n/N over every sweep run and stall search, with the host time left at the
+  // rate so far (the same count plan mode's progress line shows; host time is never hashed).
+  const std::size_t shape = plan.streams.size() * plan.policies.size() * plan.rings.size();
+  const std::size_t total = shape * plan.plans.size() + (plan.searchStalls ? shape * 2 : 0);
+  const auto started = std::chrono::steady_clock::now();
+  auto count = [total, started, done = std::size_t{0}]() mutable {
+    ++done;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - std::min(done, total));
+    return "[" + std::to_string(done) + "/" + std::to_string(total) + ", " + fixed(left, 0) + " s left] ";
   };
-  progress.onStall = [](const StallRow& row) {
+  SweepObserver progress;
+  progress.onRun = [&count](const SweepRun& run) {
+    checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
+    std::cout << count() << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax
+              << "  faults " << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate
+              << ", pop max " << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
+    // A run that stopped showing frames is flagged on its line and warned about on stderr.
+    if (const auto h = player::runHealth(run.result.lightmap, run.result.totals); h.verdict != "ok") {
+      std::cout << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
+      std::cerr << "vbim profile: " << run.stream << " ring " << run.ring.bankmax << ":" << run.ring.bufmax << " "
+                << run.policy << ": " << player::healthWarning(h) << "\n";
+    }
+    std::cout << "\n";
+  };
+  progress.onStall = [&count](const StallRow& row) {
     checkInterrupted();
-    std::cout << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
+    std::cout << count() << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
               << row.policy << "  " << toString(row.criterion) << ": "
               << (row.result.longest
                       ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
@@ -244,7 +263,7 @@ void runProfile(const ProfileRequest& r) {
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
-    throw Exit(2, (r.config.empty() ? std::string("the default platform config") : r.config) + ": " + e.what());
+    throw Exit(2, gsConfigMessage(e, r.config));
   }
 
   const std::vector<std::string> written = writeProfileOutputs(data, dir);

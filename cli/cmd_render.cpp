@@ -4,6 +4,8 @@
 #include <iostream>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
@@ -29,7 +31,15 @@ struct RenderOptions {
 render::RunRenderRequest requestFor(const RenderOptions& o, const render::RunDir& run) {
   using namespace vbim::render;
   RunRenderRequest req = o.req;  // every option, given or default
-  if (run.authoring) {
+  // A record from image files or the synthetic generator (cmd_author.cpp) holds no terrain to light.
+  const auto record = run.authoring ? nlohmann::json::parse(*run.authoring, nullptr, false) : nlohmann::json();
+  const std::string source = record.is_object() ? record.value("source", std::string()) : std::string();
+  if (run.authoring && (source == "synthetic" || source == "image-sequence") && !record.contains("terrain")) {
+    std::cerr << "vbim render: note: " << run.path.string() << "/authoring.json records a stream made from " << source
+              << " frames, with no terrain: assuming the procedural "
+              << "terrain at the lightmap's size with 20 m cells and a 24-frame day from 0 h to 24 h; --terrain, "
+              << "--cell-size and --lighting-config set them\n";
+  } else if (run.authoring) {
     applyAuthoring(*run.authoring, (run.path / "authoring.json").string(), req);
     const auto given = [&](const char* name) { return o.cmd->get_option(name)->count() > 0; };
     if (given("--cell-size")) req.terrain.cellSize = o.req.terrain.cellSize;
@@ -68,7 +78,7 @@ void runRender(RenderOptions& o) {
               << "  " << dir.finalPath().string() << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
     if (req.video) std::cout << "  " << dir.finalPath().string() << "/playback.mp4\n";
   } catch (const RenderError& e) {
-    throw Exit(2, "vbim render: " + std::string(e.what()));
+    throw Exit(2, e.what());
   }
 }
 

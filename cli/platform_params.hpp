@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "gs/error.hpp"
 #include "player/platform_config.hpp"
 #include "runtime/params.hpp"
 
@@ -16,6 +17,11 @@ using PlatformParams = player::PlatformConfig;
 void describePlatform(ParamTable& t, PlatformParams& p);
 // Checks relations between parameters (after loading); throws ConfigError.
 void validatePlatform(const PlatformParams& p);
+
+// A GsError about the platform config, said the same way by every command: `FILE:LINE: key 'gs.x':
+// message` for the first of its keys (by line) that the config file FILE sets; `FILE: message` when
+// the file sets none of them; `the default platform config: message` without a file.
+std::string gsConfigMessage(const gs::GsError& e, const std::string& configPath);
 
 // A `--policy` value checked against gs::kCatchupPolicies (throws Exit 2 naming the choices).
 std::string catchupPolicy(const std::string& name);

@@ -1,5 +1,7 @@
 #include "cli/profile_outputs.hpp"
 
+#include "player/report.hpp"
+
 #include <cstdio>
 #include <fstream>
 
@@ -25,7 +27,7 @@ std::string csvQuote(const std::string& s) {
 void writeSweepCsv(const ProfileData& d, std::ostream& o) {
   o << "stream,stream_bytes,bankmax,bufmax_sectors,faults,policy,frames_shown,frames_late,frames_dropped,"
        "frames_caught_up,behind_vsyncs,pop_max,pop_max_at_s,lag_max,lag_max_at_s,ring_banks_min,ring_banks_mean,"
-       "ring_banks_max,ring_underruns,drive_retries,frames_lost\n";
+       "ring_banks_max,ring_underruns,drive_retries,frames_lost,health\n";
   for (const SweepRun& s : d.sweep) {
     const CaseResult& r = s.result;
     const double mean =
@@ -35,7 +37,8 @@ void writeSweepCsv(const ProfileData& d, std::ostream& o) {
       << r.lightmap.framesDropped << "," << r.lightmap.framesCaughtUp << "," << r.lightmap.behindVsyncs << ","
       << r.pop.value << "," << fixed(toSeconds(r.pop.at), 6) << "," << r.totals.lag.value << ","
       << fixed(toSeconds(r.totals.lag.at), 6) << "," << r.totals.ringMin << "," << fixed(mean, 3) << ","
-      << r.totals.ringMax << "," << r.ringUnderruns << "," << r.driveRetries << "," << r.framesLost << "\n";
+      << r.totals.ringMax << "," << r.ringUnderruns << "," << r.driveRetries << "," << r.framesLost << ","
+      << vbim::player::runHealth(r.lightmap, r.totals).verdict << "\n";
   }
 }
 
@@ -92,7 +95,8 @@ nlohmann::ordered_json profileJson(const ProfileData& d) {
                        {"vsyncs", r.totals.vsyncs}}},
                      {"ring_underruns", r.ringUnderruns},
                      {"drive_retries", r.driveRetries},
-                     {"frames_lost", r.framesLost}});
+                     {"frames_lost", r.framesLost},
+                     {"health", vbim::player::runHealth(r.lightmap, r.totals).verdict}});
   }
   j["sweep"] = sweep;
   ordered_json stalls = ordered_json::array();

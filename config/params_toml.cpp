@@ -35,6 +35,15 @@ void applyTomlFile(ParamTable& table, const std::string& path) {
   applyToml(table, readTomlFile(path, "config file"), path);
 }
 
+std::map<std::string, int> tomlKeyLines(const std::string& path) {
+  const toml::table doc = parseTomlDocument(readTomlFile(path, "config file"), path);
+  std::vector<std::pair<std::string, const toml::node*>> entries;
+  flatten(doc, "", entries);
+  std::map<std::string, int> lines;
+  for (const auto& [key, node] : entries) lines[key] = static_cast<int>(node->source().begin.line);
+  return lines;
+}
+
 void applyToml(ParamTable& table, std::string_view text, const std::string& origin) {
   const toml::table doc = parseTomlDocument(text, origin);
   std::vector<std::pair<std::string, const toml::node*>> entries;

@@ -74,11 +74,25 @@ VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight) {
                })) {
       hint = "; it fits with gs.upload_mode = \"strips\" and gs.sky_height = " + std::to_string(p.sky_width / 2) +
              " (a sky dome texture as high as half its width) in a platform config (--config FILE)";
+    } else if (!fitsWith(p, kTileHeight, kTileHeight, [&](GsParams& q) {
+                 toStrips(q);
+                 smallerSky(q);
+               })) {
+      hint =
+          "; the frame buffers, depth buffer and sky texture alone leave no room for a lightmap: lower "
+          "gs.frame_width, gs.frame_height, gs.frame_buffers, gs.depth_format or gs.sky_width / gs.sky_height";
     } else {
       hint = "; author a smaller lightmap (each side a power of two up to 1024)";
     }
-    throw GsError(e.what() + hint);
+    throw GsError(vramLayoutKeys(), e.what() + hint);
   }
+}
+
+const std::vector<std::string>& vramLayoutKeys() {
+  static const std::vector<std::string> keys{"gs.frame_buffers", "gs.frame_width",  "gs.frame_height",
+                                             "gs.frame_format",  "gs.depth_format", "gs.sky_width",
+                                             "gs.sky_height",    "gs.upload_mode",  "gs.strip_rows"};
+  return keys;
 }
 
 namespace {
@@ -124,23 +138,52 @@ const StreamInfo& checkedStreams(const FrameSource& source) {
 
 bool checkedStrips(const GsParams& p) {
   if (p.upload_mode != "full" && p.upload_mode != "strips") {
-    throw GsError("unknown upload mode '" + p.upload_mode + "' (expected full or strips)");
+    throw GsError({"gs.upload_mode"}, "unknown upload mode '" + p.upload_mode + "' (expected full or strips)");
   }
   if (p.strip_rows <= 0 || p.strip_rows % kTileHeight != 0) {
-    throw GsError("strip rows " + std::to_string(p.strip_rows) +
-                  " must be a positive multiple of 32 (one PSMCT32 page)");
+    throw GsError({"gs.strip_rows"}, "strip rows " + std::to_string(p.strip_rows) +
+                                         " must be a positive multiple of 32 (one PSMCT32 page)");
   }
   return p.upload_mode == "strips";
 }
 
+// Runs one check; a GsError it throws is re-thrown naming the key that was checked.
+template <typename Check>
+void checkKey(const char* key, Check check) {
+  try {
+    check();
+  } catch (const GsError& e) {
+    if (!e.keys().empty()) throw;
+    throw GsError({key}, e.what());
+  }
+}
+
+// The streams of `source` checked, and the parameters checked for their size.
+const StreamInfo& checkedSource(const FrameSource& source, const GsParams& p) {
+  const StreamInfo& s = checkedStreams(source);
+  checkParams(p, s.width, s.height);
+  return s;
+}
+
 }  // namespace
+
+VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight) {
+  checkKey("gs.video", [&] { clockFor(p); });
+  checkKey("gs.colclamp", [&] { colclampFor(p); });
+  checkKey("gs.alpha_write", [&] { alphaFor(p); });
+  checkKey("gs.fix", [&] { makeBlendSpec(p.fix, ColClamp::Clamp, AlphaWrite::Source); });
+  checkKey("gs.catchup_fix", [&] { makeBlendSpec(p.catchup_fix, ColClamp::Clamp, AlphaWrite::Source); });
+  checkKey("gs.catchup", [&] { catchUpByName(p.catchup); });
+  checkedStrips(p);
+  return planVram(p, lightmapWidth, lightmapHeight);
+}
 
 Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& params, PresenterOptions options)
     : sched_(sched),
       source_(source),
       params_(params),
       opt_(std::move(options)),
-      stream_(checkedStreams(source)),
+      stream_(checkedSource(source, params)),
       timing_(params),
       clock_(clockFor(params)),
       spec_(makeBlendSpec(params.fix, colclampFor(params), alphaFor(params))),

@@ -49,6 +49,16 @@ CatchUp catchUpByName(const std::string& name);  // throws GsError
 // staging area (the whole frame, or one strip) and the sky texture. Throws GsError if it does not fit.
 VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight);
 
+// The gs.* keys that decide the VRAM layout (a GsError from planVram names them).
+const std::vector<std::string>& vramLayoutKeys();
+
+// Every check the presenter makes of its parameters before it runs, for a stream of
+// lightmapWidth x lightmapHeight: the names (video, colclamp, alpha write, catch-up, upload mode),
+// FIX, strip rows and the VRAM layout. Returns the layout; throws GsError naming the keys. The
+// Presenter calls it, and so does `vbim config --check`, which has no stream to present: the two
+// cannot disagree.
+VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight);
+
 // What happened at one vsync.
 struct VsyncRecord {
   std::int64_t vsync = 0;
@@ -101,8 +111,9 @@ struct PresenterOptions {
 
 class Presenter {
  public:
-  // Checks the parameters and plans VRAM (throws GsError on FIX outside 0..255, unknown names,
-  // strip rows not a multiple of 32, a layout that does not fit, or streams of different sizes).
+  // Checks the parameters and plans VRAM with checkParams (throws GsError on FIX outside 0..255,
+  // unknown names, strip rows not a multiple of 32, a layout that does not fit), and throws GsError
+  // for streams of different sizes.
   Presenter(Scheduler& sched, FrameSource& source, const GsParams& params, PresenterOptions options = {});
 
   // At the first vsync at or after `at`, switch to stream `variant` from the next due frame on.

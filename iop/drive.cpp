@@ -146,6 +146,17 @@ Task<void> Drive::execute(DriveCommand& c) {
   co_await executeRead(c);
 }
 
+void Drive::busySpan(Tick begin, Tick end, std::string_view what) {
+  busy_ += end - begin;
+  if (tracer_ != nullptr) tracer_->span(track_, begin, end, what);
+}
+
+Tick Drive::busyTime(Tick at) const {
+  // Only a stall's span is recorded before it ends; the part after `at` is not busy yet.
+  const Tick ahead = openStallEnd_ - std::max(at, openStallBegin_);
+  return busy_ - std::clamp<Tick>(ahead, 0, openStallEnd_ - openStallBegin_);
+}
+
 Task<void> Drive::waitOutStall() {
   for (;;) {
     refreshStalls();
@@ -153,7 +164,9 @@ Task<void> Drive::waitOutStall() {
     auto it = stalls_.upper_bound(s_.now());
     if (it != stalls_.begin() && s_.now() < std::prev(it)->second) until = std::prev(it)->second;
     if (until < 0) co_return;
-    if (tracer_ != nullptr) tracer_->span(track_, s_.now(), until, "stall");
+    busySpan(s_.now(), until, "stall");
+    openStallBegin_ = s_.now();
+    openStallEnd_ = until;
     stats_.stalled += until - s_.now();
     co_await s_.until(until);
   }
@@ -170,7 +183,7 @@ Task<void> Drive::work(Tick d, std::string_view what) {
     const Tick step = std::min(remaining, nextStall - s_.now());
     const Tick begin = s_.now();
     co_await s_.delay(step);
-    if (tracer_ != nullptr && !what.empty()) tracer_->span(track_, begin, s_.now(), what);
+    if (!what.empty()) busySpan(begin, s_.now(), what);
     remaining -= step;
   }
 }
@@ -321,10 +334,8 @@ Task<void> Drive::executeRead(DriveCommand& c) {
     if (dmaFirst < 0) dmaFirst = dmaStart;
     ++c.sectorsDone;
   }
-  if (tracer_ != nullptr) {
-    if (s_.now() > readBegin) tracer_->span(track_, readBegin, s_.now(), c.foreign ? "read other" : "read");
-    if (dmaFirst >= 0) tracer_->span(dmaTrack_, dmaFirst, dmaFree, c.foreign ? "dma other" : "dma");
-  }
+  if (s_.now() > readBegin) busySpan(readBegin, s_.now(), c.foreign ? "read other" : "read");
+  if (tracer_ != nullptr && dmaFirst >= 0) tracer_->span(dmaTrack_, dmaFirst, dmaFree, c.foreign ? "dma other" : "dma");
   if (hits > 0 && c.sectors <= hits) head_ = c.lsn + c.sectors;
   co_await s_.until(dmaFree);
   finish(c);

@@ -105,6 +105,12 @@ class Drive {
   std::int64_t head() const { return head_; }
   bool spinning() const { return spinning_; }
   const DriveStats& stats() const { return stats_; }
+  // Busy time up to `at` (at or after the last event): the sum of the spans on the drive's own
+  // trace track ("drive": spin-up, seeks, latency, reads, retries, stalls, other clients' holds),
+  // counted with or without a tracer so the busy share does not depend on tracing. A read's span
+  // covers the retries and stalls inside it, which have spans of their own: they count twice, as
+  // they do on the trace.
+  Tick busyTime(Tick at) const;
   const DriveParams& params() const { return p_; }
   SectorSource& disc() { return disc_; }
   Process& process() { return *proc_; }
@@ -132,6 +138,7 @@ class Drive {
   Task<void> work(Tick d, std::string_view what);
   Task<void> waitOutStall();
   void finish(DriveCommand& c);
+  void busySpan(Tick begin, Tick end, std::string_view what);  // a span on the drive track, counted
   std::int64_t readAheadSectors(Tick idle) const;
   Tick stallOverlap(Tick from, Tick to);
   void refreshStalls();  // pulls the series up to the clock, forgets stalls no query can reach
@@ -160,6 +167,8 @@ class Drive {
   std::map<std::int64_t, SectorFault> sectorFaults_;
   std::vector<RandomErrors> randomErrors_;
   DriveStats stats_;
+  Tick busy_ = 0;                               // spans recorded so far, each counted whole
+  Tick openStallBegin_ = 0, openStallEnd_ = 0;  // the stall being waited out (may end after `at`)
 };
 
 }  // namespace vbim::iop

@@ -76,6 +76,11 @@ void Player::onVsync(std::int64_t n) {
       std::clamp<std::int64_t>(row.ringBanks, 0, static_cast<std::int64_t>(totals_.ringHistogram.size()) - 1));
   ++totals_.ringHistogram[bucket];
   if (row.lightmap.behind) ++totals_.behindVsyncs;
+  const bool newFrame = row.lightmap.targetSeq >= 0 && (!last_ || row.lightmap.targetSeq != last_->lightmap.targetSeq ||
+                                                        row.lightmap.variant != last_->lightmap.variant);
+  if (!row.lightmap.behind || newFrame) totals_.lastProgressAt = row.at;
+  totals_.lastVsyncAt = row.at;
+  totals_.endsBehind = row.lightmap.behind;
   if (tracer_.enabled() && ref_) tracer_.value(lagCounter_, row.at, row.lag);
   if (sink_) sink_(row, lm.lightmap(), sky ? &sky->lightmap() : nullptr);
   tracer_.advance(row.at);  // a streamed trace writes what is now final

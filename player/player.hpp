@@ -72,6 +72,11 @@ struct RunTotals {
   std::int64_t ringMin = -1, ringMax = 0, ringSum = 0;
   std::vector<std::int64_t> ringHistogram;  // vsyncs per number of readable banks
   std::int64_t behindVsyncs = 0;
+  // For the run's health (player/report.hpp, runHealth): the last vsync, whether the lightmap was
+  // behind schedule there, and the last vsync at which it was on schedule or took a new frame.
+  Tick lastVsyncAt = 0;
+  bool endsBehind = false;
+  Tick lastProgressAt = 0;
 };
 
 class Player {

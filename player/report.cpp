@@ -57,6 +57,24 @@ std::string hashesLine(const VsyncRow& row) {
   return std::to_string(row.vsync) + " " + seconds(row.at) + " " + hashHex(row.hash) + "\n";
 }
 
+RunHealth runHealth(const gs::PresenterCounters& lightmap, const RunTotals& totals) {
+  RunHealth h;
+  h.stuckFor = totals.endsBehind ? totals.lastVsyncAt - totals.lastProgressAt : 0;
+  if (h.stuckFor >= kStuckAfter) h.verdict = lightmap.framesShown == 0 ? "starved" : "stuck";
+  return h;
+}
+
+std::string healthWarning(const RunHealth& h) {
+  if (h.verdict == "ok") return "";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", toSeconds(h.stuckFor));
+  const std::string what = h.verdict == "starved" ? "no frame was ever shown" : "the display stopped";
+  return "warning: " + h.verdict + " run: " + what +
+         ": the lightmap was behind schedule with no new frame for the last " + buf +
+         " s of the run (a deadlocked ring, a drive that never delivers, or a stall still under way; "
+         "docs/player.md, \"Stuck and starved runs\")";
+}
+
 std::string timelineHeader() {
   return "vsync,time_s,hash,due_seq,target_seq,variant,fix,pop,behind,catch_up,snapped,sky_target_seq,sky_pop,lag,"
          "sky_lag,ring_banks,gs_busy_ticks\n";
@@ -92,8 +110,7 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
                                    {"demux", share(dm.busy, elapsed)},
                                    {"ipu", share(dc.busy, elapsed)},
                                    {"gs", share(gsBusy, elapsed)}});
-  busy["drive"] =
-      player.tracer().enabled() ? share(player.tracer().busyTime(p.driveTrack(), 0, elapsed), elapsed) : json::Value();
+  busy["drive"] = share(p.drive().busyTime(elapsed), elapsed);
   std::int64_t stalls = 0;
   for (const iop::Fault& f : o.faults.faults) stalls += f.kind == iop::Fault::Kind::stall ? 1 : 0;
 
@@ -120,6 +137,10 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
   j["seed"] = o.seed;
   j["reference_pipeline"] = player.hasReference();
   j["busy_share"] = busy;
+  const RunHealth health = runHealth(lmc, t);
+  j["health"] = json::object({{"verdict", health.verdict},
+                              {"stuck_s", json::Value::decimal(seconds(health.stuckFor))},
+                              {"stuck_after_s", json::Value::decimal(seconds(kStuckAfter))}});
   j["ring"] = ring;
   j["drive"] = json::object(
       {{"commands", ds.commands},

@@ -12,6 +12,23 @@
 
 namespace vbim::player {
 
+// Whether the display kept up to the end of the run (docs/player.md, "Stuck and starved runs"):
+//   stuck    at the end of the run the lightmap had been behind schedule (its newest due frame not
+//            ready) at every vsync for kStuckAfter or longer, with no new frame shown in that time:
+//            a deadlocked ring, a drive that never delivers, a stall still under way;
+//   starved  stuck, and no frame was ever shown;
+//   ok       otherwise (a run too short to tell is ok).
+// The run itself completed: the commands report it loudly and record it (stats.json "health"), and
+// still exit 0 (docs/cli.md).
+inline constexpr Tick kStuckAfter = fromMs(5'000);
+struct RunHealth {
+  std::string verdict = "ok";  // "ok", "stuck" or "starved"
+  Tick stuckFor = 0;           // behind, with no new frame, from this long before the last vsync to it
+};
+RunHealth runHealth(const gs::PresenterCounters& lightmap, const RunTotals& totals);
+// A one-line warning naming the verdict and what it means; empty for "ok".
+std::string healthWarning(const RunHealth& h);
+
 // "<vsync> <seconds, 6 decimals> <16 hex digits>\n"
 std::string hashesLine(const VsyncRow& row);
 std::string timelineHeader();

@@ -117,3 +117,46 @@ TEST_F(AuthoringRecordCli, ARecordThatCannotBeReadIsNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+// Streams made from image files or by the synthetic generator carry a record too: what is known of
+// them (source, frame sizes and times), with no terrain; render notes that and keeps its defaults.
+TEST(AuthoringRecordFrames, SyntheticAndImageSequenceStreamsCarryWhatIsKnown) {
+  const fs::path dir = fs::temp_directory_path() / ("vbim_authoring_frames_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto vbim = [](const std::string& args) { return runCommand(std::string(VBIM_BINARY) + " " + args); };
+  const std::string d = dir.string();
+  ASSERT_EQ(vbim("author --synthetic clear,overcast --synthetic-frames 4 --fps 2 --out " + d + "/syn.vbim").status, 0);
+  const auto info = vbim("info " + d + "/syn.vbim");
+  EXPECT_NE(info.output.find("authoring: synthetic by vbim "), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("frames: lightmap [256,256], sky [128,64]; 4 per variant, one every 0.5 s"),
+            std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find("variant 'overcast'"), std::string::npos) << info.output;
+
+  const auto lm = vbim("lightmap --size 64 --sky-width 32 --frames 2 --out " + d + "/lm");
+  ASSERT_EQ(lm.status, 0) << lm.output;
+  const auto seq = vbim("author --frames '" + d + "/lm/lightmap_%04d.png' --sky '" + d +
+                        "/lm/sky_%04d.png' --fps 1 --out " + d + "/seq.vbim");
+  ASSERT_EQ(seq.status, 0) << seq.output;
+  const auto json = vbim("info --json " + d + "/seq.vbim");
+  const nlohmann::json j = nlohmann::json::parse(json.output, nullptr, false);
+  ASSERT_TRUE(j.is_object()) << json.output;
+  EXPECT_EQ(j["authoring"]["source"], "image-sequence");
+  EXPECT_EQ(j["authoring"]["frames"]["lightmap"], nlohmann::json({64, 64}));
+  EXPECT_EQ(j["authoring"]["stream"]["frames_per_variant"], 2);
+  EXPECT_EQ(j["authoring"]["variants"][0]["first_lightmap"], "lightmap_0000.png");
+
+  const auto play = vbim("play " + d + "/syn.vbim --duration 3s --every 60 --no-trace --out " + d + "/run");
+  ASSERT_EQ(play.status, 0) << play.output;
+  EXPECT_TRUE(fs::exists(dir / "run" / "authoring.json"));
+  const auto render = vbim("render " + d + "/run --no-video --width 64 --height 36 --out " + d + "/pictures");
+  EXPECT_EQ(render.status, 0) << render.output;
+  EXPECT_NE(render.output.find("records a stream made from synthetic frames, with no terrain"), std::string::npos)
+      << render.output;
+  fs::remove_all(dir);
+}
+
+}  // namespace

@@ -3,9 +3,6 @@
 
 #include "tests/support/run_command.hpp"
 
-#include <sys/wait.h>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -13,14 +10,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr together
-};
+using Result = vbim::testing::CommandResult;
 
 Result run(const std::string& args) {
-  const vbim::testing::CommandResult r = vbim::testing::runCommand(std::string(VBIM_BINARY) + " " + args);
-  return {r.status, r.output};
+  return vbim::testing::runProgram(VBIM_BINARY, args);
 }
 
 fs::path scratch(const std::string& name) {
@@ -35,7 +28,7 @@ std::string readAll(const fs::path& p) {
 
 TEST(Cli, HelpListsSubcommands) {
   const Result r = run("--help");
-  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.status, 0);
   for (const char* sub :
        {"demo", "play", "profile", "author", "info", "decode", "lightmap", "render", "config", "vectors", "replay"})
     EXPECT_NE(r.output.find(sub), std::string::npos) << sub;
@@ -45,10 +38,10 @@ TEST(Cli, HelpListsSubcommands) {
 // theirs, and their errors come back as they are.
 TEST(Cli, FullToolCommandsAreHandedOverWithArgumentsAndStatus) {
   const Result help = run("render --help");
-  EXPECT_EQ(help.code, 0) << help.output;
+  EXPECT_EQ(help.status, 0) << help.output;
   EXPECT_NE(help.output.find("vbim play --every N --out RUN_DIR"), std::string::npos) << help.output;
   const Result bad = run("profile " VBIM_SOURCE_DIR "/streams/samples/day_clear.vbim --out somewhere --bogus");
-  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("--bogus"), std::string::npos) << bad.output;
 }
 
@@ -69,25 +62,25 @@ TEST(Cli, AMissingFullToolIsNamed) {
 
 TEST(Cli, UnknownSubcommandIsAnErrorWithUsage) {
   const Result r = run("frobnicate");
-  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.output, "vbim: unknown command 'frobnicate'; see 'vbim --help'\n");
 }
 
 TEST(Cli, UnknownOptionIsAnErrorWithUsage) {
   const Result r = run("demo --bogus");
-  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("--bogus"), std::string::npos) << r.output;
 }
 
 TEST(Cli, NoSubcommandIsAnError) {
   const Result r = run("");
-  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.status, 2);
 }
 
 TEST(Cli, DemoWritesACompleteOutputDirectory) {
   const fs::path out = scratch("demo");
   const Result r = run("demo --seconds 4 --out " + out.string());
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "trace.json"));
   EXPECT_TRUE(fs::exists(out / "signals.vcd"));
   EXPECT_TRUE(fs::exists(out / "stats.json"));
@@ -111,7 +104,7 @@ TEST(Cli, DemoWritesACompleteOutputDirectory) {
 
 TEST(Cli, ConfigPrintsEveryKeyWithItsSource) {
   const Result r = run("config");
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("[drive]"), std::string::npos);
   EXPECT_NE(r.output.find("[ring]"), std::string::npos);
   EXPECT_NE(r.output.find("[sif]"), std::string::npos);
@@ -124,14 +117,14 @@ TEST(Cli, ConfigCheckNamesFileLineAndKey) {
   const fs::path bad = dir / "plat.toml";
   ASSERT_TRUE(vbim::testing::writeTextFile(bad, "[ring]\nbankmax = 5\nbanks = 3\n"));
   const Result r = run("config --check " + bad.string());
-  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find(bad.string() + ":3: key 'ring.banks': unknown key"), std::string::npos) << r.output;
   fs::remove_all(dir);
 }
 
 TEST(Cli, EveryPlatformKeyIsDocumentedInTheTimingModel) {
   const Result r = run("config --markdown");
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   const std::string doc = readAll(VBIM_SOURCE_DIR "/docs/timing-model.md");
   std::size_t keys = 0;
   std::size_t pos = 0;
@@ -152,7 +145,7 @@ TEST(Cli, ConfigRejectsATwoBankRing) {
   const fs::path cfg = dir / "plat.toml";
   ASSERT_TRUE(vbim::testing::writeTextFile(cfg, "[ring]\nbankmax = 2\n"));
   const Result r = run("config --check " + cfg.string());
-  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find(cfg.string() + ":2: key 'ring.bankmax'"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("outside the allowed range [3, 512]"), std::string::npos) << r.output;
   fs::remove_all(dir);
@@ -160,7 +153,7 @@ TEST(Cli, ConfigRejectsATwoBankRing) {
 
 TEST(Cli, DemoRejectsOutOfRangeSeconds) {
   const Result r = run("demo --seconds -1");
-  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.status, 0);
 }
 
 }  // namespace

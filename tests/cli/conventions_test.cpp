@@ -12,14 +12,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr together
-};
+using Result = vbim::testing::CommandResult;
 
 Result run(const std::string& args) {
-  const vbim::testing::CommandResult r = vbim::testing::runCommand(std::string(VBIM_BINARY) + " " + args);
-  return {r.status, r.output};
+  return vbim::testing::runProgram(VBIM_BINARY, args);
 }
 
 const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
@@ -39,7 +35,7 @@ int lines(const std::string& s) {
 // A usage error: one line, prefixed with the command, ending with where the help is; exit 2.
 void expectUsageError(const std::string& args, const std::string& command, const std::string& mentions) {
   const Result r = run(args);
-  EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
   EXPECT_EQ(lines(r.output), 1) << args << "\n" << r.output;
   EXPECT_EQ(r.output.rfind("vbim " + command + ": ", 0), 0u) << args << "\n" << r.output;
   EXPECT_NE(r.output.find(mentions), std::string::npos) << args << "\n" << r.output;
@@ -51,7 +47,7 @@ TEST(CliConventions, HelpCommandIsTheCommandsHelp) {
        {"play", "info", "decode", "config", "vectors", "replay", "profile", "author", "render", "demo", "lightmap"}) {
     const Result help = run(std::string("help ") + cmd);
     const Result option = run(std::string(cmd) + " --help");
-    EXPECT_EQ(help.code, 0) << cmd << "\n" << help.output;
+    EXPECT_EQ(help.status, 0) << cmd << "\n" << help.output;
     EXPECT_EQ(help.output, option.output) << cmd;
     EXPECT_NE(help.output.find("Examples:\n  vbim " + std::string(cmd)), std::string::npos) << help.output;
     // CLI11 leftovers a user cannot read: validator names after the type, flag defaults in braces.
@@ -67,7 +63,7 @@ TEST(CliConventions, HelpCommandIsTheCommandsHelp) {
           << help.output;
     }
   }
-  EXPECT_EQ(run("help").code, 0);
+  EXPECT_EQ(run("help").status, 0);
 }
 
 TEST(CliConventions, UsageErrorsAreOneLineWithAPointerToTheHelp) {
@@ -86,7 +82,7 @@ TEST(CliConventions, NumbersAreParsedStrictly) {
   expectUsageError("profile " + kSample + " --seed -5 --out x", "profile", "'-5' is negative");
   // The largest seed is accepted as it is (not clamped, not wrapped): the run starts.
   const Result big = run("config --check /nonexistent-config.toml");
-  EXPECT_EQ(big.code, 2) << big.output;
+  EXPECT_EQ(big.status, 2) << big.output;
 }
 
 TEST(CliConventions, InputFilesAreCheckedAndNamed) {
@@ -111,10 +107,10 @@ TEST(CliConventions, InputFilesAreCheckedAndNamed) {
 
 TEST(CliConventions, BadInputNamesTheCommandAndExitsTwo) {
   const Result branch = run("play " + kSample + " --branch 5s=overcast --duration 1s --out x");
-  EXPECT_EQ(branch.code, 2) << branch.output;
+  EXPECT_EQ(branch.status, 2) << branch.output;
   EXPECT_EQ(branch.output.rfind("vbim play: --branch '5s=overcast'", 0), 0u) << branch.output;
   const Result streamId = run("decode " + kSample + " --stream-id zz --out x");
-  EXPECT_EQ(streamId.code, 2) << streamId.output;
+  EXPECT_EQ(streamId.status, 2) << streamId.output;
   EXPECT_EQ(streamId.output.rfind("vbim decode: --stream-id zz", 0), 0u) << streamId.output;
   // Not a stream: a bad input (2), named with the file, in info as in every command.
   const fs::path dir = scratch("notastream");
@@ -127,7 +123,7 @@ TEST(CliConventions, BadInputNamesTheCommandAndExitsTwo) {
   }
   for (const std::string cmd : {"info ", "play "}) {
     const Result r = run(cmd + text.string() + (cmd == "play " ? " --out " + (dir / "o").string() : ""));
-    EXPECT_EQ(r.code, 2) << cmd << r.output;
+    EXPECT_EQ(r.status, 2) << cmd << r.output;
     EXPECT_EQ(r.output.rfind("vbim " + cmd.substr(0, cmd.size() - 1) + ": ", 0), 0u) << r.output;
     EXPECT_NE(r.output.find(text.string()), std::string::npos) << r.output;
   }
@@ -145,15 +141,15 @@ TEST(CliConventions, AuthorDefaultsMakeAStreamTheOtherCommandsAccept) {
   fs::create_directories(dir);
   const std::string d = dir.string();
   const Result author = run("author --procedural --out " + d + "/day.vbim");
-  ASSERT_EQ(author.code, 0) << author.output;
+  ASSERT_EQ(author.status, 0) << author.output;
   const Result play = run("play " + d + "/day.vbim --duration 4s --every 120 --out " + d + "/run");
-  EXPECT_EQ(play.code, 0) << play.output;
+  EXPECT_EQ(play.status, 0) << play.output;
   const Result info = run("info " + d + "/day.vbim");
-  EXPECT_EQ(info.code, 0) << info.output;
+  EXPECT_EQ(info.status, 0) << info.output;
   const Result profile = run("profile " + d + "/day.vbim --ring 4:16 --duration 3s --no-search --out " + d + "/prof");
-  EXPECT_EQ(profile.code, 0) << profile.output;
+  EXPECT_EQ(profile.status, 0) << profile.output;
   const Result render = run("render " + d + "/run --no-video --width 64 --height 36 --out " + d + "/pictures");
-  EXPECT_EQ(render.code, 0) << render.output;
+  EXPECT_EQ(render.status, 0) << render.output;
   fs::remove_all(dir);
 }
 
@@ -163,9 +159,9 @@ TEST(CliConventions, AVramOverflowNamesTheWayOut) {
   fs::create_directories(dir);
   const std::string d = dir.string();
   const Result author = run("author --procedural --size 512 --frame-count 4 --out " + d + "/big.vbim");
-  ASSERT_EQ(author.code, 0) << author.output;
+  ASSERT_EQ(author.status, 0) << author.output;
   const Result play = run("play " + d + "/big.vbim --duration 1s --out " + d + "/run");
-  EXPECT_EQ(play.code, 2) << play.output;
+  EXPECT_EQ(play.status, 2) << play.output;
   EXPECT_NE(play.output.find("the default platform config: VRAM layout does not fit"), std::string::npos)
       << play.output;
   EXPECT_NE(play.output.find("gs.upload_mode = \"strips\""), std::string::npos) << play.output;
@@ -176,7 +172,7 @@ TEST(CliConventions, AVramOverflowNamesTheWayOut) {
     std::fclose(f);
   }
   const Result fixed = run("play " + d + "/big.vbim --config " + d + "/strips.toml --duration 1s --out " + d + "/run");
-  EXPECT_EQ(fixed.code, 0) << fixed.output;
+  EXPECT_EQ(fixed.status, 0) << fixed.output;
   fs::remove_all(dir);
 }
 
@@ -204,17 +200,17 @@ TEST(CliConventions, ExistingOutputsAreRefusedBeforeAnyWorkUnlessForced) {
         "play " + kSample + " --out " + d + "/full/", "profile " + kSample + " --out " + d + "/full",
         "decode " + kSample + " --out " + d + "/full"}) {
     const Result r = run(args);
-    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("exists and is not empty (use --force to replace it)"), std::string::npos) << args << "\n"
                                                                                                        << r.output;
     EXPECT_EQ(lines(r.output), 1) << args << ": no work before the refusal\n" << r.output;
   }
   const Result author = run("author --procedural --out " + d + "/old.vbim");
-  EXPECT_EQ(author.code, 2) << author.output;
+  EXPECT_EQ(author.status, 2) << author.output;
   EXPECT_NE(author.output.find("exists (use --force to replace it)"), std::string::npos) << author.output;
   EXPECT_EQ(vbim::testing::readFileBytes(dir / "old.vbim"), "old\n");
   const Result intoDir = run("author --procedural --out " + d + "/full");
-  EXPECT_EQ(intoDir.code, 2) << intoDir.output;
+  EXPECT_EQ(intoDir.status, 2) << intoDir.output;
   EXPECT_NE(intoDir.output.find("is a directory; expected the name of the file to write"), std::string::npos)
       << intoDir.output;
   EXPECT_EQ(vbim::testing::readFileBytes(dir / "full" / "keep.txt"), "keep\n");
@@ -228,7 +224,7 @@ namespace {
 // A ring that `vbim config --check` refuses (two banks deadlock) is refused by profile too, up front.
 TEST(CliConventions, ProfileRefusesARingTheConfigCheckRefuses) {
   const Result r = run("profile " + kSample + " --ring 2:8 --out " + scratch("ring").string());
-  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("ring.bankmax = 2 is outside [3, 512]"), std::string::npos) << r.output;
   EXPECT_EQ(lines(r.output), 1) << r.output;
 }
@@ -245,9 +241,14 @@ TEST(CliConventions, InterruptingRemovesTemporaryFiles) {
   for (const std::string& args : {"author --procedural --size 512 --frame-count 400 --out " + d + "/day.vbim",
                                   "play " + kSample + " --duration 100000s --out " + d + "/run",
                                   "lightmap --size 512 --frames 400 --out " + d + "/lm"}) {
-    // SIGINT after a second (the command is well into its work by then); timeout stops a hang.
-    const auto r = vbim::testing::runCommand(std::string(VBIM_BINARY) + " " + args +
-                                             " 2>&1 & pid=$!; sleep 1.5; kill -INT $pid; wait $pid; echo status=$?");
+    // SIGINT once the command catches it (a background job of a script starts with SIGINT ignored,
+    // so a signal sent before its handler is installed, as on a loaded machine, would be lost), then
+    // a second later, well into its work. The handler shows as bit 2 (SIGINT) of SigCgt.
+    const auto r = vbim::testing::runCommand(
+        std::string(VBIM_BINARY) + " " + args +
+        " 2>&1 & pid=$!; for i in $(seq 600); do c=$(awk '/^SigCgt/{print $2}' /proc/$pid/status 2>/dev/null); "
+        "[ -n \"$c\" ] && [ $(( 0x$c & 2 )) -ne 0 ] && break; sleep 0.05; done; sleep 1; kill -INT $pid; wait $pid; "
+        "echo status=$?");
     EXPECT_NE(r.output.find("status=130"), std::string::npos) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("interrupted (Ctrl-C)"), std::string::npos) << args << "\n" << r.output;
     EXPECT_TRUE(fs::is_empty(dir)) << args << ": left " << fs::directory_iterator(dir)->path();

@@ -263,3 +263,27 @@ TEST(PlayCli, StatsRecordTheInputsAndTheirDigests) {
   EXPECT_NE(stats.find("\"seed\": 9"), std::string::npos) << stats;
   fs::remove_all(out);
 }
+
+namespace {
+
+// busy_share.drive comes from the drive's own counter: present and equal with or without tracing,
+// here with a stall still going on when the run ends.
+TEST(PlayCli, DriveBusyShareIsTheSameWithOrWithoutTracing) {
+  const fs::path traced = scratch("busy_traced"), bare = scratch("busy_bare");
+  const std::string plan = std::string(VBIM_SOURCE_DIR) + "/examples/fault-plans/stall.toml";
+  const std::string args = kSample + " --duration 11s --every 0 --faults " + plan + " --out ";
+  ASSERT_EQ(play(args + traced.string()).status, 0);
+  ASSERT_EQ(play(args + bare.string() + " --no-trace").status, 0);
+  const auto driveShare = [](const std::string& stats) {
+    const auto at = stats.find("\"drive\": ", stats.find("\"busy_share\""));
+    return at == std::string::npos ? std::string("<none>") : stats.substr(at, stats.find('\n', at) - at);
+  };
+  const std::string a = driveShare(slurp(traced / "stats.json")), b = driveShare(slurp(bare / "stats.json"));
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(b.find("null"), std::string::npos) << b;
+  EXPECT_NE(b, "\"drive\": 0.0,") << b;
+  fs::remove_all(traced);
+  fs::remove_all(bare);
+}
+
+}  // namespace

@@ -251,3 +251,38 @@ TEST(DriveStall, StallSeriesEqualsTheSameStallsUpFront) {
 
 }  // namespace
 }  // namespace vbim::iop::test
+
+namespace vbim::iop::test {
+namespace {
+
+// The drive counts its busy time itself, so the busy share in stats.json is the same with or without
+// a tracer: equal to the time on the trace's drive track, at any moment, including inside a stall
+// that is still going on (the trace clips the stall's span there) and with retries.
+TEST(DriveBusy, BusyTimeIsTheTracesDriveTrackWithOrWithoutATracer) {
+  Rig traced, bare;
+  for (Rig* r : {&traced, &bare}) {
+    r->p.drive.spindle = "clv";
+    r->build(kLayer, false);
+    if (r == &bare) r->drive = std::make_unique<Drive>(r->s, *r->disc, r->p.drive, Rng(r->seed), nullptr);
+    r->drive->addSectorFault(40, 2);
+    r->drive->addStall(fromMs(5), fromMs(30));
+    r->drive->addStall(fromMs(60), fromMs(400));
+  }
+  std::vector<Done> outTraced, outBare;
+  const std::vector<Step> steps{{0, 0, 64}, {fromMs(2), 5000, 32}, {0, 200'000, 16}, {fromMs(1), 100, 64}};
+  traced.s.spawn("script", script(traced.s, *traced.drive, steps, outTraced));
+  bare.s.spawn("script", script(bare.s, *bare.drive, steps, outBare));
+  const Tracer::TrackId driveTrack = 0;  // the first track: the drive is the first thing the rig builds
+  for (const Tick at : {fromMs(3), fromMs(20), fromMs(59), fromMs(200), fromMs(450), fromMs(900)}) {
+    traced.s.runUntil(at);
+    bare.s.runUntil(at);
+    EXPECT_EQ(traced.drive->busyTime(at), traced.tracer.busyTime(driveTrack, 0, at)) << toSeconds(at) << " s";
+    EXPECT_EQ(bare.drive->busyTime(at), traced.drive->busyTime(at)) << toSeconds(at) << " s";
+  }
+  EXPECT_EQ(outTraced.size(), steps.size());
+  EXPECT_GT(traced.drive->stats().retries, 0);
+  EXPECT_GT(traced.drive->busyTime(fromMs(900)), fromMs(340));  // the stalls alone
+}
+
+}  // namespace
+}  // namespace vbim::iop::test

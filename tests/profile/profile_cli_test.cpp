@@ -2,10 +2,10 @@
 // run gives the same bytes (CSV, JSON, PNG, SVG), the survivable stall grows with the ring, and bad input
 // exits non-zero with a message naming what was wrong, leaving no output directory behind.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdio>
+#include <unistd.h>
+#include "tests/support/run_command.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,21 +18,10 @@ namespace fs = std::filesystem;
 
 const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
 
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = vbim::testing::CommandResult;
 
 Result run(const std::string& args) {
-  Result r;
-  const std::string cmd = std::string(VBIM_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return vbim::testing::runProgram(VBIM_CLI, args);
 }
 
 std::string slurp(const fs::path& p) {
@@ -64,9 +53,9 @@ double longest(const std::string& csv, const std::string& bufmax, const std::str
 TEST(ProfileCli, WritesTablesAndPlotsDeterministically) {
   const fs::path a = scratch("a"), b = scratch("b");
   const Result ra = run("profile " + kSample + kSmall + " --policy blend-through,hard-skip --out " + a.string());
-  ASSERT_EQ(ra.code, 0) << ra.output;
+  ASSERT_EQ(ra.status, 0) << ra.output;
   const Result rb = run("profile " + kSample + kSmall + " --policy blend-through,hard-skip --out " + b.string());
-  ASSERT_EQ(rb.code, 0) << rb.output;
+  ASSERT_EQ(rb.status, 0) << rb.output;
   for (const char* f :
        {"sweep.csv", "stall.csv", "profile.json", "plots/survivable_stall.png", "plots/survivable_stall.svg",
         "plots/occupancy_day_clear_none_blend-through.png", "plots/occupancy_day_clear_none_blend-through.svg",
@@ -109,7 +98,7 @@ TEST(ProfileCli, BadInputExitsNonZeroAndLeavesNothing) {
   };
   for (const Case& c : cases) {
     const Result r = run(c.args);
-    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_NE(r.status, 0) << c.args;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
@@ -117,7 +106,7 @@ TEST(ProfileCli, BadInputExitsNonZeroAndLeavesNothing) {
   fs::create_directories(out);
   std::ofstream(out / "keep.txt") << "x";
   const Result r = run("profile " + kSample + " --ring 4:8 --no-search --duration 2s --out " + out.string());
-  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.status, 0);
   EXPECT_TRUE(fs::exists(out / "keep.txt"));
   EXPECT_NE(r.output.find("--force"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("sweep "), std::string::npos) << "refused only after running the sweep:\n" << r.output;

@@ -3,8 +3,9 @@
 // summary's intervals are the Wilson intervals of the table's counts; --emit-slurm writes a job
 // array; a bad plan is refused with file:line: key.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+
 #include <unistd.h>
+#include "tests/support/run_command.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,20 +24,10 @@ namespace fs = std::filesystem;
 const std::string kPlan = std::string(VBIM_SOURCE_DIR) + "/tests/profile/plans/array64.toml";
 const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
 
-struct Result {
-  int code = -1;
-  std::string output;
-};
+using Result = vbim::testing::CommandResult;
 
 Result run(const std::string& args) {
-  Result r;
-  FILE* p = popen((std::string(VBIM_CLI) + " " + args + " 2>&1").c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return vbim::testing::runProgram(VBIM_CLI, args);
 }
 
 std::string slurp(const fs::path& p) {
@@ -79,9 +70,9 @@ std::vector<std::string> fields(const std::string& line) {
 TEST(SweepPlan, TableIsTheSameBytesAtAnyJobCount) {
   const fs::path one = scratch("jobs1"), two = scratch("jobs2");
   const Result r1 = run("profile --plan " + kPlan + " --jobs 1 --out " + one.string());
-  ASSERT_EQ(r1.code, 0) << r1.output;
+  ASSERT_EQ(r1.status, 0) << r1.output;
   const Result r2 = run("profile --plan " + kPlan + " --jobs 2 --out " + two.string());
-  ASSERT_EQ(r2.code, 0) << r2.output;
+  ASSERT_EQ(r2.status, 0) << r2.output;
   for (const char* f :
        {"cases.csv", "cases.jsonl", "summary.csv", "summary.txt", "plots/probability_1.png", "plots/probability_1.svg"})
     EXPECT_TRUE(fs::exists(one / f)) << f;
@@ -115,11 +106,11 @@ TEST(SweepPlan, TableIsTheSameBytesAtAnyJobCount) {
 
 TEST(SweepPlan, ShardsMergeIntoExactlyTheLocalRun) {
   const fs::path local = scratch("local"), shards = scratch("shards"), merged = scratch("merged");
-  ASSERT_EQ(run("profile --plan " + kPlan + " --out " + local.string()).code, 0);
+  ASSERT_EQ(run("profile --plan " + kPlan + " --out " + local.string()).status, 0);
   for (int k : {1, 3}) {
     const Result r =
         run("profile --plan " + kPlan + " --shard " + std::to_string(k) + "/3 --jobs 1 --out " + shards.string());
-    ASSERT_EQ(r.code, 0) << r.output;
+    ASSERT_EQ(r.status, 0) << r.output;
   }
   // A shard writes only its own directory.
   std::vector<std::string> names;
@@ -128,16 +119,16 @@ TEST(SweepPlan, ShardsMergeIntoExactlyTheLocalRun) {
   EXPECT_EQ(names, (std::vector<std::string>{"shard-1-of-3", "shard-3-of-3"}));
   // Shard 2 missing: named, with the command that runs it alone; nothing written.
   const Result missing = run("profile --plan " + kPlan + " --merge " + shards.string() + " --out " + merged.string());
-  EXPECT_NE(missing.code, 0);
+  EXPECT_NE(missing.status, 0);
   EXPECT_NE(missing.output.find("missing or unfinished: 2"), std::string::npos) << missing.output;
   EXPECT_NE(missing.output.find("--shard 2/3 --out " + shards.string()), std::string::npos) << missing.output;
   EXPECT_NE(missing.output.find("sbatch --array=2 "), std::string::npos) << missing.output;
   EXPECT_FALSE(fs::exists(merged));
   const auto before = tree(shards / "shard-1-of-3");
-  ASSERT_EQ(run("profile --plan " + kPlan + " --shard 2/3 --out " + shards.string()).code, 0);
+  ASSERT_EQ(run("profile --plan " + kPlan + " --shard 2/3 --out " + shards.string()).status, 0);
   EXPECT_TRUE(tree(shards / "shard-1-of-3") == before) << "running shard 2 changed shard 1";
   const Result m = run("profile --plan " + kPlan + " --merge " + shards.string() + " --out " + merged.string());
-  ASSERT_EQ(m.code, 0) << m.output;
+  ASSERT_EQ(m.status, 0) << m.output;
   expectSameTree(local, merged);
   // Shards of another plan are refused.
   const fs::path other = scratch("other.toml");
@@ -148,14 +139,14 @@ TEST(SweepPlan, ShardsMergeIntoExactlyTheLocalRun) {
   std::ofstream(other, std::ios::trunc) << text;
   const Result foreign =
       run("profile --plan " + other.string() + " --merge " + shards.string() + " --out " + merged.string() + "2");
-  EXPECT_NE(foreign.code, 0);
+  EXPECT_NE(foreign.status, 0);
   EXPECT_NE(foreign.output.find("another plan"), std::string::npos) << foreign.output;
   for (const fs::path& p : {local, shards, merged, other}) fs::remove_all(p);
 }
 
 TEST(SweepPlan, SummaryIsTheWilsonIntervalOfTheTable) {
   const fs::path out = scratch("summary");
-  ASSERT_EQ(run("profile --plan " + kPlan + " --out " + out.string()).code, 0);
+  ASSERT_EQ(run("profile --plan " + kPlan + " --out " + out.string()).status, 0);
   // Count late frames per (bufmax, policy) from the table.
   std::istringstream cases(slurp(out / "cases.csv"));
   std::string line;
@@ -200,7 +191,7 @@ TEST(SweepPlan, EmitSlurmWritesAJobArray) {
   const fs::path out = scratch("slurm");
   const Result r = run("profile --plan " + kPlan + " --emit-slurm " + out.string() +
                        " --shards 4 --account lab42 --cpus-per-task 2");
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   const std::string script = slurp(out / "sweep.sbatch");
   EXPECT_EQ(slurp(out / "plan.toml"), slurp(kPlan));
   for (const char* want : {"#SBATCH --array=1-4\n", "#SBATCH --cpus-per-task=2\n", "#SBATCH --time=", "#SBATCH --mem=",
@@ -233,12 +224,12 @@ TEST(SweepPlan, BadPlansNameFileLineAndKey) {
   for (const Case& c : cases) {
     std::ofstream(plan, std::ios::trunc) << c.text;
     const Result r = run("profile --plan " + plan.string() + " --out " + (dir / "out").string());
-    EXPECT_NE(r.code, 0) << c.text;
+    EXPECT_NE(r.status, 0) << c.text;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.text << "\n" << r.output;
     EXPECT_FALSE(fs::exists(dir / "out"));
   }
   const Result jobs = run("profile --plan " + kPlan + " --jobs 1000 --out " + (dir / "out").string());
-  EXPECT_NE(jobs.code, 0);
+  EXPECT_NE(jobs.status, 0);
   EXPECT_NE(jobs.output.find("--jobs 1000: at most"), std::string::npos) << jobs.output;
   fs::remove_all(dir);
 }

@@ -27,6 +27,11 @@ inline CommandResult runCommand(const std::string& cmd) {
   return r;
 }
 
+// Runs `program args`: the program a test was built against (VBIM_BINARY, ...), as runCommand does.
+inline CommandResult runProgram(const std::string& program, const std::string& args) {
+  return runCommand(program + " " + args);
+}
+
 // The whole file, or "<missing PATH>" so a comparison against it fails with a clear value.
 inline std::string readFileBytes(const std::filesystem::path& path) {
   std::string data;
