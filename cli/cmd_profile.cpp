@@ -239,12 +239,14 @@ void runProfile(const ProfileRequest& r) {
               << "  faults " << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate
               << ", pop max " << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
     // A run that stopped showing frames is flagged on its line and warned about on stderr.
-    if (const auto h = player::runHealth(run.result.lightmap, run.result.totals); h.verdict != "ok") {
-      std::cout << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
+    // The line is finished (and flushed) before the warning, so the two never share a line.
+    const auto h = player::runHealth(run.result.lightmap, run.result.totals);
+    if (h.verdict != "ok") std::cout << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
+    std::cout << std::endl;
+    if (h.verdict != "ok") {
       std::cerr << "vbim profile: " << run.stream << " ring " << run.ring.bankmax << ":" << run.ring.bufmax << " "
                 << run.policy << ": " << player::healthWarning(h) << "\n";
     }
-    std::cout << "\n";
   };
   progress.onStall = [&count](const StallRow& row) {
     checkInterrupted();
