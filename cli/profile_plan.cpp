@@ -26,6 +26,7 @@
 #include "gs/blend_simd.hpp"
 #include "iop/memory_disc.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "player/report.hpp"
 #include "player/scenario.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/transcode.hpp"
@@ -209,6 +210,19 @@ void reportFailures(const std::vector<CaseRecord>& records) {
     if (++failed <= 5) std::cerr << "vbim profile: case " << r.number << " failed: " << r.error << "\n";
   }
   if (failed > 5) std::cerr << "vbim profile: ... and " << failed - 5 << " more failed cases (see the table)\n";
+  // Runs that stopped showing frames are findings, not failures: counted once, listed in the table.
+  std::size_t stuck = 0, starved = 0;
+  for (const CaseRecord& r : records) {
+    if (!r.ok) continue;
+    const std::string verdict = player::runHealth(r.result.lightmap, r.result.totals).verdict;
+    stuck += verdict == "stuck" ? 1 : 0;
+    starved += verdict == "starved" ? 1 : 0;
+  }
+  if (stuck + starved > 0) {
+    std::cerr << "vbim profile: warning: " << stuck << " stuck and " << starved << " starved of " << records.size()
+              << " cases: the display stopped for their last 5 s or more (the health column of cases.csv; "
+                 "docs/player.md, \"Stuck and starved runs\")\n";
+  }
 }
 
 void writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, OutputDir& dir) {

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "cli/profile_outputs.hpp"
+#include "player/report.hpp"
 #include "plots/sweep_figures.hpp"
 
 namespace vbim::cli::sweep {
@@ -65,6 +66,9 @@ std::vector<Cell> measureCells(const SweepPlanSpec& plan, const CaseRecord& r) {
   const CaseResult& m = r.result;
   row.push_back(number("stream_bytes", m.streamBytes));
   row.push_back(number("frames_shown", m.lightmap.framesShown));
+  // ok, stuck or starved (player/report.hpp, runHealth): always shown, whatever the measures.
+  row.push_back(r.ok ? text("health", player::runHealth(m.lightmap, m.totals).verdict)
+                     : Cell{"health", "", Cell::Kind::null});
   for (const Measure ms : plan.measures) {
     switch (ms) {
       case Measure::frames_late:
@@ -324,6 +328,7 @@ nlohmann::ordered_json recordJson(const CaseRecord& r) {
   j["retries"] = m.driveRetries;
   j["lost"] = m.framesLost;
   j["stream_bytes"] = m.streamBytes;
+  j["health"] = {m.totals.lastVsyncAt, m.totals.endsBehind, m.totals.lastProgressAt};
   j["stall"] = {{"longest", r.stall.longest ? nlohmann::ordered_json(*r.stall.longest) : nlohmann::ordered_json()},
                 {"saturated", r.stall.saturated},
                 {"runs", r.stall.runs},
@@ -358,6 +363,10 @@ CaseRecord recordFromJson(const nlohmann::json& j) {
   m.ringUnderruns = j.at("underruns");
   m.driveRetries = j.at("retries");
   m.framesLost = j.at("lost");
+  const auto& health = j.at("health");
+  m.totals.lastVsyncAt = health.at(0);
+  m.totals.endsBehind = health.at(1);
+  m.totals.lastProgressAt = health.at(2);
   m.streamBytes = j.at("stream_bytes");
   const auto& s = j.at("stall");
   if (!s.at("longest").is_null()) r.stall.longest = s.at("longest").get<Tick>();

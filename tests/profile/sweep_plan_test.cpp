@@ -187,6 +187,40 @@ TEST(SweepPlan, SummaryIsTheWilsonIntervalOfTheTable) {
   fs::remove_all(out);
 }
 
+TEST(SweepPlan, StuckAndStarvedCasesAreMarkedAndCounted) {
+  // One stall from 0 s that outlasts the run (never a frame: starved), one from 4 s (stuck), none.
+  const fs::path dir = scratch("health");
+  fs::create_directories(dir);
+  {
+    std::ofstream plan(dir / "plan.toml");
+    plan << "[run]\nduration = \"15s\"\nseed = 1\n[axes]\nstreams = [\"" << kSample
+         << "\"]\nrings = [\"4:8\"]\npolicies = [\"blend-through\"]\n"
+            "[[faults]]\nname = \"none\"\n"
+            "[[faults]]\nname = \"from0\"\n[[faults.fault]]\nkind = \"stall\"\nat = \"0s\"\nduration = \"600s\"\n"
+            "[[faults]]\nname = \"from4\"\n[[faults.fault]]\nkind = \"stall\"\nat = \"4s\"\nduration = \"600s\"\n";
+  }
+  const Result r = run("profile --plan " + (dir / "plan.toml").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("vbim profile: warning: 1 stuck and 1 starved of 3 cases"), std::string::npos) << r.output;
+  std::istringstream cases(slurp(dir / "out" / "cases.csv"));
+  std::string line;
+  std::getline(cases, line);
+  const std::vector<std::string> h = fields(line);
+  const auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(h.begin(), h.end(), name) - h.begin());
+  };
+  ASSERT_LT(col("health"), h.size()) << line;
+  std::map<std::string, std::string> verdict;
+  while (std::getline(cases, line)) {
+    const std::vector<std::string> f = fields(line);
+    verdict[f[col("faults")]] = f[col("health")];
+  }
+  EXPECT_EQ(verdict["none"], "ok");
+  EXPECT_EQ(verdict["from0"], "starved");
+  EXPECT_EQ(verdict["from4"], "stuck");
+  fs::remove_all(dir);
+}
+
 TEST(SweepPlan, EmitSlurmWritesAJobArray) {
   const fs::path out = scratch("slurm");
   const Result r = run("profile --plan " + kPlan + " --emit-slurm " + out.string() +
