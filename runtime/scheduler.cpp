@@ -123,6 +123,7 @@ void Scheduler::dispatch(const Entry& e) {
     return;
   }
   current_ = &p;
+  inlineRun_ = 0;
   std::coroutine_handle<>::from_address(e.target).resume();
   current_ = nullptr;
   if (p.done_) finishProcess(p);

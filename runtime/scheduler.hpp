@@ -109,9 +109,14 @@ class Scheduler {
   // True (and time advanced to t, the wake-up counted) when the running process's wake-up at t
   // would be the next entry dispatched: nothing ready now, nothing in the queue at or before t, t
   // within the current run limit, the process not suspended.
+  // At most kMaxInlineContinuations in a row, then one trip through the queue: a coroutine that
+  // continues inline and then finishes a nested Task resumes its awaiter by symmetric transfer,
+  // which is a tail call only when the compiler makes it one (GCC does not under ASan), so an
+  // unbounded run of inline continuations could grow the host stack without end.
   bool continueAt(Tick t) {
     if (current_ == nullptr || readyCount() != 0 || t > limit_ || current_->suspended_) return false;
     if (!heap_.empty() && heap_.front().time() <= t) return false;
+    if (++inlineRun_ > kMaxInlineContinuations) return false;
     now_ = t;
     ++seq_;
     ++events_;
@@ -125,7 +130,10 @@ class Scheduler {
   void dispatch(const Entry& e);
   void finishProcess(Process& p);
 
+  static constexpr std::uint32_t kMaxInlineContinuations = 64;
+
   Tick now_ = 0;
+  std::uint32_t inlineRun_ = 0;  // inline continuations since the last dispatch
   std::uint64_t seq_ = 0;
   std::uint64_t events_ = 0;
   Process* current_ = nullptr;
