@@ -262,6 +262,30 @@ TEST(DemReader, TheFileGridMappingUndoesFlipsAndResampling) {
       ASSERT_NEAR(onTerrain.at(x, y)[0], dem.terrain.metresAt(x, y), 1.0 / 256) << x << ", " << y;
 }
 
+// The interpolation looks at most 100 cells away (GDAL's default): a cell farther than that from
+// every valid cell takes the lowest valid height, and a sparse grid is filled in bounded time.
+TEST(DemReader, NodataFarFromEveryValidCellTakesTheLowestHeight) {
+  DemSpec s;
+  s.width = 301;
+  s.height = 3;
+  s.values.assign(static_cast<std::size_t>(s.width) * s.height, -9999.0f);
+  s.gt = {1000, 5, 0, 2000, 0, -5};
+  s.hasNodata = true;
+  s.nodata = -9999;
+  for (int y = 0; y < s.height; ++y) {
+    s.values[static_cast<std::size_t>(y) * s.width] = 100.0f;        // the west edge
+    s.values[static_cast<std::size_t>(y) * s.width + 300] = 200.0f;  // the east edge
+  }
+  const fs::path p = scratch("sparse.tif");
+  writeDem(p, s);
+  const Dem dem = readDem(p.string());
+  ASSERT_EQ(dem.terrain.width, 301);
+  EXPECT_NEAR(dem.terrain.metresAt(150, 1), 100.0, 1.0 / 256);  // 150 cells from both edges
+  EXPECT_GT(dem.terrain.metresAt(295, 1), 150.0);               // 5 cells from the east edge
+  EXPECT_LT(dem.terrain.metresAt(5, 1), 150.0);
+  EXPECT_TRUE(mentions(dem.notes, "nodata cells filled"));
+}
+
 TEST(DemReader, RealExcerptGeographicWithNodata) {
   const fs::path p = fs::path(VBIM_SOURCE_DIR) / "tests/lighting/data/luxembourg_elev.tif";
   const Dem dem = readDem(p.string());
