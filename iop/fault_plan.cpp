@@ -83,8 +83,21 @@ namespace {
 // command, a contention entry one hold slice per period.
 struct ForeignSeries {
   Fault fault;
-  Tick next;  // time of the next command
+  Tick next;         // time of the next command
+  Tick periodBegin;  // contention: the period `next` falls in
+  Rng rng;           // contention: where in each period the slice is queued
 };
+
+// A contention slice is queued at a seeded moment of its period (so that it still fits in it), not
+// at the period's start. At a fixed phase, a period equal to the stream's 200 ms re-try after a
+// failed sceCdRE (iop/stream_ring.hpp) locks the two clocks: every re-try meets the drive busy and
+// the stream never starts (the documented 200 ms example did that from 0 s). A real client's
+// requests drift against the stream's; the draw stands for that drift (docs/fault-plans.md, [A]).
+Tick sliceTimeIn(Tick periodBegin, const Fault& f, Rng& rng) {
+  const Tick periodEnd = std::min(periodBegin + f.period, f.at + f.duration);  // the last may be cut short
+  const Tick room = std::max<Tick>(0, periodEnd - periodBegin - contentionSlice(f));
+  return periodBegin + static_cast<Tick>(rng.below(static_cast<std::uint64_t>(room) + 1));
+}
 
 std::shared_ptr<DriveCommand> foreignCommand(const Fault& f) {
   auto c = std::make_shared<DriveCommand>();
@@ -112,7 +125,12 @@ Task<void> foreignClient(Scheduler& s, Drive& drive, std::vector<ForeignSeries> 
     co_await s.until(at);
     const Fault& f = series[i].fault;
     drive.enqueue(foreignCommand(f));
-    if (f.kind == Fault::Kind::contention && at + f.period < f.at + f.duration) heads.emplace(at + f.period, i);
+    ForeignSeries& next = series[i];
+    if (f.kind == Fault::Kind::contention && next.periodBegin + f.period < f.at + f.duration) {
+      next.periodBegin += f.period;
+      next.next = sliceTimeIn(next.periodBegin, f, next.rng);
+      heads.emplace(next.next, i);
+    }
   }
 }
 
@@ -150,7 +168,13 @@ void applyFaults(Scheduler& s, Drive& drive, const FaultPlan& plan, Rng rng) {
         break;
       case Fault::Kind::seek_away:
       case Fault::Kind::contention:
-        if (f.kind == Fault::Kind::seek_away || f.duration > 0) foreign.push_back({f, f.at});
+        if (f.kind == Fault::Kind::seek_away) {
+          foreign.push_back({f, f.at, f.at, Rng(0)});
+        } else if (f.duration > 0) {
+          Rng r = rng.fork("faults.contention." + std::to_string(index));
+          const Tick first = sliceTimeIn(f.at, f, r);
+          foreign.push_back({f, first, f.at, r});
+        }
         break;
     }
   }

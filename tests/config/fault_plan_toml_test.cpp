@@ -202,9 +202,31 @@ TEST(FaultPlan, ContentionTakesItsShareOfDriveTime) {
       config::parseFaultPlan("[[fault]]\nkind = \"contention\"\nfrom = \"0s\"\nduration = \"1s\"\nshare = 25\n", "p"),
       Rng(1));
   r.s.run();
-  EXPECT_EQ(r.s.now(), fromMs(900) + fromMs(25));  // ten 25 ms slices, the last from 900 ms
+  // Ten 25 ms slices, each at a seeded moment of its 100 ms period and wholly inside it.
+  EXPECT_GE(r.s.now(), fromMs(900) + fromMs(25));
+  EXPECT_LE(r.s.now(), fromMs(1000));
   EXPECT_EQ(r.drive->stats().commands, 10);
-  EXPECT_EQ(r.tracer.busyTime(0, 0, fromMs(1000)), 10 * fromMs(25));
+  for (int k = 0; k < 10; ++k)
+    EXPECT_EQ(r.tracer.busyTime(0, fromMs(100 * k), fromMs(100 * (k + 1))), fromMs(25)) << "period " << k;
+}
+
+// A slice at the same moment of every period locked onto the stream's 200 ms re-try after a
+// refused sceCdRE: with a 200 ms period from 0 s, every re-try met the drive busy and no bank was
+// ever read. Drawn per period, the slices leave the stream gaps to start in.
+TEST(FaultPlan, ContentionAtTheRetryPeriodDoesNotLockTheStreamOut) {
+  for (const std::uint64_t seed : {1, 2, 3, 4, 5}) {
+    Rig r;
+    r.p.drive.spindle = "clv";
+    r.build();
+    applyFaults(r.s, *r.drive,
+                config::parseFaultPlan("[[fault]]\nkind = \"contention\"\nfrom = \"0s\"\nduration = \"60s\"\n"
+                                       "share = 15\nperiod = \"200ms\"\nlba = 900000\n",
+                                       "p"),
+                Rng(seed).fork("faults"));
+    r.s.spawn("start", startRing(*r.ring));
+    r.s.runUntil(fromMs(10'000));
+    EXPECT_EQ(r.ring->visibleBanks(), 4) << "seed " << seed;  // the ring filled
+  }
 }
 
 TEST(FaultPlan, RandomStallsAreSeededAndPushTheReadBack) {
