@@ -9,8 +9,10 @@ function(vbim_test name)
   # Test support headers are included by path from the root ("tests/player/sample_path.hpp").
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main Threads::Threads)
-  gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
-                       PROPERTIES ENVIRONMENT "VBIM_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+  # Listing the tests starts the program (and its libraries: OpenImageIO under ASan takes seconds);
+  # CMake's default 5 s discovery time-out failed a sanitizer suite on a loaded machine.
+  gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 120
+                       WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} PROPERTIES ENVIRONMENT "VBIM_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endfunction()
 
 # vbim_bench(<name> SOURCES <files...> LIBS <targets...>)
