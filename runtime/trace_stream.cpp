@@ -1,7 +1,7 @@
 #include "runtime/trace_stream.hpp"
 
 #include <algorithm>
-#include <cstdio>
+#include <charconv>
 
 #include "runtime/json.hpp"
 
@@ -17,12 +17,25 @@ long long nanos(Tick t) {
   return neg ? -ns : ns;
 }
 
-std::string micros(long long ns) {
-  char buf[40];
+namespace {
+// "[-]W.FFF" for ns nanoseconds; returns the end of the text in `out` (at least 26 chars).
+char* formatMicros(char* out, long long ns) {
   const bool neg = ns < 0;
-  const long long a = neg ? -ns : ns;
-  std::snprintf(buf, sizeof buf, "%s%lld.%03lld", neg ? "-" : "", a / 1000, a % 1000);
-  return buf;
+  const unsigned long long a = neg ? 0ULL - static_cast<unsigned long long>(ns) : static_cast<unsigned long long>(ns);
+  if (neg) *out++ = '-';
+  out = std::to_chars(out, out + 21, a / 1000).ptr;
+  const auto f = static_cast<unsigned>(a % 1000);
+  *out++ = '.';
+  *out++ = static_cast<char>('0' + f / 100);
+  *out++ = static_cast<char>('0' + f / 10 % 10);
+  *out++ = static_cast<char>('0' + f % 10);
+  return out;
+}
+}  // namespace
+
+std::string micros(long long ns) {
+  char buf[32];
+  return std::string(buf, formatMicros(buf, ns));
 }
 
 // VCD time unit is 1 ps; one tick is 6,781.9 ps, so distinct ticks stay distinct.
@@ -63,6 +76,11 @@ std::string binary(std::int64_t v) {
 
 using namespace trace_format;
 
+TraceText& operator<<(TraceText& text, Micros m) {
+  char buf[32];
+  return text << std::string_view(buf, static_cast<std::size_t>(trace_format::formatMicros(buf, m.ns) - buf));
+}
+
 TraceStream::TraceStream(std::ostream& json, std::ostream& vcd, TraceDetail detail, Tick window)
     : json_(json), vcd_(vcd), detail_(detail), window_(window) {}
 
@@ -70,6 +88,7 @@ void TraceStream::header(const std::vector<std::string>& tracks, const std::vect
                          const std::vector<std::string>& labels) {
   tracks_ = tracks.size();
   counterNames_ = counters;
+  for (const std::string& c : counters) quotedCounters_.push_back(json::quote(c));
   for (const std::string& l : labels) labelAdded(l);
   held_.assign(tracks_, Held{});
   busy_.assign(tracks_, 0);
@@ -129,8 +148,8 @@ void TraceStream::release(std::uint32_t track) {
   // track never overlap in the file (begin + a rounded duration could pass the next begin by 1 ns).
   const long long b = nanos(h.begin);
   sep();
-  json_ << R"({"name":)" << quoted_[h.label] << R"(,"ph":"X","pid":1,"tid":)" << track + 1 << R"(,"ts":)" << micros(b)
-        << R"(,"dur":)" << micros(nanos(h.end) - b) << "}";
+  json_ << R"({"name":)" << quoted_[h.label] << R"(,"ph":"X","pid":1,"tid":)" << track + 1 << R"(,"ts":)" << Micros{b}
+        << R"(,"dur":)" << Micros{nanos(h.end) - b} << "}";
   busy_[track] += h.end - h.begin;
   change(h.end, track, 0);
   h.begin = -1;
@@ -139,12 +158,12 @@ void TraceStream::release(std::uint32_t track) {
 void TraceStream::instant(std::uint32_t track, Tick t, std::uint32_t label) {
   sep();
   json_ << R"({"name":)" << quoted_[label] << R"(,"ph":"i","pid":1,"tid":)" << track + 1 << R"(,"ts":)"
-        << micros(nanos(t)) << "}";
+        << Micros{nanos(t)} << "}";
 }
 
 void TraceStream::value(std::uint32_t counter, Tick t, std::int64_t v) {
   sep();
-  json_ << R"({"name":)" << json::quote(counterNames_[counter]) << R"(,"ph":"C","pid":1,"ts":)" << micros(nanos(t))
+  json_ << R"({"name":)" << quotedCounters_[counter] << R"(,"ph":"C","pid":1,"ts":)" << Micros{nanos(t)}
         << R"(,"args":{"value":)" << v << "}}";
   change(t, static_cast<std::uint32_t>(tracks_ + counter), v);
 }
@@ -172,35 +191,37 @@ void TraceStream::finish() {
   }
   flushBefore(kNever);
   json_ << "\n]}\n";
+  json_.flush();
+  vcd_.flush();
 }
 
 void TraceStream::flushBefore(Tick limit) {
-  std::vector<Change> group;
   while (!pending_.empty() && pending_.top().t < limit) {
     const Tick t = pending_.top().t;
-    group.clear();
+    group_.clear();
     while (!pending_.empty() && pending_.top().t == t) {
-      group.push_back(pending_.top());
+      group_.push_back(pending_.top());
       pending_.pop();
     }
-    writeGroup(t, group);
+    writeGroup(t);
   }
   written_ = std::max(written_, limit);
 }
 
-void TraceStream::writeGroup(Tick t, std::vector<Change>& group) {
+void TraceStream::writeGroup(Tick t) {
+  const std::vector<Change>* changes = &group_;
   if (detail_ == TraceDetail::kCoalesced) {
     // Per variable, the value it ends the instant with, in the order of its last change.
-    std::vector<Change> last;
-    for (const Change& c : group) {
-      auto it = std::find_if(last.begin(), last.end(), [&](const Change& l) { return l.var == c.var; });
-      if (it != last.end()) last.erase(it);
-      last.push_back(c);
+    last_.clear();
+    for (const Change& c : group_) {
+      auto it = std::find_if(last_.begin(), last_.end(), [&](const Change& l) { return l.var == c.var; });
+      if (it != last_.end()) last_.erase(it);
+      last_.push_back(c);
     }
-    std::erase_if(last, [&](const Change& c) { return shown_[c.var] == c.v; });
-    group.swap(last);
+    std::erase_if(last_, [&](const Change& c) { return shown_[c.var] == c.v; });
+    changes = &last_;
   }
-  for (const Change& c : group) {
+  for (const Change& c : *changes) {
     const long long ps = vcdPicoseconds(t);
     if (ps != lastPs_) {
       vcd_ << '#' << ps << '\n';

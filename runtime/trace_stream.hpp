@@ -12,6 +12,8 @@
 // macroblocks) cannot be seen in a viewer. kFull writes every change.
 #pragma once
 
+#include <charconv>
+#include <concepts>
 #include <cstdint>
 #include <ostream>
 #include <queue>
@@ -24,6 +26,53 @@
 namespace vbim {
 
 enum class TraceDetail { kCoalesced, kFull };
+
+// Text for one of the trace files, gathered in a buffer and handed to the stream in pieces of
+// kChunk bytes: the stream's formatted output (std::ostream's number formatting goes through
+// vsnprintf) was most of the trace's cost. Numbers are written with std::to_chars.
+class TraceText {
+ public:
+  explicit TraceText(std::ostream& os) : os_(os) { buf_.reserve(kChunk + kChunk / 4); }
+  TraceText(const TraceText&) = delete;
+  TraceText& operator=(const TraceText&) = delete;
+
+  TraceText& operator<<(std::string_view s) {
+    buf_.append(s);
+    return spill();
+  }
+  TraceText& operator<<(const char* s) { return *this << std::string_view(s); }
+  TraceText& operator<<(const std::string& s) { return *this << std::string_view(s); }
+  TraceText& operator<<(char c) {
+    buf_.push_back(c);
+    return spill();
+  }
+  template <std::integral T>
+  TraceText& operator<<(T v) {
+    char digits[24];
+    const auto r = std::to_chars(digits, digits + sizeof digits, v);
+    buf_.append(digits, r.ptr);
+    return spill();
+  }
+  void flush() {
+    os_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+    buf_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kChunk = 256 * 1024;
+  TraceText& spill() {
+    if (buf_.size() >= kChunk) flush();
+    return *this;
+  }
+  std::ostream& os_;
+  std::string buf_;
+};
+
+// Nanoseconds as microseconds with three decimals ("12.345"), for `text << Micros{ns}`.
+struct Micros {
+  long long ns;
+};
+TraceText& operator<<(TraceText& text, Micros m);
 
 class TraceStream {
  public:
@@ -62,21 +111,24 @@ class TraceStream {
   void release(std::uint32_t track);  // writes the held span of a track
   void change(Tick t, std::uint32_t var, std::int64_t v);
   void flushBefore(Tick limit);  // writes every VCD change before `limit`
-  void writeGroup(Tick t, std::vector<Change>& group);
+  void writeGroup(Tick t);
   void sep();
 
-  std::ostream& json_;
-  std::ostream& vcd_;
+  TraceText json_;
+  TraceText vcd_;
   TraceDetail detail_;
   Tick window_;
   std::size_t tracks_ = 0;
   std::vector<std::string> quoted_;  // labels as JSON strings
   std::vector<std::string> counterNames_;
-  std::vector<std::string> ids_;  // VCD identifier per variable: tracks, then counters
+  std::vector<std::string> quotedCounters_;  // counter names as JSON strings
+  std::vector<std::string> ids_;             // VCD identifier per variable: tracks, then counters
   std::vector<Held> held_;
   std::vector<Tick> busy_;
   std::vector<std::int64_t> shown_;  // VCD value last written, per variable
   std::priority_queue<Change, std::vector<Change>, std::greater<>> pending_;
+  std::vector<Change> group_;  // the changes of one instant (flushBefore, writeGroup)
+  std::vector<Change> last_;   // coalescing scratch (writeGroup)
   std::uint64_t seq_ = 0;
   Tick written_ = 0;  // every VCD change before this time is written
   long long lastPs_ = 0;
