@@ -1,4 +1,4 @@
-// libFuzzer target: the ISO 9660 reader (streams/disc, libiso9660) on any image. Opening it and
+// libFuzzer target: the ISO 9660 reader (streams/disc, iso9660_*) on any image. Opening it and
 // looking files up must give a DiscError or an answer, never a crash or an out-of-bounds read.
 #include <unistd.h>
 
