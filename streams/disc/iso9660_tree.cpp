@@ -134,7 +134,8 @@ std::optional<iop::DiscFile> DirectoryTree::find(std::string_view path, std::str
   DirectoryRecord dir = volume_.root;
   std::string shown = "\\";
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    // The directory entered here is at level i + 2; ECMA-119 6.8.2.1 allows 8 levels.
+    // The directory entered here is at level i + 2 (the root is 1); ECMA-119, 4th edition, section
+    // 6.8.2.1 allows 8 levels.
     if (static_cast<int>(i) + 2 > kMaxDirectoryLevels) return std::nullopt;
     const std::vector<DirectoryRecord> records = readDirectory(dir, shown);
     const auto sub = std::find_if(records.begin(), records.end(), [&](const DirectoryRecord& r) {
