@@ -114,6 +114,7 @@ std::string errorOf(auto&& f) {
 
 std::vector<std::string> paths(const std::vector<iop::DiscFile>& files) {
   std::vector<std::string> r;
+  r.reserve(files.size());
   for (const auto& f : files) r.push_back(f.path);
   return r;
 }
@@ -192,7 +193,7 @@ TEST(Iso9660Record, RefusesBothEndianHalvesThatDisagree) {
 TEST(Iso9660Record, ExtentMustLieInsideTheVolume) {
   DirectoryRecord r;
   r.extent = 90;
-  r.bytes = 10 * 2048;
+  r.bytes = 10 * 2048LL;
   EXPECT_EQ(extentProblem(r, 100), "");
   r.bytes += 1;  // one byte into sector 100
   EXPECT_EQ(extentProblem(r, 100), "at LBA 90 runs past the end of the volume (100 sectors)");
