@@ -56,10 +56,12 @@ struct Lister {
   // Lists `dir` (at `level`, the root being 1), shown with the prefix `shown` ("\\DATA\\").
   void list(const DirectoryRecord& dir, const std::string& shown, int level) {
     const std::vector<DirectoryRecord> records = read(dir, shown);
-    bool continues = false;  // the previous record was a multi-extent file's non-final part
+    // The records of one multi-extent file are consecutive, under one name, each but the last
+    // flagged (ECMA-119, 4th edition, section 9.1.6): `flagged` is the last record, when it was one.
+    const DirectoryRecord* flagged = nullptr;
     for (const DirectoryRecord& r : records) {
-      const bool part = continues;
-      continues = !r.directory && r.multiExtent;
+      const bool part = flagged != nullptr && flagged->identifier == r.identifier;
+      flagged = !r.directory && r.multiExtent ? &r : nullptr;
       if (r.directory) {
         if (level >= kMaxDirectoryLevels) continue;
         const std::string name = shown + r.identifier + "\\";
