@@ -2,11 +2,15 @@
 // every damaged field is refused with a message saying where, loops and deep trees stay bounded, and
 // the image on which libiso9660 overflowed a heap buffer now gives a DiscError naming the bad field.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <string>
@@ -373,6 +377,43 @@ TEST(Iso9660Tree, MultiExtentAndInterleavedFilesAreRefusedByFindAndLeftOutOfTheL
   EXPECT_NE(m.find("file '\\BIG;1' is recorded in several extents"), std::string::npos) << m;
   m = errorOf([&] { t.find("/mix", "\\MIX;1"); });
   EXPECT_NE(m.find("file '\\MIX;1' is recorded interleaved"), std::string::npos) << m;
+}
+
+// An image xorriso wrote, then damaged: the record of \VIDEO\A.PSS;1 says the file is larger than
+// the volume. find() and files() name the file; the other file is still found.
+TEST(IsoDiscDamaged, AFileRunningPastTheVolumeIsADiscErrorNamingIt) {
+  const fs::path d = fs::temp_directory_path() / ("vbim_iso9660_damaged_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d / "root" / "VIDEO");
+  std::ofstream(d / "root" / "VIDEO" / "A.PSS") << std::string(5000, 'a');
+  std::ofstream(d / "root" / "VIDEO" / "B.PSS") << std::string(5000, 'b');
+  const fs::path iso = d / "disc.iso";
+  const std::string cmd = "xorriso -abort_on FAILURE -report_about FAILURE -as mkisofs -quiet -o '" + iso.string() +
+                          "' '" + (d / "root").string() + "' >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "xorriso failed";
+  std::string image;
+  {
+    std::ifstream in(iso, std::ios::binary);
+    image.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::int64_t lba = IsoDisc(iso.string()).find("\\VIDEO\\A.PSS;1")->lba;
+  const std::size_t id = image.find("A.PSS;1");
+  ASSERT_NE(id, std::string::npos);
+  Bytes field{};
+  putBoth32(field, 0, 0x40000000U);  // 1 GiB
+  std::copy_n(field.begin(), 8, image.begin() + static_cast<std::ptrdiff_t>(id - 33 + 10));
+  std::ofstream(iso, std::ios::binary | std::ios::trunc) << image;
+
+  const IsoDisc disc(iso.string());
+  const std::string expected = iso.string() + ": file '\\VIDEO\\A.PSS;1' at LBA " + std::to_string(lba) +
+                               " runs past the end of the volume (" + std::to_string(disc.sectorCount()) +
+                               " sectors): damaged image";
+  std::string m = errorOf([&] { disc.find("\\VIDEO\\A.PSS;1"); });
+  EXPECT_EQ(m, expected);
+  m = errorOf([&] { disc.files(); });
+  EXPECT_EQ(m, expected);
+  EXPECT_TRUE(disc.find("/video/b.pss").has_value());
+  fs::remove_all(d);
 }
 
 // The fuzz finding (tests/fuzz/corpus/iso/): libiso9660 wrote past a heap buffer on this image. Its
