@@ -32,7 +32,6 @@ if(NOT VBIM_MODEL_ONLY)
   vbim_require_pkgconfig(LIBAV "libavcodec-dev libavformat-dev libavutil-dev libswscale-dev"
                          libavformat libavcodec libavutil libswscale)
   vbim_require_pkgconfig(LIBMPEG2 libmpeg2-4-dev libmpeg2 libmpeg2convert)
-  vbim_require_pkgconfig(LIBISO9660 "libiso9660-dev libcdio-dev" libiso9660 libcdio)
   # `vbim author --iso` runs xorriso to write disc images (streams/disc/iso_writer.cpp).
   find_program(VBIM_XORRISO xorriso)
   if(NOT VBIM_XORRISO)

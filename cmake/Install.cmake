@@ -73,7 +73,7 @@ foreach(_folder IN LISTS _vbim_header_folders)
           PATTERN "blend_simd.hpp" EXCLUDE  # gs/: Highway kernels
           PATTERN "simd" EXCLUDE            # ipu/simd/: Highway kernels
           PATTERN "authoring" EXCLUDE       # streams/authoring/: FFmpeg, OpenImageIO
-          PATTERN "disc" EXCLUDE            # streams/disc/: ISO 9660 through libcdio
+          PATTERN "disc" EXCLUDE            # streams/disc/: disc images (xorriso, the player)
           PATTERN "decode" EXCLUDE          # streams/decode/: vbim decode's library (imageio, Highway)
           PATTERN "toml_document.hpp" EXCLUDE  # config/: internal, toml++ stays inside config
           PATTERN "samples" EXCLUDE)        # streams/samples/: no headers (the streams go to share/)

@@ -1,7 +1,7 @@
 // The disc as the drive model sees it: numbered 2048-byte user sectors (DVD data sectors,
 // docs/hardware.md#dvd-drive) and the files that lie on them. The model reads only through this interface, so it never
 // depends on how an image is stored: a bare stream file (iop/file_disc.hpp), an ISO 9660 image
-// (streams/disc/, through libiso9660), or sectors in memory (tests).
+// (streams/disc/), or sectors in memory (tests).
 #pragma once
 
 #include <cstdint>

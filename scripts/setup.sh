@@ -21,7 +21,7 @@ PACKAGES=(
   # DEMs (GeoTIFF, ASCII grid, SRTM .hgt) and GeoTIFF debug layers for the lighting generator
   libgdal-dev
   # disc images
-  libiso9660-dev libcdio-dev xorriso
+  xorriso
   # pictures
   libosmesa6-dev libglm-dev
   # plots (PLplot draws PNG and SVG through its cairo driver)

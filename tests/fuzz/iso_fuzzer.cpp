@@ -1,5 +1,6 @@
-// libFuzzer target: the ISO 9660 reader (streams/disc, libiso9660) on any image. Opening it and
-// looking files up must give a DiscError or an answer, never a crash or an out-of-bounds read.
+// libFuzzer target: the ISO 9660 reader (streams/disc, iso9660_*) on any image. Opening it, listing
+// its files and looking files up must give a DiscError or an answer, never a crash, an out-of-bounds
+// read or a walk that does not end.
 #include <unistd.h>
 
 #include <array>
@@ -19,6 +20,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     vbim::streams::IsoDisc disc(path);
+    try {
+      (void)disc.files();  // what `vbim play disc.iso` does first
+    } catch (const vbim::Error&) {
+    }
     for (const char* name : {"\\VIDEO\\DAY.PSS;1", "\\SYSTEM.CNF;1", "\\A\\B\\C.BIN;1"}) {
       if (auto f = disc.find(name)) {
         std::array<std::uint8_t, vbim::iop::kSectorBytes> sector{};
