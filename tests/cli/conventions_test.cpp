@@ -105,6 +105,26 @@ TEST(CliConventions, InputFilesAreCheckedAndNamed) {
   fs::remove_all(dir);
 }
 
+// A value left out: CLI11 takes the next word, even an option, as the value. The message names the
+// option that lost its value and the option taken in its place, whatever the value's own checks.
+TEST(CliConventions, AnOptionIsNeverTakenAsAValue) {
+  const fs::path dir = scratch("optionvalue");
+  fs::create_directories(dir);
+  const std::string d = dir.string();
+  expectUsageError("config --check --stream " + d, "config", "--check: expects a file, got the option '--stream'");
+  expectUsageError("play " + kSample + " --seed --duration 1s --out x", "play",
+                   "--seed: expects a number, got the option '--duration'");
+  expectUsageError("play " + kSample + " --out --force", "play", "--out: expects a value, got the option '--force'");
+  expectUsageError("vectors --check --force", "vectors", "--check: expects a value, got the option '--force'");
+  expectUsageError("lightmap --config --frames 2 --out x", "lightmap",
+                   "--config: expects a file, got the option '--frames'");
+  // --stream given a directory says so, on every command that has the option.
+  expectUsageError("config --stream " + d, "config", d + ": is a directory; expected a file");
+  expectUsageError("vectors --stream " + d + " --out x", "vectors", d + ": is a directory; expected a file");
+  EXPECT_FALSE(fs::exists("x"));
+  fs::remove_all(dir);
+}
+
 TEST(CliConventions, BadInputNamesTheCommandAndExitsTwo) {
   const Result branch = run("play " + kSample + " --branch 5s=overcast --duration 1s --out x");
   EXPECT_EQ(branch.status, 2) << branch.output;
