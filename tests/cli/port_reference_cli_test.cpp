@@ -50,6 +50,43 @@ TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
   fs::remove_all(out);
 }
 
+// The default streams (the samples) do not depend on the directory vbim is run from.
+TEST(PortReference, DefaultStreamsAreFoundFromAnyDirectory) {
+  const fs::path cwd = scratch("vectors_cwd");
+  fs::create_directories(cwd);
+  const vbim::testing::CommandResult r = vbim::testing::runProgram(VBIM_BINARY, "vectors --out vec", cwd);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : kVectorFiles) {
+    EXPECT_EQ(readAll(cwd / "vec" / f), readAll(fs::path(VBIM_SOURCE_DIR) / "tests/vectors" / f)) << f;
+  }
+  fs::remove_all(cwd);
+}
+
+// An installed vbim (PREFIX/bin/vbim) takes the samples installed with it (PREFIX/share/vbim/samples,
+// cmake/Install.cmake) before the source tree's: here the installed day_clear.vbim is day_weather's
+// bytes, so the vectors are those of the installed files, and differ from the committed ones.
+TEST(PortReference, AnInstalledVbimReadsTheInstalledSamples) {
+  const fs::path prefix = scratch("installed");
+  const fs::path samples = prefix / "share/vbim/samples";
+  fs::create_directories(prefix / "bin");
+  fs::create_directories(samples);
+  fs::copy_file(VBIM_BINARY, prefix / "bin/vbim");
+  const fs::path weather = fs::path(VBIM_SOURCE_DIR) / "streams/samples/day_weather.vbim";
+  fs::copy_file(weather, samples / "day_clear.vbim");
+  fs::copy_file(weather, samples / "day_weather.vbim");
+  const std::string vbim = (prefix / "bin/vbim").string();
+  const vbim::testing::CommandResult byDefault = vbim::testing::runProgram(vbim, "vectors --out by-default", prefix);
+  ASSERT_EQ(byDefault.status, 0) << byDefault.output;
+  const vbim::testing::CommandResult named = vbim::testing::runProgram(
+      vbim,
+      "vectors --stream share/vbim/samples/day_clear.vbim --stream share/vbim/samples/day_weather.vbim --out named",
+      prefix);
+  ASSERT_EQ(named.status, 0) << named.output;
+  for (const char* f : kVectorFiles) EXPECT_EQ(readAll(prefix / "by-default" / f), readAll(prefix / "named" / f)) << f;
+  EXPECT_NE(readAll(prefix / "by-default/ipu.txt"), readAll(fs::path(VBIM_SOURCE_DIR) / "tests/vectors/ipu.txt"));
+  fs::remove_all(prefix);
+}
+
 TEST(PortReference, CheckNamesTheFirstDifference) {
   const fs::path dir = scratch("check");
   fs::create_directories(dir);
