@@ -105,6 +105,7 @@ std::vector<char*> helpAsOption(int argc, char** argv) {
 int runApp(CLI::App& app, int argc, char** argv) {
   installInterruptHandlers();
   checkNumbersStrictly(app);
+  refuseOptionsAsValues(app);
   const std::vector<char*> args = helpAsOption(argc, argv);
   argc = static_cast<int>(args.size()) - 1;
   argv = const_cast<char**>(args.data());

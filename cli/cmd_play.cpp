@@ -205,8 +205,10 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   const bool exr = r.format == "exr";
   std::int64_t images = 0;
   auto nextAt = atTimes.begin();
+  std::int64_t presented = 0;  // the vsyncs of hashes.txt: arrivals.csv's end row, for replay
   player->setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
     hashes << hashesLine(row);
+    ++presented;
     timeline << timelineLine(row);
     if (r.onRow) r.onRow(row);
     bool shoot = r.every > 0 && row.vsync % r.every == 0;
@@ -250,6 +252,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   hashes.close();
   timeline.close();
+  arrivals << arrivalsEndLine(presented);
   arrivals.close();
   {
     std::ofstream f(dir.path("stats.json"), std::ios::binary);

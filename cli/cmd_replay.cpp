@@ -29,6 +29,7 @@ struct ReplayRequest {
   std::string arrivals;
   std::string config;
   std::string duration = "60s";
+  bool durationGiven = false;  // --duration given: it wins over the log's end row
   std::string policy;
   std::int64_t every = 0;
   std::string format = "png";
@@ -62,9 +63,10 @@ void run(const ReplayRequest& r) {
   const std::string file = readAll(r.stream, "stream");
   std::unique_ptr<Replay> replay;
   try {
-    const std::vector<ReplayArrival> arrivals = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
+    const ArrivalLog log = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
+    if (!r.durationGiven) o.vsyncs = log.vsyncs;  // the run's own length, when the log says it
     const auto* bytes = reinterpret_cast<const std::uint8_t*>(file.data());
-    replay = std::make_unique<Replay>(std::span<const std::uint8_t>(bytes, file.size()), r.stream, arrivals, o);
+    replay = std::make_unique<Replay>(std::span<const std::uint8_t>(bytes, file.size()), r.stream, log.arrivals, o);
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
@@ -104,11 +106,15 @@ void addReplay(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "replay", "Blend and present a stream on the simulated GS from an arrival log (vsync,stream,frame)");
   cmd->add_option("stream", r->stream, "A VBIM stream file")->required()->check(inputFile());
-  cmd->add_option("--arrivals", r->arrivals, "Arrival log: CSV vsync,stream,frame (play writes arrivals.csv)")
+  cmd->add_option("--arrivals", r->arrivals,
+                  "Arrival log: CSV vsync,stream,frame, and an end row N,end, (play writes arrivals.csv)")
       ->required()
       ->check(inputFile());
   cmd->add_option("--config", r->config, "Platform config (TOML), as given to play")->check(inputFile());
-  cmd->add_option("--duration", r->duration, "Simulated time to present (e.g. 60s)")->capture_default_str();
+  cmd->add_option("--duration", r->duration,
+                  "Simulated time to present (e.g. 60s); without it, the vsyncs the log's end row gives (play "
+                  "writes one), else 60s")
+      ->each([r](const std::string&) { r->durationGiven = true; });
   cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late");
   cmd->add_option("--every", r->every, "Write the lightmap and sky every N vsyncs (0: never)")
       ->check(nonNegativeInteger())
@@ -121,7 +127,8 @@ void addReplay(CLI::App& app) {
   cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
   cmd->footer(
       "Examples:\n"
-      "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --duration 10s --out replayed/\n");
+      "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --out replayed/\n"
+      "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --duration 10s --out replayed/\n");
   cmd->callback([r] { run(*r); });
 }
 

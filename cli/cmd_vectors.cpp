@@ -10,6 +10,7 @@
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/samples.hpp"
 #include "player/known_answers.hpp"
 #include "runtime/error.hpp"
 
@@ -17,8 +18,12 @@ namespace vbim::cli {
 
 namespace {
 
+// Without --stream: the two sample streams, wherever vbim finds them (cli/samples.hpp), so the
+// vectors do not depend on the directory vbim is run from.
+const std::vector<std::string> kDefaultStreams{"day_clear.vbim", "day_weather.vbim"};
+
 struct VectorsRequest {
-  std::vector<std::string> streams{"streams/samples/day_clear.vbim", "streams/samples/day_weather.vbim"};
+  std::vector<std::string> streams;  // --stream; empty: kDefaultStreams
   std::string out;
   std::string check;
   bool force = false;
@@ -30,13 +35,29 @@ std::optional<std::string> readText(const std::filesystem::path& p) {
   return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
+// The sample streams' paths; Exit(2) naming where they were looked for when they are not there.
+std::vector<std::string> defaultStreams() {
+  const std::optional<std::filesystem::path> dir = findSamples(kDefaultStreams);
+  if (!dir) {
+    std::string searched;
+    for (const std::filesystem::path& d : sampleDirectories()) searched += (searched.empty() ? "" : ", ") + d.string();
+    throw Exit(2, "cannot find the sample streams " + kDefaultStreams[0] + " and " + kDefaultStreams[1] +
+                      " (looked in " + searched + "); name the streams with --stream FILE");
+  }
+  std::vector<std::string> paths;
+  paths.reserve(kDefaultStreams.size());
+  for (const std::string& name : kDefaultStreams) paths.push_back((*dir / name).string());
+  return paths;
+}
+
 std::vector<player::VectorFile> generate(const VectorsRequest& r) {
+  const std::vector<std::string> paths = r.streams.empty() ? defaultStreams() : r.streams;
   std::vector<std::vector<std::uint8_t>> bytes;
   std::vector<player::VectorStream> streams;
-  bytes.reserve(r.streams.size());
-  for (const std::string& path : r.streams) {
+  bytes.reserve(paths.size());
+  for (const std::string& path : paths) {
     std::ifstream f(path, std::ios::binary);
-    if (!f) throw Exit(2, "--stream " + path + ": cannot open the stream file");
+    if (!f) throw Exit(2, (r.streams.empty() ? "" : "--stream ") + path + ": cannot open the stream file");
     bytes.emplace_back(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
     streams.push_back(player::VectorStream{std::filesystem::path(path).stem().string(), bytes.back()});
   }
@@ -86,9 +107,10 @@ void addVectors(CLI::App& app) {
       "vectors", "Write the timing-independent known-answer vectors for a port, or check a port's against them");
   cmd->add_option("--out", r->out, "Write the vector files into this directory (complete or not at all)");
   cmd->add_option("--check", r->check, "Compare the vector files in this directory; name the first difference");
-  cmd->add_option("--stream", r->streams, "Stream files whose pictures become IPU vectors (repeatable)")
-      ->check(inputFile())
-      ->capture_default_str();
+  cmd->add_option("--stream", r->streams,
+                  "Stream files whose pictures become IPU vectors (repeatable; default: the samples day_clear.vbim "
+                  "and day_weather.vbim, from share/vbim/samples beside an installed vbim or the source tree)")
+      ->check(inputFile());
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
   cmd->footer(
       "Examples:\n"

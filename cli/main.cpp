@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/interrupt.hpp"
 
 namespace {
 
@@ -38,6 +39,11 @@ int runFullTool(char** argv) {
 
 int main(int argc, char** argv) {
   try {
+    // First, and before handing a command to vbim-full: started with SIGINT ignored (a background
+    // job of a script), vbim-full would otherwise keep it ignored until its own handler is in, after
+    // its libraries have loaded. The exec resets caught signals to their default action, so a Ctrl-C
+    // then ends it at once (nothing is written yet), as it reaches play's handler at once.
+    vbim::cli::installInterruptHandlers();
     std::vector<char*> args = vbim::cli::helpAsOption(argc, argv);  // `vbim help author` too
     argv = args.data();
     argc = static_cast<int>(args.size()) - 1;

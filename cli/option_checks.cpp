@@ -59,6 +59,22 @@ std::string fileProblem(const std::string& path, bool directory) {
   return {};
 }
 
+// What an option's value is, in words, from its checks and type: "a file", "a number", ...
+std::string expectedValue(CLI::Option& opt) {
+  const auto has = [&opt](const std::string& validator) {
+    try {
+      return opt.get_validator(validator) != nullptr;
+    } catch (const CLI::OptionNotFound&) {
+      return false;
+    }
+  };
+  if (has("input file")) return "a file";
+  if (has("input directory")) return "a directory";
+  const std::string type = opt.get_type_name();
+  if (type == "INT" || type == "UINT" || type == "FLOAT") return "a number";
+  return "a value";
+}
+
 }  // namespace
 
 const CLI::Validator& inputFile() {
@@ -94,6 +110,20 @@ void checkNumbersStrictly(CLI::App& app) {
     if (!type.empty()) opt->type_name(type);
   }
   for (CLI::App* sub : app.get_subcommands({})) checkNumbersStrictly(*sub);
+}
+
+void refuseOptionsAsValues(CLI::App& app) {
+  for (CLI::Option* opt : app.get_options({})) {
+    if (!opt->nonpositional() || opt->get_type_size_min() <= 0) continue;  // flags and positionals
+    const std::string expected = expectedValue(*opt);
+    // transform() puts the check first, so it speaks before inputFile() says "no such file".
+    opt->transform(CLI::Validator(
+        [expected](std::string& s) {
+          return s.rfind("--", 0) == 0 ? "expects " + expected + ", got the option '" + s + "'" : std::string();
+        },
+        "", "not an option"));
+  }
+  for (CLI::App* sub : app.get_subcommands({})) refuseOptionsAsValues(*sub);
 }
 
 }  // namespace vbim::cli

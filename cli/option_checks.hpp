@@ -2,7 +2,9 @@
 // naming the argument, what was found and what was expected (never a C++ exception's text):
 //   - numbers are read strictly: an unsigned option refuses "-1" (CLI11 would wrap it to 2^64-1),
 //     values beyond the type are refused rather than clamped, and text after the digits is refused;
-//   - input files must exist, be regular files (or directories where one is expected) and be readable.
+//   - input files must exist, be regular files (or directories where one is expected) and be readable;
+//   - an option's value never starts with "--": `config --check --stream x` left --check without
+//     its file, and CLI11 would take the next word whatever it is.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -20,5 +22,11 @@ const CLI::Validator& nonNegativeInteger();
 // integer or a floating-point number (CLI11's INT, UINT and FLOAT), and gives each option a plain
 // type name in --help (CLI11 appends validator names: "INT:NONNEGATIVE").
 void checkNumbersStrictly(CLI::App& app);
+
+// Makes every option of `app` and its subcommands that takes a value refuse a value starting with
+// "--" (the user left the value out and the next option was taken in its place), before any other
+// check of the value: "--check: expects a file, got the option '--stream'". Call it after
+// checkNumbersStrictly, which sets the type names it reads.
+void refuseOptionsAsValues(CLI::App& app);
 
 }  // namespace vbim::cli

@@ -24,6 +24,10 @@ std::string arrivalLine(const ReplayArrival& a) {
          std::to_string(a.seq) + "\n";
 }
 
+std::string arrivalsEndLine(std::int64_t vsyncs) {
+  return std::to_string(vsyncs) + ",end,\n";
+}
+
 namespace {
 
 bool parseInt(std::string_view s, std::int64_t& v) {
@@ -42,14 +46,15 @@ std::vector<gs::StreamInfo> infos(const streams::Descriptor& d, int index) {
 
 }  // namespace
 
-std::vector<ReplayArrival> parseArrivals(const std::string& text, const std::string& origin) {
-  std::vector<ReplayArrival> out;
+ArrivalLog parseArrivals(const std::string& text, const std::string& origin) {
+  ArrivalLog log;
   std::istringstream in(text);
   std::string line;
   int n = 0;
   const auto bad = [&](const std::string& what) {
     return ConfigError(origin + ":" + std::to_string(n) + ": " + what +
-                       " (expected vsync,stream,frame: e.g. 12,lightmap:0,6; stream lightmap:V or sky:V)");
+                       " (expected vsync,stream,frame: e.g. 12,lightmap:0,6; stream lightmap:V or sky:V; "
+                       "last, the end row N,end,)");
   };
   while (std::getline(in, line)) {
     ++n;
@@ -59,9 +64,17 @@ std::vector<ReplayArrival> parseArrivals(const std::string& text, const std::str
     const auto c1 = line.find(',');
     const auto c2 = c1 == std::string::npos ? c1 : line.find(',', c1 + 1);
     if (c2 == std::string::npos || line.find(',', c2 + 1) != std::string::npos) throw bad("'" + line + "'");
+    const std::string stream = line.substr(c1 + 1, c2 - c1 - 1);
+    if (log.vsyncs) throw bad("'" + line + "' after the end row");
+    if (stream == "end") {
+      std::int64_t vsyncs = 0;
+      if (!parseInt(std::string_view(line).substr(0, c1), vsyncs)) throw bad("end vsync '" + line.substr(0, c1) + "'");
+      if (c2 + 1 != line.size()) throw bad("end row '" + line + "' with a frame");
+      log.vsyncs = vsyncs;
+      continue;
+    }
     ReplayArrival a;
     std::int64_t variant = 0;
-    const std::string stream = line.substr(c1 + 1, c2 - c1 - 1);
     const auto colon = stream.find(':');
     const std::string kind = stream.substr(0, colon);
     if (colon == std::string::npos || (kind != "lightmap" && kind != "sky") ||
@@ -72,9 +85,9 @@ std::vector<ReplayArrival> parseArrivals(const std::string& text, const std::str
     if (!parseInt(std::string_view(line).substr(c2 + 1), a.seq)) throw bad("frame '" + line.substr(c2 + 1) + "'");
     a.sky = kind == "sky";
     a.variant = static_cast<int>(variant);
-    out.push_back(a);
+    log.arrivals.push_back(a);
   }
-  return out;
+  return log;
 }
 
 struct Replay::Impl {
@@ -161,6 +174,8 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
     m.skySource = std::make_unique<gs::ArrivalSource>(infos(m.descriptor, skyIndex), imageFn(0xE1), clock, sky);
     m.sky = std::make_unique<gs::Presenter>(m.sched, *m.skySource, m.options.config.gs, presenterOptions("gs.sky"));
   }
+  // Vsync n is presented when its time is before the duration (record): this one presents exactly n < N.
+  if (m.options.vsyncs) m.options.duration = m.lightmap->clock().time(*m.options.vsyncs);
 }
 
 Replay::~Replay() = default;

@@ -9,10 +9,13 @@
 //   stream  lightmap:V or sky:V, V the variant number (0 first; `vbim info` lists them)
 //   frame   the timeline frame number, counting on across loop wraps (stream frame = frame mod
 //           frames per variant)
+// and last, once, the end row `N,end,` (frame left empty): the run presented vsyncs 0 to N - 1, so
+// a replay of the log presents as many (play writes it; a port's log may leave it out).
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,14 +33,21 @@ struct ReplayArrival {
   std::int64_t seq = 0;
 };
 
+struct ArrivalLog {
+  std::vector<ReplayArrival> arrivals;
+  std::optional<std::int64_t> vsyncs;  // the end row's N: vsyncs the run presented; none without one
+};
+
 std::string arrivalsHeader();
 std::string arrivalLine(const ReplayArrival& a);
+std::string arrivalsEndLine(std::int64_t vsyncs);
 // Throws ConfigError "ORIGIN:LINE: what is wrong (expected ...)".
-std::vector<ReplayArrival> parseArrivals(const std::string& text, const std::string& origin);
+ArrivalLog parseArrivals(const std::string& text, const std::string& origin);
 
 struct ReplayOptions {
   PlatformConfig config;
   Tick duration = fromMs(10'000);
+  std::optional<std::int64_t> vsyncs;  // when set, present vsyncs 0 to vsyncs - 1 (duration unused)
   Kernels kernels;
 };
 

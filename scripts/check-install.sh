@@ -55,6 +55,10 @@ missing=$(cd "$prefix/include/vbim" && grep -rhoE '^#include "[^"]+"' . | sed -E
   while IFS= read -r h; do [ -f "$h" ] || echo "$h"; done)
 [ -z "$missing" ] || fail "installed headers include headers that were not installed: $missing"
 
+# The installed vbim finds the installed samples (its vectors default), run from elsewhere.
+(cd "$work" && "$prefix/bin/vbim" vectors --check "$root/tests/vectors" >/dev/null) ||
+  fail "the installed vbim's vectors (from share/vbim/samples) differ from tests/vectors"
+
 step "examples/stall-test against the installed vbim"
 example=$work/example
 cmake -S examples/stall-test -B "$example" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" \

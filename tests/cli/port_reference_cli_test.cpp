@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -50,6 +51,43 @@ TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
   fs::remove_all(out);
 }
 
+// The default streams (the samples) do not depend on the directory vbim is run from.
+TEST(PortReference, DefaultStreamsAreFoundFromAnyDirectory) {
+  const fs::path cwd = scratch("vectors_cwd");
+  fs::create_directories(cwd);
+  const vbim::testing::CommandResult r = vbim::testing::runProgram(VBIM_BINARY, "vectors --out vec", cwd);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : kVectorFiles) {
+    EXPECT_EQ(readAll(cwd / "vec" / f), readAll(fs::path(VBIM_SOURCE_DIR) / "tests/vectors" / f)) << f;
+  }
+  fs::remove_all(cwd);
+}
+
+// An installed vbim (PREFIX/bin/vbim) takes the samples installed with it (PREFIX/share/vbim/samples,
+// cmake/Install.cmake) before the source tree's: here the installed day_clear.vbim is day_weather's
+// bytes, so the vectors are those of the installed files, and differ from the committed ones.
+TEST(PortReference, AnInstalledVbimReadsTheInstalledSamples) {
+  const fs::path prefix = scratch("installed");
+  const fs::path samples = prefix / "share/vbim/samples";
+  fs::create_directories(prefix / "bin");
+  fs::create_directories(samples);
+  fs::copy_file(VBIM_BINARY, prefix / "bin/vbim");
+  const fs::path weather = fs::path(VBIM_SOURCE_DIR) / "streams/samples/day_weather.vbim";
+  fs::copy_file(weather, samples / "day_clear.vbim");
+  fs::copy_file(weather, samples / "day_weather.vbim");
+  const std::string vbim = (prefix / "bin/vbim").string();
+  const vbim::testing::CommandResult byDefault = vbim::testing::runProgram(vbim, "vectors --out by-default", prefix);
+  ASSERT_EQ(byDefault.status, 0) << byDefault.output;
+  const vbim::testing::CommandResult named = vbim::testing::runProgram(
+      vbim,
+      "vectors --stream share/vbim/samples/day_clear.vbim --stream share/vbim/samples/day_weather.vbim --out named",
+      prefix);
+  ASSERT_EQ(named.status, 0) << named.output;
+  for (const char* f : kVectorFiles) EXPECT_EQ(readAll(prefix / "by-default" / f), readAll(prefix / "named" / f)) << f;
+  EXPECT_NE(readAll(prefix / "by-default/ipu.txt"), readAll(fs::path(VBIM_SOURCE_DIR) / "tests/vectors/ipu.txt"));
+  fs::remove_all(prefix);
+}
+
 TEST(PortReference, CheckNamesTheFirstDifference) {
   const fs::path dir = scratch("check");
   fs::create_directories(dir);
@@ -89,8 +127,9 @@ void expectReplayMatchesPlay(const std::string& stream, const std::string& extra
                        " --duration 30s --no-trace --out " + (dir / "play").string());
   ASSERT_EQ(p.code, 0) << p.output;
   EXPECT_NE(p.output.find("1 loop wrap(s)"), std::string::npos) << p.output;
-  const Result r = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() +
-                       " --duration 30s --out " + (dir / "replay").string());
+  // No --duration: the end row of arrivals.csv gives the run's length.
+  const Result r = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() + " --out " +
+                       (dir / "replay").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const std::string played = readAll(dir / "play/hashes.txt");
   EXPECT_GT(played.size(), 1000u);
@@ -106,6 +145,36 @@ TEST(PortReference, ReplayOfPlaysArrivalsReproducesItsHashesDayWeatherWithBranch
   expectReplayMatchesPlay("streams/samples/day_weather.vbim", "--branch 8s=1");
 }
 
+// A short play: its arrivals.csv ends with the end row, so replay without --duration presents the
+// run's vsyncs, no more (it once replayed 60 s: play's hashes.txt was only a prefix of replay's).
+TEST(PortReference, ReplayEndsWherePlaysArrivalsEnd) {
+  const fs::path dir = scratch("replay_end");
+  fs::create_directories(dir);
+  const std::string stream = "streams/samples/day_clear.vbim";
+  const Result p = run("play " + stream + " --duration 5s --no-trace --out " + (dir / "play").string());
+  ASSERT_EQ(p.code, 0) << p.output;
+  const Result r = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() + " --out " +
+                       (dir / "replay").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string played = readAll(dir / "play/hashes.txt");
+  const std::string replayed = readAll(dir / "replay/hashes.txt");
+  const auto rows = std::count(played.begin(), played.end(), '\n');
+  EXPECT_EQ(rows, 300);  // 5 s of NTSC vsyncs
+  EXPECT_EQ(std::count(replayed.begin(), replayed.end(), '\n'), rows);
+  EXPECT_TRUE(replayed == played) << "hashes.txt of replay differs from play's";
+  // The end row is the last line: the number of vsyncs in hashes.txt, no frame.
+  const std::string arrivals = readAll(dir / "play/arrivals.csv");
+  EXPECT_TRUE(arrivals.ends_with("\n" + std::to_string(rows) + ",end,\n")) << arrivals.substr(arrivals.size() - 40);
+  // --duration, when given, wins over the end row.
+  const Result longer = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() +
+                            " --duration 6s --out " + (dir / "longer").string());
+  ASSERT_EQ(longer.code, 0) << longer.output;
+  const std::string longer6s = readAll(dir / "longer/hashes.txt");
+  EXPECT_EQ(std::count(longer6s.begin(), longer6s.end(), '\n'), 360);
+  EXPECT_TRUE(longer6s.starts_with(played));
+  fs::remove_all(dir);
+}
+
 TEST(PortReference, ReplayNamesABadArrivalLine) {
   const fs::path dir = scratch("badarrivals");
   fs::create_directories(dir);
@@ -114,6 +183,18 @@ TEST(PortReference, ReplayNamesABadArrivalLine) {
                        (dir / "out").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("a.csv:3: stream 'moon:0'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // The end row: a number of vsyncs, no frame, and nothing after it.
+  std::ofstream(dir / "b.csv") << "vsync,stream,frame\n3,lightmap:0,1\n300,end,7\n";
+  const Result frame = run("replay streams/samples/day_clear.vbim --arrivals " + (dir / "b.csv").string() + " --out " +
+                           (dir / "out").string());
+  EXPECT_EQ(frame.code, 2);
+  EXPECT_NE(frame.output.find("b.csv:3: end row '300,end,7' with a frame"), std::string::npos) << frame.output;
+  std::ofstream(dir / "c.csv") << "vsync,stream,frame\n300,end,\n3,lightmap:0,1\n";
+  const Result after = run("replay streams/samples/day_clear.vbim --arrivals " + (dir / "c.csv").string() + " --out " +
+                           (dir / "out").string());
+  EXPECT_EQ(after.code, 2);
+  EXPECT_NE(after.output.find("c.csv:3: '3,lightmap:0,1' after the end row"), std::string::npos) << after.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
   fs::remove_all(dir);
 }

@@ -32,6 +32,13 @@ inline CommandResult runProgram(const std::string& program, const std::string& a
   return runCommand(program + " " + args);
 }
 
+// The same, run from the directory `cwd` (a program's defaults must not depend on where it is run).
+inline CommandResult runProgram(const std::string& program, const std::string& args, const std::filesystem::path& cwd) {
+  std::string quotedCwd = "'";
+  for (char c : cwd.string()) quotedCwd += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return runCommand("cd " + quotedCwd + "' && " + program + " " + args);
+}
+
 // The whole file, or "<missing PATH>" so a comparison against it fails with a clear value.
 inline std::string readFileBytes(const std::filesystem::path& path) {
   std::string data;
