@@ -262,8 +262,8 @@ TEST(DriveBusy, BusyTimeIsTheTracesDriveTrackWithOrWithoutATracer) {
   Rig traced, bare;
   for (Rig* r : {&traced, &bare}) {
     r->p.drive.spindle = "clv";
+    r->traced = r == &traced;
     r->build(kLayer, false);
-    if (r == &bare) r->drive = std::make_unique<Drive>(r->s, *r->disc, r->p.drive, Rng(r->seed), nullptr);
     r->drive->addSectorFault(40, 2);
     r->drive->addStall(fromMs(5), fromMs(30));
     r->drive->addStall(fromMs(60), fromMs(400));

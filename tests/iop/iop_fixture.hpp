@@ -39,13 +39,16 @@ struct Rig {
   std::unique_ptr<SifChannel> sif;
   std::unique_ptr<StreamRing> ring;
 
+  bool traced = true;  // false: the drive is built without a tracer
+
   Rig() { p.drive.initially_spinning = true; }
+  // Once per rig: the drive's process lives in the scheduler and refers to the drive.
   void build(std::int64_t discSectors = kLayer, bool withRing = true) {
     if (!disc) {
       disc = std::make_unique<MemoryDisc>(discSectors);
       disc->addPatternFile("/STREAM.PSS", 0, discSectors);
     }
-    drive = std::make_unique<Drive>(s, *disc, p.drive, Rng(seed), &tracer);
+    drive = std::make_unique<Drive>(s, *disc, p.drive, Rng(seed), traced ? &tracer : nullptr);
     sif = std::make_unique<SifChannel>(s, p.sif, &tracer);
     if (withRing) ring = std::make_unique<StreamRing>(s, *drive, *sif, p.ring, &tracer);
   }
