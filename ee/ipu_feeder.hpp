@@ -24,6 +24,7 @@ namespace vbim::ee {
 
 struct DecodeCounters {
   std::int64_t pictures = 0;
+  std::int64_t idecCommands = 0;          // IDEC issued: one per slice (the EE restarts it per slice)
   std::int64_t concealedMacroblocks = 0;  // kept their previous value: damage the IPU hid
   std::int64_t picturesWithIssues = 0;
   std::int64_t undecodable = 0;   // produced nothing usable (wrong size or no picture): not shown

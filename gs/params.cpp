@@ -9,8 +9,6 @@ void describeParams(ParamTable& t, GsParams& p) {
            "GIF->GS is 64 bits per bus clock = 1.18 GB/s (LINUXKIT 1.2 GB/s [D]; docs/hardware.md#gs-rates)");
   t.addInt("gs.upload_setup_qwords", &p.upload_setup_qwords, 0, 1024, "qwords",
            "A+D GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR, then the IMAGE GIFtag (T-GS Transfers)");
-  t.addInt("gs.draw_setup_qwords", &p.draw_setup_qwords, 0, 1024, "qwords",
-           "GIFtag + TEXFLUSH, TEX0_1, ALPHA_1, FRAME_1, PRIM, RGBAQ, UV, XYZ2, UV, XYZ2 (T-GS; SDK-GS)");
   t.addInt("gs.textured_pixels_per_clock", &p.textured_pixels_per_clock, 1, 16, "px/GS clock",
            "textured fill rate 8 px/clk = 1.18 Gpix/s (WIKI-GS Specifications)");
   t.addInt("gs.page_break_overhead_pct", &p.page_break_overhead_pct, 0, 400, "%",

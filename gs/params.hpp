@@ -22,7 +22,6 @@ struct GsParams {
   // GIF -> GS transfer and drawing (docs/hardware.md#gs-rates, #gs-page-breaks).
   std::int64_t gif_bytes_per_tick = 8;         // 64-bit GIF bus, one word per bus clock
   std::int64_t upload_setup_qwords = 6;        // GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR + IMAGE GIFtag
-  std::int64_t draw_setup_qwords = 11;         // GIFtag + TEXFLUSH, TEX0, ALPHA, FRAME, PRIM, RGBAQ, 2x(UV, XYZ2)
   std::int64_t textured_pixels_per_clock = 8;  // textured fill rate
   std::int64_t page_break_overhead_pct = 25;   // extra draw time for DRAM page breaks (assumption)
 

@@ -33,8 +33,9 @@ void describeParams(ParamTable& t, DriveParams& p) {
   t.addInt("drive.read_ahead_sectors", &p.read_ahead_sectors, 0, 4096, "sectors",
            "P-CDVD nextSectorsBuffered < 16: the drive buffers up to 16 sectors ahead while idle [E]");
   t.addInt("drive.dma_iop_cycles_per_sector", &p.dma_iop_cycles_per_sector, 0, 10'000'000, "IOP cycles",
-           "P-CDVD IOP DMA ch3: (2064 / 4) x 12 = 6,192 IOP cycles (168 us) per sector, overlapping the next read "
-           "[E]; 2,064 is the raw DVD sector, a streamed sector is 2,048 bytes");
+           "P-CDVD IOP DMA ch3 at 12 IOP cycles per word: (2048 / 4) x 12 = 6,144 IOP cycles (167 us) per "
+           "2,048-byte streamed sector (SDK-ST reads with datapattern SCECdSecS2048; P-CDVD N_CD_READ BlockSize "
+           "2048), overlapping the next read [E]; the 2,064-byte raw sector is sceCdReadDVDV's only");
   t.addInt("drive.retry_count", &p.retry_count, 0, 255, "retries",
            "P-CDVD N_DVD_READ param 8 (sceCdRMode.trycount): retries per failing sector, 0 means 256; each costs a "
            "revolution");

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "iop/sector_source.hpp"
 #include "runtime/params.hpp"
 
 namespace vbim::iop {
@@ -26,9 +27,13 @@ struct DriveParams {
   std::int64_t spin_up_ms = 333;
   bool initially_spinning = false;
   std::int64_t read_ahead_sectors = 16;
-  std::int64_t dma_iop_cycles_per_sector = 6'192;  // (2064 / 4) x 12 IOP cycles (P-CDVD)
-  std::int64_t retry_count = 0;                    // sceCdRMode.trycount: drive retries per sector; 0 = 256
-  std::int64_t sector_error_ppm = 0;               // random per-sector read errors per million reads
+  // IOP DMA channel 3 moves the sector's bytes at 12 IOP cycles per 32-bit word (P-CDVD). The stream
+  // driver reads with sceCdRE and mode.datapattern = SCECdSecS2048 (SDK-ST), so each sector delivers
+  // its 2,048 bytes of user data: (2048 / 4) x 12 = 6,144. The 2,064-byte raw sector is only what
+  // sceCdReadDVDV (N command 0x08) returns, which no modelled path issues.
+  std::int64_t dma_iop_cycles_per_sector = static_cast<std::int64_t>(kSectorBytes) / 4 * 12;
+  std::int64_t retry_count = 0;       // sceCdRMode.trycount: drive retries per sector; 0 = 256
+  std::int64_t sector_error_ppm = 0;  // random per-sector read errors per million reads
 };
 
 struct RingParams {

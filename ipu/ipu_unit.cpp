@@ -49,6 +49,8 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
       tm.bits[m.address] = m.bits;
     }
   }
+  tm.restart = idecRestarts(decoder_.macroblockTrace(), mbs);
+  result.idecCommands = 1 + std::count(tm.restart.begin(), tm.restart.end(), std::uint8_t{1});
   tm.needQwords.resize(mbs);
   std::uint32_t need = 0;
   for (std::size_t i = 0; i < mbs; ++i) {
@@ -86,7 +88,13 @@ Task<void> IpuUnit::run(IpuUnit& u) {
       // were 150 MB of trace.json per simulated hour).
       const bool fine = u.tracer_->detail() == TraceDetail::kFull;
       std::size_t stall = 0;
+      const Tick restartCycles = u.p_.slice_restart_cycles + u.p_.idec_start_cycles;
       for (std::size_t i = 0; i < tm.mbEnd.size(); ++i) {
+        // The EE's restart of IDEC at a slice start code: the IPU core idles.
+        if (tm.restart[i] != 0 && restartCycles > 0) {
+          while (s.now() < tm.mbBegin[i]) co_await s.until(tm.mbBegin[i]);
+          u.tracer_->span(u.track_, tm.mbBegin[i] - restartCycles, tm.mbBegin[i], "idec restart");
+        }
         while (s.now() < tm.mbDecoded[i]) co_await s.until(tm.mbDecoded[i]);
         u.tracer_->span(u.track_, tm.mbBegin[i], tm.mbDecoded[i], fine ? "idec" : "decode");
         // CSC rows that waited for room (full detail), then the macroblock's end. A stall that

@@ -37,6 +37,7 @@ struct TimedPicture {
   Tick started = 0;               // command issued
   Tick finished = 0;              // last output qword in memory
   std::int64_t outputStalls = 0;  // CSC rows that waited for room in the output FIFO
+  std::int64_t idecCommands = 0;  // IDEC issued: one per slice (the EE restarts it at each slice start code)
 };
 
 class IpuUnit {

@@ -13,6 +13,19 @@ constexpr int kQwordsPerRow = 4;  // RGB32: 16 pixels x 4 bytes (docs/hardware.m
 
 }  // namespace
 
+std::vector<std::uint8_t> idecRestarts(const std::vector<MacroblockBits>& trace, std::size_t mbs) {
+  std::vector<std::uint8_t> restart(mbs, 0);
+  std::size_t first = mbs;
+  for (const MacroblockBits& m : trace) {
+    if (m.sliceStart && m.address < mbs) {
+      restart[m.address] = 1;
+      first = std::min<std::size_t>(first, m.address);
+    }
+  }
+  if (first < mbs) restart[first] = 0;  // the command's own IDEC
+  return restart;
+}
+
 bool DmaStalls::add(Tick now, Tick duration) {
   if (!windows_.empty() && now < windows_.back().to) return false;
   windows_.push_back({now, now + std::max<Tick>(duration, 0)});
@@ -125,7 +138,9 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
   // The core: per macroblock its cost spread over the input qwords it pops, then CSC row by row.
   Tick t = std::max(st_.coreFree, arrival) + p_.idec_start_cycles;
   std::uint32_t pulled = 0;
+  const Tick restartCycles = p_.slice_restart_cycles + p_.idec_start_cycles;
   for (std::size_t i = 0; i < mbs; ++i) {
+    if (c.restart[i] != 0) t += restartCycles;
     c.mbBegin[i] = t;
     const Tick cost = p_.mb_base_cycles + p_.mb_cycles_per_bit * c.bits[i];
     const std::uint32_t k = c.needQwords[i] - pulled;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "ipu/params.hpp"
+#include "ipu/slice_decoder.hpp"
 #include "runtime/clock.hpp"
 
 namespace vbim::ipu {
@@ -56,6 +57,9 @@ struct CommandTiming {
   std::uint32_t inQwords = 0;             // bytes moved by toIPU, in qwords
   std::vector<std::uint32_t> needQwords;  // per macroblock: input qwords needed before it starts
   std::vector<std::uint32_t> bits;        // per macroblock: its bits (cost)
+  // Per macroblock: 1 when IDEC stopped at a slice start code before it and the EE issued it again
+  // (slice_restart_cycles + idec_start_cycles before it begins). The command's first IDEC is not one.
+  std::vector<std::uint8_t> restart;
 
   // Out, per macroblock: started, last input qword popped, last output qword pushed.
   std::vector<Tick> mbBegin;
@@ -77,6 +81,10 @@ struct CommandTiming {
     std::vector<Tick> inEnter, inLeave, outEnter, outLeave;
   } qwords;
 };
+
+// Per macroblock of a picture of `mbs` macroblocks: 1 where the EE re-issues IDEC, at the first
+// macroblock of every slice but the first one decoded (IDEC stops at each slice start code).
+std::vector<std::uint8_t> idecRestarts(const std::vector<MacroblockBits>& trace, std::size_t mbs);
 
 // Where the three channels are between commands, and the recent FIFO history the next one needs.
 class IpuTimeline {

@@ -13,6 +13,11 @@ void describeParams(ParamTable& t, IpuParams& p) {
            "assumption: CSC at 1 pixel per cycle, 256 per macroblock (docs/hardware.md#ipu-decode-cost)");
   t.addInt("ipu.idec_start_cycles", &p.idec_start_cycles, 0, 100'000, "bus cycles",
            "PCSX2 IPU.cpp: IDEC/BDEC start delay of 64 EE cycles = 32 bus cycles [E]");
+  t.addInt("ipu.slice_restart_cycles", &p.slice_restart_cycles, 0, 1'000'000, "bus cycles",
+           "assumption [A]: IDEC stops at each slice start code; the EE sees it stop, reads the start code "
+           "(IPU_TOP), skips it and reads quantiser_scale_code with FDEC, and issues IDEC again: about 10 "
+           "uncached IPU register accesses and commands, 600 EE cycles = 300 bus cycles (2 us) per slice "
+           "after the first, then idec_start_cycles (docs/timing/ipu.md)");
   t.addInt("ipu.in_fifo_qwords", &p.in_fifo_qwords, 1, 64, "qwords",
            "T-IPU IFC 4 bits 0..8; P-IPU IPU_Fifo.h 32 words (docs/hardware.md#ipu-fifos-and-dma)");
   t.addInt("ipu.in_buffer_qwords", &p.in_buffer_qwords, 0, 8, "qwords",

@@ -14,6 +14,7 @@ struct IpuParams {
   std::int64_t mb_cycles_per_bit = 1;         // per input bit of the macroblock
   std::int64_t csc_cycles_per_mb = 256;       // colour conversion, 1 pixel per cycle
   std::int64_t idec_start_cycles = 32;        // IDEC start latency (PCSX2: 64 EE cycles)
+  std::int64_t slice_restart_cycles = 300;    // EE restart of IDEC at each later slice (assumption)
   std::int64_t in_fifo_qwords = 8;            // input FIFO depth
   std::int64_t in_buffer_qwords = 2;          // internal bit buffer (IPU_BP.FP)
   std::int64_t out_fifo_qwords = 8;           // output FIFO depth

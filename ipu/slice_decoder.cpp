@@ -374,7 +374,7 @@ void SliceDecoder::run(int code) {
     if (out_.trace) {
       out_.trace->push_back(MacroblockBits{static_cast<std::uint32_t>(address),
                                            static_cast<std::uint32_t>(pos - mbStart),
-                                           static_cast<std::uint32_t>(offset_ + (pos + 7) / 8)});
+                                           static_cast<std::uint32_t>(offset_ + (pos + 7) / 8), mbStart == 0});
     }
     mbStart = pos;
     // The slice ends where the next start code begins: 23 zero bits (§6.2.4 nextbits()). Past the

@@ -42,9 +42,10 @@ struct PictureParams {
 
 // Where each decoded macroblock's bits ended, for the timing model.
 struct MacroblockBits {
-  std::uint32_t address;  // mbRow * mbWidth + mbColumn within the picture
-  std::uint32_t bits;     // bits of this macroblock (the first of a slice includes the slice header)
-  std::uint32_t endByte;  // offset in the decoded bytes just past its last bit (rounded up)
+  std::uint32_t address;    // mbRow * mbWidth + mbColumn within the picture
+  std::uint32_t bits;       // bits of this macroblock (the first of a slice includes the slice header)
+  std::uint32_t endByte;    // offset in the decoded bytes just past its last bit (rounded up)
+  bool sliceStart = false;  // the first macroblock its slice decoded: IDEC was (re)issued for it
 };
 
 struct SliceOutput {

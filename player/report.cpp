@@ -189,6 +189,7 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
   j["sustained_bytes_per_s"] =
       elapsed > 0 ? static_cast<std::int64_t>((static_cast<__int128>(dm.bytes) * kBusHz) / elapsed) : std::int64_t{0};
   j["decoded_pictures"] = dc.pictures;
+  j["idec_commands"] = dc.idecCommands;  // one per slice: the EE restarts IDEC at each slice start code
   j["vsyncs_recorded"] = t.vsyncs;
   out << j.dump(2) << "\n";
 }

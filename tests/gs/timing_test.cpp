@@ -16,12 +16,12 @@ TEST(GsTiming, UploadAndDrawFromTheParameters) {
   EXPECT_EQ(t.imageTransfer(256 * 256 * 4), (6 * 16 + 262144) / 8);
   // About 222 us at GIF peak (docs/hardware.md#gs-rates).
   EXPECT_NEAR(toMs(t.imageTransfer(256 * 256 * 4)) * 1000.0, 222.0, 1.0);
-  // Sprite: 11 qw of registers, then 65,536 px / 8 per clock * 1.25.
-  EXPECT_EQ(t.spriteDraw(256, 256), 22 + 10240);
+  // Sprite: 20 qw of register writes (gs/draw_setup.hpp), then 65,536 px / 8 per clock * 1.25.
+  EXPECT_EQ(t.spriteDraw(256, 256), 40 + 10240);
   GsParams q;
   q.page_break_overhead_pct = 0;
-  EXPECT_EQ(GsTiming(q).spriteDraw(256, 256), 22 + 8192);  // ~56 us at peak fill
-  EXPECT_EQ(GsTiming(q).spriteDraw(1, 1), 22 + 1);         // rounds up
+  EXPECT_EQ(GsTiming(q).spriteDraw(256, 256), 40 + 8192);  // ~56 us at peak fill
+  EXPECT_EQ(GsTiming(q).spriteDraw(1, 1), 40 + 1);         // rounds up
 }
 
 TEST(GsTiming, ParamsLoadFromTomlAndRejectBadValues) {

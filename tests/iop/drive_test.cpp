@@ -132,7 +132,7 @@ TEST(DriveSeek, ReadAheadServesTheNextSectorsAfterIdle) {
   auto done = run(r, {{0, 5000, 32}, {fromMs(50), 5032, 32}});
   ASSERT_EQ(done.size(), 2u);
   EXPECT_EQ(done[1].seek, SeekClass::buffered);
-  // 16 buffered sectors need only their DMA (16 x 24,768 ticks, chained); the other 16 are read
+  // 16 buffered sectors need only their DMA (16 x 24,576 ticks, chained); the other 16 are read
   // from t = 0 and the reads outpace the DMA from the 4th on, so the last DMA ends 16 reads + 1 DMA in.
   EXPECT_EQ(done[1].finished - done[1].issued, 16 * kClvSectorTicks + kDmaTicks);
   EXPECT_EQ(r.drive->stats().bufferedHits, 16);

@@ -27,7 +27,7 @@ inline Tick cavSectorTicks(std::int64_t lsn) {
   return static_cast<Tick>((2 * num + den) / (2 * den));
 }
 inline constexpr Tick kClvSectorTicks = 136'533;  // 147,456,000 / 1080, rounded
-inline constexpr Tick kDmaTicks = 6'192 * 4;      // 6,192 IOP cycles per sector
+inline constexpr Tick kDmaTicks = 6'144 * 4;      // 6,144 IOP cycles per 2,048-byte sector
 
 struct Rig {
   IopParams p;

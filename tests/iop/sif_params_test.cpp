@@ -58,6 +58,13 @@ TEST(IopParams, DefaultsAndTomlErrors) {
   EXPECT_THROW(validate(p), ConfigError);
 }
 
+// sceCdStRead streams 2,048-byte sectors (datapattern SCECdSecS2048), so the IOP DMA of a sector
+// moves 512 words at 12 IOP cycles each, not the 2,064-byte raw DVD sector's 516.
+TEST(IopParams, SectorDmaIsChargedForTheStreamedSector) {
+  EXPECT_EQ(DriveParams{}.dma_iop_cycles_per_sector, 6'144);
+  EXPECT_EQ(DriveParams{}.dma_iop_cycles_per_sector, static_cast<std::int64_t>(kSectorBytes) / 4 * 12);
+}
+
 TEST(IopParams, EveryKeyIsDocumentedWithItsSource) {
   IopParams p;
   ParamTable t;

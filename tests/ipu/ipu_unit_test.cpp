@@ -80,9 +80,28 @@ TEST(IpuUnit, DoublingMacroblockCostMovesCompletionByItsSum) {
   const Tick da = a.result.finished - a.result.started;
   const Tick db = b.result.finished - b.result.started;
   EXPECT_EQ(db - da, sum);
-  // And the whole time is command start + the sum + draining the last CSC row's 4 qwords.
-  EXPECT_EQ(da, p.idec_start_cycles + sum + 4 * p.fromipu_cycles_per_qword);
+  // And the whole time is command start + the sum + the EE's IDEC restart at each of the 3 later
+  // slices (one per macroblock row) + draining the last CSC row's 4 qwords.
+  EXPECT_EQ(da, p.idec_start_cycles + sum + 3 * (p.slice_restart_cycles + p.idec_start_cycles) +
+                    4 * p.fromipu_cycles_per_qword);
   EXPECT_EQ(a.result.outputStalls, 0);
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+}
+
+// IDEC stops at every slice start code and the EE issues it again: one command per slice (4 rows
+// of 8 macroblocks, one slice each), each later one costing the restart and the IDEC start.
+TEST(IpuUnit, IdecIsIssuedOncePerSlice) {
+  const std::vector<std::uint8_t> bytes = firstPicture();
+  IpuParams p;
+  const TimedRun a = runWith(p, bytes);
+  EXPECT_EQ(a.result.idecCommands, 4);
+  std::int64_t starts = 0;
+  for (const MacroblockBits& m : a.trace) starts += m.sliceStart ? 1 : 0;
+  EXPECT_EQ(starts, 4);
+  IpuParams q = p;
+  q.slice_restart_cycles += 1000;
+  const TimedRun b = runWith(q, bytes);
+  EXPECT_EQ((b.result.finished - b.result.started) - (a.result.finished - a.result.started), 3 * 1000);
   EXPECT_EQ(a.image.pixels, b.image.pixels);
 }
 

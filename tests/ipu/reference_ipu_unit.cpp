@@ -57,6 +57,8 @@ Task<TimedPicture> ReferenceIpuUnit::decode(std::span<const std::uint8_t> bytes,
       job.bits[m.address] = m.bits;
     }
   }
+  job.restart = idecRestarts(decoder_.macroblockTrace(), mbs);
+  result.idecCommands = 1 + std::count(job.restart.begin(), job.restart.end(), std::uint8_t{1});
   job.needQwords.resize(mbs);
   std::uint32_t need = 0;
   for (std::size_t i = 0; i < mbs; ++i) {
@@ -94,7 +96,14 @@ Task<void> ReferenceIpuUnit::coreLoop(ReferenceIpuUnit& u) {
     std::uint32_t pulled = 0;
     std::uint32_t q = 0;
     const std::size_t mbs = job->needQwords.size();
+    const Tick restartCycles = u.p_.slice_restart_cycles + u.p_.idec_start_cycles;
     for (std::size_t i = 0; i < mbs; ++i) {
+      // IDEC stopped at the slice start code; the EE reads the slice header and issues it again.
+      if (job->restart[i] != 0 && restartCycles > 0) {
+        const Tick stopped = u.s_.now();
+        co_await u.s_.delay(restartCycles);
+        if (u.tracer_) u.tracer_->span(u.track_, stopped, u.s_.now(), "idec restart");
+      }
       // The decoder consumes the macroblock's qwords while it works: the cost is spread over them,
       // so the toIPU DMA refills the FIFO during the decode and only a slower DMA makes it wait.
       const Tick begin = u.s_.now();

@@ -1,6 +1,7 @@
 // The qword-stepping IPU timing model that ipu/ipu_unit.hpp replaced (issue #17), kept verbatim as
-// the reference of tests/ipu/ipu_unit_equivalence_test.cpp. The only addition is record(): the
-// level of both FIFOs after every push and pop, to compare against the stepped model.
+// the reference of tests/ipu/ipu_unit_equivalence_test.cpp. Additions: record(), the level of both
+// FIFOs after every push and pop, to compare against the stepped model; and the EE's restart of
+// IDEC at each slice after the first (the core waits slice_restart_cycles + idec_start_cycles).
 //
 // The IPU on the simulated clock: three cooperating threads, as on the console.
 //
@@ -75,6 +76,7 @@ class ReferenceIpuUnit {
     // Per macroblock in output order: input qwords needed before it can start, and its bits.
     std::vector<std::uint32_t> needQwords;
     std::vector<std::uint32_t> bits;
+    std::vector<std::uint8_t> restart;  // IDEC re-issued by the EE before this macroblock (a new slice)
     int mbWidth = 0;
     Rgba8Image staged;  // the IPU's output, whole macroblocks
     Rgba8Image* out = nullptr;

@@ -1,0 +1,119 @@
+#include "gs/draw_setup.hpp"
+
+#include "gs/error.hpp"
+
+namespace vbim::gs {
+
+namespace {
+
+using U64 = std::uint64_t;
+
+// TEX0.TW / TH: log2 of the texture's size, rounded up (the texture may be smaller than 2^n).
+U64 log2Ceil(int n) {
+  U64 k = 0;
+  while ((1 << k) < n) ++k;
+  return k;
+}
+
+// FBW / TBW: buffer width in units of 64 pixels.
+U64 width64(int width) {
+  return static_cast<U64>((width + 63) / 64);
+}
+
+// ZBUF.PSM holds the low four bits of the Z format's PSM (PSMZ32 0x30, PSMZ24 0x31, PSMZ16 0x32).
+U64 zbufPsm(Psm psm) {
+  switch (psm) {
+    case Psm::Z24:
+      return 0x1;
+    case Psm::Z16:
+      return 0x2;
+    default:
+      return 0x0;
+  }
+}
+
+U64 fixed4(int coordinate) {
+  return static_cast<U64>(coordinate) << 4;
+}  // 12.4 / 10.4 fixed point
+
+constexpr U64 kSprite = 6;
+constexpr U64 kClampMode = 1;
+constexpr U64 kZtstAlways = 1;
+
+}  // namespace
+
+BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
+  if (d.frame.psm != Psm::Ct32 || d.texture.psm != Psm::Ct32) {
+    throw GsError("the blend draws a PSMCT32 texture into a PSMCT32 lightmap");
+  }
+  const int w = d.frame.width;
+  const int rows = d.y1 - d.y0;
+  const U64 fbmsk = d.keepAlpha ? 0xFF000000u : 0u;
+  BlendDrawSetup out{};
+  int corner = 0;  // UV and XYZ2 are sent once per sprite corner
+  for (std::size_t i = 0; i < kBlendDrawRegisters.size(); ++i) {
+    const GsRegister& r = kBlendDrawRegisters[i];
+    U64 v = 0;
+    switch (r.address) {
+      case 0x3F:  // TEXFLUSH: any value
+        break;
+      case 0x4C:  // FRAME_1: FBP, FBW, PSM = PSMCT32 (0), FBMSK
+        v = static_cast<U64>(d.frame.firstPage) | width64(w) << 16 | fbmsk << 32;
+        break;
+      case 0x4E:  // ZBUF_1: ZBP, PSM, ZMSK = 1
+        if (d.depth != nullptr) v = static_cast<U64>(d.depth->firstPage) | zbufPsm(d.depth->psm) << 24;
+        v |= U64{1} << 32;
+        break;
+      case 0x47:  // TEST_1: ZTE = 1, ZTST = ALWAYS
+        v = U64{1} << 16 | kZtstAlways << 17;
+        break;
+      case 0x06:  // TEX0_1: TBP0, TBW, PSM = PSMCT32 (0), TW, TH, TCC = 1, TFX = MODULATE (0)
+        v = static_cast<U64>(d.texture.basePointer()) | width64(d.texture.width) << 14 |
+            log2Ceil(d.texture.width) << 26 | log2Ceil(d.texture.height) << 30 | U64{1} << 34;
+        break;
+      case 0x08:  // CLAMP_1: WMS = WMT = CLAMP
+        v = kClampMode | kClampMode << 2;
+        break;
+      case 0x42:  // ALPHA_1: A = Cs (0), B = Cd (1), C = FIX (2), D = Cd (1), FIX
+        v = U64{0} | U64{1} << 2 | U64{2} << 4 | U64{1} << 6 | static_cast<U64>(d.fix & 0xFF) << 32;
+        break;
+      case 0x46:  // COLCLAMP
+        v = d.clamp ? 1 : 0;
+        break;
+      case 0x40:  // SCISSOR_1: SCAX0, SCAX1, SCAY0, SCAY1 (inclusive)
+        v = static_cast<U64>(w - 1) << 16 | static_cast<U64>(d.frame.height - 1) << 48;
+        break;
+      case 0x00:  // PRIM: SPRITE, TME, ABE, FST
+        v = kSprite | U64{1} << 4 | U64{1} << 6 | U64{1} << 8;
+        break;
+      case 0x01:  // RGBAQ: 0x80 per channel, Q = 1.0f
+        v = 0x80808080u | U64{0x3F800000} << 32;
+        break;
+      case 0x03:  // UV
+        v = corner == 0 ? fixed4(d.textureRow0) << 16 : fixed4(w) | fixed4(d.textureRow0 + rows) << 16;
+        break;
+      case 0x05:  // XYZ2, Z = 0
+        v = corner == 0 ? fixed4(d.y0) << 16 : fixed4(w) | fixed4(d.y1) << 16;
+        ++corner;
+        break;
+      default:  // TEX1_1, PABE, FBA_1, XYOFFSET_1: 0
+        break;
+    }
+    out[i] = RegisterWrite{r, v};
+  }
+  return out;
+}
+
+BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& p, int y0, int y1) {
+  BlendDraw d{vram.region("lightmap"), vram.region("staging")};
+  if (vram.has("depth")) d.depth = &vram.region("depth");
+  d.y0 = y0;
+  d.y1 = y1;
+  d.textureRow0 = p.upload_mode == "strips" ? 0 : y0;
+  d.fix = static_cast<int>(p.fix);
+  d.clamp = p.colclamp == "clamp";
+  d.keepAlpha = p.alpha_write == "keep";
+  return d;
+}
+
+}  // namespace vbim::gs

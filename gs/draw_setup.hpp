@@ -1,0 +1,82 @@
+// The register writes of the in-place blend draw, as a console sends them: one A+D GIFtag, then one
+// qword per register write (64-bit value + register address), ending with the two vertices of the
+// textured SPRITE. The list is the model's single source for both the cost of the draw's setup on
+// the GIF (kBlendDrawSetupQwords) and the values docs/porting.md tells a port to write.
+//
+// Every register the blend's result depends on is written, not left to whatever the game's own
+// rendering set before: the frame buffer and texture, the blend and its clamp, the pixel tests,
+// the scissor and the offset, per-pixel alpha-blend and alpha-correction controls.
+// Register addresses and field layouts: the GS User's Manual as summarised by ps2tek (T-GS) and
+// ps2sdk gs_gp.h (SDK-GS); addresses as PCSX2's GIF_A_D_REG_* list them (P-GS).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "gs/params.hpp"
+#include "gs/vram.hpp"
+
+namespace vbim::gs {
+
+struct GsRegister {
+  std::string_view name;
+  std::uint8_t address;  // the A+D register address
+  std::string_view why;
+};
+
+// In the order they are sent. UV and XYZ2 appear twice: the sprite's two corners (XYZ2 kicks).
+inline constexpr std::array kBlendDrawRegisters{
+    GsRegister{"TEXFLUSH", 0x3F, "the staging texture was just written by an IMAGE transfer: flush the texture cache"},
+    GsRegister{"FRAME_1", 0x4C, "draw into the lightmap itself (the in-place blend); FBMSK keeps its alpha if asked"},
+    GsRegister{"ZBUF_1", 0x4E, "ZMSK = 1: the sprite writes no Z"},
+    GsRegister{"TEST_1", 0x47, "no alpha or destination-alpha test; ZTE = 1 with ZTST = ALWAYS, so no Z is read"},
+    GsRegister{"TEX0_1", 0x06, "the staging texture, PSMCT32, RGBA, MODULATE"},
+    GsRegister{"TEX1_1", 0x14, "nearest filtering, no mipmaps: texel (x, y) lands on pixel (x, y)"},
+    GsRegister{"CLAMP_1", 0x08, "CLAMP in U and V: no texel from the opposite edge"},
+    GsRegister{"ALPHA_1", 0x42, "Cv = (Cs - Cd) * FIX / 128 + Cd: A = Cs, B = Cd, C = FIX, D = Cd"},
+    GsRegister{"PABE", 0x49, "0: blend every pixel, whatever its source alpha"},
+    GsRegister{"FBA_1", 0x4A, "0: the written alpha is not forced"},
+    GsRegister{"COLCLAMP", 0x46, "clamp (or wrap) the blended colour to 0..255"},
+    GsRegister{"SCISSOR_1", 0x40, "the lightmap's rectangle"},
+    GsRegister{"XYOFFSET_1", 0x18, "0: vertices are given in the lightmap's own coordinates"},
+    GsRegister{"PRIM", 0x00, "SPRITE, TME = 1, ABE = 1, FST = 1 (UV texel coordinates)"},
+    GsRegister{"RGBAQ", 0x01, "0x80 in each channel: MODULATE passes the texel through unchanged"},
+    GsRegister{"UV", 0x03, "first corner's texel, 12.4 fixed point"},
+    GsRegister{"XYZ2", 0x05, "first corner, 12.4 fixed point"},
+    GsRegister{"UV", 0x03, "second corner's texel"},
+    GsRegister{"XYZ2", 0x05, "second corner: draws the sprite"},
+};
+
+// The A+D GIFtag, then one qword per register write.
+inline constexpr std::int64_t kBlendDrawSetupQwords = 1 + static_cast<std::int64_t>(kBlendDrawRegisters.size());
+
+// What the values depend on: where the buffers are and which rows this sprite covers.
+struct BlendDraw {
+  VramRegion frame;                   // the lightmap (FRAME_1.FBP)
+  VramRegion texture;                 // the staging texture (TEX0_1.TBP0)
+  const VramRegion* depth = nullptr;  // the Z buffer ZBUF_1 names, if any (never read or written)
+  int y0 = 0;                         // the sprite's rows in the lightmap
+  int y1 = 0;
+  int textureRow0 = 0;     // the staging texture's row that lands on y0
+  int fix = 0x40;          // ALPHA_1.FIX
+  bool clamp = true;       // COLCLAMP.CLAMP
+  bool keepAlpha = false;  // FRAME_1.FBMSK = 0xFF000000
+};
+
+struct RegisterWrite {
+  GsRegister reg;
+  std::uint64_t value;
+};
+
+using BlendDrawSetup = std::array<RegisterWrite, kBlendDrawRegisters.size()>;
+
+// The values of kBlendDrawRegisters for one sprite.
+BlendDrawSetup blendDrawSetup(const BlendDraw& draw);
+
+// The sprite over rows [y0, y1) of the lightmap as the presenter draws it with `params` in the
+// layout planVram gave ("lightmap", "staging", "depth"): in strip mode the staging texture holds
+// just this strip, in full mode the whole frame.
+BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& params, int y0, int y1);
+
+}  // namespace vbim::gs
