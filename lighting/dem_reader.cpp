@@ -265,6 +265,14 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
                           number(high) + " cells, more than the " + std::to_string(kMaxDemCells) +
                           " vbim reads; crop the DEM or give --cell-size");
     }
+    // Square cells multiply the grid by the cells' aspect ratio. A geographic grid has it at
+    // 1 / cos(latitude): 16 is 86.4 degrees. Beyond that the cells are degenerate (a 3-cell ASCII
+    // grid with dy = 6,444,444 x dx asked for 19 million cells and gigabytes).
+    if (std::max(dx, dy) > kMaxCellAspect * cell) {
+      throw LightingError(path + ": cells of " + number(dx) + " x " + number(dy) + " m are more than " +
+                          number(kMaxCellAspect) + " times longer one way than the other; vbim resamples to " +
+                          "square cells: warp the DEM to square cells first (e.g. gdalwarp -tr)");
+    }
     const int w = static_cast<int>(wide);
     const int h = static_cast<int>(high);
     gt[1] *= static_cast<double>(g.width) / w;

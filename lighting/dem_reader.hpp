@@ -28,6 +28,8 @@ namespace vbim::lighting {
 // The most cells a DEM may have, read or after resampling to square cells: 2^28 (16384 x 16384),
 // 1 GiB of float heights. Larger grids are refused before any allocation.
 inline constexpr std::int64_t kMaxDemCells = std::int64_t{1} << 28;
+// The longest side of a DEM cell may be at most this many times its shortest (dem_reader.cpp).
+inline constexpr double kMaxCellAspect = 16.0;
 
 struct DemOverrides {
   std::optional<double> cellSize;       // metres between texels, instead of the file's

@@ -185,6 +185,30 @@ TEST(DemReader, HugeOrNonFiniteGridsAreRefusedFromTheHeader) {
   }
 }
 
+// Cells far longer one way than the other are refused rather than resampled: a damaged header
+// (found by dem_fuzzer: 1 x 6,444,444 m cells) asked for millions of square cells from three.
+TEST(DemReader, DegenerateCellsAreRefusedNotResampled) {
+  DemSpec s;
+  s.width = 2;
+  s.height = 3;
+  s.values = ramp(2, 3, 10.0, 1.0, 1.0);
+  s.gt = {0, 1, 0, 0, 0, -17};  // 1 x 17 m: just past the limit
+  writeDem(scratch("thin.tif"), s);
+  try {
+    readDem(scratch("thin.tif").string());
+    FAIL() << "cells of 1 x 17 m were resampled";
+  } catch (const LightingError& e) {
+    EXPECT_NE(std::string(e.what()).find("thin.tif: cells of 1 x 17 m are more than 16 times longer one way"),
+              std::string::npos)
+        << e.what();
+  }
+  s.gt = {0, 1, 0, 0, 0, -16};  // at the limit: resampled to 2 x 48 square cells of 1 m
+  writeDem(scratch("long.tif"), s);
+  const Dem dem = readDem(scratch("long.tif").string());
+  EXPECT_EQ(dem.terrain.width, 2);
+  EXPECT_EQ(dem.terrain.height, 48);
+}
+
 TEST(DemReader, SouthUpIsFlippedAndRotatedIsRefused) {
   DemSpec s;
   s.width = 3;
