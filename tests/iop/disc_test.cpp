@@ -8,6 +8,7 @@
 
 #include "iop/file_disc.hpp"
 #include "streams/disc/iso_disc.hpp"
+#include "tests/iop/disc_error_of.hpp"
 #include "tests/iop/iop_fixture.hpp"
 
 namespace vbim::iop::test {
@@ -32,15 +33,6 @@ void writePatternFile(const fs::path& p, std::int64_t sectors, std::int64_t tag)
   }
 }
 
-std::string errorOf(auto&& f) {
-  try {
-    f();
-  } catch (const DiscError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(FileDisc, HoldsTheStreamAtItsLba) {
   const fs::path d = tempDir();
   writePatternFile(d / "day.pss", 10, 7);
@@ -62,19 +54,20 @@ TEST(FileDisc, HoldsTheStreamAtItsLba) {
 
 TEST(FileDisc, RejectsMissingEmptyAndTruncatedFiles) {
   const fs::path d = tempDir();
-  EXPECT_NE(errorOf([&] { FileDisc((d / "nope.pss").string(), 0); }).find("nope.pss: no such stream file"),
+  EXPECT_NE(discErrorOf([&] { FileDisc((d / "nope.pss").string(), 0); }).find("nope.pss: no such stream file"),
             std::string::npos);
   std::ofstream((d / "empty.pss").string()).close();
-  EXPECT_NE(errorOf([&] { FileDisc((d / "empty.pss").string(), 0); }).find("is empty"), std::string::npos);
+  EXPECT_NE(discErrorOf([&] { FileDisc((d / "empty.pss").string(), 0); }).find("is empty"), std::string::npos);
   writePatternFile(d / "cut.pss", 3, 0);
   fs::resize_file(d / "cut.pss", 3 * kSectorBytes - 100);
-  const std::string m = errorOf([&] { FileDisc((d / "cut.pss").string(), 100); });
+  const std::string m = discErrorOf([&] { FileDisc((d / "cut.pss").string(), 100); });
   EXPECT_NE(m.find("6044 bytes is not a whole number of 2048-byte sectors"), std::string::npos) << m;
   EXPECT_NE(m.find("byte offset 4096, LBA 102"), std::string::npos) << m;
   writePatternFile(d / "ok.pss", 3, 0);
-  EXPECT_NE(errorOf([&] { FileDisc((d / "ok.pss").string(), 10, 12); }).find("ends at LBA 13, beyond the disc's 12"),
-            std::string::npos);
-  EXPECT_NE(errorOf([&] { FileDisc(d.string(), 0); }).find("is a directory"), std::string::npos);
+  EXPECT_NE(
+      discErrorOf([&] { FileDisc((d / "ok.pss").string(), 10, 12); }).find("ends at LBA 13, beyond the disc's 12"),
+      std::string::npos);
+  EXPECT_NE(discErrorOf([&] { FileDisc(d.string(), 0); }).find("is a directory"), std::string::npos);
   fs::remove_all(d);
 }
 
@@ -108,25 +101,25 @@ TEST(IsoDisc, FindsFilesByPathAndReadsTheirSectors) {
     ASSERT_TRUE(disc.read(b.lba + k, buf).ok);
     EXPECT_TRUE(sectorHasPattern(buf.data(), 2'000'000 + k));
   }
-  const std::string m = errorOf([&] { requireFile(disc, "\\VIDEO\\NIGHT.PSS;1"); });
+  const std::string m = discErrorOf([&] { requireFile(disc, "\\VIDEO\\NIGHT.PSS;1"); });
   EXPECT_NE(m.find(iso.string() + ": no file '\\VIDEO\\NIGHT.PSS;1' on the disc"), std::string::npos) << m;
   fs::remove_all(d);
 }
 
 TEST(IsoDisc, RejectsMissingTruncatedAndForeignImages) {
   const fs::path d = tempDir();
-  EXPECT_NE(errorOf([&] { streams::IsoDisc((d / "none.iso").string()); }).find("none.iso: no such disc image"),
+  EXPECT_NE(discErrorOf([&] { streams::IsoDisc((d / "none.iso").string()); }).find("none.iso: no such disc image"),
             std::string::npos);
   writePatternFile(d / "junk.iso", 40, 0);
-  EXPECT_NE(errorOf([&] { streams::IsoDisc((d / "junk.iso").string()); }).find("junk.iso: "), std::string::npos);
+  EXPECT_NE(discErrorOf([&] { streams::IsoDisc((d / "junk.iso").string()); }).find("junk.iso: "), std::string::npos);
   writePatternFile(d / "tiny.iso", 3, 0);
-  EXPECT_NE(errorOf([&] { streams::IsoDisc((d / "tiny.iso").string()); }).find("too short for ISO 9660"),
+  EXPECT_NE(discErrorOf([&] { streams::IsoDisc((d / "tiny.iso").string()); }).find("too short for ISO 9660"),
             std::string::npos);
   const fs::path iso = buildIso(d, 64);
   ASSERT_FALSE(iso.empty());
   const auto full = fs::file_size(iso);
   fs::resize_file(iso, full - 100 * kSectorBytes);
-  const std::string m = errorOf([&] { streams::IsoDisc(iso.string()); });
+  const std::string m = discErrorOf([&] { streams::IsoDisc(iso.string()); });
   EXPECT_NE(m.find("truncated"), std::string::npos) << m;
   EXPECT_NE(m.find("first missing sector is LBA " + std::to_string(full / kSectorBytes - 100)), std::string::npos) << m;
   fs::remove_all(d);

@@ -20,6 +20,7 @@
 #include "streams/disc/iso9660_records.hpp"
 #include "streams/disc/iso9660_tree.hpp"
 #include "streams/disc/iso_disc.hpp"
+#include "tests/iop/disc_error_of.hpp"
 
 namespace vbim::streams::iso9660::test {
 namespace {
@@ -107,14 +108,7 @@ struct Volume {
   }
 };
 
-std::string errorOf(auto&& f) {
-  try {
-    f();
-  } catch (const iop::DiscError& e) {
-    return e.what();
-  }
-  return "";
-}
+using iop::test::discErrorOf;
 
 std::vector<std::string> paths(const std::vector<iop::DiscFile>& files) {
   std::vector<std::string> r;
@@ -152,7 +146,7 @@ TEST(Iso9660Record, RefusesARecordShorterThanItsFixedPart) {
   Bytes s{};
   putRecord(s, 0, {"A;1", 30, 10, 0});
   s[0] = 20;
-  const std::string m = errorOf([&] { parseRecord(s, 0, 2048, 21); });
+  const std::string m = discErrorOf([&] { parseRecord(s, 0, 2048, 21); });
   EXPECT_NE(m.find("directory record at LBA 21 byte 0: length 20 is shorter than a record's 33-byte fixed part"),
             std::string::npos)
       << m;
@@ -162,21 +156,21 @@ TEST(Iso9660Record, RefusesAnIdentifierRunningPastTheRecord) {
   Bytes s{};
   putRecord(s, 68, {"A;1", 30, 10, 0});
   s[68 + 32] = 40;  // identifier length 40 in a 36-byte record
-  const std::string m = errorOf([&] { parseRecord(s, 68, 2048, 22); });
+  const std::string m = discErrorOf([&] { parseRecord(s, 68, 2048, 22); });
   EXPECT_NE(m.find("LBA 22 byte 68: an identifier of 40 bytes does not fit a record of 36 bytes (expected 1 to 3)"),
             std::string::npos)
       << m;
   s[68 + 32] = 0;  // no identifier at all
-  EXPECT_NE(errorOf([&] { parseRecord(s, 68, 2048, 22); }).find("an identifier of 0 bytes"), std::string::npos);
+  EXPECT_NE(discErrorOf([&] { parseRecord(s, 68, 2048, 22); }).find("an identifier of 0 bytes"), std::string::npos);
 }
 
 TEST(Iso9660Record, RefusesARecordCrossingTheSectorOrTheDirectoryEnd) {
   Bytes s{};
   s[2030] = 40;  // 40 bytes from byte 2030 would cross into the next sector
-  std::string m = errorOf([&] { parseRecord(s, 2030, 2048, 23); });
+  std::string m = discErrorOf([&] { parseRecord(s, 2030, 2048, 23); });
   EXPECT_NE(m.find("LBA 23 byte 2030: its 40 bytes run past byte 2048"), std::string::npos) << m;
   putRecord(s, 0, {"A;1", 30, 10, 0});
-  m = errorOf([&] { parseRecord(s, 0, 30, 23); });  // the directory's data ends at byte 30
+  m = discErrorOf([&] { parseRecord(s, 0, 30, 23); });  // the directory's data ends at byte 30
   EXPECT_NE(m.find("run past byte 30"), std::string::npos) << m;
 }
 
@@ -184,13 +178,13 @@ TEST(Iso9660Record, RefusesBothEndianHalvesThatDisagree) {
   Bytes s{};
   putRecord(s, 0, {"A;1", 30, 10, 0});
   putBoth32(s, 2, 30, 31);
-  std::string m = errorOf([&] { parseRecord(s, 0, 2048, 24); });
+  std::string m = discErrorOf([&] { parseRecord(s, 0, 2048, 24); });
   EXPECT_NE(m.find("extent location at LBA 24 byte 2: its little-endian half 30 and big-endian half 31 disagree"),
             std::string::npos)
       << m;
   putBoth32(s, 2, 30);
   putBoth32(s, 10, 10, 0x0a000000);
-  m = errorOf([&] { parseRecord(s, 0, 2048, 24); });
+  m = discErrorOf([&] { parseRecord(s, 0, 2048, 24); });
   EXPECT_NE(m.find("data length at LBA 24 byte 10"), std::string::npos) << m;
 }
 
@@ -250,21 +244,21 @@ TEST(Iso9660Descriptor, ReadsThePrimaryVolumeDescriptor) {
 }
 
 TEST(Iso9660Descriptor, RefusesOtherBlockSizesDamagedSizesAndRoots) {
-  std::string m = errorOf([&] { parsePrimaryVolume(primaryDescriptor(500, 512), 16); });
+  std::string m = discErrorOf([&] { parsePrimaryVolume(primaryDescriptor(500, 512), 16); });
   EXPECT_NE(m.find("logical block size 512 at LBA 16 byte 128, expected 2048"), std::string::npos) << m;
   Bytes s = primaryDescriptor(500, 2048);
   putBoth32(s, 80, 500, 501);
-  m = errorOf([&] { parsePrimaryVolume(s, 16); });
+  m = discErrorOf([&] { parsePrimaryVolume(s, 16); });
   EXPECT_NE(m.find("volume space size at LBA 16 byte 80"), std::string::npos) << m;
   s = primaryDescriptor(500, 2048);
   s[156 + 25] = 0;  // the root is not a directory
-  m = errorOf([&] { parsePrimaryVolume(s, 16); });
+  m = discErrorOf([&] { parsePrimaryVolume(s, 16); });
   EXPECT_NE(m.find("root directory record at LBA 16 byte 156: expected a directory record of 34 bytes"),
             std::string::npos)
       << m;
   s = primaryDescriptor(500, 2048);
   s[156] = 0;
-  EXPECT_NE(errorOf([&] { parsePrimaryVolume(s, 16); }).find("root directory record"), std::string::npos);
+  EXPECT_NE(discErrorOf([&] { parsePrimaryVolume(s, 16); }).find("root directory record"), std::string::npos);
 }
 
 TEST(Iso9660Tree, ListsFilesDepthFirstAndFindsThemByPath) {
@@ -299,17 +293,17 @@ TEST(Iso9660Tree, ZeroLengthPaddingContinuesAtTheNextSector) {
 TEST(Iso9660Tree, AFileOrDirectoryPastTheVolumeIsAnErrorNamingIt) {
   Volume v;
   v.at[20] = directorySector(20, 20, {{"BIG.PSS;1", 95, 6 * 2048, 0}});
-  std::string m = errorOf([&] { v.tree().files(); });
+  std::string m = discErrorOf([&] { v.tree().files(); });
   EXPECT_NE(m.find("file '\\BIG.PSS;1' at LBA 95 runs past the end of the volume (100 sectors): damaged image"),
             std::string::npos)
       << m;
-  m = errorOf([&] { v.tree().find("/big.pss", "\\BIG.PSS;1"); });
+  m = discErrorOf([&] { v.tree().find("/big.pss", "\\BIG.PSS;1"); });
   EXPECT_NE(m.find("file '\\BIG.PSS;1' at LBA 95 runs past"), std::string::npos) << m;
   // A directory claiming 4 GiB: refused before anything of it is read.
   v.at[20] = directorySector(20, 20, {{"HUGE", 30, 0xffffffffU, kDir}});
-  m = errorOf([&] { v.tree().files(); });
+  m = discErrorOf([&] { v.tree().files(); });
   EXPECT_NE(m.find("directory '\\HUGE\\' at LBA 30 runs past the end of the volume"), std::string::npos) << m;
-  m = errorOf([&] { v.tree().find("/huge/a.pss", "\\HUGE\\A.PSS;1"); });
+  m = discErrorOf([&] { v.tree().find("/huge/a.pss", "\\HUGE\\A.PSS;1"); });
   EXPECT_NE(m.find("directory '\\HUGE\\' at LBA 30 runs past"), std::string::npos) << m;
 }
 
@@ -317,7 +311,7 @@ TEST(Iso9660Tree, ADamagedRecordIsAnErrorSayingWhere) {
   Volume v;
   v.at[20] = directorySector(20, 20, {{"A;1", 40, 10, 0}});
   v.at[20][68] = 12;  // the third record (after "." and "..", 34 bytes each) is 12 bytes long
-  const std::string m = errorOf([&] { v.tree().files(); });
+  const std::string m = discErrorOf([&] { v.tree().files(); });
   EXPECT_NE(m.find("directory record at LBA 20 byte 68: length 12"), std::string::npos) << m;
 }
 
@@ -373,9 +367,9 @@ TEST(Iso9660Tree, MultiExtentAndInterleavedFilesAreRefusedByFindAndLeftOutOfTheL
   const DirectoryTree t = v.tree();
   // ODD's flag promises a next part under its name; Q is another file, listed as usual.
   EXPECT_EQ(paths(t.files()), (std::vector<std::string>{"\\A;1", "\\C;1", "\\Q;1"}));
-  std::string m = errorOf([&] { t.find("/big", "\\BIG;1"); });
+  std::string m = discErrorOf([&] { t.find("/big", "\\BIG;1"); });
   EXPECT_NE(m.find("file '\\BIG;1' is recorded in several extents"), std::string::npos) << m;
-  m = errorOf([&] { t.find("/mix", "\\MIX;1"); });
+  m = discErrorOf([&] { t.find("/mix", "\\MIX;1"); });
   EXPECT_NE(m.find("file '\\MIX;1' is recorded interleaved"), std::string::npos) << m;
 }
 
@@ -408,9 +402,9 @@ TEST(IsoDiscDamaged, AFileRunningPastTheVolumeIsADiscErrorNamingIt) {
   const std::string expected = iso.string() + ": file '\\VIDEO\\A.PSS;1' at LBA " + std::to_string(lba) +
                                " runs past the end of the volume (" + std::to_string(disc.sectorCount()) +
                                " sectors): damaged image";
-  std::string m = errorOf([&] { disc.find("\\VIDEO\\A.PSS;1"); });
+  std::string m = discErrorOf([&] { disc.find("\\VIDEO\\A.PSS;1"); });
   EXPECT_EQ(m, expected);
-  m = errorOf([&] { disc.files(); });
+  m = discErrorOf([&] { disc.files(); });
   EXPECT_EQ(m, expected);
   EXPECT_TRUE(disc.find("/video/b.pss").has_value());
   fs::remove_all(d);
@@ -430,10 +424,10 @@ TEST(IsoDiscFinding, TheImageThatOverflowedLibiso9660GivesADiscError) {
                                ": data length at LBA 18 byte 238: its little-endian half 4294967040 and big-endian "
                                "half 4278192128 disagree";
   for (const char* name : {"\\VIDEO\\DAY.PSS;1", "\\SYSTEM.CNF;1", "\\A\\B\\C.BIN;1"}) {
-    const std::string m = errorOf([&] { disc.find(name); });
+    const std::string m = discErrorOf([&] { disc.find(name); });
     EXPECT_NE(m.find(expected), std::string::npos) << name << ": " << m;
   }
-  const std::string m = errorOf([&] { disc.files(); });
+  const std::string m = discErrorOf([&] { disc.files(); });
   EXPECT_NE(m.find(expected), std::string::npos) << m;
 }
 

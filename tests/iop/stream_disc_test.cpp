@@ -11,6 +11,7 @@
 #include "iop/error.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "streams/disc/stream_disc.hpp"
+#include "tests/iop/disc_error_of.hpp"
 #include "tests/support/run_command.hpp"
 
 namespace vbim::streams::test {
@@ -38,14 +39,7 @@ fs::path makeIso(const fs::path& d, const std::string& name) {
   return iso;
 }
 
-std::string errorOf(auto&& f) {
-  try {
-    f();
-  } catch (const iop::DiscError& e) {
-    return e.what();
-  }
-  return "";
-}
+using iop::test::discErrorOf;
 
 TEST(StreamDisc, AnImageIsKnownByItsVolumeDescriptorNotItsName) {
   const fs::path d = tempDir();
@@ -73,7 +67,7 @@ TEST(StreamDisc, AnImageIsKnownByItsVolumeDescriptorNotItsName) {
   EXPECT_FALSE(bare.image);
   EXPECT_EQ(bare.file.lba, 2048);
   EXPECT_EQ(readDiscFile(*bare.disc, bare.file), sample);
-  const std::string m = errorOf([&] { openStreamDisc((d / "stream.iso").string(), "\\DATA\\DAY.VBI;1"); });
+  const std::string m = discErrorOf([&] { openStreamDisc((d / "stream.iso").string(), "\\DATA\\DAY.VBI;1"); });
   EXPECT_NE(m.find("--file '\\DATA\\DAY.VBI;1' picks a file on an ISO 9660 disc image, but this is a bare stream"),
             std::string::npos)
       << m;
@@ -111,7 +105,7 @@ TEST(StreamDisc, TheStreamIsPickedByFileOrElseTheOnlyOne) {
   const fs::path iso = makeIso(d, "two.iso");
   ASSERT_FALSE(iso.empty()) << "xorriso failed";
 
-  const std::string many = errorOf([&] { openStreamDisc(iso.string()); });
+  const std::string many = discErrorOf([&] { openStreamDisc(iso.string()); });
   EXPECT_NE(many.find(iso.string() + ": 2 VBIM streams on the disc image; pick one with --file"), std::string::npos)
       << many;
   EXPECT_NE(many.find("\\DATA\\DAY.VBI;1 (LBA "), std::string::npos) << many;
@@ -122,7 +116,7 @@ TEST(StreamDisc, TheStreamIsPickedByFileOrElseTheOnlyOne) {
             static_cast<std::int64_t>(fs::file_size(kOther)));
   EXPECT_EQ(openStreamDisc(iso.string(), "/data/day.vbi").file.bytes,
             static_cast<std::int64_t>(fs::file_size(kSample)));
-  const std::string missing = errorOf([&] { openStreamDisc(iso.string(), "\\DATA\\NIGHT.VBI;1"); });
+  const std::string missing = discErrorOf([&] { openStreamDisc(iso.string(), "\\DATA\\NIGHT.VBI;1"); });
   EXPECT_NE(missing.find(": no file '\\DATA\\NIGHT.VBI;1' on the disc image; its VBIM streams are:"), std::string::npos)
       << missing;
   EXPECT_NE(missing.find("\\DATA\\STORM.VBI;1"), std::string::npos) << missing;
@@ -131,7 +125,7 @@ TEST(StreamDisc, TheStreamIsPickedByFileOrElseTheOnlyOne) {
   fs::remove(d / "root" / "DATA" / "STORM.VBI");
   const fs::path none = makeIso(d, "none.iso");
   ASSERT_FALSE(none.empty()) << "xorriso failed";
-  const std::string noStream = errorOf([&] { openStreamDisc(none.string()); });
+  const std::string noStream = discErrorOf([&] { openStreamDisc(none.string()); });
   EXPECT_NE(noStream.find(": no VBIM stream on the disc image; its files are:\n  \\DATA\\LEVEL2.BIN;1 (LBA "),
             std::string::npos)
       << noStream;
