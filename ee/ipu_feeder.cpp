@@ -10,8 +10,8 @@
 namespace vbim::ee {
 
 IpuFeeder::IpuFeeder(Scheduler& s, std::array<CompressedBuffer*, 2> in, std::array<DecodedFrames*, 2> out,
-                     const EeDemux& demux, const Timeline& timeline, ipu::IpuUnit& ipu, const EeParams& p, Event& work,
-                     Tracer* tracer, Tracer::TrackId track)
+                     const EeDemux& demux, const Timeline& timeline, ipu::IpuUnit& ipu, const EeParams& p, bool reorder,
+                     Event& work, Tracer* tracer, Tracer::TrackId track)
     : s_(s),
       in_(in),
       out_(out),
@@ -19,6 +19,7 @@ IpuFeeder::IpuFeeder(Scheduler& s, std::array<CompressedBuffer*, 2> in, std::arr
       timeline_(timeline),
       ipu_(ipu),
       p_(p),
+      reorder_(reorder),
       work_(work),
       tracer_(tracer),
       track_(track) {}
@@ -52,6 +53,15 @@ Task<void> IpuFeeder::decodeOne(int stream) {
   if (!tp.report.produced || image->width != info.width || image->height != info.height) {
     ++dc_.undecodable;
     co_return;
+  }
+  if (reorder_) {
+    // 64 quadwords (RGB32) per 16x16 macroblock, partial ones at the edges included.
+    const std::int64_t qwords = std::int64_t{(image->width + 15) / 16} * ((image->height + 15) / 16) * 64;
+    const Tick r0 = s_.now();
+    co_await s_.delay(fromEeCycles(qwords * p_.reorder_cycles_per_qword));
+    if (tracer_ != nullptr) tracer_->span(track_, r0, s_.now(), "reorder");
+    dc_.reorderedQwords += qwords;
+    dc_.reorderBusy += s_.now() - r0;
   }
   if (gen != generation_ && pic.seq >= lastBranchFrom_) {
     ++dc_.staleDropped;

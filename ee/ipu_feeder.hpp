@@ -5,7 +5,9 @@
 // buffers, where the GS presenter finds it.
 //
 // EE time: ee.decode_setup_cycles per picture (DMA chains and IDEC) before the IPU's own time
-// (docs/timing/ee.md, docs/timing/ipu.md).
+// (docs/timing/ee.md, docs/timing/ipu.md). When the EE reorders the IPU's macroblocks into a raster
+// image (gs.upload_strategy = ee-reorder), ee.reorder_cycles_per_qword per output quadword after it:
+// the frame is ready once reordered, and the EE feeds the IPU nothing meanwhile.
 #pragma once
 
 #include <array>
@@ -27,9 +29,11 @@ struct DecodeCounters {
   std::int64_t idecCommands = 0;          // IDEC issued: one per slice (the EE restarts it per slice)
   std::int64_t concealedMacroblocks = 0;  // kept their previous value: damage the IPU hid
   std::int64_t picturesWithIssues = 0;
-  std::int64_t undecodable = 0;   // produced nothing usable (wrong size or no picture): not shown
-  std::int64_t staleDropped = 0;  // decoded for a variant a branch left meanwhile
-  Tick busy = 0;                  // IPU command time, start to last output qword
+  std::int64_t reorderedQwords = 0;  // moved by the EE from macroblock to raster order
+  Tick reorderBusy = 0;              // EE time spent on it
+  std::int64_t undecodable = 0;      // produced nothing usable (wrong size or no picture): not shown
+  std::int64_t staleDropped = 0;     // decoded for a variant a branch left meanwhile
+  Tick busy = 0;                     // IPU command time, start to last output qword
   Tick maxPerPicture = 0;
   std::array<Tick, 2> perStream{0, 0};  // summed per stream
   std::array<std::int64_t, 2> picturesPerStream{0, 0};
@@ -39,9 +43,10 @@ class IpuFeeder {
  public:
   // `in` and `out` are indexed by stream (kLightmap, kSky); a stream the file does not have has a
   // null decoded-frame buffer. `work` is the demux's "a picture was loaded" event. `tracer` is null
-  // or enabled; `track` is the feeder's busy-span track in it.
+  // or enabled; `track` is the feeder's busy-span track in it. `reorder`: the EE reorders each
+  // decoded picture from macroblock to raster order before it is ready.
   IpuFeeder(Scheduler& s, std::array<CompressedBuffer*, 2> in, std::array<DecodedFrames*, 2> out, const EeDemux& demux,
-            const Timeline& timeline, ipu::IpuUnit& ipu, const EeParams& p, Event& work, Tracer* tracer,
+            const Timeline& timeline, ipu::IpuUnit& ipu, const EeParams& p, bool reorder, Event& work, Tracer* tracer,
             Tracer::TrackId track);
   IpuFeeder(const IpuFeeder&) = delete;
   IpuFeeder& operator=(const IpuFeeder&) = delete;
@@ -65,6 +70,7 @@ class IpuFeeder {
   const Timeline& timeline_;
   ipu::IpuUnit& ipu_;
   EeParams p_;
+  bool reorder_;
   Event& work_;
   Tracer* tracer_;
   Tracer::TrackId track_;

@@ -16,6 +16,10 @@ void describeParams(ParamTable& t, EeParams& p) {
            "assumption: a byte-wise start-code scan plus the copy into the stream buffer, about 2 cycles a byte");
   t.addInt("ee.copy_cycles_per_qword", &p.copy_cycles_per_qword, 0, 1'000, "EE cycles",
            "assumption: a quadword memcpy from cached to uncached EE RAM, 4 cycles per 16 bytes");
+  t.addInt("ee.reorder_cycles_per_qword", &p.reorder_cycles_per_qword, 0, 1'000, "EE cycles",
+           "assumption: with gs.upload_strategy = ee-reorder, the EE copies each decoded macroblock's 16 rows of 4 "
+           "quadwords into a raster image: twice ee.copy_cycles_per_qword, since the fromIPU output is read back "
+           "from memory uncached (docs/timing/ee.md)");
   t.addInt("ee.compressed_frames", &p.compressed_frames, 1, 64, "pictures",
            "Hoffman & Mitchell, GDC 2001: one complete picture waits in the compressed frame buffer while the next "
            "loads; 2 per stream");

@@ -16,6 +16,7 @@ struct EeParams {
   std::int64_t cycles_per_pack = 400;          // EE cycles to parse one pack header + PES headers
   std::int64_t cycles_per_byte = 2;            // EE cycles per payload byte (start-code scan, copy to stream buffer)
   std::int64_t copy_cycles_per_qword = 4;      // EE cycles per 16 bytes copied into the compressed frame buffer
+  std::int64_t reorder_cycles_per_qword = 8;   // EE cycles per 16 bytes moved from macroblock to raster order
   std::int64_t compressed_frames = 2;          // compressed frame buffer depth, pictures per stream
   std::int64_t compressed_budget_kib = 4'096;  // EE RAM per stream for pictures, beyond the depth too
   std::int64_t decoded_frames = 2;             // decoded frame buffers per stream in EE RAM

@@ -1,5 +1,7 @@
 // What the GS work of one vsync costs on the simulated clock (1 tick = 1 GS clock = 1 bus clock).
-//   IMAGE transfer over PATH3: (setup qwords * 16 + payload bytes) / GIF bytes per tick.
+//   IMAGE transfer over PATH3: (setup qwords * 16 + payload bytes) / GIF bytes per tick. Uploading
+//   the IPU's macroblocks one transfer each costs the full setup once and a shorter one per further
+//   macroblock (gs.macroblock_setup_qwords: only TRXPOS and TRXDIR change).
 //   Textured SPRITE draw with the blend: the register writes of gs/draw_setup.hpp over the GIF, then
 //   pixels / (textured px per clock) * (1 + page-break overhead).
 // Both round up to whole ticks. Sources: gs/params.cpp and docs/timing/gs.md.
@@ -16,8 +18,12 @@ namespace vbim::gs {
 class GsTiming {
  public:
   explicit GsTiming(const GsParams& p) : p_(p) {}
-  Tick imageTransfer(std::int64_t payloadBytes) const {
-    return ceilDiv(p_.upload_setup_qwords * 16 + payloadBytes, p_.gif_bytes_per_tick);
+  Tick imageTransfer(std::int64_t payloadBytes, std::int64_t transfers = 1) const {
+    return ceilDiv(setupQwords(transfers) * 16 + payloadBytes, p_.gif_bytes_per_tick);
+  }
+  // The setup qwords of `transfers` back-to-back IMAGE transfers into one buffer.
+  std::int64_t setupQwords(std::int64_t transfers) const {
+    return transfers <= 0 ? 0 : p_.upload_setup_qwords + (transfers - 1) * p_.macroblock_setup_qwords;
   }
   Tick spriteDraw(std::int64_t width, std::int64_t height) const {
     const Tick setup = ceilDiv(kBlendDrawSetupQwords * 16, p_.gif_bytes_per_tick);

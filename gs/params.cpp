@@ -9,6 +9,10 @@ void describeParams(ParamTable& t, GsParams& p) {
            "GIF->GS is 64 bits per bus clock = 1.18 GB/s (LINUXKIT 1.2 GB/s [D]; docs/hardware.md#gs-rates)");
   t.addInt("gs.upload_setup_qwords", &p.upload_setup_qwords, 0, 1024, "qwords",
            "A+D GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR, then the IMAGE GIFtag (T-GS Transfers)");
+  t.addInt("gs.macroblock_setup_qwords", &p.macroblock_setup_qwords, 0, 1024, "qwords",
+           "per macroblock after the first with gs.upload_strategy = macroblocks: A+D GIFtag + TRXPOS (the "
+           "macroblock's corner) and TRXDIR (starts the transfer), then the IMAGE GIFtag; BITBLTBUF and TRXREG "
+           "(16x16) stay set (T-GS Transfers)");
   t.addInt("gs.textured_pixels_per_clock", &p.textured_pixels_per_clock, 1, 16, "px/GS clock",
            "textured fill rate 8 px/clk = 1.18 Gpix/s (WIKI-GS Specifications)");
   t.addInt("gs.page_break_overhead_pct", &p.page_break_overhead_pct, 0, 400, "%",
@@ -31,6 +35,11 @@ void describeParams(ParamTable& t, GsParams& p) {
               "VRAM use')");
   t.addInt("gs.strip_rows", &p.strip_rows, 32, 1024, "rows",
            "assumption: one PSMCT32 page high (32 rows); must be a multiple of 32");
+  t.addChoice("gs.upload_strategy", &p.upload_strategy, {kUploadStrategies.begin(), kUploadStrategies.end()},
+              "macroblocks: the IPU writes 16x16 macroblocks in macroblock order (T-IPU IDEC), uploaded one IMAGE "
+              "transfer each; ee-reorder: the EE copies them into a raster image first (ee.reorder_cycles_per_qword), "
+              "then one transfer; raster: one transfer and no reorder, vbim's model before macroblock order "
+              "(docs/porting.md)");
 
   t.addChoice("gs.video", &p.video, {"ntsc", "ntsc-p", "pal", "pal-p"},
               "vsync rate: NTSC 59.94 Hz interlaced, PAL 50 Hz (PCSX2 Counters.cpp)");

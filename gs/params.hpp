@@ -18,10 +18,14 @@ namespace vbim::gs {
 // playing late frames as if on time (docs/player.md, "Catch-up").
 inline constexpr std::array<std::string_view, 3> kCatchupPolicies{"blend-through", "hard-skip", "play-late"};
 
+// The upload strategies, by the one name each has everywhere (gs.upload_strategy, docs/porting.md).
+inline constexpr std::array<std::string_view, 3> kUploadStrategies{"macroblocks", "ee-reorder", "raster"};
+
 struct GsParams {
   // GIF -> GS transfer and drawing (docs/hardware.md#gs-rates, #gs-page-breaks).
   std::int64_t gif_bytes_per_tick = 8;         // 64-bit GIF bus, one word per bus clock
   std::int64_t upload_setup_qwords = 6;        // GIFtag + BITBLTBUF, TRXPOS, TRXREG, TRXDIR + IMAGE GIFtag
+  std::int64_t macroblock_setup_qwords = 4;    // per further macroblock: GIFtag + TRXPOS, TRXDIR + IMAGE GIFtag
   std::int64_t textured_pixels_per_clock = 8;  // textured fill rate
   std::int64_t page_break_overhead_pct = 25;   // extra draw time for DRAM page breaks (assumption)
 
@@ -35,6 +39,10 @@ struct GsParams {
   std::int64_t sky_height = 256;
   std::string upload_mode = "full";  // or "strips"
   std::int64_t strip_rows = 32;      // rows per strip in strip mode (a multiple of 32: one page high)
+  // How the IPU's output, 16x16 macroblocks in macroblock order, reaches the staging texture
+  // (docs/porting.md): one IMAGE transfer per macroblock, the EE reordering it into a raster image
+  // first (then one transfer), or "raster": one transfer with no reorder, as if the IPU wrote rows.
+  std::string upload_strategy = "macroblocks";  // or "ee-reorder", "raster"
 
   // Presentation.
   std::string video = "ntsc";             // ntsc, ntsc-p, pal, pal-p

@@ -147,6 +147,15 @@ bool checkedStrips(const GsParams& p) {
   return p.upload_mode == "strips";
 }
 
+// True when the IPU's macroblocks are uploaded one IMAGE transfer each (gs.upload_strategy).
+bool checkedMacroblockUploads(const GsParams& p) {
+  if (std::find(kUploadStrategies.begin(), kUploadStrategies.end(), p.upload_strategy) == kUploadStrategies.end()) {
+    throw GsError({"gs.upload_strategy"},
+                  "unknown upload strategy '" + p.upload_strategy + "' (expected macroblocks, ee-reorder or raster)");
+  }
+  return p.upload_strategy == "macroblocks";
+}
+
 // Runs one check; a GsError it throws is re-thrown naming the key that was checked.
 template <typename Check>
 void checkKey(const char* key, Check check) {
@@ -175,6 +184,7 @@ VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight)
   checkKey("gs.catchup_fix", [&] { makeBlendSpec(p.catchup_fix, ColClamp::Clamp, AlphaWrite::Source); });
   checkKey("gs.catchup", [&] { catchUpByName(p.catchup); });
   checkedStrips(p);
+  checkedMacroblockUploads(p);
   return planVram(p, lightmapWidth, lightmapHeight);
 }
 
@@ -191,6 +201,7 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
           makeBlendSpec(params.catchup_fix == 0 ? params.fix : params.catchup_fix, spec_.colclamp, spec_.alpha)),
       policy_(catchUpByName(params.catchup)),
       strips_(checkedStrips(params)),
+      macroblockUploads_(checkedMacroblockUploads(params)),
       vram_(planVram(params, stream_.width, stream_.height)),
       lightmap_(stream_.width, stream_.height),
       blender_(stream_.width, stream_.height, opt_.kernels != nullptr ? *opt_.kernels : scalarKernels(),
@@ -342,10 +353,16 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
     const int y1 = std::min(h, y0 + rows);
     if (strips_ || newTarget) {
       const std::int64_t bytes = static_cast<std::int64_t>(w) * (y1 - y0) * 4;
+      // The IPU's 16x16 macroblocks one transfer each (the last row and column may be partial), or
+      // the rows as one raster transfer. Strips are whole macroblock rows (32-row multiples).
+      const std::int64_t transfers =
+          macroblockUploads_ ? std::int64_t{(w + 15) / 16} * ((y1 - y0 + 15) / 16) : std::int64_t{1};
       const Tick t = sched_.now();
-      co_await sched_.delay(timing_.imageTransfer(bytes));
+      co_await sched_.delay(timing_.imageTransfer(bytes, transfers));
       if (tr != nullptr) tr->span(track_, t, sched_.now(), "upload");
       counters_.uploadBytes += bytes;
+      counters_.uploadTransfers += transfers;
+      counters_.uploadSetupQwords += timing_.setupQwords(transfers);
     }
     const Tick t = sched_.now();
     co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));

@@ -88,7 +88,9 @@ struct PresenterCounters {
   std::int64_t loopWraps = 0;
   std::int64_t branches = 0;
   std::int64_t uploadBytes = 0;
-  std::int64_t tilesBlended = 0;  // host work (convergence-aware mode skips the rest)
+  std::int64_t uploadTransfers = 0;    // IMAGE transfers: one per macroblock with gs.upload_strategy = macroblocks
+  std::int64_t uploadSetupQwords = 0;  // their GIFtags and register writes
+  std::int64_t tilesBlended = 0;       // host work (convergence-aware mode skips the rest)
   std::int64_t tilesSkipped = 0;
   Tick gsBusy = 0;
   Tick slip = 0;   // play-late: how far the schedule has slipped
@@ -163,6 +165,7 @@ class Presenter {
   BlendSpec catchupSpec_;
   CatchUp policy_;
   bool strips_;
+  bool macroblockUploads_;
   VramLayout vram_;
   Rgba8Image lightmap_;
   TiledBlender blender_;

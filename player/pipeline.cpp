@@ -76,7 +76,8 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
   }
   feeder_ = std::make_unique<ee::IpuFeeder>(s, std::array<ee::CompressedBuffer*, 2>{&lmCompressed_, &skyCompressed_},
                                             std::array<ee::DecodedFrames*, 2>{lmFrames_.get(), skyFrames_.get()},
-                                            demux_, timeline_, ipu_, config_.ee, work_, tracer_, feederTrack_);
+                                            demux_, timeline_, ipu_, config_.ee,
+                                            config_.gs.upload_strategy == "ee-reorder", work_, tracer_, feederTrack_);
   if (faults != nullptr) iop::applyFaults(s, drive_, *faults, Rng(seed).fork("faults"));
 }
 

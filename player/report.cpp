@@ -47,6 +47,8 @@ json::Value presenterJson(const gs::PresenterCounters& c) {
                        {"loop_wraps", c.loopWraps},
                        {"branches", c.branches},
                        {"upload_bytes", c.uploadBytes},
+                       {"upload_transfers", c.uploadTransfers},
+                       {"upload_setup_qwords", c.uploadSetupQwords},
                        {"gs_busy_ticks", c.gsBusy},
                        {"slip_ticks", c.slip}});
 }
@@ -190,6 +192,8 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
       elapsed > 0 ? static_cast<std::int64_t>((static_cast<__int128>(dm.bytes) * kBusHz) / elapsed) : std::int64_t{0};
   j["decoded_pictures"] = dc.pictures;
   j["idec_commands"] = dc.idecCommands;  // one per slice: the EE restarts IDEC at each slice start code
+  // Zero unless gs.upload_strategy = ee-reorder.
+  j["ee_reorder"] = json::object({{"qwords", dc.reorderedQwords}, {"busy_ticks", dc.reorderBusy}});
   j["vsyncs_recorded"] = t.vsyncs;
   out << j.dump(2) << "\n";
 }

@@ -49,9 +49,11 @@ TEST(Presenter, FullModeUploadsNewFramesOnlyStripModeStreamsEveryVsync) {
   a.runFor(fromMs(500));
   b.runFor(fromMs(500));
   const GsTiming t{GsParams{}};
-  const Tick upload = t.imageTransfer(kW * kH * 4);
+  // The default gs.upload_strategy: one IMAGE transfer per 16x16 macroblock.
+  const Tick upload = t.imageTransfer(kW * kH * 4, (kW / 16) * (kH / 16));
   const Tick draw = t.spriteDraw(kW, kH);
-  const Tick stripCost = 2 * (t.imageTransfer(kW * 32 * 4) + t.spriteDraw(kW, 32));  // 64 rows = 2 strips
+  const Tick stripCost =
+      2 * (t.imageTransfer(kW * 32 * 4, (kW / 16) * 2) + t.spriteDraw(kW, 32));  // 64 rows = 2 strips
   ASSERT_EQ(a.run.history().size(), b.run.history().size());
   for (std::size_t n = 0; n < a.run.history().size(); ++n) {
     const VsyncRecord& ra = a.run.history()[n];

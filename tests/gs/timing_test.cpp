@@ -24,6 +24,20 @@ TEST(GsTiming, UploadAndDrawFromTheParameters) {
   EXPECT_EQ(GsTiming(q).spriteDraw(1, 1), 40 + 1);         // rounds up
 }
 
+TEST(GsTiming, MacroblockTransfersShareOneFullSetup) {
+  const GsTiming t{GsParams{}};
+  EXPECT_EQ(t.setupQwords(0), 0);
+  EXPECT_EQ(t.setupQwords(1), 6);
+  // 256 macroblocks of a 256x256 frame: 6 qwords for the first, 4 (GIFtag, TRXPOS, TRXDIR, IMAGE
+  // GIFtag) for each further one.
+  EXPECT_EQ(t.setupQwords(256), 6 + 255 * 4);
+  EXPECT_EQ(t.imageTransfer(256 * 256 * 4, 256), (1'026 * 16 + 262'144) / 8);  // 34,820 ticks, 236 us
+  EXPECT_EQ(t.imageTransfer(256 * 256 * 4, 1), t.imageTransfer(256 * 256 * 4));
+  GsParams q;
+  q.macroblock_setup_qwords = 6;  // every transfer with its full setup: 1,536 qwords
+  EXPECT_EQ(GsTiming(q).setupQwords(256), 1'536);
+}
+
 TEST(GsTiming, ParamsLoadFromTomlAndRejectBadValues) {
   ParamTable table;
   GsParams p;
@@ -34,6 +48,9 @@ TEST(GsTiming, ParamsLoadFromTomlAndRejectBadValues) {
   EXPECT_EQ(p.upload_mode, "strips");
   EXPECT_THROW(config::applyToml(table, "[gs]\nfix = 256\n", "<test>"), ConfigError);
   EXPECT_THROW(config::applyToml(table, "[gs]\ncatchup = \"rewind\"\n", "<test>"), ConfigError);
+  config::applyToml(table, "[gs]\nupload_strategy = \"ee-reorder\"\n", "<test>");
+  EXPECT_EQ(p.upload_strategy, "ee-reorder");
+  EXPECT_THROW(config::applyToml(table, "[gs]\nupload_strategy = \"rows\"\n", "<test>"), ConfigError);
   for (const auto& param : table.params()) {
     EXPECT_EQ(param.key.rfind("gs.", 0), 0u) << param.key;
     EXPECT_FALSE(param.source.empty()) << param.key;
