@@ -28,12 +28,14 @@ std::int64_t EeDemux::indexSector(int s, std::int64_t globalFrame) const {
       .sector;
 }
 
-// Reading through this sector completes every picture of the variant: the next variant's first picture
-// starts in its first sector, which ends the last one (docs/stream-format.md "Variants").
-std::int64_t EeDemux::variantEndSector(int variant) const {
+// Stream s's last picture of a variant ends where its next picture starts: the stream's first picture
+// of the next variant. That is per stream, not the variant's first sector: the muxer lets a small sky
+// stream run ahead, so the next variant's sky pictures can start long before this variant's last
+// lightmap picture (docs/stream-format.md "Variants").
+std::int64_t EeDemux::variantEndSector(int s, int variant) const {
   const auto& d = stream_.descriptor;
   if (static_cast<std::size_t>(variant) + 1 < d.variants.size()) {
-    return static_cast<std::int64_t>(d.variants[static_cast<std::size_t>(variant) + 1].firstSector) + 1;
+    return indexSector(s, d.variants[static_cast<std::size_t>(variant) + 1].firstFrame) + 1;
   }
   return d.totalSectors;
 }
@@ -61,7 +63,7 @@ void EeDemux::checkReposition() {
     if (!active(s)) continue;
     const std::int64_t k = next_[s];
     const bool waitingHere = positioned_[s] || timeline_.followsInFile(k);
-    if (waitingHere && pos_ >= variantEndSector(timeline_.variantOf(k)) &&
+    if (waitingHere && pos_ >= variantEndSector(s, timeline_.variantOf(k)) &&
         indexSector(s, timeline_.globalFrame(k)) < pos_) {
       const std::int64_t end = timeline_.lapEnd(k);
       c_.framesLost += end + 1 - k;

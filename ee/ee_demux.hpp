@@ -71,7 +71,8 @@ class EeDemux {
   void checkReposition();
   bool active(int s) const { return streamIndex_[s] >= 0; }
   std::int64_t indexSector(int s, std::int64_t globalFrame) const;
-  std::int64_t variantEndSector(int variant) const;
+  // Reading up to (not including) this sector completes every picture of `variant` in stream s.
+  std::int64_t variantEndSector(int s, int variant) const;
 
   Scheduler& s_;
   iop::StreamRing& ring_;
