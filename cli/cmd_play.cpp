@@ -283,7 +283,8 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   if (tot.lag.vsync >= 0) s << " at " << toSeconds(tot.lag.at) << " s";
   s << (player->hasReference() ? " (against a fault-free reference run)" : " (no faults: no reference needed)")
     << "\n  ring underruns " << player->pipeline().ring().stats().underruns << " ("
-    << player->pipeline().ring().stats().startupPolls << " while the stream started), drive retries "
+    << player->pipeline().ring().stats().startupPolls << " while the stream started, "
+    << player->pipeline().ring().stats().seekPolls << " after seeks), drive retries "
     << player->pipeline().drive().stats().retries << ", damaged/lost frames "
     << player->pipeline().demux().counters().picturesDamaged + player->pipeline().demux().counters().framesLost
     << ", images written " << images << "\n";

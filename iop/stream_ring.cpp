@@ -132,6 +132,7 @@ void StreamRing::callback(std::uint32_t err) {
   if (filled >= 0) {
     ++stats_.banksFilled;
     bankSinceStart_ = true;
+    bankSinceSeek_ = true;
     publish();
   }
   if (stmstart_ == 2) {
@@ -170,6 +171,7 @@ Task<bool> StreamRing::seek(std::int64_t lbn) {
   offs_ = cur_ = gp_ = 0;
   co_await drive_.sync();
   clearBanks();
+  bankSinceSeek_ = false;
   stmstart_ = 1;
   owner_ = true;
   armAlarm(0);
@@ -180,6 +182,7 @@ bool StreamRing::seekDeferred(std::int64_t lbn) {
   if (!owner_) return false;
   lsn_ = lbn;
   clearBanks();
+  bankSinceSeek_ = false;
   stmstart_ = 2;
   return true;
 }
@@ -265,7 +268,11 @@ Task<std::uint32_t> StreamRing::read(std::uint32_t n, std::span<std::uint8_t> de
   }
   if (count < n && owner_) {
     ++stats_.underruns;
-    if (!bankSinceStart_) ++stats_.startupPolls;
+    if (!bankSinceStart_) {
+      ++stats_.startupPolls;
+    } else if (!bankSinceSeek_) {
+      ++stats_.seekPolls;
+    }
     if (stats_.firstUnderrunAt < 0) stats_.firstUnderrunAt = s_.now();
     if (tracer_ != nullptr) tracer_->instant(track_, s_.now(), "underrun");
   }

@@ -50,7 +50,11 @@ struct RingStats {
   // Of those, the reads made after sceCdStStart and before its first bank was visible: the EE
   // polling while the drive spins up and seeks, not a stream running dry during playback.
   std::int64_t startupPolls = 0;
-  std::int64_t playbackUnderruns() const { return underruns - startupPolls; }
+  // And those made after a sceCdStSeek (the player's loop wrap or branch) before a bank from the new
+  // position was visible: the ring refilling as it must, not the drive falling behind.
+  std::int64_t seekPolls = 0;
+  // The rest: the ring ran dry while streaming on from where it was.
+  std::int64_t playbackUnderruns() const { return underruns - startupPolls - seekPolls; }
   Tick firstUnderrunAt = -1;
 };
 
@@ -124,6 +128,7 @@ class StreamRing {
   std::int64_t retrycnt_ = 0;
   std::uint32_t retryerr_ = 0;
   bool bankSinceStart_ = false;  // a bank became visible since sceCdStStart (startupPolls)
+  bool bankSinceSeek_ = true;    // a bank became visible since sceCdStSeek (seekPolls)
   bool owner_ = false;           // the stream owns the drive (sceCdSC(2)); false before start, when paused/stopped
 
   Wait wait_ = Wait::none;

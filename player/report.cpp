@@ -126,6 +126,7 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
                                    {"histogram_banks", hist},
                                    {"underruns", rs.underruns},
                                    {"startup_polls", rs.startupPolls},
+                                   {"seek_polls", rs.seekPolls},
                                    {"playback_underruns", rs.playbackUnderruns()},
                                    {"full_polls", rs.fullPolls},
                                    {"timeouts", rs.timeouts},
