@@ -173,7 +173,12 @@ void TraceStream::change(Tick t, std::uint32_t var, std::int64_t v) {
     ++late_;
     t = written_;
   }
-  pending_.push(Change{t, seq_++, var, v});
+  const Change c{t, seq_++, var, v};
+  if (ordered_.empty() || t >= ordered_.back().t) {
+    ordered_.push_back(c);  // (t, seq) not before the last one: seq only grows
+  } else {
+    pending_.push(c);
+  }
 }
 
 void TraceStream::advance(Tick now) {
@@ -195,13 +200,27 @@ void TraceStream::finish() {
   vcd_.flush();
 }
 
+const TraceStream::Change* TraceStream::nextChange() const {
+  if (ordered_.empty()) return pending_.empty() ? nullptr : &pending_.top();
+  if (pending_.empty() || pending_.top() > ordered_.front()) return &ordered_.front();
+  return &pending_.top();
+}
+
+void TraceStream::popChange(const Change* c) {
+  if (!ordered_.empty() && c == &ordered_.front()) {
+    ordered_.pop_front();
+  } else {
+    pending_.pop();
+  }
+}
+
 void TraceStream::flushBefore(Tick limit) {
-  while (!pending_.empty() && pending_.top().t < limit) {
-    const Tick t = pending_.top().t;
+  for (const Change* c = nextChange(); c != nullptr && c->t < limit; c = nextChange()) {
+    const Tick t = c->t;
     group_.clear();
-    while (!pending_.empty() && pending_.top().t == t) {
-      group_.push_back(pending_.top());
-      pending_.pop();
+    for (; c != nullptr && c->t == t; c = nextChange()) {
+      group_.push_back(*c);
+      popChange(c);
     }
     writeGroup(t);
   }

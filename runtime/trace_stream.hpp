@@ -15,6 +15,7 @@
 #include <charconv>
 #include <concepts>
 #include <cstdint>
+#include <deque>
 #include <ostream>
 #include <queue>
 #include <string>
@@ -110,7 +111,9 @@ class TraceStream {
   };
   void release(std::uint32_t track);  // writes the held span of a track
   void change(Tick t, std::uint32_t var, std::int64_t v);
-  void flushBefore(Tick limit);  // writes every VCD change before `limit`
+  void flushBefore(Tick limit);      // writes every VCD change before `limit`
+  const Change* nextChange() const;  // the earliest pending change by (t, seq), or null
+  void popChange(const Change* c);
   void writeGroup(Tick t);
   void sep();
 
@@ -126,6 +129,10 @@ class TraceStream {
   std::vector<Held> held_;
   std::vector<Tick> busy_;
   std::vector<std::int64_t> shown_;  // VCD value last written, per variable
+  // Pending VCD changes, written in (t, seq) order. Most come in time order (counters at the
+  // current instant) and are appended to ordered_; a change earlier than the last appended one (a
+  // span's end, released late) goes to the heap. The two are merged when written.
+  std::deque<Change> ordered_;
   std::priority_queue<Change, std::vector<Change>, std::greater<>> pending_;
   std::vector<Change> group_;  // the changes of one instant (flushBefore, writeGroup)
   std::vector<Change> last_;   // coalescing scratch (writeGroup)
