@@ -322,6 +322,19 @@ TEST(DemReader, RealExcerptGeographicWithNodata) {
   EXPECT_TRUE(mentions(dem.notes, "nodata cells filled"));
 }
 
+// A fuzz finding (tests/lighting/data/README.md): refused for its 1 x 6,444,444 m cells before
+// anything is resampled, not read for seconds into a huge grid.
+TEST(DemReader, FuzzFindingDamagedAsciiGridIsRefusedAtOnce) {
+  const fs::path p = fs::path(VBIM_SOURCE_DIR) / "tests/lighting/data/fuzz_damaged_nrows.asc";
+  try {
+    readDem(p.string());
+    FAIL() << "the damaged grid was accepted";
+  } catch (const LightingError& e) {
+    EXPECT_NE(std::string(e.what()).find("fuzz_damaged_nrows.asc: cells of 1 x 6.44444e+06 m"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(TerrainFile, PicturesKeepTheirScalesAndFloatsAreMetres) {
   const fs::path png = scratch("hf16.png"), exr = scratch("hf.exr");
   testing::writeRaw(png, 2, 2, 1, OIIO::TypeDesc::UINT16, std::vector<std::uint16_t>{0, 65535, 32768, 1});
