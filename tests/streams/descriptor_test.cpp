@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <span>
+#include <vector>
+
 #include "streams/crc32.hpp"
 #include "streams/demuxer.hpp"
 #include "streams/descriptor.hpp"
@@ -30,6 +33,30 @@ Descriptor sample(std::uint32_t frames = 3) {
 TEST(StreamsCrc32, MatchesTheStandardCheckValue) {
   const std::string s = "123456789";
   EXPECT_EQ(crc32({reinterpret_cast<const std::uint8_t*>(s.data()), s.size()}), 0xCBF43926u);
+}
+
+// The slicing-by-8 CRC against the bit-at-a-time definition, at every length and split around
+// its 8-byte steps, continued across calls as the demuxer does.
+TEST(StreamsCrc32, EightBytesAtATimeEqualsTheBitwiseDefinition) {
+  const auto bitwise = [](const std::vector<std::uint8_t>& d) {
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (std::uint8_t b : d) {
+      c ^= b;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xFFFFFFFFu;
+  };
+  std::vector<std::uint8_t> data;
+  std::uint32_t x = 12345;
+  for (std::size_t n = 0; n <= 67; ++n) {
+    const std::uint32_t want = bitwise(data);
+    EXPECT_EQ(crc32(data), want) << n;
+    const std::size_t cut = n / 3;
+    const std::span<const std::uint8_t> all(data);
+    EXPECT_EQ(crc32(all.subspan(cut), crc32(all.first(cut))), want) << n;
+    x = x * 1103515245u + 12345u;
+    data.push_back(static_cast<std::uint8_t>(x >> 16));
+  }
 }
 
 TEST(StreamsDescriptor, SerialisesToTheDocumentedSizeAndParsesBack) {
