@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 namespace vbim::ipu {
 namespace {
@@ -65,10 +66,14 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
   co_await commands_.push(shared);
   while (!cmd.done) co_await cmd.finishedEvent.wait();
   // The picture is in memory: the caller sees it whole (no one reads it while the DMA runs).
-  if (out.width != decoder_.width() || out.height != decoder_.height())
-    out = Rgba8Image(decoder_.width(), decoder_.height());
-  for (int y = 0; y < out.height; ++y)
-    std::memcpy(out.row(y), cmd.staged.row(y), static_cast<std::size_t>(out.width) * 4);
+  if (cmd.staged.width == decoder_.width() && cmd.staged.height == decoder_.height()) {
+    out = std::move(cmd.staged);  // whole macroblocks are the picture: hand the buffer over
+  } else {
+    if (out.width != decoder_.width() || out.height != decoder_.height())
+      out = Rgba8Image(decoder_.width(), decoder_.height());
+    for (int y = 0; y < out.height; ++y)
+      std::memcpy(out.row(y), cmd.staged.row(y), static_cast<std::size_t>(out.width) * 4);
+  }
   result.finished = s_.now();
   result.outputStalls = tm.stalls;
   co_return result;
