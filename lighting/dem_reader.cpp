@@ -67,6 +67,11 @@ std::size_t fillNodata(Grid& g, const std::vector<bool>& valid, const std::strin
   const std::size_t bad = static_cast<std::size_t>(std::count(valid.begin(), valid.end(), false));
   if (bad == 0) return 0;
   if (bad == valid.size()) throw LightingError(path + ": every cell is nodata; expected at least one height");
+  if (const std::size_t good = valid.size() - bad; good * static_cast<std::size_t>(kMinValidOneIn) < valid.size()) {
+    throw LightingError(path + ": only " + std::to_string(good) + " of the DEM's " + std::to_string(valid.size()) +
+                        " cells hold a height (fewer than 1 in " + std::to_string(kMinValidOneIn) +
+                        "); the rest is nodata: crop it to where it has heights");
+  }
   float lowest = std::numeric_limits<float>::infinity();
   for (std::size_t i = 0; i < valid.size(); ++i)
     if (valid[i]) lowest = std::min(lowest, g.values[i]);
@@ -146,6 +151,51 @@ bool isGeoreferencedRaster(const std::string& path) {
   return ds && ds->GetRasterCount() >= 1 && ds->GetGeoTransform(gt) == CE_None;
 }
 
+// The grid of square cells a DEM is resampled to (cells dx x dy metres), refused when it would be
+// too large or the cells degenerate. Needs only the header: checked before the heights are read.
+struct SquareCells {
+  bool resample = false;
+  double cell = 0;
+  int width = 0, height = 0;
+};
+
+void checkGridAspect(const std::string& path, std::int64_t w, std::int64_t h) {
+  if (std::max(w, h) > kMaxGridAspect * std::min(w, h)) {
+    throw LightingError(path + ": the DEM is " + std::to_string(w) + " x " + std::to_string(h) +
+                        " square cells, more than " + std::to_string(kMaxGridAspect) +
+                        " times longer one way than the other: a strip, not a terrain; crop it");
+  }
+}
+
+SquareCells squareCells(const std::string& path, const Grid& g, double dx, double dy) {
+  SquareCells sq{false, dx, g.width, g.height};
+  if (!(std::fabs(dx - dy) > 1e-9 * std::max(dx, dy))) {
+    checkGridAspect(path, g.width, g.height);
+    return sq;
+  }
+  sq.resample = true;
+  sq.cell = std::min(dx, dy);
+  const double wide = std::max(1.0, std::round(g.width * dx / sq.cell));
+  const double high = std::max(1.0, std::round(g.height * dy / sq.cell));
+  if (!(wide * high <= static_cast<double>(kMaxDemCells))) {
+    throw LightingError(path + ": square cells of " + number(sq.cell) + " m would need " + number(wide) + " x " +
+                        number(high) + " cells, more than the " + std::to_string(kMaxDemCells) +
+                        " vbim reads; crop the DEM or give --cell-size");
+  }
+  // Square cells multiply the grid by the cells' aspect ratio. A geographic grid has it at
+  // 1 / cos(latitude): 16 is 86.4 degrees. Beyond that the cells are degenerate (a 3-cell ASCII
+  // grid with dy = 6,444,444 x dx asked for 19 million cells and gigabytes).
+  if (std::max(dx, dy) > kMaxCellAspect * sq.cell) {
+    throw LightingError(path + ": cells of " + number(dx) + " x " + number(dy) + " m are more than " +
+                        number(kMaxCellAspect) + " times longer one way than the other; vbim resamples to " +
+                        "square cells: warp the DEM to square cells first (e.g. gdalwarp -tr)");
+  }
+  sq.width = static_cast<int>(wide);
+  sq.height = static_cast<int>(high);
+  checkGridAspect(path, sq.width, sq.height);
+  return sq;
+}
+
 Dem readDem(const std::string& path, const DemOverrides& overrides) {
   std::string why;
   const gdal::Dataset ds = gdal::openRaster(path, &why);
@@ -174,14 +224,6 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
   dem.fileHeight = g.height;
   bool flippedRows = false, flippedColumns = false;
   GDALRasterBand* band = ds->GetRasterBand(1);
-  g.values.resize(static_cast<std::size_t>(g.width) * g.height);
-  {
-    const gdal::QuietErrors quiet;
-    if (band->RasterIO(GF_Read, 0, 0, g.width, g.height, g.values.data(), g.width, g.height, GDT_Float32, 0, 0,
-                       nullptr) != CE_None) {
-      throw LightingError(path + ": " + gdal::lastError("cannot read the heights"));
-    }
-  }
 
   // Horizontal units.
   const OGRSpatialReference* srs = ds->GetSpatialRef();
@@ -223,6 +265,18 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
   int hasScale = 0, hasOffset = 0;
   const double scale = band->GetScale(&hasScale), offset = band->GetOffset(&hasOffset);
 
+  // Everything the header alone can refuse is refused before the heights are read: a 4-line XYZ
+  // file made GDAL a 106,024,024 x 2 grid that took 74 s and 6 GB to read and then to refuse.
+  const SquareCells square = squareCells(path, g, dx, dy);
+  g.values.resize(static_cast<std::size_t>(g.width) * g.height);
+  {
+    const gdal::QuietErrors quiet;
+    if (band->RasterIO(GF_Read, 0, 0, g.width, g.height, g.values.data(), g.width, g.height, GDT_Float32, 0, 0,
+                       nullptr) != CE_None) {
+      throw LightingError(path + ": " + gdal::lastError("cannot read the heights"));
+    }
+  }
+
   // Validity before any arithmetic: the nodata value is compared with the stored value.
   int hasNodata = 0;
   const double nodata = band->GetNoDataValue(&hasNodata);
@@ -255,26 +309,10 @@ Dem readDem(const std::string& path, const DemOverrides& overrides) {
     flippedColumns = true;
     dem.notes.push_back("east-to-west grid flipped to west-to-east");
   }
-  double cell = dx;
-  if (std::fabs(dx - dy) > 1e-9 * std::max(dx, dy)) {
-    cell = std::min(dx, dy);
-    const double wide = std::max(1.0, std::round(g.width * dx / cell));
-    const double high = std::max(1.0, std::round(g.height * dy / cell));
-    if (!(wide * high <= static_cast<double>(kMaxDemCells))) {
-      throw LightingError(path + ": square cells of " + number(cell) + " m would need " + number(wide) + " x " +
-                          number(high) + " cells, more than the " + std::to_string(kMaxDemCells) +
-                          " vbim reads; crop the DEM or give --cell-size");
-    }
-    // Square cells multiply the grid by the cells' aspect ratio. A geographic grid has it at
-    // 1 / cos(latitude): 16 is 86.4 degrees. Beyond that the cells are degenerate (a 3-cell ASCII
-    // grid with dy = 6,444,444 x dx asked for 19 million cells and gigabytes).
-    if (std::max(dx, dy) > kMaxCellAspect * cell) {
-      throw LightingError(path + ": cells of " + number(dx) + " x " + number(dy) + " m are more than " +
-                          number(kMaxCellAspect) + " times longer one way than the other; vbim resamples to " +
-                          "square cells: warp the DEM to square cells first (e.g. gdalwarp -tr)");
-    }
-    const int w = static_cast<int>(wide);
-    const int h = static_cast<int>(high);
+  double cell = square.cell;
+  if (square.resample) {
+    const int w = square.width;
+    const int h = square.height;
     gt[1] *= static_cast<double>(g.width) / w;
     gt[5] *= static_cast<double>(g.height) / h;
     dem.notes.push_back("cells of " + number(dx) + " x " + number(dy) + " m resampled bilinearly from " +

@@ -30,6 +30,13 @@ namespace vbim::lighting {
 inline constexpr std::int64_t kMaxDemCells = std::int64_t{1} << 28;
 // The longest side of a DEM cell may be at most this many times its shortest (dem_reader.cpp).
 inline constexpr double kMaxCellAspect = 16.0;
+// A DEM's grid (in square cells) may be at most this many times longer than wide, or wide than
+// long: a strip of 1,660,725 x 2 cells made from a 3-line XYZ file took the lightmap generator's
+// horizon scan tens of minutes. Refused before the heights are read.
+inline constexpr std::int64_t kMaxGridAspect = 256;
+// At least one cell in this many must hold a height: a grid that is nearly all nodata (3 heights
+// in 3.3 million cells) is refused instead of being filled for seconds into a flat terrain.
+inline constexpr std::int64_t kMinValidOneIn = 1000;
 
 struct DemOverrides {
   std::optional<double> cellSize;       // metres between texels, instead of the file's

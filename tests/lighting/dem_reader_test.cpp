@@ -322,6 +322,52 @@ TEST(DemReader, RealExcerptGeographicWithNodata) {
   EXPECT_TRUE(mentions(dem.notes, "nodata cells filled"));
 }
 
+std::string refusal(const fs::path& p) {
+  try {
+    readDem(p.string());
+  } catch (const LightingError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+// The header alone refuses a strip: an ASCII grid claiming 1,000,000 x 2 cells that holds three
+// values is refused as a strip, not read (reading it would fail with "cannot read the heights").
+TEST(DemReader, StripsAreRefusedFromTheHeaderBeforeAnyHeightIsRead) {
+  const fs::path strip = scratch("strip.asc");
+  std::ofstream(strip) << "ncols 1000000\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n";
+  EXPECT_NE(refusal(strip).find("strip.asc: the DEM is 1000000 x 2 square cells, more than 256 times longer"),
+            std::string::npos)
+      << refusal(strip);
+  DemSpec s;
+  s.width = 257;
+  s.height = 1;
+  s.values = ramp(257, 1, 10.0, 1.0, 0.0);
+  writeDem(scratch("257.tif"), s);
+  EXPECT_NE(refusal(scratch("257.tif")).find("a strip, not a terrain"), std::string::npos);
+  s.width = 256;
+  s.values = ramp(256, 1, 10.0, 1.0, 0.0);
+  writeDem(scratch("256.tif"), s);
+  EXPECT_EQ(readDem(scratch("256.tif").string()).terrain.width, 256);  // at the limit
+}
+
+// Nearly all nodata is refused rather than filled into a flat terrain: at least 1 cell in 1,000
+// must hold a height.
+TEST(DemReader, AGridThatIsNearlyAllNodataIsRefused) {
+  DemSpec s;
+  s.width = 100;
+  s.height = 100;
+  s.hasNodata = true;
+  s.values.assign(100 * 100, -9999.0f);
+  for (int i = 0; i < 9; ++i) s.values[static_cast<std::size_t>(i * 1111)] = 50.0f + i;
+  writeDem(scratch("sparse9.tif"), s);
+  EXPECT_NE(refusal(scratch("sparse9.tif")).find("only 9 of the DEM's 10000 cells hold a height"), std::string::npos)
+      << refusal(scratch("sparse9.tif"));
+  s.values[5000] = 70.0f;  // 10 of 10,000: accepted, the rest filled
+  writeDem(scratch("sparse10.tif"), s);
+  EXPECT_EQ(readDem(scratch("sparse10.tif").string()).terrain.width, 100);
+}
+
 // A fuzz finding (tests/lighting/data/README.md): refused for its 1 x 6,444,444 m cells before
 // anything is resampled, not read for seconds into a huge grid.
 TEST(DemReader, FuzzFindingDamagedAsciiGridIsRefusedAtOnce) {
