@@ -164,6 +164,38 @@ TEST(Presenter, TracesGsBusySpansAndCounters) {
   EXPECT_NE(json.str().find("upload"), std::string::npos);
 }
 
+// Strip mode, streamed at the default detail: a vsync's strip uploads and blends are one `strips`
+// span (the same busy time); full detail keeps a span per strip step.
+TEST(Presenter, StripSpansAreOneSpanPerVsyncUnlessFullDetail) {
+  std::string text[2];
+  Tick busy[2] = {0, 0};
+  const TraceDetail details[2] = {TraceDetail::kCoalesced, TraceDetail::kFull};
+  for (int i = 0; i < 2; ++i) {
+    GsParams p;
+    p.upload_mode = "strips";
+    Tracer tracer;
+    Scheduler s;
+    ScriptedFrameSource src({stream("clear")}, wave, onTime());
+    PresenterOptions o;
+    o.tracer = &tracer;
+    Presenter pr(s, src, p, o);
+    std::ostringstream json, vcd;
+    tracer.streamTo(json, vcd, details[i]);
+    s.spawn("gs", pr.run(fromMs(500)));
+    s.runUntil(fromMs(500));
+    tracer.finish();
+    busy[i] = tracer.busyTime(0, 0, fromMs(500));
+    EXPECT_EQ(busy[i], pr.counters().gsBusy);
+    text[i] = json.str();
+  }
+  EXPECT_EQ(busy[0], busy[1]);
+  EXPECT_NE(text[0].find("\"strips\""), std::string::npos);
+  EXPECT_EQ(text[0].find("\"upload\""), std::string::npos);
+  EXPECT_NE(text[1].find("\"upload\""), std::string::npos);
+  EXPECT_NE(text[1].find("\"blend\""), std::string::npos);
+  EXPECT_LT(text[0].size() * 2, text[1].size());
+}
+
 TEST(Presenter, PalPresentsFiftyTimesASecond) {
   GsParams p;
   p.video = "pal";
