@@ -8,12 +8,14 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/host_threads.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
@@ -29,10 +31,13 @@
 #include "imageio/exr_writer.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
+#include "ipu/pool_runner.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/replay.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
+#include "runtime/error.hpp"
+#include "runtime/worker_pool.hpp"
 #include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
@@ -152,6 +157,19 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   o.trace = r.trace;
   o.kernels.blend = &gs::simd::kernels();
   o.kernels.ipu = &ipu::simdKernels();
+  // --threads N: the IPU's picture decode split by slice rows over N host threads. The simulation
+  // stays on this thread; the bytes out do not depend on N (docs/player.md, "Speed and memory").
+  std::optional<WorkerPool> pool;
+  std::optional<ipu::PoolSliceRunner> sliceRunner;
+  if (r.threads > 1) {
+    try {
+      pool.emplace(r.threads - 1);
+    } catch (const Error& e) {
+      throw Exit(1, "--threads " + std::to_string(r.threads) + ": " + e.what());
+    }
+    sliceRunner.emplace(*pool);
+    o.kernels.sliceRunner = &*sliceRunner;
+  }
   for (const std::string& b : r.branches) {
     const auto eq = b.find('=');
     if (eq == std::string::npos) throw Exit(2, "--branch '" + b + "': expected TIME=VARIANT, e.g. 12.5s=1");
@@ -328,6 +346,10 @@ void addPlay(CLI::App& app) {
                   "coalesced: signals.vcd keeps the value each signal ends an instant with; full: every change")
       ->check(CLI::IsMember({"coalesced", "full"}))
       ->capture_default_str();
+  cmd->add_option("--threads", r->threads,
+                  "Host threads for the IPU's slice-parallel picture decode (same bytes out; default 1)")
+      ->capture_default_str()
+      ->check(hostThreads());
   cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
   cmd->footer(
       "Examples:\n"

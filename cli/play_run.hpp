@@ -32,6 +32,7 @@ struct PlayRequest {
   bool force = false;
   bool trace = true;
   std::string traceDetail = "coalesced";  // or "full": every same-instant toggle in signals.vcd
+  unsigned threads = 1;                   // host threads for the IPU's slice-parallel decode (same bytes)
   std::string out;
   // Hooks for callers that add outputs (vbim demo's profile plots): every recorded vsync, and the
   // output directory just before it is committed.

@@ -30,7 +30,7 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
   result.started = s_.now();
   const CommandRef shared = std::make_shared<Command>(s_);
   Command& cmd = *shared;
-  result.report = decoder_.decode(bytes, nullptr, RgbaOutput{&cmd.staged, th, true});
+  result.report = decoder_.decode(bytes, runner_, RgbaOutput{&cmd.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();
     co_return result;

@@ -59,6 +59,9 @@ class IpuUnit {
   void stallInputDma(Tick duration);
   void stallOutputDma(Tick duration);
   const Decoder& decoder() const { return decoder_; }
+  // Slice-parallel decode on host threads (null: on the calling thread). Same bytes and ticks
+  // either way: only the host's wall time changes.
+  void setSliceRunner(SliceRunner* runner) { runner_ = runner; }
 
   // Tests: keep when every qword entered and left each FIFO, one entry per command from now on.
   void recordQwords() { recordQwords_ = true; }
@@ -84,6 +87,7 @@ class IpuUnit {
   Tracer* tracer_;
   Tracer::TrackId track_ = 0;
   Decoder decoder_;
+  SliceRunner* runner_ = nullptr;
   IpuTimeline timeline_;
   DmaStalls inStalls_;
   DmaStalls outStalls_;

@@ -58,6 +58,7 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
       demux_(s, ring_, stream, timeline_, config.ee, {&lmCompressed_, &skyCompressed_}, work_, tracer_),
       ipu_(s, config.ipu, tracer_, decoderOptions(kernels)),
       gs_(s) {
+  ipu_.setSliceRunner(kernels.sliceRunner);
   const auto depth = static_cast<std::size_t>(config.ee.decoded_frames);
   lmFrames_ = std::make_unique<ee::DecodedFrames>(s, streamInfos(stream, stream.lightmapIndex), depth, *this);
   const auto recorder = [this](bool sky) {

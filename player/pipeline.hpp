@@ -41,6 +41,7 @@ namespace vbim::player {
 struct Kernels {
   const gs::BlendKernels* blend = nullptr;  // null: gs scalar reference
   const ipu::Kernels* ipu = nullptr;        // null: ipu scalar reference
+  ipu::SliceRunner* sliceRunner = nullptr;  // null: the IPU decodes on the simulation thread
 };
 
 class Pipeline : public ee::DecodedFrames::BranchSink {

@@ -3,13 +3,16 @@
 # a 256x256 + 128x64 one (the demo's size), one lightmap frame per simulated second, 600 s
 # simulated, default options (tracing included). Reports the medians over RUNS (default 5) of the
 # CPU time and the wall time the play summary gives (the simulation loop, every thread).
-#   play_speed.sh VBIM [RUNS] [WORKDIR]
+#   play_speed.sh VBIM [RUNS] [WORKDIR] [THREADS]
+# THREADS (default 1) is passed as `vbim play --threads`: the IPU's picture decode split by slice
+# rows over that many host threads (same bytes; less wall time, a little more CPU time).
 # WORKDIR keeps the authored streams between invocations (authoring the 512x512 one takes ~30 s of
 # CPU); a temporary directory otherwise.
 set -eu
-vbim=${1:?usage: play_speed.sh VBIM [RUNS] [WORKDIR]}
+vbim=${1:?usage: play_speed.sh VBIM [RUNS] [WORKDIR] [THREADS]}
 runs=${2:-5}
 work=${3:-}
+threads=${4:-1}
 if [ -z "$work" ]; then
   work=$(mktemp -d "${TMPDIR:-/tmp}/vbim-play-speed.XXXXXX")
   trap 'rm -rf "$work"' EXIT
@@ -31,7 +34,7 @@ author() {  # SIZE SKY_WIDTH
 median() { sort -n | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo "?")
-echo "vbim play, ${seconds} s simulated, default options, $runs runs each; load average $load before"
+echo "vbim play, ${seconds} s simulated, default options, --threads $threads, $runs runs each; load average $load before"
 for size in 512 256; do
   author "$size" $((size / 2))
   : >"$work/cpu$size"
@@ -39,7 +42,7 @@ for size in 512 256; do
   i=0
   while [ "$i" -lt "$runs" ]; do
     line=$("$vbim" play "$work/ta$size.vbim" --config "$work/$size.toml" --duration "${seconds}s" --force \
-      --out "$work/run$size" | head -n 1)
+      --threads "$threads" --out "$work/run$size" | head -n 1)
     # "played 600.0 s of X (N vsyncs) in W s of host time (..x real time), C s of CPU time (..x real time)"
     echo "$line" | sed -n 's/.* in \([0-9.]*\) s of host time.*/\1/p' >>"$work/wall$size"
     echo "$line" | sed -n 's/.*, \([0-9.]*\) s of CPU time.*/\1/p' >>"$work/cpu$size"

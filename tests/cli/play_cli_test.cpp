@@ -152,6 +152,20 @@ TEST(PlayCli, SameRunSameBytes) {
   fs::remove_all(b);
 }
 
+TEST(PlayCli, ThreadsSplitTheDecodeAndChangeNoByte) {
+  const fs::path a = scratch("t1"), b = scratch("t2");
+  ASSERT_EQ(play(kSample + " --duration 6s --out " + a.string()).status, 0);
+  const auto two = play(kSample + " --duration 6s --threads 2 --out " + b.string());
+  ASSERT_EQ(two.status, 0) << two.output;
+  for (const char* f : {"hashes.txt", "trace.json", "signals.vcd", "timeline.csv", "stats.json", "arrivals.csv"})
+    EXPECT_EQ(vbim::testing::readFileBytes(a / f), vbim::testing::readFileBytes(b / f)) << f;
+  const auto many = play(kSample + " --duration 1s --threads 100000 --out " + scratch("tmany").string());
+  EXPECT_EQ(many.status, 2);
+  EXPECT_NE(many.output.find("hardware threads; use at most"), std::string::npos) << many.output;
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
 TEST(PlayCli, ExrFramesAreWritten) {
   const fs::path out = scratch("exr");
   const auto r = play(kSample + " --duration 2s --at 1s --format exr --out " + out.string());

@@ -1,6 +1,6 @@
 // Same disc, config, fault plan and seed: the same hashes.txt, trace.json and signals.vcd, bit for
-// bit, run after run and while the machine is busy. (The player uses no WorkerPool: every pixel is
-// computed on the simulation thread, so host thread count cannot change a result.)
+// bit, run after run, while the machine is busy, and whether the IPU's picture decode runs on the
+// simulation thread or is split by slice rows over host threads (`vbim play --threads`).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,8 +8,10 @@
 #include <thread>
 #include <vector>
 
+#include "ipu/pool_runner.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
+#include "runtime/worker_pool.hpp"
 #include "tests/player/sample_path.hpp"
 
 namespace vbim::player {
@@ -19,8 +21,11 @@ struct Outputs {
   std::string hashes, trace, vcd, stats;
 };
 
-Outputs runOnce() {
+Outputs runOnce(ipu::SliceRunner* runner = nullptr) {
+  Kernels k;
+  k.sliceRunner = runner;
   auto run = Scenario::bareFile(testing::samplePath("day_weather.vbim"))
+                 .kernels(k)
                  .seed(9)
                  .stall(fromMs(300), fromMs(4'000))
                  .readError(30, 300)
@@ -64,6 +69,20 @@ TEST(PlayerDeterminism, IdenticalWhileTheMachineIsBusy) {
   EXPECT_EQ(quiet.hashes, busy.hashes);
   EXPECT_EQ(quiet.trace, busy.trace);
   EXPECT_EQ(quiet.vcd, busy.vcd);
+}
+
+TEST(PlayerDeterminism, SliceParallelDecodeOnHostThreadsChangesNothing) {
+  const Outputs alone = runOnce();
+  for (unsigned helpers : {1u, 3u}) {
+    WorkerPool pool(helpers);
+    ipu::PoolSliceRunner runner(pool);
+    const Outputs split = runOnce(&runner);
+    EXPECT_FALSE(split.hashes.empty());
+    EXPECT_EQ(alone.hashes, split.hashes) << helpers;
+    EXPECT_EQ(alone.trace, split.trace) << helpers;
+    EXPECT_EQ(alone.vcd, split.vcd) << helpers;
+    EXPECT_EQ(alone.stats, split.stats) << helpers;
+  }
 }
 
 TEST(PlayerDeterminism, AnotherSeedChangesTheDriveLatencies) {
