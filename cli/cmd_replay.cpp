@@ -6,6 +6,7 @@
 #include <iterator>
 #include <memory>
 #include <set>
+#include <vector>
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
@@ -15,10 +16,12 @@
 #include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/error.hpp"
+#include "iop/error.hpp"
 #include "iop/fault_plan.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/replay.hpp"
 #include "player/report.hpp"
+#include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
 
@@ -26,6 +29,7 @@ namespace {
 
 struct ReplayRequest {
   std::string stream;
+  std::string file;  // the stream file on an ISO 9660 image (--file), or empty: the default
   std::string arrivals;
   std::string config;
   std::string duration = "60s";
@@ -60,13 +64,19 @@ void run(const ReplayRequest& r) {
   if (r.format != "png" && r.format != "exr") throw Exit(2, "--format '" + r.format + "': expected png or exr");
   o.kernels.blend = &gs::simd::kernels();
   o.kernels.ipu = &ipu::simdKernels();
-  const std::string file = readAll(r.stream, "stream");
+  // A bare stream file or the stream on an ISO 9660 image, as play takes it.
+  std::vector<std::uint8_t> file;
+  try {
+    const streams::StreamDisc disc = streams::openStreamDisc(r.stream, r.file);
+    file = streams::readDiscFile(*disc.disc, disc.file);
+  } catch (const iop::DiscError& e) {
+    throw Exit(2, e.what());
+  }
   std::unique_ptr<Replay> replay;
   try {
     const ArrivalLog log = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
     if (!r.durationGiven) o.vsyncs = log.vsyncs;  // the run's own length, when the log says it
-    const auto* bytes = reinterpret_cast<const std::uint8_t*>(file.data());
-    replay = std::make_unique<Replay>(std::span<const std::uint8_t>(bytes, file.size()), r.stream, log.arrivals, o);
+    replay = std::make_unique<Replay>(std::span<const std::uint8_t>(file), r.stream, log.arrivals, o);
   } catch (const ConfigError& e) {
     throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
@@ -105,7 +115,11 @@ void addReplay(CLI::App& app) {
   auto r = std::make_shared<ReplayRequest>();
   auto* cmd = app.add_subcommand(
       "replay", "Blend and present a stream on the simulated GS from an arrival log (vsync,stream,frame)");
-  cmd->add_option("stream", r->stream, "A VBIM stream file")->required()->check(inputFile());
+  cmd->add_option("stream", r->stream, "A VBIM stream file or an ISO 9660 disc image holding one")
+      ->required()
+      ->check(inputFile());
+  cmd->add_option("--file", r->file,
+                  "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_option("--arrivals", r->arrivals,
                   "Arrival log: CSV vsync,stream,frame, and an end row N,end, (play writes arrivals.csv)")
       ->required()
@@ -128,7 +142,8 @@ void addReplay(CLI::App& app) {
   cmd->footer(
       "Examples:\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --out replayed/\n"
-      "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --duration 10s --out replayed/\n");
+      "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --duration 10s --out replayed/\n"
+      "  vbim replay disc.iso --file '\\DATA\\DAY.VBI;1' --arrivals run-iso/arrivals.csv --out replayed-iso/\n");
   cmd->callback([r] { run(*r); });
 }
 

@@ -77,6 +77,22 @@ TEST_F(DiscImageCli, DecodeAndPlayGiveTheBareStreamsFrames) {
   EXPECT_EQ(readFileBytes(dir_ / "run_iso" / "hashes.txt"), readFileBytes(dir_ / "run_bare" / "hashes.txt"));
 }
 
+// replay takes an image as play does: the arrivals of a play of the image, replayed from the image,
+// give its hashes.txt; a name that is not on the image is refused with the candidates.
+TEST_F(DiscImageCli, ReplayReadsTheStreamFromTheImage) {
+  const auto play = vbim("play " + iso_.string() + " --duration 12s --no-trace --out " + (dir_ / "run").string());
+  ASSERT_EQ(play.status, 0) << play.output;
+  const auto replay = vbim("replay " + iso_.string() + " --file '\\DATA\\DAY.VBI;1' --arrivals " +
+                           (dir_ / "run" / "arrivals.csv").string() + " --out " + (dir_ / "replayed").string());
+  ASSERT_EQ(replay.status, 0) << replay.output;
+  EXPECT_EQ(readFileBytes(dir_ / "replayed" / "hashes.txt"), readFileBytes(dir_ / "run" / "hashes.txt"));
+  const auto missing = vbim("replay " + iso_.string() + " --file '\\DATA\\NIGHT.VBI;1' --arrivals " +
+                            (dir_ / "run" / "arrivals.csv").string() + " --out " + (dir_ / "none").string());
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.output.find("DAY.VBI"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir_ / "none"));
+}
+
 // A scratched sector at the stream's LBA on the image costs retries; the same LBA in a bare run
 // (where the stream starts at LBA 2048) lies outside the stream and costs none.
 TEST_F(DiscImageCli, TheDriveReadsTheFileAtTheImagesLbas) {
