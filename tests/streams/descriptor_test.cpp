@@ -91,7 +91,10 @@ TEST(StreamsDescriptor, ABitFlipAnywhereFailsTheCrc) {
 
 TEST(StreamsDescriptor, RejectsTruncationAndInconsistentFields) {
   auto body = serialize(sample());
-  body.resize(body.size() - 16);
+  // erase, not resize(size - 16): GCC 12 at -O1 (the sanitizer build) cannot rule out the growing
+  // branch of resize here and warns of an impossible memset size (-Wstringop-overflow).
+  ASSERT_GT(body.size(), 16u);
+  body.erase(body.end() - 16, body.end());
   const DescriptorParse r = parseDescriptor(body);
   EXPECT_FALSE(r.descriptor);
   EXPECT_NE(r.error.find("need"), std::string::npos) << r.error;
