@@ -7,6 +7,7 @@
 #include "gs/blend_simd.hpp"
 #include "runtime/trace.hpp"
 
+#include <functional>
 #include <sstream>
 #include "presenter_fixture.hpp"
 
@@ -146,18 +147,25 @@ TEST(Presenter, SimdConvergenceAwareEqualsScalarBlendEverything) {
   EXPECT_EQ(b.counters().tilesSkipped, 0);
 }
 
-TEST(Presenter, TracesGsBusySpansAndCounters) {
-  GsParams p;
-  Tracer tracer;
+// Presents the "clear" script for 500 ms recording into `tracer`; `beforeRun` runs once the
+// presenter (and so its tracks) exists. Returns the presenter's counters.
+PresenterCounters runTraced(const GsParams& p, Tracer& tracer, const std::function<void()>& beforeRun = {}) {
   Scheduler s;
   ScriptedFrameSource src({stream("clear")}, wave, onTime());
   PresenterOptions o;
   o.tracer = &tracer;
   Presenter pr(s, src, p, o);
+  if (beforeRun) beforeRun();
   s.spawn("gs", pr.run(fromMs(500)));
   s.runUntil(fromMs(500));
+  return pr.counters();
+}
+
+TEST(Presenter, TracesGsBusySpansAndCounters) {
+  Tracer tracer;
+  const PresenterCounters c = runTraced(GsParams{}, tracer);
   EXPECT_GT(tracer.spanCount(), 30u);
-  EXPECT_EQ(tracer.busyTime(0, 0, fromMs(500)), pr.counters().gsBusy);
+  EXPECT_EQ(tracer.busyTime(0, 0, fromMs(500)), c.gsBusy);
   std::ostringstream json;
   tracer.writeChromeJson(json);
   EXPECT_NE(json.str().find("gs.pop"), std::string::npos);
@@ -174,18 +182,11 @@ TEST(Presenter, StripSpansAreOneSpanPerVsyncUnlessFullDetail) {
     GsParams p;
     p.upload_mode = "strips";
     Tracer tracer;
-    Scheduler s;
-    ScriptedFrameSource src({stream("clear")}, wave, onTime());
-    PresenterOptions o;
-    o.tracer = &tracer;
-    Presenter pr(s, src, p, o);
     std::ostringstream json, vcd;
-    tracer.streamTo(json, vcd, details[i]);
-    s.spawn("gs", pr.run(fromMs(500)));
-    s.runUntil(fromMs(500));
+    const PresenterCounters c = runTraced(p, tracer, [&] { tracer.streamTo(json, vcd, details[i]); });
     tracer.finish();
     busy[i] = tracer.busyTime(0, 0, fromMs(500));
-    EXPECT_EQ(busy[i], pr.counters().gsBusy);
+    EXPECT_EQ(busy[i], c.gsBusy);
     text[i] = json.str();
   }
   EXPECT_EQ(busy[0], busy[1]);
