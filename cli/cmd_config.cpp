@@ -3,6 +3,7 @@
 // same relations between keys, and the same GS checks (gs::checkParams) for the stream given with
 // --stream, or for the smallest lightmap when none is given (a config no stream can play).
 #include <iostream>
+#include <memory>
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
@@ -70,7 +71,17 @@ void runConfig(const ConfigOptions& o) {
     }
     if (!o.check.empty() || !o.stream.empty()) checkPresenters(o, params);
     if (!o.faults.empty()) {
-      const iop::FaultPlan plan = config::loadFaultPlan(o.faults);
+      // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
+      // disc and LBAs checked against its size, as play does.
+      std::shared_ptr<iop::SectorSource> disc;
+      if (!o.stream.empty()) {
+        try {
+          disc = streams::openStreamDisc(o.stream, o.file).disc;
+        } catch (const iop::DiscError& e) {
+          throw Exit(2, e.what());
+        }
+      }
+      const iop::FaultPlan plan = config::loadFaultPlan(o.faults, disc.get());
       std::cerr << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
     }
   } catch (const ConfigError& e) {
@@ -101,8 +112,9 @@ void addConfig(CLI::App& app) {
       ->check(inputFile());
   cmd->add_option("--faults", opts->faults, "A fault plan (TOML) to validate")->check(inputFile());
   cmd->add_option("--stream", opts->stream,
-                  "Check the GS settings against this stream or disc image's frame sizes (VRAM layout), as "
-                  "`vbim play` will; without it, against the smallest lightmap")
+                  "Check the GS settings against this stream or disc image's frame sizes (VRAM layout), and the "
+                  "fault plan's file names and LBAs against the disc, as `vbim play` will; without it, against the "
+                  "smallest lightmap")
       ->check(inputFile());
   cmd->add_option("--file", opts->file, "The stream on a disc image given with --stream (default: its only one)");
   cmd->footer(

@@ -93,6 +93,24 @@ TEST_F(DiscImageCli, ReplayReadsTheStreamFromTheImage) {
   EXPECT_FALSE(fs::exists(dir_ / "none"));
 }
 
+// A fault plan that names a file on the image is checked against the image given with --stream, as
+// play would; without a disc the name cannot be looked up and the message says so.
+TEST_F(DiscImageCli, ConfigChecksAFaultPlansFileNamesOnTheStreamsDisc) {
+  const fs::path plan = dir_ / "plan.toml";
+  std::ofstream(plan) << "[[fault]]\nkind = 'seek_away'\nat = '1s'\nfile = '\\DATA\\AAA.BIN;1'\nsectors = 16\n";
+  const auto ok = vbim("config --faults " + plan.string() + " --stream " + iso_.string());
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  EXPECT_NE(ok.output.find("1 fault(s), valid"), std::string::npos) << ok.output;
+  const auto noDisc = vbim("config --faults " + plan.string());
+  EXPECT_EQ(noDisc.status, 2);
+  EXPECT_NE(noDisc.output.find("needs a disc"), std::string::npos) << noDisc.output;
+  const fs::path wrong = dir_ / "wrong.toml";
+  std::ofstream(wrong) << "[[fault]]\nkind = 'seek_away'\nat = '1s'\nfile = '\\DATA\\NIGHT.BIN;1'\nsectors = 16\n";
+  const auto missing = vbim("config --faults " + wrong.string() + " --stream " + iso_.string());
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.output.find("no file '\\DATA\\NIGHT.BIN;1'"), std::string::npos) << missing.output;
+}
+
 // A scratched sector at the stream's LBA on the image costs retries; the same LBA in a bare run
 // (where the stream starts at LBA 2048) lies outside the stream and costs none.
 TEST_F(DiscImageCli, TheDriveReadsTheFileAtTheImagesLbas) {
