@@ -55,8 +55,8 @@ Task<void> IpuFeeder::decodeOne(int stream) {
     co_return;
   }
   if (reorder_) {
-    // 64 quadwords (RGB32) per 16x16 macroblock, partial ones at the edges included.
-    const std::int64_t qwords = std::int64_t{(image->width + 15) / 16} * ((image->height + 15) / 16) * 64;
+    // Every quadword the IPU wrote, in macroblock order (partial macroblocks at the edges included).
+    const std::int64_t qwords = tp.outputQwords;
     const Tick r0 = s_.now();
     co_await s_.delay(fromEeCycles(qwords * p_.reorder_cycles_per_qword));
     if (tracer_ != nullptr) tracer_->span(track_, r0, s_.now(), "reorder");

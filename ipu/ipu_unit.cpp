@@ -52,6 +52,7 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
   }
   tm.restart = idecRestarts(decoder_.macroblockTrace(), mbs);
   result.idecCommands = 1 + std::count(tm.restart.begin(), tm.restart.end(), std::uint8_t{1});
+  result.outputQwords = static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
   tm.needQwords.resize(mbs);
   std::uint32_t need = 0;
   for (std::size_t i = 0; i < mbs; ++i) {

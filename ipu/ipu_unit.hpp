@@ -38,6 +38,7 @@ struct TimedPicture {
   Tick finished = 0;              // last output qword in memory
   std::int64_t outputStalls = 0;  // CSC rows that waited for room in the output FIFO
   std::int64_t idecCommands = 0;  // IDEC issued: one per slice (the EE restarts it at each slice start code)
+  std::int64_t outputQwords = 0;  // written by fromIPU DMA: 64 per macroblock, in macroblock order
 };
 
 class IpuUnit {

@@ -8,8 +8,6 @@ namespace {
 
 // Before the first qword: a slot freed "long ago".
 constexpr Tick kLongAgo = std::numeric_limits<Tick>::min() / 4;
-constexpr int kRowsPerMacroblock = 16;
-constexpr int kQwordsPerRow = 4;  // RGB32: 16 pixels x 4 bytes (docs/hardware.md#idec)
 
 }  // namespace
 

@@ -26,6 +26,12 @@
 
 namespace vbim::ipu {
 
+// The IPU's RGB32 output of one macroblock: 16 rows of 4 quadwords (16 pixels x 4 bytes),
+// 64 quadwords in all (docs/hardware.md#idec).
+inline constexpr int kRowsPerMacroblock = 16;
+inline constexpr int kQwordsPerRow = 4;
+inline constexpr int kQwordsPerMacroblock = kRowsPerMacroblock * kQwordsPerRow;
+
 // The stalls of one DMA channel: each holds [from, to] (a wake-up at `to` itself is on time).
 class DmaStalls {
  public:
