@@ -49,8 +49,17 @@ int blendSpanDeltaScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t
   return blendSpan<true>(dst, src, pixels, spec);
 }
 
+int blendRectDeltaScalar(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+                         std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+  int delta = 0;
+  for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
+    delta = std::max(delta, blendSpan<true>(dst, src, pixels, spec));
+  }
+  return delta;
+}
+
 const BlendKernels& scalarKernels() {
-  static const BlendKernels k{"scalar", &blendSpanScalar, &blendSpanDeltaScalar};
+  static const BlendKernels k{"scalar", &blendSpanScalar, &blendSpanDeltaScalar, &blendRectDeltaScalar};
   return k;
 }
 

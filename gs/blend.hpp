@@ -60,15 +60,22 @@ using BlendSpanFn = void (*)(std::uint8_t* dst, const std::uint8_t* src, std::si
 // The same, returning the largest per-byte change it made (0: the span was already at its fixed
 // point). This is the pop metric and the convergence test in one pass.
 using BlendSpanDeltaFn = int (*)(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
+// blendDelta over `rows` spans of `pixels` each, the rows dstStride and srcStride bytes apart (a
+// tile of the lightmap): one call and one reduction of the change per tile instead of per row.
+using BlendRectDeltaFn = int (*)(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src,
+                                 std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec);
 
 struct BlendKernels {
   const char* name;
   BlendSpanFn blend;
   BlendSpanDeltaFn blendDelta;
+  BlendRectDeltaFn blendRectDelta;
 };
 
 void blendSpanScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
 int blendSpanDeltaScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
+int blendRectDeltaScalar(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+                         std::size_t pixels, std::size_t rows, const BlendSpec& spec);
 
 // The reference kernels ("scalar").
 const BlendKernels& scalarKernels();

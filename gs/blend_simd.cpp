@@ -22,13 +22,17 @@ namespace hn = hwy::HWY_NAMESPACE;
 #if HWY_TARGET == HWY_SCALAR
 // One lane cannot be split into two 16-bit halves: the scalar target is the reference itself.
 template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack>
-int BlendSpanT(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  return kTrack ? blendSpanDeltaScalar(dst, src, pixels, spec) : (blendSpanScalar(dst, src, pixels, spec), 0);
+int BlendRectT(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+               std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+  if constexpr (kTrack) return blendRectDeltaScalar(dst, dstStride, src, srcStride, pixels, rows, spec);
+  for (std::size_t y = 0; y < rows; ++y) blendSpanScalar(dst + y * dstStride, src + y * srcStride, pixels, spec);
+  return 0;
 }
 #else
+// `rows` spans of `pixels`, the change reduced once at the end (a 64x32 tile is one call).
 template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack>
-int BlendSpanT(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT src, std::size_t pixels,
-               const BlendSpec& spec) {
+int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
+               std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
   const hn::ScalableTag<std::uint8_t> d8;
   const hn::Repartition<std::uint16_t, decltype(d8)> d16;
   const hn::Repartition<std::int16_t, decltype(d8)> di16;
@@ -45,77 +49,84 @@ int BlendSpanT(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT 
   const auto zero = hn::Zero(di16);
   const auto max8 = hn::Set(di16, 255);
   auto deltaAcc = hn::Zero(d8);
-
-  std::size_t i = 0;
-  for (; i + step <= bytes; i += step) {
-    const auto s8 = hn::LoadU(d8, src + i);
-    const auto dd8 = hn::LoadU(d8, dst + i);
-    const auto s = hn::BitCast(d16, s8);
-    const auto d = hn::BitCast(d16, dd8);
-    const auto se = hn::BitCast(di16, hn::And(s, low));
-    const auto de = hn::BitCast(di16, hn::And(d, low));
-    const auto so = hn::BitCast(di16, hn::ShiftRight<8>(s));
-    const auto dod = hn::BitCast(di16, hn::ShiftRight<8>(d));
-    const auto me = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(se, de)), f4);
-    const auto mo = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4odd);
-    hn::Vec<decltype(d8)> r8;
-    if constexpr (!kWide) {
-      // FIX <= 128: each channel's result stays in 0..255, so the two steps add to the 16-bit lane
-      // without carries: Cd + me + (mo << 8).
-      r8 = hn::BitCast(d8, hn::Add(hn::Add(d, hn::BitCast(d16, me)), hn::ShiftLeft<8>(hn::BitCast(d16, mo))));
-    } else {
-      auto te = hn::Add(me, de);
-      auto to = hn::Add(mo, dod);
-      if constexpr (kWrap) {
-        te = hn::BitCast(di16, hn::And(hn::BitCast(d16, te), low));  // odd lane: << 8 drops the rest
-      } else {
-        te = hn::Min(hn::Max(te, zero), max8);
-        to = hn::Min(hn::Max(to, zero), max8);
-      }
-      r8 = hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
-    }
-    if constexpr (kTrack) {
-      deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r8, dd8), hn::SaturatedSub(dd8, r8)));
-    }
-    hn::StoreU(r8, d8, dst + i);
-  }
   int delta = 0;
+
+  for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
+    std::size_t i = 0;
+    for (; i + step <= bytes; i += step) {
+      const auto s8 = hn::LoadU(d8, src + i);
+      const auto dd8 = hn::LoadU(d8, dst + i);
+      const auto s = hn::BitCast(d16, s8);
+      const auto d = hn::BitCast(d16, dd8);
+      const auto se = hn::BitCast(di16, hn::And(s, low));
+      const auto de = hn::BitCast(di16, hn::And(d, low));
+      const auto so = hn::BitCast(di16, hn::ShiftRight<8>(s));
+      const auto dod = hn::BitCast(di16, hn::ShiftRight<8>(d));
+      const auto me = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(se, de)), f4);
+      const auto mo = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4odd);
+      hn::Vec<decltype(d8)> r8;
+      if constexpr (!kWide) {
+        // FIX <= 128: each channel's result stays in 0..255, so the two steps add to the 16-bit lane
+        // without carries: Cd + me + (mo << 8).
+        r8 = hn::BitCast(d8, hn::Add(hn::Add(d, hn::BitCast(d16, me)), hn::ShiftLeft<8>(hn::BitCast(d16, mo))));
+      } else {
+        auto te = hn::Add(me, de);
+        auto to = hn::Add(mo, dod);
+        if constexpr (kWrap) {
+          te = hn::BitCast(di16, hn::And(hn::BitCast(d16, te), low));  // odd lane: << 8 drops the rest
+        } else {
+          te = hn::Min(hn::Max(te, zero), max8);
+          to = hn::Min(hn::Max(to, zero), max8);
+        }
+        r8 = hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
+      }
+      if constexpr (kTrack) {
+        deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r8, dd8), hn::SaturatedSub(dd8, r8)));
+      }
+      hn::StoreU(r8, d8, dst + i);
+    }
+    if (i < bytes) {
+      const std::size_t rest = (bytes - i) / 4;
+      const int t = blendSpanDeltaScalar(dst + i, src + i, rest, spec);
+      delta = std::max(delta, t);
+    }
+  }
   if constexpr (kTrack) {
     std::uint8_t lanes[256];  // >= the widest vector of any target
     hn::StoreU(deltaAcc, d8, lanes);
     for (std::size_t k = 0; k < step; ++k) delta = std::max<int>(delta, lanes[k]);
-  }
-  if (i < bytes) {
-    const std::size_t rest = (bytes - i) / 4;
-    const int t = blendSpanDeltaScalar(dst + i, src + i, rest, spec);
-    delta = std::max(delta, t);
   }
   return delta;
 }
 #endif
 
 template <bool kTrack>
-int Dispatch(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+int Dispatch(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+             std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
   const bool wide = spec.fix > 128;
   const bool wrap = spec.colclamp == ColClamp::Wrap;
   const bool keep = spec.alpha == AlphaWrite::Keep;
   if (!wide) {
-    return keep ? BlendSpanT<false, false, true, kTrack>(dst, src, pixels, spec)
-                : BlendSpanT<false, false, false, kTrack>(dst, src, pixels, spec);
+    return keep ? BlendRectT<false, false, true, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec)
+                : BlendRectT<false, false, false, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec);
   }
   if (wrap) {
-    return keep ? BlendSpanT<true, true, true, kTrack>(dst, src, pixels, spec)
-                : BlendSpanT<true, true, false, kTrack>(dst, src, pixels, spec);
+    return keep ? BlendRectT<true, true, true, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec)
+                : BlendRectT<true, true, false, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec);
   }
-  return keep ? BlendSpanT<true, false, true, kTrack>(dst, src, pixels, spec)
-              : BlendSpanT<true, false, false, kTrack>(dst, src, pixels, spec);
+  return keep ? BlendRectT<true, false, true, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec)
+              : BlendRectT<true, false, false, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec);
 }
 
 void BlendSpan(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  Dispatch<false>(dst, src, pixels, spec);
+  Dispatch<false>(dst, 0, src, 0, pixels, 1, spec);
 }
 int BlendSpanDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  return Dispatch<true>(dst, src, pixels, spec);
+  return Dispatch<true>(dst, 0, src, 0, pixels, 1, spec);
+}
+int BlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+                   std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+  return Dispatch<true>(dst, dstStride, src, srcStride, pixels, rows, spec);
 }
 const char* TargetNameHere() {
   return hwy::TargetName(HWY_TARGET);
@@ -131,6 +142,7 @@ namespace vbim::gs::simd {
 
 HWY_EXPORT(BlendSpan);
 HWY_EXPORT(BlendSpanDelta);
+HWY_EXPORT(BlendRectDelta);
 HWY_EXPORT(TargetNameHere);
 
 namespace {
@@ -140,11 +152,16 @@ void dispatchBlend(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixel
 int dispatchBlendDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
   return HWY_DYNAMIC_DISPATCH(BlendSpanDelta)(dst, src, pixels, spec);
 }
+int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+                           std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+  return HWY_DYNAMIC_DISPATCH(BlendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec);
+}
 }  // namespace
 
 const BlendKernels& kernels() {
   // The name is read once; dispatch itself stays dynamic so forEachTarget can force a target.
-  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(TargetNameHere)(), &dispatchBlend, &dispatchBlendDelta};
+  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(TargetNameHere)(), &dispatchBlend, &dispatchBlendDelta,
+                              &dispatchBlendRectDelta};
   return k;
 }
 

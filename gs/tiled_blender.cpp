@@ -48,10 +48,9 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
       }
       const int x0 = tx * kTileWidth;
       const std::size_t w = static_cast<std::size_t>(std::min(kTileWidth, width_ - x0));
-      int pop = 0;
-      for (int y = y0; y < y1; ++y) {
-        pop = std::max(pop, kernels_->blendDelta(dst.row(y) + 4 * x0, src.row(y) + 4 * x0, w, spec));
-      }
+      const std::size_t stride = static_cast<std::size_t>(width_) * 4;
+      const int pop = kernels_->blendRectDelta(dst.row(y0) + 4 * x0, stride, src.row(y0) + 4 * x0, stride, w,
+                                               static_cast<std::size_t>(y1 - y0), spec);
       if (pop == 0) mark = epoch_;
       r.pop = std::max(r.pop, pop);
       ++r.tilesBlended;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <vector>
 
@@ -78,6 +79,48 @@ TEST(BlendSimd, EveryTargetMatchesScalarOnRandomFrames) {
       const int gd = simd::kernels().blendDelta(got.data() + 4 * offset, src.data() + 4 * offset, pixels, spec);
       ASSERT_EQ(got, want) << target << " pixels " << pixels << " offset " << offset;
       ASSERT_EQ(gd, wd) << target;
+    }
+  });
+}
+
+// Tiles: rows of a wider image (strides in bytes, not a multiple of the vector), odd widths, one
+// row, and a change that sits only in the last row (the reduction must see every row).
+TEST(BlendSimd, EveryTargetMatchesScalarOnRectangles) {
+  Rng rng(7);
+  simd::forEachTarget([&](const std::string& target) {
+    for (int round = 0; round < 60; ++round) {
+      const std::size_t pixels = 1 + rng.below(90);
+      const std::size_t rows = 1 + rng.below(33);
+      const std::size_t dstStride = 4 * (pixels + rng.below(9));
+      const std::size_t srcStride = 4 * (pixels + rng.below(9));
+      std::vector<std::uint8_t> src(srcStride * rows), dst(dstStride * rows);
+      for (auto& b : src) b = static_cast<std::uint8_t>(rng.below(256));
+      if (round % 3 == 0) {
+        // Converged everywhere but one pixel of the last row.
+        for (std::size_t y = 0; y < rows; ++y)
+          std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(y * srcStride), 4 * pixels,
+                      dst.begin() + static_cast<std::ptrdiff_t>(y * dstStride));
+        dst[(rows - 1) * dstStride + 4 * rng.below(pixels)] ^= 0x5A;
+      } else {
+        for (auto& b : dst) b = static_cast<std::uint8_t>(rng.below(256));
+      }
+      const BlendSpec spec =
+          makeBlendSpec(static_cast<std::int64_t>(rng.below(256)), rng.chance(1, 2) ? ColClamp::Clamp : ColClamp::Wrap,
+                        rng.chance(1, 2) ? AlphaWrite::Source : AlphaWrite::Keep);
+      std::vector<std::uint8_t> want = dst, got = dst;
+      const int wd = blendRectDeltaScalar(want.data(), dstStride, src.data(), srcStride, pixels, rows, spec);
+      const int gd = simd::kernels().blendRectDelta(got.data(), dstStride, src.data(), srcStride, pixels, rows, spec);
+      ASSERT_EQ(got, want) << target << " " << pixels << "x" << rows << " strides " << dstStride << "/" << srcStride;
+      ASSERT_EQ(gd, wd) << target;
+      // The scalar rectangle is its rows.
+      std::vector<std::uint8_t> rowwise = dst;
+      int rd = 0;
+      for (std::size_t y = 0; y < rows; ++y) {
+        rd = std::max(rd,
+                      blendSpanDeltaScalar(rowwise.data() + y * dstStride, src.data() + y * srcStride, pixels, spec));
+      }
+      ASSERT_EQ(rowwise, want);
+      ASSERT_EQ(rd, wd);
     }
   });
 }
