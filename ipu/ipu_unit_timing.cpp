@@ -143,8 +143,18 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
     const Tick cost = p_.mb_base_cycles + p_.mb_cycles_per_bit * c.bits[i];
     const std::uint32_t k = c.needQwords[i] - pulled;
     if (k == 0) t += cost;
+    // Qword j of k is popped floor(cost * j / k) after the start: steps of cost / k, one more
+    // whenever the remainders add up past k (exact integer steps, no division per qword).
+    const Tick whole = k == 0 ? 0 : cost / k;
+    const Tick rem = k == 0 ? 0 : cost % k;
+    Tick carry = 0;
     for (std::uint32_t j = 1; j <= k; ++j) {
-      t += cost * j / k - cost * (j - 1) / k;
+      t += whole;
+      carry += rem;
+      if (carry >= k) {
+        carry -= k;
+        t += 1;
+      }
       t = popInput(t);
       ++pulled;
     }
@@ -157,18 +167,23 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
       const Tick firstRow = t + p_.csc_cycles_per_mb / kRowsPerMacroblock;
       if (fromFree <= firstRow && out.clear(firstRow, t + p_.csc_cycles_per_mb + kQwordsPerRow * outPeriod)) {
         const Tick begin = t;
-        for (int row = 0; row < kRowsPerMacroblock; ++row) {
-          t = begin + p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock;
-          for (int n = 0; n < kQwordsPerRow; ++n) {
-            takes[takeSlot] = t + n * outPeriod;
-            if (recordQwords) {
-              log.outEnter.push_back(t);
-              log.outLeave.push_back(t + n * outPeriod);
-            }
-            if (++takeSlot == ring) takeSlot = 0;
-          }
-        }
         constexpr auto kPerMacroblock = static_cast<std::uint64_t>(kRowsPerMacroblock) * kQwordsPerRow;
+        // Only the last `ring` takes stay in the ring; unless every qword is logged, the earlier
+        // ones are skipped (64 qwords per macroblock against a ring of Dout + 1, 9 by default).
+        const std::uint64_t skip = recordQwords || kPerMacroblock <= ring ? 0 : kPerMacroblock - ring;
+        takeSlot = (takeSlot + skip) % ring;
+        for (std::uint64_t q = skip; q < kPerMacroblock; ++q) {
+          const auto row = static_cast<Tick>(q / kQwordsPerRow);
+          const auto n = static_cast<Tick>(q % kQwordsPerRow);
+          const Tick ready = begin + p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock;
+          takes[takeSlot] = ready + n * outPeriod;
+          if (recordQwords) {
+            log.outEnter.push_back(ready);
+            log.outLeave.push_back(ready + n * outPeriod);
+          }
+          if (++takeSlot == ring) takeSlot = 0;
+        }
+        t = begin + p_.csc_cycles_per_mb;
         pushed += kPerMacroblock;
         taken += kPerMacroblock;
         pushSlot = takeSlot;
