@@ -71,3 +71,32 @@ TEST(Trace, BackToBackSpansWithTheSameLabelCoalesce) {
 
 }  // namespace
 }  // namespace vbim
+
+namespace vbim {
+namespace {
+
+// Labels are looked up by the address of their text first; a buffer that holds another label at
+// the same address must still get that label.
+TEST(Trace, ALabelBufferReusedForAnotherLabelKeepsBothNames) {
+  Tracer t;
+  const auto a = t.track("a");
+  std::string label = "first";
+  label.reserve(32);
+  const char* at = label.data();
+  t.span(a, 0, 10, label);
+  label = "other";
+  ASSERT_EQ(label.data(), at);
+  t.span(a, 10, 20, label);
+  t.span(a, 20, 30, "first");
+  t.span(a, 30, 40, std::string_view());  // an empty label, no text at all
+  EXPECT_EQ(t.spanCount(), 4u);           // no two neighbours share a label
+  std::ostringstream json;
+  t.writeChromeJson(json);
+  const std::string j = json.str();
+  EXPECT_NE(j.find(R"("name":"first")"), std::string::npos);
+  EXPECT_NE(j.find(R"("name":"other")"), std::string::npos);
+  EXPECT_NE(j.find(R"("name":"")"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vbim
