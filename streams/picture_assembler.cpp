@@ -19,7 +19,12 @@ bool PictureAssembler::append(std::span<const std::uint8_t> payload, std::uint32
   buf_.insert(buf_.end(), payload.begin(), payload.end());
   std::size_t i = scanFrom_;
   while (i + 3 < buf_.size()) {
-    if (buf_[i] == 0 && buf_[i + 1] == 0 && buf_[i + 2] == 1) {
+    // A start code 00 00 01 at i, i + 1 or i + 2 needs byte i + 2 to be 0 or 1: any other value
+    // rules out all three (coded data is mostly such bytes, so the scan moves 3 bytes a step).
+    const std::uint8_t third = buf_[i + 2];
+    if (third > 1) {
+      i += 3;
+    } else if (third == 1 && buf_[i] == 0 && buf_[i + 1] == 0) {
       const std::size_t before = buf_.size();
       onStartCode(i, buf_[i + 3], out);
       i -= before - buf_.size();  // onStartCode may have removed bytes before i

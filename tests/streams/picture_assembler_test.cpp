@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "runtime/rng.hpp"
 #include "streams/picture_assembler.hpp"
 
 namespace vbim::streams {
@@ -41,6 +42,61 @@ TEST(StreamsPictureAssembler, SplitsAtSequenceHeadersAcrossAnyPayloadBoundary) {
       // One payload: its PTS goes to the first picture only.
       EXPECT_TRUE(out[0].pts);
       EXPECT_FALSE(out[1].pts);
+    }
+  }
+}
+
+// Coded bytes full of 0x00 and 0x01 (the bytes the start-code scan must look at), zero stuffing
+// before start codes, and payloads of every size: each picture comes out whole, starting at its
+// sequence header's 00 00 01.
+TEST(StreamsPictureAssembler, FindsEveryPictureInZeroHeavyDataAtAnySplit) {
+  Rng rng(23);
+  for (int round = 0; round < 40; ++round) {
+    std::vector<std::uint8_t> es;
+    std::vector<std::size_t> starts;
+    auto filler = [&](std::size_t n) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::uint8_t pick[] = {0, 0, 1, 2, 3, 0x80, 0xFF};
+        std::uint8_t b = pick[rng.below(sizeof pick)];
+        // No 00 00 01 inside coded data: a 1 after two zeros becomes 2.
+        if (b == 1 && es.size() >= 2 && es[es.size() - 1] == 0 && es[es.size() - 2] == 0) b = 2;
+        es.push_back(b);
+      }
+      // Nor a zero pair just before the next start code's own zeros would shift it: end on nonzero.
+      es.push_back(0x80);
+    };
+    auto startCode = [&](std::uint8_t code) {
+      const std::size_t stuffing = rng.below(4);  // extra zeros: they end the previous picture
+      es.insert(es.end(), stuffing, 0);
+      const std::size_t at = es.size();
+      es.insert(es.end(), {0, 0, 1, code});
+      return at;
+    };
+    const int pictures = 1 + static_cast<int>(rng.below(6));
+    for (int i = 0; i < pictures; ++i) {
+      starts.push_back(startCode(0xB3));
+      filler(rng.below(40));
+      startCode(0x00);
+      filler(rng.below(40));
+      for (std::uint64_t sl = 0, n = 1 + rng.below(3); sl < n; ++sl) {
+        startCode(static_cast<std::uint8_t>(1 + sl));
+        filler(rng.below(200));
+      }
+    }
+    PictureAssembler a(0xE0);
+    std::vector<Picture> out;
+    for (std::size_t pos = 0; pos < es.size();) {
+      const std::size_t n = std::min<std::size_t>(1 + rng.below(round % 2 == 0 ? 5 : 300), es.size() - pos);
+      a.append(std::span(es).subspan(pos, n), 0, pos, std::nullopt, out);
+      pos += n;
+    }
+    a.finish(out);
+    ASSERT_EQ(out.size(), starts.size()) << "round " << round;
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      const std::size_t end = i + 1 < starts.size() ? starts[i + 1] : es.size();
+      ASSERT_EQ(out[i].byteOffset, starts[i]) << "round " << round << " picture " << i;
+      ASSERT_EQ(out[i].data, std::vector<std::uint8_t>(es.begin() + static_cast<std::ptrdiff_t>(starts[i]),
+                                                       es.begin() + static_cast<std::ptrdiff_t>(end)));
     }
   }
 }
