@@ -1,5 +1,6 @@
 #include "player/report.hpp"
 
+#include <charconv>
 #include <cinttypes>
 #include <cstdio>
 #include <ostream>
@@ -11,13 +12,55 @@ namespace vbim::player {
 
 namespace {
 
-std::string seconds(Tick t) {
-  // Exact decimal of t / kBusHz to 6 places, rounded down: integer arithmetic only.
+// Exact decimal of t / kBusHz to 6 places, rounded down: integer arithmetic only. Writes at most
+// 40 chars at out and returns the end.
+char* formatSeconds(char* out, Tick t) {
   const std::int64_t us = static_cast<std::int64_t>((static_cast<__int128>(t) * 1'000'000) / kBusHz);
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%" PRId64 ".%06" PRId64, us / 1'000'000, us % 1'000'000);
-  return buf;
+  if (us < 0) {  // not a time the player records; printf's form, kept for any caller
+    return out + std::snprintf(out, 40, "%" PRId64 ".%06" PRId64, us / 1'000'000, us % 1'000'000);
+  }
+  out = std::to_chars(out, out + 20, us / 1'000'000).ptr;
+  *out++ = '.';
+  std::int64_t frac = us % 1'000'000;
+  for (int i = 5; i >= 0; --i, frac /= 10) out[i] = static_cast<char>('0' + frac % 10);
+  return out + 6;
 }
+
+std::string seconds(Tick t) {
+  char buf[40];
+  return std::string(buf, formatSeconds(buf, t));
+}
+
+// One line of hashes.txt or timeline.csv, built in place: a play writes two per vsync, and
+// strings joined with + (a temporary and an allocation per field) were 5 % of a 256x256 play.
+class LineBuilder {
+ public:
+  LineBuilder& operator<<(std::int64_t v) {
+    p_ = std::to_chars(p_, end(), v).ptr;
+    return *this;
+  }
+  LineBuilder& operator<<(char c) {
+    *p_++ = c;
+    return *this;
+  }
+  LineBuilder& operator<<(bool b) { return *this << (b ? '1' : '0'); }
+  LineBuilder& seconds(Tick t) {
+    p_ = formatSeconds(p_, t);
+    return *this;
+  }
+  LineBuilder& hash(std::uint64_t h) {
+    static const char* kDigits = "0123456789abcdef";
+    for (int i = 15; i >= 0; --i, h >>= 4) p_[i] = kDigits[h & 15];
+    p_ += 16;
+    return *this;
+  }
+  std::string str() const { return std::string(buf_, static_cast<std::size_t>(p_ - buf_)); }
+
+ private:
+  char* end() { return buf_ + sizeof buf_; }
+  char buf_[512];  // 17 fields of at most 40 chars
+  char* p_ = buf_;
+};
 
 // A ratio as a JSON number with 4 decimals, formatted from integers (identical everywhere).
 json::Value share(Tick part, Tick whole) {
@@ -56,7 +99,11 @@ json::Value presenterJson(const gs::PresenterCounters& c) {
 }  // namespace
 
 std::string hashesLine(const VsyncRow& row) {
-  return std::to_string(row.vsync) + " " + seconds(row.at) + " " + hashHex(row.hash) + "\n";
+  LineBuilder b;
+  b << std::int64_t{row.vsync} << ' ';
+  b.seconds(row.at) << ' ';
+  b.hash(row.hash) << '\n';
+  return b.str();
 }
 
 RunHealth runHealth(const gs::PresenterCounters& lightmap, const RunTotals& totals) {
@@ -84,14 +131,20 @@ std::string timelineHeader() {
 
 std::string timelineLine(const VsyncRow& r) {
   const gs::VsyncRecord& l = r.lightmap;
-  std::string s = std::to_string(r.vsync) + "," + seconds(r.at) + "," + hashHex(r.hash) + "," +
-                  std::to_string(l.dueSeq) + "," + std::to_string(l.targetSeq) + "," + std::to_string(l.variant) + "," +
-                  std::to_string(l.fix) + "," + std::to_string(l.pop) + "," + (l.behind ? "1" : "0") + "," +
-                  (l.catchUp ? "1" : "0") + "," + (l.snapped ? "1" : "0") + ",";
-  s += r.sky ? std::to_string(r.sky->targetSeq) + "," + std::to_string(r.sky->pop) : std::string("-1,0");
-  s += "," + std::to_string(r.lag) + "," + std::to_string(r.skyLag) + "," + std::to_string(r.ringBanks) + "," +
-       std::to_string(l.gsBusy + (r.sky ? r.sky->gsBusy : 0)) + "\n";
-  return s;
+  LineBuilder b;
+  b << std::int64_t{r.vsync} << ',';
+  b.seconds(r.at) << ',';
+  b.hash(r.hash) << ',' << std::int64_t{l.dueSeq} << ',' << std::int64_t{l.targetSeq} << ',' << std::int64_t{l.variant}
+                 << ',' << std::int64_t{l.fix} << ',' << std::int64_t{l.pop} << ',' << l.behind << ',' << l.catchUp
+                 << ',' << l.snapped << ',';
+  if (r.sky) {
+    b << std::int64_t{r.sky->targetSeq} << ',' << std::int64_t{r.sky->pop};
+  } else {
+    b << std::int64_t{-1} << ',' << std::int64_t{0};
+  }
+  b << ',' << std::int64_t{r.lag} << ',' << std::int64_t{r.skyLag} << ',' << std::int64_t{r.ringBanks} << ','
+    << std::int64_t{l.gsBusy + (r.sky ? r.sky->gsBusy : 0)} << '\n';
+  return b.str();
 }
 
 void writeStatsJson(const Player& player, std::ostream& out, const json::Value* run) {
