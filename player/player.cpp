@@ -49,8 +49,20 @@ void Player::onVsync(std::int64_t n) {
   row.at = row.lightmap.at;
   if (sky != nullptr) row.sky = sky->last();
   // An unchanged lightmap and sky (no byte moved: pop 0) keep the previous hash and lag.
-  const bool changed = !last_ || row.lightmap.pop != 0 || (row.sky && row.sky->pop != 0);
-  row.hash = changed ? frameHash(lm.lightmap(), sky ? &sky->lightmap() : nullptr) : last_->hash;
+  const bool lightmapChanged = !last_ || row.lightmap.pop != 0;
+  const bool changed = lightmapChanged || (row.sky && row.sky->pop != 0);
+  if (changed) {
+    if (lightmapChanged || !afterLightmapValid_) {
+      afterLightmap_ = FrameHasher{};
+      afterLightmap_.add(lm.lightmap());
+      afterLightmapValid_ = true;
+    }
+    FrameHasher h = afterLightmap_;
+    if (sky != nullptr) h.add(sky->lightmap());
+    row.hash = h.digest();
+  } else {
+    row.hash = last_->hash;
+  }
   if (ref_) {
     const bool refChanged =
         !last_ || ref_->lightmap().last().pop != 0 || (ref_->sky() != nullptr && ref_->sky()->last().pop != 0);

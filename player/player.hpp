@@ -14,6 +14,7 @@
 #include "ee/stream_probe.hpp"
 #include "iop/fault_plan.hpp"
 #include "iop/sector_source.hpp"
+#include "player/frame_hash.hpp"
 #include "player/pipeline.hpp"
 #include "player/platform_config.hpp"
 #include "runtime/scheduler.hpp"
@@ -123,6 +124,10 @@ class Player {
   Sink sink_;
   RunTotals totals_;
   std::optional<VsyncRow> last_;
+  // The frame hash's state after the lightmap's bytes, kept while the lightmap does not change: a
+  // vsync where only the sky moved hashes the sky alone (the digest is the same).
+  FrameHasher afterLightmap_;
+  bool afterLightmapValid_ = false;
   bool started_ = false;
 };
 
