@@ -54,7 +54,11 @@ render::RunRenderRequest requestFor(const RenderOptions& o, const render::RunDir
   }
   if (!o.terrain.empty()) req.terrain.heightfield = o.terrain;
   if (!o.albedo.empty()) req.terrain.albedo = o.albedo;
-  if (!o.lightingConfig.empty()) loadLightingConfig(o.lightingConfig, req.day);
+  if (!o.lightingConfig.empty()) {
+    // The file's keys over every variant's recorded settings (the weathers keep what it leaves).
+    loadLightingConfig(o.lightingConfig, req.day);
+    for (lighting::DayCycleParams& day : req.variantDays) loadLightingConfig(o.lightingConfig, day);
+  }
   return req;
 }
 

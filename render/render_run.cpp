@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -52,6 +53,8 @@ void applyAuthoring(const std::string& text, const std::string& origin, RunRende
   req.terrain = r.terrain;
   req.proceduralSizeFromLightmap = false;
   req.day = r.variants.front().params;
+  req.variantDays.clear();
+  for (const lighting::WeatherVariant& v : r.variants) req.variantDays.push_back(v.params);
   req.loopFrame = static_cast<int>(r.loopFrame);
   req.settingsFrom = origin;
 }
@@ -107,8 +110,17 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
     throw RenderError(e.what());
   }
   const lighting::FloatImage albedo = terrain.albedo;
-  SceneLighting lighting(terrain, req.day, req.loopFrame);
-  Renderer renderer(lighting.terrain(), albedo, req.settings, req.contextFactory);
+  // One scene per variant the timeline shows, made when first needed (about 0.1 s each at 256x256).
+  const std::vector<lighting::DayCycleParams> days =
+      req.variantDays.empty() ? std::vector<lighting::DayCycleParams>{req.day} : req.variantDays;
+  std::vector<std::unique_ptr<SceneLighting>> scenes(days.size());
+  auto sceneOf = [&](int variant) -> SceneLighting& {
+    auto& scene = scenes[static_cast<std::size_t>(variant)];
+    if (!scene)
+      scene = std::make_unique<SceneLighting>(terrain, days[static_cast<std::size_t>(variant)], req.loopFrame);
+    return *scene;
+  };
+  Renderer renderer(sceneOf(0).terrain(), albedo, req.settings, req.contextFactory);
   result.context = renderer.contextDescription();
 
   fs::create_directories(outDir / "frames");
@@ -140,10 +152,21 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
     if (f.sky) sky = readFrame(*f.sky);
     // The frame the lightmap is showing or moving to; without a timeline, one frame per second.
     std::int64_t seq = f.vsync / 60;
+    int variant = 0;
     const auto row = run.timeline.find(f.vsync);
-    if (row != run.timeline.end()) seq = row->second.targetSeq;
+    if (row != run.timeline.end()) {
+      seq = row->second.targetSeq;
+      variant = row->second.variant;
+    }
+    // Without per-variant settings, one lighting (`day`) for every frame.
+    const int lit = req.variantDays.empty() ? 0 : variant;
+    if (!req.variantDays.empty() && (variant < 0 || static_cast<std::size_t>(variant) >= days.size())) {
+      throw RenderError((run.path / "timeline.csv").string() + ": vsync " + std::to_string(f.vsync) +
+                        " shows variant " + std::to_string(variant) + ", but " + req.settingsFrom + " records " +
+                        std::to_string(days.size()) + " variant(s)");
+    }
     const auto t0 = std::chrono::steady_clock::now();
-    FrameLight light = lighting.evaluate(seq, lm, sky ? &*sky : nullptr);
+    FrameLight light = sceneOf(lit).evaluate(seq, lm, sky ? &*sky : nullptr);
     Rgba8Image picture = renderer.render(lm, sky ? &*sky : nullptr, light);
     renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     char name[64];
@@ -161,6 +184,7 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
     }
     framesJson.push_back({{"vsync", f.vsync},
                           {"seq", seq},
+                          {"variant", variant},
                           {"hour", light.hour},
                           {"stream_scale", light.streamScale},
                           {"sun_irradiance", light.sunIrradiance},

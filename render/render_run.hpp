@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "lighting/authoring/technique_a_stream.hpp"
 #include "lighting/day_cycle.hpp"
@@ -33,6 +34,10 @@ struct RunRenderRequest {
   lighting::TerrainSource terrain;
   bool proceduralSizeFromLightmap = true;
   lighting::DayCycleParams day;
+  // The lighting of each stream variant (weather), by variant number, from the authoring record: a
+  // frame is lit as the variant the timeline says it shows (after a branch, another weather). Empty:
+  // `day` for every frame (a run without a record).
+  std::vector<lighting::DayCycleParams> variantDays;
   int loopFrame = 0;
   int videoFps = 10;
   int sheetColumns = 6;
@@ -49,8 +54,9 @@ struct RunRenderRequest {
 void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day);
 
 // Takes terrain (source, cell size, size), day (the first variant's lighting.* settings: frame
-// count, hours, site, sky) and loop frame from an authoring record (`origin` names it). Throws
-// RenderError naming the origin and the field for a record that cannot be read.
+// count, hours, site, sky), every variant's settings (variantDays) and loop frame from an authoring
+// record (`origin` names it). Throws RenderError naming the origin and the field for a record that
+// cannot be read.
 void applyAuthoring(const std::string& record, const std::string& origin, RunRenderRequest& request);
 
 struct RunRenderResult {

@@ -92,6 +92,46 @@ TEST_F(AuthoringRecordCli, OptionsGivenWinOverTheRecord) {
   EXPECT_EQ(r["day"]["frames"], 10);  // the rest still from the record
 }
 
+// A stream of two weathers played with a branch: the frames after it are lit as the overcast
+// variant, and --lighting-config lays its keys over both variants.
+TEST_F(AuthoringRecordCli, FramesAfterABranchAreLitAsTheirWeather) {
+  const auto a = vbim(
+      "author --procedural --size 64 --sky-width 32 --frame-count 10 --start-hour 4 --end-hour 22 --fps 1 "
+      "--weather clear,overcast --out " +
+      p("weather.vbim"));
+  ASSERT_EQ(a.status, 0) << a.output;
+  const auto play = vbim("play " + p("weather.vbim") + " --duration 8s --branch 4s=1 --every 60 --no-trace --out " +
+                         p("weather_run"));
+  ASSERT_EQ(play.status, 0) << play.output;
+  const json r = render(p("weather_run"), "pictures_weather");
+  ASSERT_FALSE(r.is_discarded());
+  // The renderer fits the stream's scale to the lighting it predicts from the settings: with each
+  // frame's own weather the fit stays near 1 on both sides of the branch (lit with the clear
+  // settings, the overcast frames fitted 0.51-0.87).
+  int before = 0, after = 0;
+  for (const json& f : r["frames"]) {
+    if (f["seq"].get<int>() < 1) continue;  // none yet, and the 4 h frame is dawn: too dark to fit
+    (f["variant"].get<int>() == 0 ? before : after) += 1;
+    EXPECT_NEAR(f["stream_scale"].get<double>(), 1.0, 0.15) << f.dump();
+  }
+  EXPECT_GE(before, 2) << r.dump();
+  EXPECT_GE(after, 2) << r.dump();
+  // --lighting-config lays its keys over every variant's own settings. exposure_klux = 60 against
+  // the recorded 120 (clear) and 192 (overcast: 1.6x, technique_a_stream.hpp) scales each fit by
+  // 60 / 120 and 60 / 192.
+  std::ofstream(p("exposure.toml")) << "[lighting]\nexposure_klux = 60.0\n";
+  const json c = render(p("weather_run"), "pictures_weather_config", "--lighting-config " + p("exposure.toml"));
+  ASSERT_FALSE(c.is_discarded());
+  ASSERT_EQ(c["frames"].size(), r["frames"].size());
+  for (std::size_t k = 0; k < r["frames"].size(); ++k) {
+    const json& f = r["frames"][k];
+    if (f["seq"].get<int>() < 1) continue;
+    ASSERT_EQ(c["frames"][k]["variant"], f["variant"]);
+    const double ratio = c["frames"][k]["stream_scale"].get<double>() / f["stream_scale"].get<double>();
+    EXPECT_NEAR(ratio, f["variant"] == 0 ? 60.0 / 120 : 60.0 / 192, 0.03) << f.dump() << "\n" << c["frames"][k].dump();
+  }
+}
+
 TEST_F(AuthoringRecordCli, ARunWithoutARecordKeepsTheDefaultsWithANote) {
   fs::copy(dir_ / "run", dir_ / "bare_run", fs::copy_options::recursive);
   fs::remove(dir_ / "bare_run" / "authoring.json");

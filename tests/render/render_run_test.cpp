@@ -5,6 +5,8 @@
 
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include "imageio/image_reader.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
@@ -36,8 +38,8 @@ RunRenderRequest smallRequest() {
 }
 
 // A run directory as `vbim play --every 60` writes it: frames at vsync 0, 60, 120, and a timeline
-// with a stall between 60 and 120.
-fs::path fakeRun() {
+// with a stall between 60 and 120; from vsync `branchAt` on, the timeline shows variant `branchTo`.
+fs::path fakeRun(int branchAt = 1000, int branchTo = 1) {
   const fs::path run = freshDir("run");
   fs::create_directories(run / "frames");
   for (int k = 0; k < 3; ++k) {
@@ -52,8 +54,8 @@ fs::path fakeRun() {
        "sky_lag,ring_banks,gs_busy_ticks\n";
   for (int v = 0; v <= 120; ++v) {
     const bool behind = v > 70 && v < 90, catchUp = v >= 90 && v < 100;
-    t << v << "," << v / 60.0 << ",0," << 10 + v / 60 << "," << 10 + v / 60 << ",0,0,0," << behind << "," << catchUp
-      << ",0,-1,0,0,0,0,0\n";
+    t << v << "," << v / 60.0 << ",0," << 10 + v / 60 << "," << 10 + v / 60 << "," << (v >= branchAt ? branchTo : 0)
+      << ",0,0," << behind << "," << catchUp << ",0,-1,0,0,0,0,0\n";
   }
   return run;
 }
@@ -84,6 +86,66 @@ TEST(RenderRun, WritesFramesSheetVideoAndSummary) {
   EXPECT_EQ(firstBorder[0], 90) << "the first tile is on time";
   fs::remove_all(run);
   fs::remove_all(out);
+}
+
+nlohmann::json renderJsonOf(const RunDir& dir, const RunRenderRequest& req, const std::string& name) {
+  const fs::path out = freshDir(name);
+  renderRun(dir, req, out, nullptr);
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "render.json"));
+  fs::remove_all(out);
+  return j;
+}
+
+// After a branch the frames show another weather: each is lit with its own variant's settings
+// (render once lit every frame as the first variant).
+TEST(RenderRun, FramesAfterABranchAreLitAsTheVariantTheyShow) {
+  const fs::path run = fakeRun(100);
+  const RunDir dir = readRunDir(run);
+  RunRenderRequest same = smallRequest();
+  same.video = false;
+  same.variantDays = {same.day, same.day};
+  RunRenderRequest weather = same;
+  lighting::DayCycleParams overcast = same.day;
+  overcast.turbidity = 6;
+  overcast.sunKlux *= 0.4;
+  weather.variantDays = {same.day, overcast};
+  const nlohmann::json a = renderJsonOf(dir, same, "same");
+  const nlohmann::json b = renderJsonOf(dir, weather, "weather");
+  ASSERT_EQ(a["frames"].size(), 3u);
+  ASSERT_EQ(b["frames"].size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(b["frames"][i]["variant"], i == 2 ? 1 : 0) << i;
+    if (i < 2) {
+      EXPECT_EQ(a["frames"][i], b["frames"][i]) << "frame " << i << " is variant 0 in both";
+    } else {
+      // Lit as variant 1: a hazier, 0.4x sun. The lightmap is the same, so the decoded sun is dimmer.
+      EXPECT_LT(b["frames"][i]["sun_irradiance"][0].get<double>(),
+                0.8 * a["frames"][i]["sun_irradiance"][0].get<double>())
+          << a["frames"][i].dump() << "\n"
+          << b["frames"][i].dump();
+    }
+  }
+  // A timeline showing a variant the record does not have: the file, the vsync and the count.
+  RunRenderRequest oneVariant = same;
+  oneVariant.variantDays = {same.day};
+  oneVariant.settingsFrom = "authoring.json";
+  try {
+    renderRun(dir, oneVariant, freshDir("one"), nullptr);
+    FAIL() << "expected RenderError";
+  } catch (const RenderError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("timeline.csv: vsync 120 shows variant 1, but authoring.json records 1 variant(s)"),
+              std::string::npos)
+        << m;
+  }
+  // Without per-variant settings (no record, or --lighting-config) every frame has `day`'s lighting.
+  RunRenderRequest single = same;
+  single.variantDays.clear();
+  const nlohmann::json c = renderJsonOf(dir, single, "single");
+  EXPECT_EQ(c["frames"][2]["variant"], 1);
+  EXPECT_EQ(c["frames"][2]["sky_irradiance"], a["frames"][2]["sky_irradiance"]);
+  fs::remove_all(run);
+  fs::remove_all(fs::temp_directory_path() / ("vbim_render_test_one_" + std::to_string(::getpid())));
 }
 
 TEST(RenderRun, RunWithoutFramesIsAClearError) {
