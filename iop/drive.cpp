@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <stdexcept>
+#include <utility>
 
 #include "iop/cd_errors.hpp"
 
@@ -151,6 +152,11 @@ void Drive::busySpan(Tick begin, Tick end, std::string_view what) {
   if (tracer_ != nullptr) tracer_->span(track_, begin, end, what);
 }
 
+void Drive::closeReadStretch() {
+  if (readLabel_ != nullptr && s_.now() > readStretchBegin_) busySpan(readStretchBegin_, s_.now(), readLabel_);
+  readStretchBegin_ = s_.now();
+}
+
 Tick Drive::busyTime(Tick at) const {
   // Only a stall's span is recorded before it ends; the part after `at` is not busy yet.
   const Tick ahead = openStallEnd_ - std::max(at, openStallBegin_);
@@ -164,11 +170,13 @@ Task<void> Drive::waitOutStall() {
     auto it = stalls_.upper_bound(s_.now());
     if (it != stalls_.begin() && s_.now() < std::prev(it)->second) until = std::prev(it)->second;
     if (until < 0) co_return;
+    closeReadStretch();
     busySpan(s_.now(), until, "stall");
     openStallBegin_ = s_.now();
     openStallEnd_ = until;
     stats_.stalled += until - s_.now();
     co_await s_.until(until);
+    readStretchBegin_ = s_.now();  // a read under way goes on after the stall
   }
 }
 
@@ -296,7 +304,9 @@ Task<void> Drive::executeRead(DriveCommand& c) {
   std::array<std::uint8_t, kSectorBytes> scratch{};
   Tick dmaFree = s_.now();
   Tick dmaFirst = -1;
-  const Tick readBegin = s_.now();
+  // The read's span, cut where a retry or a stall begins (they have their own) and resumed after.
+  readLabel_ = c.foreign ? "read other" : "read";
+  readStretchBegin_ = s_.now();
   for (std::int64_t i = 0; i < c.sectors && !c.aborted; ++i) {
     const std::int64_t lba = c.lsn + i;
     if (lba >= end) {
@@ -316,7 +326,11 @@ Task<void> Drive::executeRead(DriveCommand& c) {
         }
         ++retries;
         ++stats_.retries;
+        closeReadStretch();
+        const char* label = std::exchange(readLabel_, nullptr);  // a stall in the retry is the retry's
         co_await work(revolutionTicks(), "retry");
+        readLabel_ = label;
+        readStretchBegin_ = s_.now();
       }
       ++stats_.sectorsRead;
       head_ = lba + 1;
@@ -334,7 +348,8 @@ Task<void> Drive::executeRead(DriveCommand& c) {
     if (dmaFirst < 0) dmaFirst = dmaStart;
     ++c.sectorsDone;
   }
-  if (s_.now() > readBegin) busySpan(readBegin, s_.now(), c.foreign ? "read other" : "read");
+  closeReadStretch();
+  readLabel_ = nullptr;
   if (tracer_ != nullptr && dmaFirst >= 0) tracer_->span(dmaTrack_, dmaFirst, dmaFree, c.foreign ? "dma other" : "dma");
   if (hits > 0 && c.sectors <= hits) head_ = c.lsn + c.sectors;
   co_await s_.until(dmaFree);

@@ -108,8 +108,8 @@ class Drive {
   // Busy time up to `at` (at or after the last event): the sum of the spans on the drive's own
   // trace track ("drive": spin-up, seeks, latency, reads, retries, stalls, other clients' holds),
   // counted with or without a tracer so the busy share does not depend on tracing. A read's span
-  // covers the retries and stalls inside it, which have spans of their own: they count twice, as
-  // they do on the trace.
+  // stops where a retry or a stall inside it begins and goes on after it, so no time counts twice
+  // and the trace's drive_busy wire stays high through the whole read.
   Tick busyTime(Tick at) const;
   const DriveParams& params() const { return p_; }
   SectorSource& disc() { return disc_; }
@@ -169,6 +169,10 @@ class Drive {
   DriveStats stats_;
   Tick busy_ = 0;                               // spans recorded so far, each counted whole
   Tick openStallBegin_ = 0, openStallEnd_ = 0;  // the stall being waited out (may end after `at`)
+  // The read under way: the start of its span not yet recorded, and its label (null: none).
+  Tick readStretchBegin_ = 0;
+  const char* readLabel_ = nullptr;
+  void closeReadStretch();  // records the read's span up to now (before a retry or a stall)
 };
 
 }  // namespace vbim::iop

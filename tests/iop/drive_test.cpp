@@ -2,6 +2,8 @@
 // the seed, read-ahead, drive retries, end of media, stalls.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "iop/cd_errors.hpp"
 #include "tests/iop/iop_fixture.hpp"
 
@@ -282,6 +284,50 @@ TEST(DriveBusy, BusyTimeIsTheTracesDriveTrackWithOrWithoutATracer) {
   EXPECT_EQ(outTraced.size(), steps.size());
   EXPECT_GT(traced.drive->stats().retries, 0);
   EXPECT_GT(traced.drive->busyTime(fromMs(900)), fromMs(340));  // the stalls alone
+}
+
+// A read with retries and a stall inside it: its span stops where each begins and goes on after, so
+// the drive is busy exactly the sectors, the revolutions and the stall (before, those two counted
+// twice: once in their own span and again in the read's), and the trace's drive_busy wire stays at 1
+// from the first sector to the last (a nested span used to drop it to 0 at the retry's end).
+TEST(DriveBusy, RetriesAndStallsInsideAReadCountOnce) {
+  Rig r;
+  r.p.drive.spindle = "clv";
+  r.p.drive.retry_count = 2;
+  r.traced = true;
+  r.build(kLayer, false);
+  r.drive->addSectorFault(10, 2);             // two retries, then the sector reads
+  r.drive->addStall(fromMs(3), fromMs(10));   // during the sectors before it
+  r.drive->addStall(fromMs(31), fromMs(33));  // during the retries (sector 10 ends near 31.5 ms)
+  std::vector<Done> out;
+  r.s.spawn("script", script(r.s, *r.drive, {{0, 0, 32}}, out));
+  r.s.run();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].error, 0u);
+  const Tick stalls = fromMs(7) + fromMs(2);
+  const Tick busy = 32 * kClvSectorTicks + 2 * fromUs(16'000) + stalls;
+  EXPECT_EQ(out[0].finished - out[0].issued, busy + kDmaTicks);
+  EXPECT_EQ(r.drive->busyTime(r.s.now()), busy);
+  EXPECT_EQ(r.tracer.busyTime(0, 0, r.s.now()), busy);
+  // The drive's wire, its value at the end of each instant: 1 from the first sector to the last.
+  std::ostringstream vcd;
+  r.tracer.writeVcd(vcd);
+  const std::string v = vcd.str();
+  const std::size_t var = v.find("$var wire 1 ") + 12;
+  const std::string wire = v.substr(var, v.find(' ', var) - var);
+  std::vector<char> values;  // per instant after $dumpvars
+  std::istringstream in(v.substr(v.find("$end\n", v.find("$dumpvars")) + 5));
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line[0] == '#') {
+      values.push_back('?');
+    } else if (!values.empty() && line.size() == wire.size() + 1 && line.substr(1) == wire) {
+      values.back() = line[0];
+    }
+  }
+  std::string shown;
+  for (char c : values)
+    if (c != '?' && (shown.empty() || shown.back() != c)) shown.push_back(c);
+  EXPECT_EQ(shown, "10") << v;
 }
 
 }  // namespace
