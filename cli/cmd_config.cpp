@@ -32,17 +32,26 @@ struct ConfigOptions {
 
 // The sizes the presenters of a run would be given: the lightmap's and the sky's (when the stream has
 // one) of `o.stream`, or with no stream the smallest lightmap a stream can have (one 32x32 page).
-std::vector<std::pair<int, int>> presentedSizes(const ConfigOptions& o) {
-  if (o.stream.empty()) return {{gs::kTileHeight, gs::kTileHeight}};
+// What one presenter shows: its stream's size and, for the lightmap's, the sky stream's (its VRAM
+// plan holds the sky's staging area too, as in Pipeline).
+struct Presented {
+  int width;
+  int height;
+  gs::SkyTexture sky;
+};
+
+std::vector<Presented> presentedSizes(const ConfigOptions& o) {
+  if (o.stream.empty()) return {{gs::kTileHeight, gs::kTileHeight, {}}};
   try {
     streams::StreamDisc disc = streams::openStreamDisc(o.stream, o.file);
     const ee::ProbedStream probed = ee::probeStream(*disc.disc, disc.file);
-    std::vector<std::pair<int, int>> sizes;
-    for (const int index : {probed.lightmapIndex, probed.skyIndex}) {
-      if (index < 0) continue;
-      const auto& e = probed.descriptor.streams[static_cast<std::size_t>(index)];
-      sizes.emplace_back(e.width, e.height);
-    }
+    const auto entry = [&](int index) { return probed.descriptor.streams[static_cast<std::size_t>(index)]; };
+    std::vector<Presented> sizes;
+    gs::SkyTexture sky;
+    if (probed.skyIndex >= 0) sky = {entry(probed.skyIndex).width, entry(probed.skyIndex).height};
+    if (probed.lightmapIndex >= 0)
+      sizes.push_back({entry(probed.lightmapIndex).width, entry(probed.lightmapIndex).height, sky});
+    if (probed.skyIndex >= 0) sizes.push_back({sky.width, sky.height, {}});
     return sizes;
   } catch (const iop::DiscError& e) {
     throw Exit(2, e.what());
@@ -54,7 +63,7 @@ std::vector<std::pair<int, int>> presentedSizes(const ConfigOptions& o) {
 // The GS checks `vbim play` makes when it builds the presenters (gs::Presenter calls checkParams).
 void checkPresenters(const ConfigOptions& o, const PlatformParams& params) {
   try {
-    for (const auto& [width, height] : presentedSizes(o)) gs::checkParams(params.gs, width, height);
+    for (const Presented& p : presentedSizes(o)) gs::checkParams(params.gs, p.width, p.height, p.sky);
   } catch (const gs::GsError& e) {
     throw Exit(2, gsConfigMessage(e, o.check));
   }

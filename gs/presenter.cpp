@@ -15,7 +15,7 @@ CatchUp catchUpByName(const std::string& name) {
 
 namespace {
 
-VramLayout placeBuffers(const GsParams& p, int lightmapWidth, int lightmapHeight) {
+VramLayout placeBuffers(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky) {
   if (lightmapWidth <= 0 || lightmapHeight <= 0 || lightmapWidth > 1024 || lightmapHeight > 1024) {
     throw GsError("lightmap " + std::to_string(lightmapWidth) + "x" + std::to_string(lightmapHeight) +
                   " cannot be a GS texture: each side must be 1..1024 (TEX0.TW/TH are log2 sizes up to 10)");
@@ -36,16 +36,32 @@ VramLayout placeBuffers(const GsParams& p, int lightmapWidth, int lightmapHeight
   if (p.sky_width > 0 && p.sky_height > 0) {
     req.push_back({"sky", Psm::Ct32, static_cast<int>(p.sky_width), static_cast<int>(p.sky_height)});
   }
+  if (sky.width > 0 && sky.height > 0) {
+    // The sky is blended in place too: its frames are uploaded to a staging area of their own.
+    const int skyRows = strips ? std::min<int>(static_cast<int>(p.strip_rows), sky.height) : sky.height;
+    req.push_back({"sky staging", Psm::Ct32, sky.width, skyRows});
+  }
   return VramLayout::place(req);
+}
+
+// The sky stream must fit the texture VRAM keeps for it.
+void checkSkyFits(const GsParams& p, SkyTexture sky) {
+  if (sky.width <= 0 || sky.height <= 0) return;
+  if (sky.width > p.sky_width || sky.height > p.sky_height) {
+    throw GsError({"gs.sky_width", "gs.sky_height"},
+                  "the sky stream is " + std::to_string(sky.width) + "x" + std::to_string(sky.height) +
+                      " but VRAM keeps a " + std::to_string(p.sky_width) + "x" + std::to_string(p.sky_height) +
+                      " sky texture (gs.sky_width x gs.sky_height): set them to at least the stream's size");
+  }
 }
 
 // True when `p` changed as given by `change` would fit the GS's VRAM.
 template <typename Change>
-bool fitsWith(const GsParams& p, int width, int height, Change change) {
+bool fitsWith(const GsParams& p, int width, int height, SkyTexture sky, Change change) {
   GsParams q = p;
   change(q);
   try {
-    placeBuffers(q, width, height);
+    placeBuffers(q, width, height, sky);
     return true;
   } catch (const GsError&) {
     return false;
@@ -54,27 +70,31 @@ bool fitsWith(const GsParams& p, int width, int height, Change change) {
 
 }  // namespace
 
-VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight) {
+VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky) {
+  checkSkyFits(p, sky);
   try {
-    return placeBuffers(p, lightmapWidth, lightmapHeight);
+    return placeBuffers(p, lightmapWidth, lightmapHeight, sky);
   } catch (const GsError& e) {
     // Name the way out when a setting of the platform config has one (docs/player.md, "VRAM").
     std::string hint;
     const bool strips = p.upload_mode == "strips";
     const auto toStrips = [](GsParams& q) { q.upload_mode = "strips"; };
-    const auto smallerSky = [&](GsParams& q) { q.sky_height = std::min<std::int64_t>(q.sky_height, q.sky_width / 2); };
-    if (!strips && fitsWith(p, lightmapWidth, lightmapHeight, toStrips)) {
+    // A sky texture as high as half its width (a dome), but never lower than the sky stream.
+    const std::int64_t smallerSkyHeight =
+        std::max<std::int64_t>(std::min<std::int64_t>(p.sky_height, p.sky_width / 2), sky.height);
+    const auto smallerSky = [&](GsParams& q) { q.sky_height = smallerSkyHeight; };
+    if (!strips && fitsWith(p, lightmapWidth, lightmapHeight, sky, toStrips)) {
       hint =
           "; it fits with gs.upload_mode = \"strips\" in a platform config (--config FILE), which blends "
           "through a " +
           std::to_string(p.strip_rows) + "-row staging area instead of a whole frame";
-    } else if (fitsWith(p, lightmapWidth, lightmapHeight, [&](GsParams& q) {
+    } else if (fitsWith(p, lightmapWidth, lightmapHeight, sky, [&](GsParams& q) {
                  toStrips(q);
                  smallerSky(q);
                })) {
-      hint = "; it fits with gs.upload_mode = \"strips\" and gs.sky_height = " + std::to_string(p.sky_width / 2) +
+      hint = "; it fits with gs.upload_mode = \"strips\" and gs.sky_height = " + std::to_string(smallerSkyHeight) +
              " (a sky dome texture as high as half its width) in a platform config (--config FILE)";
-    } else if (!fitsWith(p, kTileHeight, kTileHeight, [&](GsParams& q) {
+    } else if (!fitsWith(p, kTileHeight, kTileHeight, sky, [&](GsParams& q) {
                  toStrips(q);
                  smallerSky(q);
                })) {
@@ -168,15 +188,15 @@ void checkKey(const char* key, Check check) {
 }
 
 // The streams of `source` checked, and the parameters checked for their size.
-const StreamInfo& checkedSource(const FrameSource& source, const GsParams& p) {
+const StreamInfo& checkedSource(const FrameSource& source, const GsParams& p, SkyTexture sky) {
   const StreamInfo& s = checkedStreams(source);
-  checkParams(p, s.width, s.height);
+  checkParams(p, s.width, s.height, sky);
   return s;
 }
 
 }  // namespace
 
-VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight) {
+VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky) {
   checkKey("gs.video", [&] { clockFor(p); });
   checkKey("gs.colclamp", [&] { colclampFor(p); });
   checkKey("gs.alpha_write", [&] { alphaFor(p); });
@@ -185,7 +205,7 @@ VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight)
   checkKey("gs.catchup", [&] { catchUpByName(p.catchup); });
   checkedStrips(p);
   checkedMacroblockUploads(p);
-  return planVram(p, lightmapWidth, lightmapHeight);
+  return planVram(p, lightmapWidth, lightmapHeight, sky);
 }
 
 Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& params, PresenterOptions options)
@@ -193,7 +213,7 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
       source_(source),
       params_(params),
       opt_(std::move(options)),
-      stream_(checkedSource(source, params)),
+      stream_(checkedSource(source, params, opt_.sky)),
       timing_(params),
       clock_(clockFor(params)),
       spec_(makeBlendSpec(params.fix, colclampFor(params), alphaFor(params))),
@@ -202,7 +222,7 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
       policy_(catchUpByName(params.catchup)),
       strips_(checkedStrips(params)),
       macroblockUploads_(checkedMacroblockUploads(params)),
-      vram_(planVram(params, stream_.width, stream_.height)),
+      vram_(planVram(params, stream_.width, stream_.height, opt_.sky)),
       lightmap_(stream_.width, stream_.height),
       blender_(stream_.width, stream_.height, opt_.kernels != nullptr ? *opt_.kernels : scalarKernels(),
                params.convergence_aware),

@@ -45,9 +45,17 @@ namespace vbim::gs {
 enum class CatchUp : std::uint8_t { BlendThrough, HardSkip, PlayLate };
 CatchUp catchUpByName(const std::string& name);  // throws GsError
 
+// The size of the sky stream a console shows beside the lightmap (width 0: none, or not known).
+struct SkyTexture {
+  int width = 0;
+  int height = 0;
+};
+
 // The VRAM a game using this presenter would have: frame buffers, Z, the lightmap, the upload
-// staging area (the whole frame, or one strip) and the sky texture. Throws GsError if it does not fit.
-VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight);
+// staging area (the whole frame, or one strip) and the sky texture (gs.sky_width x gs.sky_height).
+// Given the sky stream's size, also the sky's own staging area ("sky staging", sized as the
+// lightmap's), and the sky stream must fit the sky texture. Throws GsError if it does not fit.
+VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky = {});
 
 // The gs.* keys that decide the VRAM layout (a GsError from planVram names them).
 const std::vector<std::string>& vramLayoutKeys();
@@ -57,7 +65,7 @@ const std::vector<std::string>& vramLayoutKeys();
 // FIX, strip rows and the VRAM layout. Returns the layout; throws GsError naming the keys. The
 // Presenter calls it, and so does `vbim config --check`, which has no stream to present: the two
 // cannot disagree.
-VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight);
+VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky = {});
 
 // What happened at one vsync.
 struct VsyncRecord {
@@ -109,6 +117,10 @@ struct PresenterOptions {
   // The GS this presenter draws on, shared with the other presenters of the same console (one GIF,
   // one drawing engine: their work of a vsync runs one after the other). Null: a GS of its own.
   SerialUnit* gs = nullptr;
+  // The lightmap presenter of a console that also shows a sky stream: its size, so this
+  // presenter's VRAM plan holds the sky's staging area too (planVram). The sky's own presenter
+  // leaves it empty.
+  SkyTexture sky;
 };
 
 class Presenter {

@@ -67,8 +67,13 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
     };
   };
   lmSource_ = std::make_unique<gs::RecordingSource>(*lmFrames_, recorder(false));
-  lightmap_ =
-      std::make_unique<gs::Presenter>(s, *lmSource_, config.gs, presenterOptions(t0_, kernels, tracer_, "gs", gs_));
+  gs::PresenterOptions lightmapOptions = presenterOptions(t0_, kernels, tracer_, "gs", gs_);
+  if (stream.skyIndex >= 0) {
+    // One VRAM budget for the console: the lightmap presenter's plan holds the sky's staging too.
+    const streams::StreamEntry& sky = stream.descriptor.streams[static_cast<std::size_t>(stream.skyIndex)];
+    lightmapOptions.sky = gs::SkyTexture{sky.width, sky.height};
+  }
+  lightmap_ = std::make_unique<gs::Presenter>(s, *lmSource_, config.gs, std::move(lightmapOptions));
   if (stream.skyIndex >= 0) {
     skyFrames_ = std::make_unique<ee::DecodedFrames>(s, streamInfos(stream, stream.skyIndex), depth, *this);
     skySource_ = std::make_unique<gs::RecordingSource>(*skyFrames_, recorder(true));

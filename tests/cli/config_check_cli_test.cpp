@@ -73,6 +73,18 @@ TEST_F(ConfigCheckCli, AVramOverflowForAStreamIsRefusedByBothWithTheSameMessage)
   EXPECT_NE(alone.output.find(cfg + ": valid"), std::string::npos) << alone.output;
 }
 
+// The sample's 128x64 sky does not fit a 64-row sky texture: play and config --check --stream refuse
+// it alike, naming the key; without a stream there is no sky to compare.
+TEST_F(ConfigCheckCli, ASkyTextureSmallerThanTheSkyStreamIsRefusedByBoth) {
+  const std::string cfg = config("gs.sky_height = 32\n");
+  const std::string fromPlay = play(cfg);
+  EXPECT_EQ(fromPlay.rfind(cfg + ":1: key 'gs.sky_height': the sky stream is 128x64 but VRAM keeps a 256x32 sky", 0),
+            0u)
+      << fromPlay;
+  EXPECT_EQ(refusal(vbim("config --check " + cfg + " --stream " + kSample), "config"), fromPlay);
+  EXPECT_EQ(vbim("config --check " + cfg).status, 0);
+}
+
 // The largest frame the keys allow fills VRAM on its own: no stream can play, and both say so.
 TEST_F(ConfigCheckCli, TheLargestFrameIsRefusedWithOrWithoutAStream) {
   const std::string cfg = config("[gs]\nframe_width = 2048\nframe_height = 2048\n");

@@ -42,6 +42,39 @@ TEST(Vram, DefaultLayoutFitsAndIsPageAligned) {
   EXPECT_NE(v.describe().find("used 446 of 512 pages"), std::string::npos) << v.describe();
 }
 
+// The sky is blended in place like the lightmap, through a staging area of its own: one budget for
+// the console (before, each presenter planned alone and the sky's staging was in no plan).
+TEST(Vram, TheSkyStreamsStagingAreaIsInTheSameBudget) {
+  GsParams p;
+  const VramLayout v = planVram(p, 256, 256, SkyTexture{128, 64});  // the samples
+  // 446 as above + 4 (128x64: 2 x 2 pages).
+  EXPECT_EQ(v.pagesUsed(), 450);
+  EXPECT_EQ(v.region("lightmap").firstPage, 350);  // nothing before the sky moves
+  EXPECT_EQ(v.region("sky").firstPage, 414);
+  EXPECT_EQ(v.region("sky staging").firstPage, 446);
+  EXPECT_EQ(v.region("sky staging").pages, 4);
+  // Strips: one strip of the sky too. The 512x512 speed case: 280 + 70 + 128 + 8 + 16 + 4 pages.
+  p.upload_mode = "strips";
+  p.sky_height = 128;
+  const VramLayout big = planVram(p, 512, 512, SkyTexture{256, 128});
+  EXPECT_EQ(big.region("sky staging").height, 32);
+  EXPECT_EQ(big.pagesUsed(), 506);
+}
+
+TEST(Vram, ASkyStreamLargerThanItsTextureIsRefused) {
+  GsParams p;
+  p.sky_height = 32;
+  try {
+    planVram(p, 256, 256, SkyTexture{128, 64});
+    FAIL() << "expected GsError";
+  } catch (const GsError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "the sky stream is 128x64 but VRAM keeps a 256x32 sky texture (gs.sky_width x gs.sky_height): set "
+              "them to at least the stream's size");
+    EXPECT_EQ(e.keys(), (std::vector<std::string>{"gs.sky_width", "gs.sky_height"}));
+  }
+}
+
 TEST(Vram, OversizedLayoutIsRefusedWithTheSizes) {
   GsParams p;
   const std::string msg = refusal(p, 1024, 1024);
