@@ -4,6 +4,7 @@
 // --stream, or for the smallest lightmap when none is given (a config no stream can play).
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
@@ -30,27 +31,39 @@ struct ConfigOptions {
   std::string file;
 };
 
-// The sizes the presenters of a run would be given: the lightmap's and the sky's (when the stream has
-// one) of `o.stream`, or with no stream the smallest lightmap a stream can have (one 32x32 page).
-// What one presenter shows: its stream's size and, for the lightmap's, the sky stream's (its VRAM
-// plan holds the sky's staging area too, as in Pipeline).
+// The stream given with --stream, opened once: its frame sizes for the GS checks, and the disc a
+// fault plan's file names are looked up on. Empty without --stream.
+std::optional<streams::StreamDisc> openGivenStream(const ConfigOptions& o) {
+  if (o.stream.empty()) return std::nullopt;
+  try {
+    return streams::openStreamDisc(o.stream, o.file);
+  } catch (const iop::DiscError& e) {
+    throw Exit(2, e.what());
+  }
+}
+
+// What one presenter of a run would be given: its stream's size and, for the lightmap's, the sky
+// stream's (its VRAM plan holds the sky's staging area too, as in Pipeline). Without a stream, the
+// smallest lightmap a stream can have (one 32x32 page).
 struct Presented {
   int width;
   int height;
   gs::SkyTexture sky;
 };
 
-std::vector<Presented> presentedSizes(const ConfigOptions& o) {
-  if (o.stream.empty()) return {{gs::kTileHeight, gs::kTileHeight, {}}};
+std::vector<Presented> presentedSizes(const streams::StreamDisc* disc) {
+  if (disc == nullptr) return {{gs::kTileHeight, gs::kTileHeight, {}}};
   try {
-    streams::StreamDisc disc = streams::openStreamDisc(o.stream, o.file);
-    const ee::ProbedStream probed = ee::probeStream(*disc.disc, disc.file);
-    const auto entry = [&](int index) { return probed.descriptor.streams[static_cast<std::size_t>(index)]; };
-    std::vector<Presented> sizes;
+    const ee::ProbedStream probed = ee::probeStream(*disc->disc, disc->file);
+    const auto entry = [&](int index) -> const streams::StreamEntry& {
+      return probed.descriptor.streams[static_cast<std::size_t>(index)];
+    };
     gs::SkyTexture sky;
     if (probed.skyIndex >= 0) sky = {entry(probed.skyIndex).width, entry(probed.skyIndex).height};
-    if (probed.lightmapIndex >= 0)
+    std::vector<Presented> sizes;
+    if (probed.lightmapIndex >= 0) {
       sizes.push_back({entry(probed.lightmapIndex).width, entry(probed.lightmapIndex).height, sky});
+    }
     if (probed.skyIndex >= 0) sizes.push_back({sky.width, sky.height, {}});
     return sizes;
   } catch (const iop::DiscError& e) {
@@ -61,9 +74,9 @@ std::vector<Presented> presentedSizes(const ConfigOptions& o) {
 }
 
 // The GS checks `vbim play` makes when it builds the presenters (gs::Presenter calls checkParams).
-void checkPresenters(const ConfigOptions& o, const PlatformParams& params) {
+void checkPresenters(const ConfigOptions& o, const streams::StreamDisc* disc, const PlatformParams& params) {
   try {
-    for (const Presented& p : presentedSizes(o)) gs::checkParams(params.gs, p.width, p.height, p.sky);
+    for (const Presented& p : presentedSizes(disc)) gs::checkParams(params.gs, p.width, p.height, p.sky);
   } catch (const gs::GsError& e) {
     throw Exit(2, gsConfigMessage(e, o.check));
   }
@@ -78,19 +91,13 @@ void runConfig(const ConfigOptions& o) {
       config::applyTomlFile(table, o.check);
       validatePlatform(params);
     }
-    if (!o.check.empty() || !o.stream.empty()) checkPresenters(o, params);
+    const std::optional<streams::StreamDisc> given = openGivenStream(o);
+    const streams::StreamDisc* disc = given ? &*given : nullptr;
+    if (!o.check.empty() || disc != nullptr) checkPresenters(o, disc, params);
     if (!o.faults.empty()) {
       // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
       // disc and LBAs checked against its size, as play does.
-      std::shared_ptr<iop::SectorSource> disc;
-      if (!o.stream.empty()) {
-        try {
-          disc = streams::openStreamDisc(o.stream, o.file).disc;
-        } catch (const iop::DiscError& e) {
-          throw Exit(2, e.what());
-        }
-      }
-      const iop::FaultPlan plan = config::loadFaultPlan(o.faults, disc.get());
+      const iop::FaultPlan plan = config::loadFaultPlan(o.faults, disc != nullptr ? disc->disc.get() : nullptr);
       std::cerr << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
     }
   } catch (const ConfigError& e) {

@@ -28,6 +28,7 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
     lastSpec_ = spec;
   }
   Result r;
+  const std::size_t stride = static_cast<std::size_t>(width_) * 4;  // bytes per lightmap row
   const int ty0 = rowBegin / kTileHeight;
   const int ty1 = (std::min(rowEnd, height_) + kTileHeight - 1) / kTileHeight;
   for (int ty = ty0; ty < ty1; ++ty) {
@@ -48,7 +49,6 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
       }
       const int x0 = tx * kTileWidth;
       const std::size_t w = static_cast<std::size_t>(std::min(kTileWidth, width_ - x0));
-      const std::size_t stride = static_cast<std::size_t>(width_) * 4;
       const int pop = kernels_->blendRectDelta(dst.row(y0) + 4 * x0, stride, src.row(y0) + 4 * x0, stride, w,
                                                static_cast<std::size_t>(y1 - y0), spec);
       if (pop == 0) mark = epoch_;

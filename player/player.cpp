@@ -52,10 +52,9 @@ void Player::onVsync(std::int64_t n) {
   const bool lightmapChanged = !last_ || row.lightmap.pop != 0;
   const bool changed = lightmapChanged || (row.sky && row.sky->pop != 0);
   if (changed) {
-    if (lightmapChanged || !afterLightmapValid_) {
+    if (lightmapChanged) {  // always at the first vsync (no row before it)
       afterLightmap_ = FrameHasher{};
       afterLightmap_.add(lm.lightmap());
-      afterLightmapValid_ = true;
     }
     FrameHasher h = afterLightmap_;
     if (sky != nullptr) h.add(sky->lightmap());

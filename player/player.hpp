@@ -127,7 +127,6 @@ class Player {
   // The frame hash's state after the lightmap's bytes, kept while the lightmap does not change: a
   // vsync where only the sky moved hashes the sky alone (the digest is the same).
   FrameHasher afterLightmap_;
-  bool afterLightmapValid_ = false;
   bool started_ = false;
 };
 

@@ -5,12 +5,10 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 #include "runtime/clock.hpp"
@@ -96,12 +94,6 @@ class Tracer {
   std::vector<std::int64_t> last_;
   std::vector<bool> hasLast_;
   std::vector<std::string> labels_;
-  // Label -> its index in labels_ (heterogeneous lookup: a string_view finds it without a copy).
-  struct LabelHash {
-    using is_transparent = void;
-    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
-  };
-  std::unordered_map<std::string, std::uint32_t, LabelHash, std::equal_to<>> labelIds_;
   struct RecentLabel {
     const char* data = nullptr;
     std::uint32_t id = 0;
