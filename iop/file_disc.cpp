@@ -36,8 +36,7 @@ FileDisc::FileDisc(std::string path, std::int64_t startLba, std::int64_t discSec
   if (std::filesystem::is_directory(path_, ec)) throw DiscError(path_ + ": is a directory, expected a stream file");
   const auto size = std::filesystem::file_size(path_, ec);
   if (ec) throw DiscError(path_ + ": cannot read its size: " + ec.message());
-  in_.open(path_, std::ios::binary);
-  if (!in_) throw DiscError(path_ + ": cannot open for reading");
+  if (!in_.open(path_)) throw DiscError(path_ + ": cannot open for reading");
   if (size == 0) throw DiscError(path_ + ": is empty, expected at least one 2048-byte sector");
   if (size % kSectorBytes != 0) {
     const auto whole = size / kSectorBytes * kSectorBytes;
@@ -68,10 +67,7 @@ SectorReadResult FileDisc::read(std::int64_t lba, SectorSpan out) {
     return {};
   }
   const auto offset = static_cast<std::streamoff>((lba - file_.lba) * static_cast<std::int64_t>(kSectorBytes));
-  in_.clear();
-  in_.seekg(offset);
-  in_.read(reinterpret_cast<char*>(out.data()), static_cast<std::streamsize>(out.size()));
-  if (in_.gcount() != static_cast<std::streamsize>(out.size())) {
+  if (!in_.read(offset, out)) {
     return {false, path_ + ": read failed at byte offset " + std::to_string(offset) + " (LBA " + std::to_string(lba) +
                        "): the file changed or is unreadable"};
   }

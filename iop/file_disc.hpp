@@ -4,9 +4,9 @@
 #pragma once
 
 #include <cstdint>
-#include <fstream>
 #include <string>
 
+#include "iop/sector_file.hpp"
 #include "iop/sector_source.hpp"
 
 namespace vbim::iop {
@@ -28,7 +28,7 @@ class FileDisc final : public SectorSource {
 
  private:
   std::string path_;
-  std::ifstream in_;
+  SectorFile in_;
   DiscFile file_;
   std::int64_t discSectors_ = 0;
 };

@@ -46,8 +46,7 @@ IsoDisc::IsoDisc(std::string path) : path_(std::move(path)) {
   if (std::filesystem::is_directory(path_, ec)) throw iop::DiscError(path_ + ": is a directory, expected an ISO image");
   const auto bytes = std::filesystem::file_size(path_, ec);
   if (ec) throw iop::DiscError(path_ + ": cannot read its size: " + ec.message());
-  file_.open(path_, std::ios::binary);
-  if (!file_) throw iop::DiscError(path_ + ": cannot open for reading");
+  if (!file_.open(path_)) throw iop::DiscError(path_ + ": cannot open for reading");
   // The volume descriptors start at LBA 16, after the system area (ECMA-119, 4th edition, section
   // 6.2.1): an image must reach past it.
   constexpr std::uint64_t kPvdEnd = 17 * iop::kSectorBytes;
@@ -95,10 +94,7 @@ IsoDisc::~IsoDisc() = default;
 
 bool IsoDisc::readSector(std::int64_t lba, iop::SectorSpan out) const {
   const std::scoped_lock lock(fileMutex_);
-  file_.clear();
-  file_.seekg(lba * static_cast<std::int64_t>(iop::kSectorBytes));
-  file_.read(reinterpret_cast<char*>(out.data()), static_cast<std::streamsize>(out.size()));
-  return file_.gcount() == static_cast<std::streamsize>(out.size());
+  return file_.read(lba * static_cast<std::int64_t>(iop::kSectorBytes), out);
 }
 
 iop::SectorReadResult IsoDisc::read(std::int64_t lba, iop::SectorSpan out) {

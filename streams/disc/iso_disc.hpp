@@ -7,12 +7,12 @@
 #pragma once
 
 #include <cstdint>
-#include <fstream>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
+#include "iop/sector_file.hpp"
 #include "iop/sector_source.hpp"
 
 namespace vbim::streams::iso9660 {
@@ -52,8 +52,8 @@ class IsoDisc final : public iop::SectorSource {
   bool readSector(std::int64_t lba, iop::SectorSpan out) const;
 
   std::string path_;
-  mutable std::ifstream file_;
-  mutable std::mutex fileMutex_;  // one seek-and-read at a time on file_
+  mutable iop::SectorFile file_;
+  mutable std::mutex fileMutex_;  // one read at a time on file_ (its window is shared)
   std::int64_t sectors_ = 0;
   std::unique_ptr<iso9660::DirectoryTree> tree_;
 };

@@ -7,6 +7,8 @@
 #include <fstream>
 
 #include "iop/file_disc.hpp"
+#include "iop/sector_file.hpp"
+#include "runtime/rng.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "tests/iop/disc_error_of.hpp"
 #include "tests/iop/iop_fixture.hpp"
@@ -49,6 +51,36 @@ TEST(FileDisc, HoldsTheStreamAtItsLba) {
   EXPECT_EQ(buf[0], 0);  // before the file: nothing recorded
   EXPECT_FALSE(disc.read(5010, buf).ok);
   EXPECT_FALSE(disc.find("NIGHT.PSS").has_value());
+  fs::remove_all(d);
+}
+
+// The read-ahead window gives the file's bytes wherever a read falls: inside a window, across two,
+// larger than one, backwards, at the end, past it.
+TEST(SectorFile, ReadsTheSameBytesAsTheFileAtAnyOffsetAndSize) {
+  const fs::path d = tempDir();
+  std::vector<std::uint8_t> bytes(10 * kSectorBytes + 700);  // a tail shorter than a sector
+  Rng rng(11);
+  for (auto& b : bytes) b = static_cast<std::uint8_t>(rng.below(256));
+  {
+    std::ofstream out(d / "f.bin", std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  }
+  SectorFile f(3 * kSectorBytes);
+  ASSERT_TRUE(f.open((d / "f.bin").string()));
+  for (int round = 0; round < 2000; ++round) {
+    const std::size_t size = 1 + rng.below(round % 10 == 0 ? 8 * kSectorBytes : kSectorBytes + 100);
+    const std::size_t at = rng.below(bytes.size() + 200);
+    std::vector<std::uint8_t> got(size);
+    const bool ok = f.read(static_cast<std::int64_t>(at), got);
+    ASSERT_EQ(ok, at + size <= bytes.size()) << "at " << at << " size " << size;
+    if (ok) {
+      ASSERT_TRUE(std::equal(got.begin(), got.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at)))
+          << "at " << at << " size " << size;
+    }
+  }
+  std::uint8_t one = 0;
+  EXPECT_FALSE(f.read(-1, std::span<std::uint8_t>(&one, 1)));
+  EXPECT_FALSE(SectorFile().open((d / "missing.bin").string()));
   fs::remove_all(d);
 }
 
