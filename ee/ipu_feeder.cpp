@@ -37,7 +37,8 @@ Task<void> IpuFeeder::decodeOne(int stream) {
   const std::uint64_t gen = generation_;
   const Tick t0 = s_.now();
   co_await s_.delay(fromEeCycles(p_.decode_setup_cycles));
-  auto image = std::make_shared<Rgba8Image>();
+  // A recycled buffer of this stream's size: the IPU writes every byte of it.
+  std::shared_ptr<Rgba8Image> image = images_[static_cast<std::size_t>(stream)].take();
   const ipu::TimedPicture tp = co_await ipu_.decode(pic.data, *image);
   const Tick took = s_.now() - t0;
   if (tracer_ != nullptr) tracer_->span(track_, t0, s_.now(), stream == kLightmap ? "lightmap" : "sky");

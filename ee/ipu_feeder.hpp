@@ -19,6 +19,7 @@
 #include "ee/timeline.hpp"
 #include "ipu/ipu_unit.hpp"
 #include "runtime/event.hpp"
+#include "runtime/image_pool.hpp"
 #include "runtime/scheduler.hpp"
 #include "runtime/trace.hpp"
 
@@ -77,6 +78,7 @@ class IpuFeeder {
   std::uint64_t generation_ = 0;
   std::int64_t lastBranchFrom_ = 0;
   DecodeCounters dc_;
+  std::array<ImagePool, 2> images_;  // per stream, so a recycled buffer already has the size
 };
 
 }  // namespace vbim::ee

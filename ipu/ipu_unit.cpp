@@ -30,6 +30,10 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
   result.started = s_.now();
   const CommandRef shared = std::make_shared<Command>(s_);
   Command& cmd = *shared;
+  // Decode into out's buffer: when it already has the picture's size (a recycled image), nothing is
+  // allocated or cleared; every byte is written either way.
+  cmd.staged = std::move(out);
+  out = Rgba8Image{};
   result.report = decoder_.decode(bytes, runner_, RgbaOutput{&cmd.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();

@@ -39,11 +39,13 @@ Task<void> stallOutputLater(Scheduler& s, IpuUnit& unit, Tick at, Tick duration)
   unit.stallOutputDma(duration);
 }
 
-TimedRun runWith(const IpuParams& p, const std::vector<std::uint8_t>& bytes, Tick stallAt = -1, Tick stallFor = 0) {
+TimedRun runWith(const IpuParams& p, const std::vector<std::uint8_t>& bytes, Tick stallAt = -1, Tick stallFor = 0,
+                 Rgba8Image initial = {}) {
   Scheduler s;
   Tracer tracer;
   IpuUnit unit(s, p, &tracer);
   TimedRun run;
+  run.image = std::move(initial);
   s.spawn("player", decodeOnce(unit, bytes, run));
   if (stallAt >= 0) s.spawn("fault", stallOutputLater(s, unit, stallAt, stallFor));
   s.run();
@@ -61,6 +63,23 @@ TEST(IpuUnit, OutputEqualsTheFunctionalDecode) {
   EXPECT_EQ(run.image.pixels, expected.pixels);
   EXPECT_EQ(run.image.width, 128);
   EXPECT_EQ(run.image.row(0)[3], 0x80);  // RGB32 alpha = 1.0
+}
+
+// The player hands the IPU recycled buffers (runtime/image_pool.hpp) holding an older picture: the
+// decode must write every byte, also where a damaged picture's macroblocks are concealed.
+TEST(IpuUnit, DecodesIntoAStaleBufferAsIntoAFreshOne) {
+  const std::vector<std::uint8_t> whole = firstPicture();
+  const std::vector<std::uint8_t> cut(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(whole.size() / 2));
+  for (const auto* bytes : {&whole, &cut}) {
+    const TimedRun fresh = runWith(IpuParams{}, *bytes);
+    ASSERT_TRUE(fresh.result.report.produced);
+    Rgba8Image stale(128, 64);
+    std::fill(stale.pixels.begin(), stale.pixels.end(), std::uint8_t{0xAB});
+    const TimedRun reused = runWith(IpuParams{}, *bytes, -1, 0, std::move(stale));
+    EXPECT_EQ(reused.image.pixels, fresh.image.pixels) << (bytes == &cut ? "damaged picture" : "whole picture");
+    EXPECT_EQ(reused.result.finished, fresh.result.finished);
+  }
+  EXPECT_GT(runWith(IpuParams{}, cut).result.report.macroblocksConcealed, 0);
 }
 
 // Doubling base, per-bit and CSC cost moves the completion time by exactly one more sum of
