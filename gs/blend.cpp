@@ -50,12 +50,24 @@ int blendSpanDeltaScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t
 }
 
 int blendRectDeltaScalar(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
-                         std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+                         std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
   int delta = 0;
   for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
+    if (settled != nullptr && (*settled >> y) & 1u) continue;
     delta = std::max(delta, blendSpan<true>(dst, src, pixels, spec));
+    if (settled != nullptr && spanAtFixedPoint(dst, src, pixels, spec)) *settled |= 1u << y;
   }
   return delta;
+}
+
+bool spanAtFixedPoint(const std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+  const bool keepAlpha = spec.alpha == AlphaWrite::Keep;
+  for (std::size_t i = 0; i < 4 * pixels; i += 4) {
+    for (int c = 0; c < 3; ++c)
+      if (!isFixedPoint(src[i + c], dst[i + c], spec.fix)) return false;
+    if (!keepAlpha && src[i + 3] != dst[i + 3]) return false;
+  }
+  return true;
 }
 
 const BlendKernels& scalarKernels() {

@@ -62,8 +62,14 @@ using BlendSpanFn = void (*)(std::uint8_t* dst, const std::uint8_t* src, std::si
 using BlendSpanDeltaFn = int (*)(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
 // blendDelta over `rows` spans of `pixels` each, the rows dstStride and srcStride bytes apart (a
 // tile of the lightmap): one call and one reduction of the change per tile instead of per row.
+// `settled` (null, or a mask of rows <= 32 bits wide) lets a tile be blended row by row as it
+// converges: a row whose bit is set is at its fixed point for this src and spec (spanAtFixedPoint)
+// and is skipped, and each blended row's bit is set when the blend left it at its fixed point. The
+// caller clears the mask whenever src or spec changes. Bytes and the returned change are the same as
+// without the mask: a skipped row would not have changed.
 using BlendRectDeltaFn = int (*)(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src,
-                                 std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec);
+                                 std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
+                                 std::uint32_t* settled);
 
 struct BlendKernels {
   const char* name;
@@ -75,7 +81,18 @@ struct BlendKernels {
 void blendSpanScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
 int blendSpanDeltaScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
 int blendRectDeltaScalar(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
-                         std::size_t pixels, std::size_t rows, const BlendSpec& spec);
+                         std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled);
+
+// True when blending the span toward src once more would change no byte: every colour channel is
+// at its fixed point (isFixedPoint), and alpha equals As (AlphaWrite::Source; Ad kept never moves).
+// A sufficient test: in Wrap mode with FIX > 128 a step of exactly 256 also changes nothing.
+bool spanAtFixedPoint(const std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
+
+// The largest Cs - Cd (Cs >= Cd) that is a fixed point at this FIX: 127 / FIX, or 255 for FIX 0
+// (which never moves anything). SIMD kernels test fixed points with it.
+constexpr int fixedPointBand(int fix) {
+  return fix == 0 ? 255 : 127 / fix;
+}
 
 // The reference kernels ("scalar").
 const BlendKernels& scalarKernels();

@@ -21,18 +21,39 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 #if HWY_TARGET == HWY_SCALAR
 // One lane cannot be split into two 16-bit halves: the scalar target is the reference itself.
-template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack>
+template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
 int BlendRectT(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
-               std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
-  if constexpr (kTrack) return blendRectDeltaScalar(dst, dstStride, src, srcStride, pixels, rows, spec);
+               std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
+  if constexpr (kTrack) return blendRectDeltaScalar(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
   for (std::size_t y = 0; y < rows; ++y) blendSpanScalar(dst + y * dstStride, src + y * srcStride, pixels, spec);
   return 0;
 }
 #else
-// `rows` spans of `pixels`, the change reduced once at the end (a 64x32 tile is one call).
-template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack>
+// The fixed-point test of spanAtFixedPoint (gs/blend.hpp) on a vector: non-zero bytes where a
+// further blend would move the result r. Per byte, r is fixed when Cs - r <= band and r <= Cs (the
+// latter not needed for FIX 0, which moves nothing). Alpha: r == As when As is written; nothing when
+// Ad is kept. Four vector operations.
+template <class D8>
+struct FixedPointTest {
+  hn::Vec<D8> band, underMask;
+  FixedPointTest(D8 d8, const BlendSpec& spec) {
+    const hn::Repartition<std::uint32_t, D8> d32;
+    const bool keepAlpha = spec.alpha == AlphaWrite::Keep;
+    const auto colourBand = static_cast<std::uint32_t>(fixedPointBand(spec.fix));
+    band = hn::BitCast(d8, hn::Set(d32, (keepAlpha ? 0xFF000000u : 0u) | colourBand * 0x010101u));
+    underMask = hn::BitCast(d8, hn::Set(d32, (keepAlpha ? 0u : 0xFF000000u) | (spec.fix == 0 ? 0u : 0x00FFFFFFu)));
+  }
+  hn::Vec<D8> off(hn::Vec<D8> s, hn::Vec<D8> r) const {
+    return hn::Or(hn::And(hn::SaturatedSub(r, s), underMask), hn::SaturatedSub(hn::SaturatedSub(s, r), band));
+  }
+};
+
+// `rows` spans of `pixels`, the change reduced once at the end (a 64x32 tile is one call). kSettle:
+// rows marked in *settled are skipped, blended rows left at their fixed point are marked.
+template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
 int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
-               std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+               std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
+               std::uint32_t* settled) {
   const hn::ScalableTag<std::uint8_t> d8;
   const hn::Repartition<std::uint16_t, decltype(d8)> d16;
   const hn::Repartition<std::int16_t, decltype(d8)> di16;
@@ -50,8 +71,13 @@ int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
   const auto max8 = hn::Set(di16, 255);
   auto deltaAcc = hn::Zero(d8);
   int delta = 0;
+  const FixedPointTest<decltype(d8)> fixed(d8, spec);
 
   for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
+    if constexpr (kSettle) {
+      if ((*settled >> y) & 1u) continue;
+    }
+    auto off = hn::Zero(d8);
     std::size_t i = 0;
     for (; i + step <= bytes; i += step) {
       const auto s8 = hn::LoadU(d8, src + i);
@@ -83,12 +109,18 @@ int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
       if constexpr (kTrack) {
         deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r8, dd8), hn::SaturatedSub(dd8, r8)));
       }
+      if constexpr (kSettle) off = hn::Or(off, fixed.off(s8, r8));
       hn::StoreU(r8, d8, dst + i);
     }
+    bool tailFixed = true;
     if (i < bytes) {
       const std::size_t rest = (bytes - i) / 4;
       const int t = blendSpanDeltaScalar(dst + i, src + i, rest, spec);
       delta = std::max(delta, t);
+      if constexpr (kSettle) tailFixed = spanAtFixedPoint(dst + i, src + i, rest, spec);
+    }
+    if constexpr (kSettle) {
+      if (tailFixed && hn::AllTrue(d8, hn::Eq(off, hn::Zero(d8)))) *settled |= 1u << y;
     }
   }
   if constexpr (kTrack) {
@@ -105,9 +137,10 @@ int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
 // The result lies between Cd and Cs, so COLCLAMP never acts. Alpha is As or Ad, chosen by a byte
 // mask. About 8 vector operations per vector against the general kernel's 20, which matters because
 // most blends of a play are this one (docs/player.md, "Sixth round").
-template <bool kKeepAlpha, bool kTrack>
+template <bool kKeepAlpha, bool kTrack, bool kSettle>
 int BlendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
-                   std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+                   std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
+                   std::uint32_t* settled) {
   const hn::ScalableTag<std::uint8_t> d8;
   const hn::Repartition<std::uint32_t, decltype(d8)> d32;
   const std::size_t bytes = pixels * 4;
@@ -116,7 +149,12 @@ int BlendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const 
   const auto alpha = hn::BitCast(d8, hn::Set(d32, 0xFF000000u));  // byte 3 of each little-endian pixel
   auto deltaAcc = hn::Zero(d8);
   int delta = 0;
+  const FixedPointTest<decltype(d8)> fixed(d8, spec);
   for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
+    if constexpr (kSettle) {
+      if ((*settled >> y) & 1u) continue;
+    }
+    auto off = hn::Zero(d8);
     std::size_t i = 0;
     for (; i + step <= bytes; i += step) {
       const auto s = hn::LoadU(d8, src + i);
@@ -124,9 +162,17 @@ int BlendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const 
       const auto half = hn::Sub(hn::AverageRound(s, d), hn::And(hn::Xor(s, d), one));
       const auto r = hn::Or(hn::AndNot(alpha, half), hn::And(alpha, kKeepAlpha ? d : s));
       if constexpr (kTrack) deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r, d), hn::SaturatedSub(d, r)));
+      if constexpr (kSettle) off = hn::Or(off, fixed.off(s, r));
       hn::StoreU(r, d8, dst + i);
     }
-    if (i < bytes) delta = std::max(delta, blendSpanDeltaScalar(dst + i, src + i, (bytes - i) / 4, spec));
+    bool tailFixed = true;
+    if (i < bytes) {
+      delta = std::max(delta, blendSpanDeltaScalar(dst + i, src + i, (bytes - i) / 4, spec));
+      if constexpr (kSettle) tailFixed = spanAtFixedPoint(dst + i, src + i, (bytes - i) / 4, spec);
+    }
+    if constexpr (kSettle) {
+      if (tailFixed && hn::AllTrue(d8, hn::Eq(off, hn::Zero(d8)))) *settled |= 1u << y;
+    }
   }
   if constexpr (kTrack) {
     std::uint8_t lanes[256];  // >= the widest vector of any target
@@ -137,39 +183,46 @@ int BlendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const 
 }
 #endif
 
-template <bool kTrack>
-int Dispatch(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
-             std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
+template <bool kTrack, bool kSettle>
+int DispatchT(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+              std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
   const bool wide = spec.fix > 128;
   const bool wrap = spec.colclamp == ColClamp::Wrap;
   const bool keep = spec.alpha == AlphaWrite::Keep;
 #if HWY_TARGET != HWY_SCALAR
   if (spec.fix == 64) {
-    return keep ? BlendHalfRectT<true, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec)
-                : BlendHalfRectT<false, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec);
+    return keep ? BlendHalfRectT<true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec, settled)
+                : BlendHalfRectT<false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
   }
 #endif
   if (!wide) {
-    return keep ? BlendRectT<false, false, true, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec)
-                : BlendRectT<false, false, false, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec);
+    return keep ? BlendRectT<false, false, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                                                                  settled)
+                : BlendRectT<false, false, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                                                                   settled);
   }
   if (wrap) {
-    return keep ? BlendRectT<true, true, true, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec)
-                : BlendRectT<true, true, false, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec);
+    return keep ? BlendRectT<true, true, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                                                                settled)
+                : BlendRectT<true, true, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                                                                 settled);
   }
-  return keep ? BlendRectT<true, false, true, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec)
-              : BlendRectT<true, false, false, kTrack>(dst, dstStride, src, srcStride, pixels, rows, spec);
+  return keep ? BlendRectT<true, false, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                                                               settled)
+              : BlendRectT<true, false, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                                                                settled);
 }
 
 void BlendSpan(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  Dispatch<false>(dst, 0, src, 0, pixels, 1, spec);
+  DispatchT<false, false>(dst, 0, src, 0, pixels, 1, spec, nullptr);
 }
 int BlendSpanDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  return Dispatch<true>(dst, 0, src, 0, pixels, 1, spec);
+  return DispatchT<true, false>(dst, 0, src, 0, pixels, 1, spec, nullptr);
 }
 int BlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
-                   std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
-  return Dispatch<true>(dst, dstStride, src, srcStride, pixels, rows, spec);
+                   std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
+  return settled != nullptr ? DispatchT<true, true>(dst, dstStride, src, srcStride, pixels, rows, spec, settled)
+                            : DispatchT<true, false>(dst, dstStride, src, srcStride, pixels, rows, spec, nullptr);
 }
 const char* TargetNameHere() {
   return hwy::TargetName(HWY_TARGET);
@@ -196,8 +249,8 @@ int dispatchBlendDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t p
   return HWY_DYNAMIC_DISPATCH(BlendSpanDelta)(dst, src, pixels, spec);
 }
 int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
-                           std::size_t pixels, std::size_t rows, const BlendSpec& spec) {
-  return HWY_DYNAMIC_DISPATCH(BlendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec);
+                           std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
+  return HWY_DYNAMIC_DISPATCH(BlendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
 }
 }  // namespace
 

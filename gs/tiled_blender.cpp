@@ -13,7 +13,7 @@ TiledBlender::TiledBlender(int width, int height, const BlendKernels& kernels, b
       tilesY_((height + kTileHeight - 1) / kTileHeight),
       kernels_(&kernels),
       aware_(convergenceAware),
-      convergedAt_(static_cast<std::size_t>(tilesX_) * tilesY_, 0) {}
+      tiles_(static_cast<std::size_t>(tilesX_) * tilesY_) {}
 
 TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec,
                                          std::uint64_t sourceId, int rowBegin, int rowEnd) {
@@ -41,17 +41,21 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
       r.tilesBlended += tilesX_;
       continue;
     }
+    const std::uint32_t allRows = y1 - y0 == 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << (y1 - y0)) - 1;
     for (int tx = 0; tx < tilesX_; ++tx) {
-      std::uint64_t& mark = convergedAt_[static_cast<std::size_t>(ty) * tilesX_ + tx];
-      if (mark == epoch_) {
+      TileState& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      if (tile.epoch != epoch_) tile = TileState{epoch_, 0};
+      if (tile.settled == allRows) {
         ++r.tilesSkipped;
         continue;
       }
       const int x0 = tx * kTileWidth;
       const std::size_t w = static_cast<std::size_t>(std::min(kTileWidth, width_ - x0));
       const int pop = kernels_->blendRectDelta(dst.row(y0) + 4 * x0, stride, src.row(y0) + 4 * x0, stride, w,
-                                               static_cast<std::size_t>(y1 - y0), spec);
-      if (pop == 0) mark = epoch_;
+                                               static_cast<std::size_t>(y1 - y0), spec, &tile.settled);
+      // Rows that changed nothing are at their fixed point even where the per-row test cannot tell
+      // (a Wrap-mode step of exactly 256).
+      if (pop == 0) tile.settled = allRows;
       r.pop = std::max(r.pop, pop);
       ++r.tilesBlended;
     }

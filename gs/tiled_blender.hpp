@@ -1,8 +1,10 @@
 // Blends a source frame into the lightmap, tile by tile (64x32 pixels: one PSMCT32 page), with an
-// optional host-side shortcut: a tile whose last blend changed nothing is at the blend's fixed
-// point for that source and spec, so blending it again would change nothing either; it is skipped
-// until the source or the spec changes. The result is bit-identical to blending everything (the
-// tests check it); only host time is saved, never simulated time (the GS still draws every pixel).
+// optional host-side shortcut: a row of a tile that a blend left at its fixed point for that source
+// and spec (gs/blend.hpp, spanAtFixedPoint) would not change if blended again, so it is skipped, and
+// so is a tile whose rows all are, until the source or the spec changes. A blend that changes a
+// tile's last moving rows marks them at once, so a converged tile costs no extra pass to be found.
+// The result is bit-identical to blending everything (the tests check it); only host time is saved,
+// never simulated time (the GS still draws every pixel).
 #pragma once
 
 #include <cstdint>
@@ -15,6 +17,7 @@ namespace vbim::gs {
 
 inline constexpr int kTileWidth = 64;
 inline constexpr int kTileHeight = 32;
+static_assert(kTileHeight <= 32, "a tile's settled rows are one 32-bit mask");
 
 class TiledBlender {
  public:
@@ -47,7 +50,11 @@ class TiledBlender {
   std::uint64_t epoch_ = 1;
   std::uint64_t lastSourceId_ = ~std::uint64_t{0};
   BlendSpec lastSpec_{};
-  std::vector<std::uint64_t> convergedAt_;  // per tile: the epoch in which it was found converged
+  struct TileState {
+    std::uint64_t epoch = 0;    // the epoch its mask belongs to (another epoch: nothing settled)
+    std::uint32_t settled = 0;  // rows at their fixed point (BlendRectDeltaFn)
+  };
+  std::vector<TileState> tiles_;
 };
 
 }  // namespace vbim::gs

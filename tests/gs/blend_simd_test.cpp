@@ -62,6 +62,30 @@ TEST(BlendSimd, EveryTargetMatchesScalarOnEveryTriple) {
   std::printf("SIMD targets tested: %s(dispatch picks %s)\n", names.c_str(), simd::kernels().name);
 }
 
+// spanAtFixedPoint is what lets a blender skip a row: wherever it says a pixel is at its fixed
+// point, blending it again changes nothing, for every (Cs, Cd, FIX) and mode. And where it says
+// not, the next blend does change it, except a Wrap-mode step of a whole 256 (FIX > 128).
+TEST(BlendSimd, FixedPointTestIsSafeAndExactForEveryTriple) {
+  std::vector<std::uint8_t> src, dst0;
+  allPairs(src, dst0);
+  for (ColClamp cc : {ColClamp::Clamp, ColClamp::Wrap}) {
+    for (AlphaWrite aw : {AlphaWrite::Source, AlphaWrite::Keep}) {
+      for (int fix = 0; fix < 256; ++fix) {
+        const BlendSpec spec = makeBlendSpec(fix, cc, aw);
+        for (int i = 0; i < 65536; ++i) {
+          const std::uint8_t* s = src.data() + 4 * i;
+          std::uint8_t d[4] = {dst0[4 * i], dst0[4 * i + 1], dst0[4 * i + 2], dst0[4 * i + 3]};
+          const bool fixed = spanAtFixedPoint(d, s, 1, spec);
+          const bool moved = blendSpanDeltaScalar(d, s, 1, spec) != 0;
+          if (fixed && moved) FAIL() << "fixed point moved: fix " << fix << " pixel " << i;
+          if (!fixed && !moved && !(cc == ColClamp::Wrap && fix > 128))
+            FAIL() << "not a fixed point, yet nothing moved: fix " << fix << " pixel " << i;
+        }
+      }
+    }
+  }
+}
+
 TEST(BlendSimd, EveryTargetMatchesScalarOnRandomFrames) {
   Rng rng(6);
   simd::forEachTarget([&](const std::string& target) {
@@ -109,10 +133,28 @@ TEST(BlendSimd, EveryTargetMatchesScalarOnRectangles) {
       const BlendSpec spec = makeBlendSpec(fix, rng.chance(1, 2) ? ColClamp::Clamp : ColClamp::Wrap,
                                            rng.chance(1, 2) ? AlphaWrite::Source : AlphaWrite::Keep);
       std::vector<std::uint8_t> want = dst, got = dst;
-      const int wd = blendRectDeltaScalar(want.data(), dstStride, src.data(), srcStride, pixels, rows, spec);
-      const int gd = simd::kernels().blendRectDelta(got.data(), dstStride, src.data(), srcStride, pixels, rows, spec);
+      const int wd = blendRectDeltaScalar(want.data(), dstStride, src.data(), srcStride, pixels, rows, spec, nullptr);
+      const int gd =
+          simd::kernels().blendRectDelta(got.data(), dstStride, src.data(), srcStride, pixels, rows, spec, nullptr);
       ASSERT_EQ(got, want) << target << " " << pixels << "x" << rows << " strides " << dstStride << "/" << srcStride;
       ASSERT_EQ(gd, wd) << target;
+      if (rows <= 32) {
+        // With a settled-row mask (random rows marked settled): the same rows skipped and the same
+        // rows marked, three blends in a row.
+        const std::uint32_t start =
+            static_cast<std::uint32_t>(rng.below(1u << 16)) & ((rows == 32 ? 0u : 1u << rows) - 1u);
+        std::uint32_t wantMask = start, gotMask = start;
+        std::vector<std::uint8_t> wantM = dst, gotM = dst;
+        for (int pass = 0; pass < 3; ++pass) {
+          const int wdm =
+              blendRectDeltaScalar(wantM.data(), dstStride, src.data(), srcStride, pixels, rows, spec, &wantMask);
+          const int gdm = simd::kernels().blendRectDelta(gotM.data(), dstStride, src.data(), srcStride, pixels, rows,
+                                                         spec, &gotMask);
+          ASSERT_EQ(gotM, wantM) << target << " pass " << pass;
+          ASSERT_EQ(gdm, wdm) << target << " pass " << pass;
+          ASSERT_EQ(gotMask, wantMask) << target << " pass " << pass << " fix " << int(spec.fix);
+        }
+      }
       // The scalar rectangle is its rows.
       std::vector<std::uint8_t> rowwise = dst;
       int rd = 0;
