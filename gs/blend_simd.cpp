@@ -48,31 +48,19 @@ struct FixedPointTest {
   }
 };
 
-// `rows` spans of `pixels`, the change reduced once at the end (a 64x32 tile is one call). kSettle:
-// rows marked in *settled are skipped, blended rows left at their fixed point are marked.
-template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
-int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
-               std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
-               std::uint32_t* settled) {
-  const hn::ScalableTag<std::uint8_t> d8;
-  const hn::Repartition<std::uint16_t, decltype(d8)> d16;
-  const hn::Repartition<std::int16_t, decltype(d8)> di16;
-  const hn::Repartition<std::uint32_t, decltype(d8)> d32;
+// The row loop of every kernel: `rows` spans of `pixels`, each vector's result given by
+// `blend(s, d)`, the last pixels of a span by the scalar reference, the change reduced once at the
+// end (a 64x32 tile is one call). kSettle: rows marked in *settled are skipped, blended rows left at
+// their fixed point are marked.
+template <bool kTrack, bool kSettle, class D8, class BlendVector>
+HWY_INLINE int BlendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride,
+                         const std::uint8_t* HWY_RESTRICT src, std::size_t srcStride, std::size_t pixels,
+                         std::size_t rows, const BlendSpec& spec, std::uint32_t* settled, const BlendVector& blend) {
   const std::size_t bytes = pixels * 4;
   const std::size_t step = hn::Lanes(d8);
-
-  const auto low = hn::Set(d16, 0x00FF);
-  // Even channels (R, B) use FIX. Odd channels are G and A: G uses FIX, A uses 128 (a copy: As is
-  // written) or 0 (Ad is kept), so alpha needs no separate select.
-  const auto f4 = hn::Set(di16, static_cast<std::int16_t>(spec.fix * 4));
-  const std::uint32_t alphaMul = kKeepAlpha ? 0u : 128u * 4u;
-  const auto f4odd = hn::BitCast(di16, hn::Set(d32, (alphaMul << 16) | (static_cast<std::uint32_t>(spec.fix) * 4u)));
-  const auto zero = hn::Zero(di16);
-  const auto max8 = hn::Set(di16, 255);
   auto deltaAcc = hn::Zero(d8);
   int delta = 0;
-  const FixedPointTest<decltype(d8)> fixed(d8, spec);
-
+  const FixedPointTest<D8> fixed(d8, spec);
   for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
     if constexpr (kSettle) {
       if ((*settled >> y) & 1u) continue;
@@ -80,43 +68,17 @@ int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
     auto off = hn::Zero(d8);
     std::size_t i = 0;
     for (; i + step <= bytes; i += step) {
-      const auto s8 = hn::LoadU(d8, src + i);
-      const auto dd8 = hn::LoadU(d8, dst + i);
-      const auto s = hn::BitCast(d16, s8);
-      const auto d = hn::BitCast(d16, dd8);
-      const auto se = hn::BitCast(di16, hn::And(s, low));
-      const auto de = hn::BitCast(di16, hn::And(d, low));
-      const auto so = hn::BitCast(di16, hn::ShiftRight<8>(s));
-      const auto dod = hn::BitCast(di16, hn::ShiftRight<8>(d));
-      const auto me = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(se, de)), f4);
-      const auto mo = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4odd);
-      hn::Vec<decltype(d8)> r8;
-      if constexpr (!kWide) {
-        // FIX <= 128: each channel's result stays in 0..255, so the two steps add to the 16-bit lane
-        // without carries: Cd + me + (mo << 8).
-        r8 = hn::BitCast(d8, hn::Add(hn::Add(d, hn::BitCast(d16, me)), hn::ShiftLeft<8>(hn::BitCast(d16, mo))));
-      } else {
-        auto te = hn::Add(me, de);
-        auto to = hn::Add(mo, dod);
-        if constexpr (kWrap) {
-          te = hn::BitCast(di16, hn::And(hn::BitCast(d16, te), low));  // odd lane: << 8 drops the rest
-        } else {
-          te = hn::Min(hn::Max(te, zero), max8);
-          to = hn::Min(hn::Max(to, zero), max8);
-        }
-        r8 = hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
-      }
-      if constexpr (kTrack) {
-        deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r8, dd8), hn::SaturatedSub(dd8, r8)));
-      }
-      if constexpr (kSettle) off = hn::Or(off, fixed.off(s8, r8));
-      hn::StoreU(r8, d8, dst + i);
+      const auto s = hn::LoadU(d8, src + i);
+      const auto d = hn::LoadU(d8, dst + i);
+      const auto r = blend(s, d);
+      if constexpr (kTrack) deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r, d), hn::SaturatedSub(d, r)));
+      if constexpr (kSettle) off = hn::Or(off, fixed.off(s, r));
+      hn::StoreU(r, d8, dst + i);
     }
     bool tailFixed = true;
     if (i < bytes) {
       const std::size_t rest = (bytes - i) / 4;
-      const int t = blendSpanDeltaScalar(dst + i, src + i, rest, spec);
-      delta = std::max(delta, t);
+      delta = std::max(delta, blendSpanDeltaScalar(dst + i, src + i, rest, spec));
       if constexpr (kSettle) tailFixed = spanAtFixedPoint(dst + i, src + i, rest, spec);
     }
     if constexpr (kSettle) {
@@ -131,6 +93,51 @@ int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
   return delta;
 }
 
+// Any FIX, COLCLAMP and alpha mode (the arithmetic in the comment at the top of the file).
+template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
+int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
+               std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
+               std::uint32_t* settled) {
+  const hn::ScalableTag<std::uint8_t> d8;
+  const hn::Repartition<std::uint16_t, decltype(d8)> d16;
+  const hn::Repartition<std::int16_t, decltype(d8)> di16;
+  const hn::Repartition<std::uint32_t, decltype(d8)> d32;
+  const auto low = hn::Set(d16, 0x00FF);
+  // Even channels (R, B) use FIX. Odd channels are G and A: G uses FIX, A uses 128 (a copy: As is
+  // written) or 0 (Ad is kept), so alpha needs no separate select.
+  const auto f4 = hn::Set(di16, static_cast<std::int16_t>(spec.fix * 4));
+  const std::uint32_t alphaMul = kKeepAlpha ? 0u : 128u * 4u;
+  const auto f4odd = hn::BitCast(di16, hn::Set(d32, (alphaMul << 16) | (static_cast<std::uint32_t>(spec.fix) * 4u)));
+  const auto zero = hn::Zero(di16);
+  const auto max8 = hn::Set(di16, 255);
+  const auto blend = [&](hn::Vec<decltype(d8)> s8, hn::Vec<decltype(d8)> d8v) HWY_ATTR {
+    const auto s = hn::BitCast(d16, s8);
+    const auto d = hn::BitCast(d16, d8v);
+    const auto se = hn::BitCast(di16, hn::And(s, low));
+    const auto de = hn::BitCast(di16, hn::And(d, low));
+    const auto so = hn::BitCast(di16, hn::ShiftRight<8>(s));
+    const auto dod = hn::BitCast(di16, hn::ShiftRight<8>(d));
+    const auto me = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(se, de)), f4);
+    const auto mo = hn::MulHigh(hn::ShiftLeft<7>(hn::Sub(so, dod)), f4odd);
+    if constexpr (!kWide) {
+      // FIX <= 128: each channel's result stays in 0..255, so the two steps add to the 16-bit lane
+      // without carries: Cd + me + (mo << 8).
+      return hn::BitCast(d8, hn::Add(hn::Add(d, hn::BitCast(d16, me)), hn::ShiftLeft<8>(hn::BitCast(d16, mo))));
+    } else {
+      auto te = hn::Add(me, de);
+      auto to = hn::Add(mo, dod);
+      if constexpr (kWrap) {
+        te = hn::BitCast(di16, hn::And(hn::BitCast(d16, te), low));  // odd lane: << 8 drops the rest
+      } else {
+        te = hn::Min(hn::Max(te, zero), max8);
+        to = hn::Min(hn::Max(to, zero), max8);
+      }
+      return hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
+    }
+  };
+  return BlendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
+}
+
 // FIX = 64, the default smoothing step (half way per vsync), needs no widening:
 //     Cd + floor((Cs - Cd) * 64 / 128)  ==  floor((Cs + Cd) / 2)  ==  AverageRound(Cs, Cd) - ((Cs ^ Cd) & 1)
 // since AverageRound is (Cs + Cd + 1) >> 1, one more than the floor exactly when Cs + Cd is odd.
@@ -143,43 +150,13 @@ int BlendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const 
                    std::uint32_t* settled) {
   const hn::ScalableTag<std::uint8_t> d8;
   const hn::Repartition<std::uint32_t, decltype(d8)> d32;
-  const std::size_t bytes = pixels * 4;
-  const std::size_t step = hn::Lanes(d8);
   const auto one = hn::Set(d8, 1);
   const auto alpha = hn::BitCast(d8, hn::Set(d32, 0xFF000000u));  // byte 3 of each little-endian pixel
-  auto deltaAcc = hn::Zero(d8);
-  int delta = 0;
-  const FixedPointTest<decltype(d8)> fixed(d8, spec);
-  for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
-    if constexpr (kSettle) {
-      if ((*settled >> y) & 1u) continue;
-    }
-    auto off = hn::Zero(d8);
-    std::size_t i = 0;
-    for (; i + step <= bytes; i += step) {
-      const auto s = hn::LoadU(d8, src + i);
-      const auto d = hn::LoadU(d8, dst + i);
-      const auto half = hn::Sub(hn::AverageRound(s, d), hn::And(hn::Xor(s, d), one));
-      const auto r = hn::Or(hn::AndNot(alpha, half), hn::And(alpha, kKeepAlpha ? d : s));
-      if constexpr (kTrack) deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r, d), hn::SaturatedSub(d, r)));
-      if constexpr (kSettle) off = hn::Or(off, fixed.off(s, r));
-      hn::StoreU(r, d8, dst + i);
-    }
-    bool tailFixed = true;
-    if (i < bytes) {
-      delta = std::max(delta, blendSpanDeltaScalar(dst + i, src + i, (bytes - i) / 4, spec));
-      if constexpr (kSettle) tailFixed = spanAtFixedPoint(dst + i, src + i, (bytes - i) / 4, spec);
-    }
-    if constexpr (kSettle) {
-      if (tailFixed && hn::AllTrue(d8, hn::Eq(off, hn::Zero(d8)))) *settled |= 1u << y;
-    }
-  }
-  if constexpr (kTrack) {
-    std::uint8_t lanes[256];  // >= the widest vector of any target
-    hn::StoreU(deltaAcc, d8, lanes);
-    for (std::size_t k = 0; k < step; ++k) delta = std::max<int>(delta, lanes[k]);
-  }
-  return delta;
+  const auto blend = [&](hn::Vec<decltype(d8)> s, hn::Vec<decltype(d8)> d) HWY_ATTR {
+    const auto half = hn::Sub(hn::AverageRound(s, d), hn::And(hn::Xor(s, d), one));
+    return hn::Or(hn::AndNot(alpha, half), hn::And(alpha, kKeepAlpha ? d : s));
+  };
+  return BlendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
 }
 #endif
 
