@@ -51,7 +51,8 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
       }
       const int x0 = tx * kTileWidth;
       const std::size_t w = static_cast<std::size_t>(std::min(kTileWidth, width_ - x0));
-      const int pop = kernels_->blendRectDelta(dst.row(y0) + 4 * x0, stride, src.row(y0) + 4 * x0, stride, w,
+      const std::size_t left = static_cast<std::size_t>(x0) * 4;  // bytes into the row
+      const int pop = kernels_->blendRectDelta(dst.row(y0) + left, stride, src.row(y0) + left, stride, w,
                                                static_cast<std::size_t>(y1 - y0), spec, &tile.settled);
       // Rows that changed nothing are at their fixed point even where the per-row test cannot tell
       // (a Wrap-mode step of exactly 256).
