@@ -198,6 +198,14 @@ void checkDrawnFaultPlan(const iop::FaultPlan& plan, const std::string& origin) 
       throw ConfigError(origin + ":" + std::to_string(f.line) +
                         ": fault 'contention': the drawn period is longer than the drawn duration");
     }
+    if (f.kind == Fault::Kind::contention && f.period < iop::kMinFaultInterval) {
+      throw ConfigError(origin + ":" + std::to_string(f.line) +
+                        ": fault 'contention': the drawn period is shorter than 1ms, the least it may be");
+    }
+    if (f.kind == Fault::Kind::random_stall && f.meanInterval < iop::kMinFaultInterval) {
+      throw ConfigError(origin + ":" + std::to_string(f.line) +
+                        ": fault 'random_stall': the drawn mean_interval is shorter than 1ms, the least it may be");
+    }
   }
   rejectOverlaps(origin, plan.faults, Fault::Kind::stall);
   rejectOverlaps(origin, plan.faults, Fault::Kind::contention);
@@ -285,6 +293,9 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
         f.share = r.integer("share", 1, 99);
         f.period = r.has("period") ? r.time("period", true) : fromMs(100);
         f.lba = r.location(false);
+        if (f.period < iop::kMinFaultInterval) {
+          r.fail("period", "is shorter than 1ms, the least a contention period may be (docs/fault-plans.md)");
+        }
         if (iop::contentionSlice(f) < 1) r.fail("period", "too short: a share of it must last at least one tick");
         if (f.period > f.duration) r.fail("period", "is longer than the contention's duration");
         break;
@@ -293,6 +304,9 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
         f.duration = r.time("duration", true);
         f.meanInterval = r.time("mean_interval", true);
         f.stallLength = r.time("stall", true);
+        if (f.meanInterval < iop::kMinFaultInterval) {
+          r.fail("mean_interval", "is shorter than 1ms, the least a mean interval may be (docs/fault-plans.md)");
+        }
         if (f.stallLength >= f.meanInterval) {
           r.fail("stall", "must be shorter than mean_interval, or the drive would never run");
         }

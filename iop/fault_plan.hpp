@@ -60,6 +60,13 @@ inline constexpr Tick kMaxTime = 10'000'000'000 * kBusHz;
 // std::invalid_argument with the reason, also for a time longer than kMaxTime.
 Tick parseDuration(std::string_view text);
 
+// The shortest contention period and random-stall mean interval a plan may ask for: one sector's
+// read at the disc's inner edge (1,080 sectors/s in CAV, docs/timing/iop.md). Another client cannot
+// take the drive in slices finer than one of its own reads, and the bound keeps a plan's cost to
+// at most a few thousand faults per entry and simulated second (a 50 ns period made 20 M drive
+// commands per simulated second; found by fault_plan_toml_fuzzer). An assumption of the model.
+inline constexpr Tick kMinFaultInterval = fromMs(1);
+
 // A contention entry's slice of each period: period x share / 100, in 128 bits.
 Tick contentionSlice(const Fault& f);
 

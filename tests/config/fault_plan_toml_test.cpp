@@ -121,6 +121,12 @@ TEST(FaultPlan, RejectsBadPlansNamingLineAndField) {
       {"[[fault]]\nkind = \"random_stall\"\nfrom = \"0s\"\nduration = \"2s\"\nmean_interval = \"10ms\"\nstall = "
        "\"20ms\"\n",
        "must be shorter than mean_interval"},
+      // Finer than one sector's read (docs/fault-plans.md, "Cost"): the fuzzer's 52 ns period.
+      {"[[fault]]\nkind = \"contention\"\nfrom = \"0s\"\nduration = \"60s\"\nshare = 17\nperiod = \".052us\"\n",
+       "plan.toml:6: fault 'contention', field 'period': is shorter than 1ms"},
+      {"[[fault]]\nkind = \"random_stall\"\nfrom = \"0s\"\nduration = \"2s\"\nmean_interval = \"999us\"\nstall = "
+       "\"1us\"\n",
+       "plan.toml:5: fault 'random_stall', field 'mean_interval': is shorter than 1ms"},
       {"[[fault]]\nkind = \"seek_away\"\nat = \"1s\"\nfile = \"x.pss\"\nsectors = 5\n", "needs a disc"},
       {"[fault]\nkind = \"stall\"\n", "'fault' must be an array of tables"},
       {"stall = 3\n", "plan.toml:1: unknown key 'stall'"},
