@@ -296,7 +296,6 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
         if (f.period < iop::kMinFaultInterval) {
           r.fail("period", "is shorter than 1ms, the least a contention period may be (docs/fault-plans.md)");
         }
-        if (iop::contentionSlice(f) < 1) r.fail("period", "too short: a share of it must last at least one tick");
         if (f.period > f.duration) r.fail("period", "is longer than the contention's duration");
         break;
       case Fault::Kind::random_stall:

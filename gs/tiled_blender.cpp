@@ -13,7 +13,7 @@ TiledBlender::TiledBlender(int width, int height, const BlendKernels& kernels, b
       tilesY_((height + kTileHeight - 1) / kTileHeight),
       kernels_(&kernels),
       aware_(convergenceAware),
-      tiles_(static_cast<std::size_t>(tilesX_) * tilesY_) {}
+      settled_(static_cast<std::size_t>(tilesX_) * tilesY_, 0) {}
 
 TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec,
                                          std::uint64_t sourceId, int rowBegin, int rowEnd) {
@@ -23,7 +23,7 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
                   std::to_string(width_) + "x" + std::to_string(height_));
   }
   if (sourceId != lastSourceId_ || !(spec == lastSpec_)) {
-    ++epoch_;
+    invalidate();
     lastSourceId_ = sourceId;
     lastSpec_ = spec;
   }
@@ -43,9 +43,8 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
     }
     const std::uint32_t allRows = y1 - y0 == 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << (y1 - y0)) - 1;
     for (int tx = 0; tx < tilesX_; ++tx) {
-      TileState& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
-      if (tile.epoch != epoch_) tile = TileState{epoch_, 0};
-      if (tile.settled == allRows) {
+      std::uint32_t& settled = settled_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      if (settled == allRows) {
         ++r.tilesSkipped;
         continue;
       }
@@ -53,10 +52,10 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
       const std::size_t w = static_cast<std::size_t>(std::min(kTileWidth, width_ - x0));
       const std::size_t left = static_cast<std::size_t>(x0) * 4;  // bytes into the row
       const int pop = kernels_->blendRectDelta(dst.row(y0) + left, stride, src.row(y0) + left, stride, w,
-                                               static_cast<std::size_t>(y1 - y0), spec, &tile.settled);
+                                               static_cast<std::size_t>(y1 - y0), spec, &settled);
       // Rows that changed nothing are at their fixed point even where the per-row test cannot tell
       // (a Wrap-mode step of exactly 256).
-      if (pop == 0) tile.settled = allRows;
+      if (pop == 0) settled = allRows;
       r.pop = std::max(r.pop, pop);
       ++r.tilesBlended;
     }

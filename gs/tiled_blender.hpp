@@ -7,6 +7,7 @@
 // never simulated time (the GS still draws every pixel).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -38,7 +39,7 @@ class TiledBlender {
     return blend(dst, src, spec, sourceId, 0, height_);
   }
   // Forget every convergence mark (call when the lightmap is written by anything else).
-  void invalidate() { ++epoch_; }
+  void invalidate() { std::fill(settled_.begin(), settled_.end(), 0u); }
 
  private:
   int width_;
@@ -47,14 +48,9 @@ class TiledBlender {
   int tilesY_;
   const BlendKernels* kernels_;
   bool aware_;
-  std::uint64_t epoch_ = 1;
   std::uint64_t lastSourceId_ = ~std::uint64_t{0};
   BlendSpec lastSpec_{};
-  struct TileState {
-    std::uint64_t epoch = 0;    // the epoch its mask belongs to (another epoch: nothing settled)
-    std::uint32_t settled = 0;  // rows at their fixed point (BlendRectDeltaFn)
-  };
-  std::vector<TileState> tiles_;
+  std::vector<std::uint32_t> settled_;  // per tile: its rows at their fixed point (BlendRectDeltaFn)
 };
 
 }  // namespace vbim::gs
