@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "cli/command.hpp"
+#include "cli/gs_setup_listing.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/platform_params.hpp"
 #include "config/fault_plan_toml.hpp"
@@ -25,6 +26,7 @@ namespace {
 struct ConfigOptions {
   bool defaults = false;
   bool markdown = false;
+  bool gsSetup = false;
   std::string check;
   std::string faults;
   std::string stream;
@@ -42,30 +44,25 @@ std::optional<streams::StreamDisc> openGivenStream(const ConfigOptions& o) {
   }
 }
 
-// What one presenter of a run would be given: its stream's size and, for the lightmap's, the sky
-// stream's (its VRAM plan holds the sky's staging area too, as in Pipeline). Without a stream, the
-// smallest lightmap a stream can have (one 32x32 page).
+// The pictures the presenters of a run blend: the lightmap and, if the stream has one, the sky.
+// Without a stream, the smallest lightmap a stream can have (one 32x32 page) and no sky.
 struct Presented {
-  int width;
-  int height;
-  gs::SkyTexture sky;
+  PictureSize lightmap{gs::kTileHeight, gs::kTileHeight};
+  std::optional<PictureSize> sky;
 };
 
-std::vector<Presented> presentedSizes(const streams::StreamDisc* disc) {
-  if (disc == nullptr) return {{gs::kTileHeight, gs::kTileHeight, {}}};
+Presented presentedSizes(const streams::StreamDisc* disc) {
+  if (disc == nullptr) return {};
   try {
     const ee::ProbedStream probed = ee::probeStream(*disc->disc, disc->file);
-    const auto entry = [&](int index) -> const streams::StreamEntry& {
-      return probed.descriptor.streams[static_cast<std::size_t>(index)];
+    const auto size = [&](int index) {
+      const streams::StreamEntry& e = probed.descriptor.streams[static_cast<std::size_t>(index)];
+      return PictureSize{e.width, e.height};
     };
-    gs::SkyTexture sky;
-    if (probed.skyIndex >= 0) sky = {entry(probed.skyIndex).width, entry(probed.skyIndex).height};
-    std::vector<Presented> sizes;
-    if (probed.lightmapIndex >= 0) {
-      sizes.push_back({entry(probed.lightmapIndex).width, entry(probed.lightmapIndex).height, sky});
-    }
-    if (probed.skyIndex >= 0) sizes.push_back({sky.width, sky.height, {}});
-    return sizes;
+    Presented p;
+    if (probed.lightmapIndex >= 0) p.lightmap = size(probed.lightmapIndex);
+    if (probed.skyIndex >= 0) p.sky = size(probed.skyIndex);
+    return p;
   } catch (const iop::DiscError& e) {
     throw Exit(2, e.what());
   } catch (const ee::StreamProbeError& e) {
@@ -73,10 +70,13 @@ std::vector<Presented> presentedSizes(const streams::StreamDisc* disc) {
   }
 }
 
-// The GS checks `vbim play` makes when it builds the presenters (gs::Presenter calls checkParams).
-void checkPresenters(const ConfigOptions& o, const streams::StreamDisc* disc, const PlatformParams& params) {
+// The GS checks `vbim play` makes when it builds the presenters: checkParams for the lightmap's,
+// which plans the console's VRAM, and checkSkyParams for the sky's, which draws in that plan.
+void checkPresenters(const ConfigOptions& o, const Presented& p, const PlatformParams& params) {
   try {
-    for (const Presented& p : presentedSizes(disc)) gs::checkParams(params.gs, p.width, p.height, p.sky);
+    const gs::SkyTexture sky = p.sky ? gs::SkyTexture{p.sky->width, p.sky->height} : gs::SkyTexture{};
+    const gs::VramLayout vram = gs::checkParams(params.gs, p.lightmap.width, p.lightmap.height, sky);
+    if (p.sky) gs::checkSkyParams(params.gs, vram, p.sky->width, p.sky->height);
   } catch (const gs::GsError& e) {
     throw Exit(2, gsConfigMessage(e, o.check));
   }
@@ -86,6 +86,7 @@ void runConfig(const ConfigOptions& o) {
   PlatformParams params;
   ParamTable table;
   describePlatform(table, params);
+  Presented presented;
   try {
     if (!o.check.empty()) {
       config::applyTomlFile(table, o.check);
@@ -93,7 +94,8 @@ void runConfig(const ConfigOptions& o) {
     }
     const std::optional<streams::StreamDisc> given = openGivenStream(o);
     const streams::StreamDisc* disc = given ? &*given : nullptr;
-    if (!o.check.empty() || disc != nullptr) checkPresenters(o, disc, params);
+    presented = presentedSizes(disc);
+    if (!o.check.empty() || disc != nullptr) checkPresenters(o, presented, params);
     if (!o.faults.empty()) {
       // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
       // disc and LBAs checked against its size, as play does.
@@ -105,9 +107,12 @@ void runConfig(const ConfigOptions& o) {
   }
   if (!o.check.empty() || !o.stream.empty()) {
     std::cerr << (o.check.empty() ? std::string("the default platform config") : o.check)
-              << (o.stream.empty() ? "" : " with " + o.stream) << ": valid; the effective config follows\n";
+              << (o.stream.empty() ? "" : " with " + o.stream) << ": valid; the "
+              << (o.gsSetup ? "GS setup" : "effective config") << " follows\n";
   }
-  if (o.markdown) {
+  if (o.gsSetup) {
+    writeGsSetup(std::cout, params.gs, presented.lightmap, presented.sky);
+  } else if (o.markdown) {
     table.writeMarkdown(std::cout);
   } else {
     std::cout << "# vbim platform config: every timing constant, its default and its source.\n"
@@ -127,17 +132,24 @@ void addConfig(CLI::App& app) {
   cmd->add_option("--check", opts->check, "A platform config (TOML) to validate; prints the effective config")
       ->check(inputFile());
   cmd->add_option("--faults", opts->faults, "A fault plan (TOML) to validate")->check(inputFile());
-  cmd->add_option("--stream", opts->stream,
-                  "Check the GS settings against this stream or disc image's frame sizes (VRAM layout), and the "
-                  "fault plan's file names and LBAs against the disc, as `vbim play` will; without it, against the "
-                  "smallest lightmap")
-      ->check(inputFile());
+  auto* stream =
+      cmd->add_option("--stream", opts->stream,
+                      "Check the GS settings against this stream or disc image's frame sizes (VRAM layout), and the "
+                      "fault plan's file names and LBAs against the disc, as `vbim play` will; without it, against the "
+                      "smallest lightmap")
+          ->check(inputFile());
   cmd->add_option("--file", opts->file, "The stream on a disc image given with --stream (default: its only one)");
+  cmd->add_flag("--gs-setup", opts->gsSetup,
+                "Print the GS setup for the stream instead of the config: the VRAM plan, and the register writes "
+                "of the lightmap's and the sky's blend draws with their values (docs/porting.md)")
+      ->needs(stream)
+      ->excludes("--markdown");
   cmd->footer(
       "Examples:\n"
       "  vbim config > platform.toml\n"
       "  vbim config --check platform.toml --faults plan.toml\n"
-      "  vbim config --check platform.toml --stream streams/samples/day_clear.vbim\n");
+      "  vbim config --check platform.toml --stream streams/samples/day_clear.vbim\n"
+      "  vbim config --gs-setup --stream streams/samples/day_clear.vbim\n");
   cmd->callback([opts] { runConfig(*opts); });
 }
 

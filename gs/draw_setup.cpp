@@ -1,5 +1,7 @@
 #include "gs/draw_setup.hpp"
 
+#include <string>
+
 #include "gs/error.hpp"
 
 namespace vbim::gs {
@@ -46,7 +48,7 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
   if (d.frame.psm != Psm::Ct32 || d.texture.psm != Psm::Ct32) {
     throw GsError("the blend draws a PSMCT32 texture into a PSMCT32 lightmap");
   }
-  const int w = d.frame.width;
+  const int w = d.width;
   const int rows = d.y1 - d.y0;
   const U64 fbmsk = d.keepAlpha ? 0xFF000000u : 0u;
   BlendDrawSetup out{};
@@ -58,7 +60,7 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
       case 0x3F:  // TEXFLUSH: any value
         break;
       case 0x4C:  // FRAME_1: FBP, FBW, PSM = PSMCT32 (0), FBMSK
-        v = static_cast<U64>(d.frame.firstPage) | width64(w) << 16 | fbmsk << 32;
+        v = static_cast<U64>(d.frame.firstPage) | width64(d.frame.width) << 16 | fbmsk << 32;
         break;
       case 0x4E:  // ZBUF_1: ZBP, PSM, ZMSK = 1
         if (d.depth != nullptr) v = static_cast<U64>(d.depth->firstPage) | zbufPsm(d.depth->psm) << 24;
@@ -81,7 +83,7 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
         v = d.clamp ? 1 : 0;
         break;
       case 0x40:  // SCISSOR_1: SCAX0, SCAX1, SCAY0, SCAY1 (inclusive)
-        v = static_cast<U64>(w - 1) << 16 | static_cast<U64>(d.frame.height - 1) << 48;
+        v = static_cast<U64>(w - 1) << 16 | static_cast<U64>(d.height - 1) << 48;
         break;
       case 0x00:  // PRIM: SPRITE, TME, ABE, FST
         v = kSprite | U64{1} << 4 | U64{1} << 6 | U64{1} << 8;
@@ -104,9 +106,28 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
   return out;
 }
 
-BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& p, int y0, int y1) {
-  BlendDraw d{vram.region("lightmap"), vram.region("staging")};
+const char* blendSurfaceName(BlendSurface surface) {
+  return surface == BlendSurface::Sky ? "sky" : "lightmap";
+}
+
+BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& p, BlendSurface surface, int width, int height, int y0,
+                       int y1) {
+  const bool sky = surface == BlendSurface::Sky;
+  if (sky && !vram.has("sky staging")) {
+    throw GsError("the VRAM layout has no sky staging area: it was planned without the sky stream's size");
+  }
+  BlendDraw d{vram.region(sky ? "sky" : "lightmap"), vram.region(sky ? "sky staging" : "staging")};
+  if (width <= 0 || height <= 0 || width > d.frame.width || height > d.frame.height || width != d.texture.width ||
+      y0 < 0 || y1 <= y0 || y1 > height || y1 - y0 > d.texture.height) {
+    throw GsError("a blend of rows " + std::to_string(y0) + ".." + std::to_string(y1) + " of a " +
+                  std::to_string(width) + "x" + std::to_string(height) + " " + blendSurfaceName(surface) +
+                  " picture does not fit the layout's " + d.frame.name + " (" + std::to_string(d.frame.width) + "x" +
+                  std::to_string(d.frame.height) + ") and " + d.texture.name + " (" + std::to_string(d.texture.width) +
+                  "x" + std::to_string(d.texture.height) + ")");
+  }
   if (vram.has("depth")) d.depth = &vram.region("depth");
+  d.width = width;
+  d.height = height;
   d.y0 = y0;
   d.y1 = y1;
   d.textureRow0 = p.upload_mode == "strips" ? 0 : y0;

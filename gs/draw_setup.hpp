@@ -53,10 +53,12 @@ inline constexpr std::int64_t kBlendDrawSetupQwords = 1 + static_cast<std::int64
 
 // What the values depend on: where the buffers are and which rows this sprite covers.
 struct BlendDraw {
-  VramRegion frame;                   // the lightmap (FRAME_1.FBP)
-  VramRegion texture;                 // the staging texture (TEX0_1.TBP0)
+  VramRegion frame;                   // the texture blended into: the lightmap or the sky (FRAME_1.FBP)
+  VramRegion texture;                 // its staging texture (TEX0_1.TBP0)
   const VramRegion* depth = nullptr;  // the Z buffer ZBUF_1 names, if any (never read or written)
-  int y0 = 0;                         // the sprite's rows in the lightmap
+  int width = 0;                      // the blended picture: the whole lightmap, or the sky stream's
+  int height = 0;                     // picture in the sky texture's top-left corner (SCISSOR_1)
+  int y0 = 0;                         // the sprite's rows in it
   int y1 = 0;
   int textureRow0 = 0;     // the staging texture's row that lands on y0
   int fix = 0x40;          // ALPHA_1.FIX
@@ -74,9 +76,18 @@ using BlendDrawSetup = std::array<RegisterWrite, kBlendDrawRegisters.size()>;
 // The values of kBlendDrawRegisters for one sprite.
 BlendDrawSetup blendDrawSetup(const BlendDraw& draw);
 
-// The sprite over rows [y0, y1) of the lightmap as the presenter draws it with `params` in the
-// layout planVram gave ("lightmap", "staging", "depth"): in strip mode the staging texture holds
-// just this strip, in full mode the whole frame.
-BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& params, int y0, int y1);
+// The two textures a console blends in place, each from its own staging area (planVram).
+enum class BlendSurface : std::uint8_t {
+  Lightmap,  // "lightmap" from "staging"
+  Sky,       // "sky" from "sky staging": the sky stream's picture in the sky texture's top-left corner
+};
+const char* blendSurfaceName(BlendSurface surface);  // "lightmap", "sky"
+
+// The sprite over rows [y0, y1) of the surface's width x height picture as the presenter draws it
+// with `params` in the layout planVram gave: in strip mode the staging texture holds just this
+// strip, in full mode the whole picture. Throws GsError if the layout has no such surface, or the
+// picture or the rows do not fit it.
+BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& params, BlendSurface surface, int width, int height,
+                       int y0, int y1);
 
 }  // namespace vbim::gs

@@ -187,16 +187,8 @@ void checkKey(const char* key, Check check) {
   }
 }
 
-// The streams of `source` checked, and the parameters checked for their size.
-const StreamInfo& checkedSource(const FrameSource& source, const GsParams& p, SkyTexture sky) {
-  const StreamInfo& s = checkedStreams(source);
-  checkParams(p, s.width, s.height, sky);
-  return s;
-}
-
-}  // namespace
-
-VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky) {
+// Every check of checkParams but the VRAM layout's.
+void checkSettings(const GsParams& p) {
   checkKey("gs.video", [&] { clockFor(p); });
   checkKey("gs.colclamp", [&] { colclampFor(p); });
   checkKey("gs.alpha_write", [&] { alphaFor(p); });
@@ -205,15 +197,56 @@ VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight,
   checkKey("gs.catchup", [&] { catchUpByName(p.catchup); });
   checkedStrips(p);
   checkedMacroblockUploads(p);
+}
+
+// The rows of the first draw of a vsync: one strip in strip mode, the whole picture otherwise.
+int firstDrawRows(const GsParams& p, int height) {
+  return p.upload_mode == "strips" ? std::min<int>(static_cast<int>(p.strip_rows), height) : height;
+}
+
+}  // namespace
+
+VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky) {
+  checkSettings(p);
   return planVram(p, lightmapWidth, lightmapHeight, sky);
 }
+
+VramLayout checkSkyParams(const GsParams& p, const VramLayout& console, int skyWidth, int skyHeight) {
+  checkSettings(p);
+  checkSkyFits(p, SkyTexture{skyWidth, skyHeight});
+  blendDrawFor(console, p, BlendSurface::Sky, skyWidth, skyHeight, 0, firstDrawRows(p, skyHeight));
+  return console;
+}
+
+namespace {
+
+// The console's VRAM as the presenter of `o.surface` sees it, checked for a stream of s's size
+// (checkParams for the lightmap's, checkSkyParams for the sky's).
+VramLayout checkedVram(const GsParams& p, const StreamInfo& s, const PresenterOptions& o) {
+  if (o.surface == BlendSurface::Lightmap) return checkParams(p, s.width, s.height, o.sky);
+  if (o.console == nullptr) {
+    throw GsError(
+        "the sky presenter draws into the console's VRAM plan, and none was given (PresenterOptions::console)");
+  }
+  return checkSkyParams(p, *o.console, s.width, s.height);
+}
+
+// The streams of `source` checked, and the parameters checked for their size before any member
+// that needs them is built (so every error names its key).
+const StreamInfo& checkedSource(const FrameSource& source, const GsParams& p, const PresenterOptions& o) {
+  const StreamInfo& s = checkedStreams(source);
+  checkedVram(p, s, o);
+  return s;
+}
+
+}  // namespace
 
 Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& params, PresenterOptions options)
     : sched_(sched),
       source_(source),
       params_(params),
       opt_(std::move(options)),
-      stream_(checkedSource(source, params, opt_.sky)),
+      stream_(checkedSource(source, params, opt_)),
       timing_(params),
       clock_(clockFor(params)),
       spec_(makeBlendSpec(params.fix, colclampFor(params), alphaFor(params))),
@@ -222,7 +255,7 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
       policy_(catchUpByName(params.catchup)),
       strips_(checkedStrips(params)),
       macroblockUploads_(checkedMacroblockUploads(params)),
-      vram_(planVram(params, stream_.width, stream_.height, opt_.sky)),
+      vram_(checkedVram(params, stream_, opt_)),
       lightmap_(stream_.width, stream_.height),
       blender_(stream_.width, stream_.height, opt_.kernels != nullptr ? *opt_.kernels : scalarKernels(),
                params.convergence_aware),
@@ -235,6 +268,10 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
     droppedCounter_ = opt_.tracer->counter(opt_.name + ".frames_dropped");
     catchUpCounter_ = opt_.tracer->counter(opt_.name + ".catchup_vsyncs");
   }
+}
+
+BlendDraw Presenter::blendDraw(int y0, int y1) const {
+  return blendDrawFor(vram_, params_, opt_.surface, lightmap_.width, lightmap_.height, y0, y1);
 }
 
 void Presenter::scheduleBranch(Tick at, int variant) {

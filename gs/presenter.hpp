@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "gs/blend.hpp"
+#include "gs/draw_setup.hpp"
 #include "gs/frame_source.hpp"
 #include "gs/gs_timing.hpp"
 #include "gs/params.hpp"
@@ -66,6 +67,11 @@ const std::vector<std::string>& vramLayoutKeys();
 // Presenter calls it, and so does `vbim config --check`, which has no stream to present: the two
 // cannot disagree.
 VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky = {});
+
+// The same checks for the sky presenter of a console whose VRAM plan is `console` (planVram given
+// the sky stream's size): the settings, the sky stream within gs.sky_width x gs.sky_height, and its
+// draw within the plan's "sky" texture and "sky staging" area. Returns the plan.
+VramLayout checkSkyParams(const GsParams& p, const VramLayout& console, int skyWidth, int skyHeight);
 
 // What happened at one vsync.
 struct VsyncRecord {
@@ -113,14 +119,17 @@ struct PresenterOptions {
   bool keepHistory = true;  // keep a VsyncRecord per vsync
   // Called after every vsync with its record and the lightmap as it now is (a frame sink: the
   // player writes lightmap frames from here; tests check invariants).
-  std::function<void(const VsyncRecord&, const Rgba8Image&)> onVsync;
+  std::function<void(const VsyncRecord&, const Rgba8Image&)> onVsync{};
   // The GS this presenter draws on, shared with the other presenters of the same console (one GIF,
   // one drawing engine: their work of a vsync runs one after the other). Null: a GS of its own.
   SerialUnit* gs = nullptr;
-  // The lightmap presenter of a console that also shows a sky stream: its size, so this
-  // presenter's VRAM plan holds the sky's staging area too (planVram). The sky's own presenter
-  // leaves it empty.
-  SkyTexture sky;
+  // What this presenter blends. The lightmap presenter plans the console's VRAM (planVram); given
+  // the sky stream's size in `sky`, the plan holds the sky's staging area too. The sky presenter
+  // plans nothing: it draws into that plan's "sky" texture from its "sky staging" area, and
+  // `console` is the plan (the lightmap presenter's vram()), which it copies.
+  BlendSurface surface = BlendSurface::Lightmap;
+  SkyTexture sky{};                     // the lightmap presenter only
+  const VramLayout* console = nullptr;  // the sky presenter only
 };
 
 class Presenter {
@@ -138,7 +147,11 @@ class Presenter {
   Task<void> run(Tick end);
 
   const Rgba8Image& lightmap() const { return lightmap_; }
+  // The console's VRAM plan: this presenter's own (the lightmap's), or the one it was given (the sky's).
   const VramLayout& vram() const { return vram_; }
+  // The register values of the draw that blends rows [y0, y1) of the picture (gs/draw_setup.hpp):
+  // the whole picture in full upload mode, one strip of gs.strip_rows rows in strip mode.
+  BlendDraw blendDraw(int y0, int y1) const;
   const PresenterCounters& counters() const { return counters_; }
   const std::vector<VsyncRecord>& history() const { return history_; }
   const VsyncRecord& last() const { return last_; }

@@ -77,8 +77,11 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
   if (stream.skyIndex >= 0) {
     skyFrames_ = std::make_unique<ee::DecodedFrames>(s, streamInfos(stream, stream.skyIndex), depth, *this);
     skySource_ = std::make_unique<gs::RecordingSource>(*skyFrames_, recorder(true));
-    sky_ = std::make_unique<gs::Presenter>(s, *skySource_, config.gs,
-                                           presenterOptions(t0_, kernels, tracer_, "gs.sky", gs_));
+    // The sky is blended in the same VRAM: into the plan's sky texture, from the sky's staging area.
+    gs::PresenterOptions skyOptions = presenterOptions(t0_, kernels, tracer_, "gs.sky", gs_);
+    skyOptions.surface = gs::BlendSurface::Sky;
+    skyOptions.console = &lightmap_->vram();
+    sky_ = std::make_unique<gs::Presenter>(s, *skySource_, config.gs, std::move(skyOptions));
   }
   feeder_ = std::make_unique<ee::IpuFeeder>(s, std::array<ee::CompressedBuffer*, 2>{&lmCompressed_, &skyCompressed_},
                                             std::array<ee::DecodedFrames*, 2>{lmFrames_.get(), skyFrames_.get()},

@@ -168,11 +168,20 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
     o.keepHistory = false;
     return o;
   };
-  m.lmSource = std::make_unique<gs::ArrivalSource>(infos(m.descriptor, lmIndex), imageFn(0xE0), clock, lm);
-  m.lightmap = std::make_unique<gs::Presenter>(m.sched, *m.lmSource, m.options.config.gs, presenterOptions("gs"));
+  // One VRAM plan for both presenters, as in Pipeline: the lightmap's holds the sky's staging area.
+  gs::PresenterOptions lightmapOptions = presenterOptions("gs");
   if (skyIndex >= 0) {
+    const streams::StreamEntry& e = m.descriptor.streams[static_cast<std::size_t>(skyIndex)];
+    lightmapOptions.sky = gs::SkyTexture{e.width, e.height};
+  }
+  m.lmSource = std::make_unique<gs::ArrivalSource>(infos(m.descriptor, lmIndex), imageFn(0xE0), clock, lm);
+  m.lightmap = std::make_unique<gs::Presenter>(m.sched, *m.lmSource, m.options.config.gs, std::move(lightmapOptions));
+  if (skyIndex >= 0) {
+    gs::PresenterOptions skyOptions = presenterOptions("gs.sky");
+    skyOptions.surface = gs::BlendSurface::Sky;
+    skyOptions.console = &m.lightmap->vram();
     m.skySource = std::make_unique<gs::ArrivalSource>(infos(m.descriptor, skyIndex), imageFn(0xE1), clock, sky);
-    m.sky = std::make_unique<gs::Presenter>(m.sched, *m.skySource, m.options.config.gs, presenterOptions("gs.sky"));
+    m.sky = std::make_unique<gs::Presenter>(m.sched, *m.skySource, m.options.config.gs, std::move(skyOptions));
   }
   // Vsync n is presented when its time is before the duration (record): this one presents exactly n < N.
   if (m.options.vsyncs) m.options.duration = m.lightmap->clock().time(*m.options.vsyncs);

@@ -106,6 +106,24 @@ TEST_F(ConfigCheckCli, AConfigPlayAcceptsIsValid) {
   EXPECT_EQ(p.status, 0) << p.output;
 }
 
+// --gs-setup prints the plan play uses and both presenters' draws (the values themselves are checked
+// in tests/gs/draw_setup_test.cpp); a config play refuses is refused the same way.
+TEST_F(ConfigCheckCli, GsSetupListsTheVramPlanAndBothDraws) {
+  const std::string cfg = config("[gs]\nupload_mode = \"strips\"\n");
+  const auto r = vbim("config --gs-setup --check " + cfg + " --stream " + kSample);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* part : {"page 350: lightmap 256x256", "page 382: staging 256x32", "sky staging 128x32",
+                           "## lightmap 256x256: lightmap at page 350, blended from staging at page 382",
+                           "Draw 1 of 8 per vsync", "## sky 128x64: sky at page 386", "Draw 1 of 2 per vsync",
+                           "| 2 | `FRAME_1` | 0x4C | `0x4015E` |", "| 19 | `XYZ2` | 0x05 | `0x2000800` |"}) {
+    EXPECT_NE(r.output.find(part), std::string::npos) << part << "\n" << r.output;
+  }
+  EXPECT_EQ(r.output.find("# vbim platform config"), std::string::npos) << "the setup replaces the config";
+  const std::string refused = config("gs.sky_height = 32\n");
+  EXPECT_EQ(refusal(vbim("config --gs-setup --check " + refused + " --stream " + kSample), "config"), play(refused));
+  EXPECT_NE(vbim("config --gs-setup").output.find("--gs-setup requires --stream"), std::string::npos);
+}
+
 TEST_F(ConfigCheckCli, AStreamThatIsNotOneIsNamed) {
   const std::string cfg = config("gs.fix = 64\n");
   const fs::path junk = dir_ / "junk.vbim";

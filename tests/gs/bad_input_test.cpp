@@ -81,6 +81,32 @@ TEST(BadInput, SettingsOutsideTheirChoices) {
   EXPECT_NE(errorOf([&] { Presenter pr(s, src, c); }).find("unknown video mode 'secam'"), std::string::npos);
 }
 
+// The sky presenter draws in the console's plan (the lightmap presenter's): it needs one, planned
+// with room for its stream.
+TEST(BadInput, SkyPresenterWithoutARoomForItsStream) {
+  Scheduler s;
+  auto src = source({stream("sky")});  // 128x64
+  PresenterOptions o;
+  o.surface = BlendSurface::Sky;
+  EXPECT_NE(errorOf([&] { Presenter pr(s, src, GsParams{}, o); }).find("none was given"), std::string::npos);
+  const VramLayout noSky = planVram(GsParams{}, 256, 256);
+  o.console = &noSky;
+  EXPECT_NE(errorOf([&] { Presenter pr(s, src, GsParams{}, o); }).find("no sky staging area"), std::string::npos);
+  const VramLayout smallerSky = planVram(GsParams{}, 256, 256, SkyTexture{64, 64});
+  o.console = &smallerSky;
+  const std::string msg = errorOf([&] { Presenter pr(s, src, GsParams{}, o); });
+  EXPECT_NE(msg.find("128x64 sky picture does not fit the layout's sky (256x256) and sky staging (64x64)"),
+            std::string::npos)
+      << msg;
+  const VramLayout console = planVram(GsParams{}, 256, 256, SkyTexture{128, 64});
+  o.console = &console;
+  Presenter pr(s, src, GsParams{}, o);
+  EXPECT_EQ(pr.vram().region("sky staging").firstPage, console.region("sky staging").firstPage);
+  GsParams small;
+  small.sky_width = 64;  // the stream no longer fits the sky texture gs.sky_width x gs.sky_height names
+  EXPECT_NE(errorOf([&] { Presenter p2(s, src, small, o); }).find("gs.sky_width"), std::string::npos);
+}
+
 TEST(BadInput, LightmapThatDoesNotFitVram) {
   Scheduler s;
   auto src = source({stream("huge", 10, 1024, 1024)});

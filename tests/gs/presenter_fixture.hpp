@@ -84,8 +84,7 @@ struct Rig {
       : runSource(streams, img, script),
         refSource(streams, refImg ? refImg : img, SourceScript{script.t0, 0, 0, 0, {}, script.loop}),
         run(sched, runSource, params, withObserver(std::move(runOpt))),
-        ref(sched, refSource, refParams,
-            PresenterOptions{script.t0, nullptr, nullptr, "ref", true, nullptr, nullptr, {}}),
+        ref(sched, refSource, refParams, PresenterOptions{.t0 = script.t0, .name = "ref"}),
         meter(run, ref),
         last(streams[0].width, streams[0].height) {}
 

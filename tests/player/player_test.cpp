@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "config/platform_config.hpp"
+#include "gs/error.hpp"
 #include "player/scenario.hpp"
 #include "tests/player/sample_path.hpp"
 
@@ -21,6 +22,24 @@ TEST(Player, PlaysTheClearDayWithoutFaults) {
   EXPECT_EQ(run->player().pipeline().demux().counters().framesLost, 0);
   ASSERT_NE(run->sky(), nullptr);
   EXPECT_EQ(run->player().pipeline().sky()->counters().framesShown, c.framesShown);  // sky in step
+}
+
+// One console, one VRAM plan: the sky presenter plans none of its own; it blends into the plan's sky
+// texture from the sky's staging area, which the lightmap presenter's plan holds.
+TEST(Player, TheSkyIsBlendedInTheLightmapPresentersVramPlan) {
+  auto run = Scenario::bareFile(samplePath("day_clear.vbim")).seed(1).trace(false).start(fromMs(1'000));
+  Pipeline& p = run->player().pipeline();
+  ASSERT_NE(p.sky(), nullptr);
+  EXPECT_EQ(p.sky()->vram().describe(), p.lightmap().vram().describe());
+  const gs::BlendDraw sky = p.sky()->blendDraw(0, 64);
+  EXPECT_EQ(sky.frame.name, "sky");
+  EXPECT_EQ(sky.texture.name, "sky staging");
+  EXPECT_EQ(sky.width, 128);
+  EXPECT_EQ(sky.height, 64);
+  const gs::BlendDraw lightmap = p.lightmap().blendDraw(0, 256);
+  EXPECT_EQ(lightmap.frame.name, "lightmap");
+  EXPECT_EQ(lightmap.texture.name, "staging");
+  EXPECT_THROW(p.sky()->blendDraw(0, 65), gs::GsError);  // past the sky stream's 64 rows
 }
 
 TEST(Player, WrapsAtTheLoopPointBySeekingTheRing) {
