@@ -22,7 +22,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 #if HWY_TARGET == HWY_SCALAR
 // One lane cannot be split into two 16-bit halves: the scalar target is the reference itself.
 template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
-int BlendRectT(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+int blendRectT(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
                std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
   if constexpr (kTrack) return blendRectDeltaScalar(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
   for (std::size_t y = 0; y < rows; ++y) blendSpanScalar(dst + y * dstStride, src + y * srcStride, pixels, spec);
@@ -53,7 +53,7 @@ struct FixedPointTest {
 // end (a 64x32 tile is one call). kSettle: rows marked in *settled are skipped, blended rows left at
 // their fixed point are marked.
 template <bool kTrack, bool kSettle, class D8, class BlendVector>
-HWY_INLINE int BlendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride,
+HWY_INLINE int blendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride,
                          const std::uint8_t* HWY_RESTRICT src, std::size_t srcStride, std::size_t pixels,
                          std::size_t rows, const BlendSpec& spec, std::uint32_t* settled, const BlendVector& blend) {
   const std::size_t bytes = pixels * 4;
@@ -95,7 +95,7 @@ HWY_INLINE int BlendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstS
 
 // Any FIX, COLCLAMP and alpha mode (the arithmetic in the comment at the top of the file).
 template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
-int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
+int blendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
                std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
                std::uint32_t* settled) {
   const hn::ScalableTag<std::uint8_t> d8;
@@ -135,7 +135,7 @@ int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
       return hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
     }
   };
-  return BlendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
+  return blendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
 }
 
 // FIX = 64, the default smoothing step (half way per vsync), needs no widening:
@@ -145,7 +145,7 @@ int BlendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
 // mask. About 8 vector operations per vector against the general kernel's 20, which matters because
 // most blends of a play are this one (docs/player.md, "Sixth round").
 template <bool kKeepAlpha, bool kTrack, bool kSettle>
-int BlendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
+int blendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
                    std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
                    std::uint32_t* settled) {
   const hn::ScalableTag<std::uint8_t> d8;
@@ -156,52 +156,52 @@ int BlendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const 
     const auto half = hn::Sub(hn::AverageRound(s, d), hn::And(hn::Xor(s, d), one));
     return hn::Or(hn::AndNot(alpha, half), hn::And(alpha, kKeepAlpha ? d : s));
   };
-  return BlendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
+  return blendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
 }
 #endif
 
 template <bool kTrack, bool kSettle>
-int DispatchT(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+int dispatchT(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
               std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
   const bool wide = spec.fix > 128;
   const bool wrap = spec.colclamp == ColClamp::Wrap;
   const bool keep = spec.alpha == AlphaWrite::Keep;
 #if HWY_TARGET != HWY_SCALAR
   if (spec.fix == 64) {
-    return keep ? BlendHalfRectT<true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec, settled)
-                : BlendHalfRectT<false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
+    return keep ? blendHalfRectT<true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec, settled)
+                : blendHalfRectT<false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
   }
 #endif
   if (!wide) {
-    return keep ? BlendRectT<false, false, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+    return keep ? blendRectT<false, false, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
                                                                   settled)
-                : BlendRectT<false, false, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                : blendRectT<false, false, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
                                                                    settled);
   }
   if (wrap) {
-    return keep ? BlendRectT<true, true, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+    return keep ? blendRectT<true, true, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
                                                                 settled)
-                : BlendRectT<true, true, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+                : blendRectT<true, true, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
                                                                  settled);
   }
-  return keep ? BlendRectT<true, false, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+  return keep ? blendRectT<true, false, true, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
                                                                settled)
-              : BlendRectT<true, false, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
+              : blendRectT<true, false, false, kTrack, kSettle>(dst, dstStride, src, srcStride, pixels, rows, spec,
                                                                 settled);
 }
 
-void BlendSpan(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  DispatchT<false, false>(dst, 0, src, 0, pixels, 1, spec, nullptr);
+void blendSpan(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+  dispatchT<false, false>(dst, 0, src, 0, pixels, 1, spec, nullptr);
 }
-int BlendSpanDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  return DispatchT<true, false>(dst, 0, src, 0, pixels, 1, spec, nullptr);
+int blendSpanDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+  return dispatchT<true, false>(dst, 0, src, 0, pixels, 1, spec, nullptr);
 }
-int BlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
+int blendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
                    std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
-  return settled != nullptr ? DispatchT<true, true>(dst, dstStride, src, srcStride, pixels, rows, spec, settled)
-                            : DispatchT<true, false>(dst, dstStride, src, srcStride, pixels, rows, spec, nullptr);
+  return settled != nullptr ? dispatchT<true, true>(dst, dstStride, src, srcStride, pixels, rows, spec, settled)
+                            : dispatchT<true, false>(dst, dstStride, src, srcStride, pixels, rows, spec, nullptr);
 }
-const char* TargetNameHere() {
+const char* targetNameHere() {
   return hwy::TargetName(HWY_TARGET);
 }
 
@@ -213,27 +213,27 @@ HWY_AFTER_NAMESPACE();
 
 namespace vbim::gs::simd {
 
-HWY_EXPORT(BlendSpan);
-HWY_EXPORT(BlendSpanDelta);
-HWY_EXPORT(BlendRectDelta);
-HWY_EXPORT(TargetNameHere);
+HWY_EXPORT(blendSpan);
+HWY_EXPORT(blendSpanDelta);
+HWY_EXPORT(blendRectDelta);
+HWY_EXPORT(targetNameHere);
 
 namespace {
 void dispatchBlend(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  HWY_DYNAMIC_DISPATCH(BlendSpan)(dst, src, pixels, spec);
+  HWY_DYNAMIC_DISPATCH(blendSpan)(dst, src, pixels, spec);
 }
 int dispatchBlendDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
-  return HWY_DYNAMIC_DISPATCH(BlendSpanDelta)(dst, src, pixels, spec);
+  return HWY_DYNAMIC_DISPATCH(blendSpanDelta)(dst, src, pixels, spec);
 }
 int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
                            std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
-  return HWY_DYNAMIC_DISPATCH(BlendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
+  return HWY_DYNAMIC_DISPATCH(blendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
 }
 }  // namespace
 
 const BlendKernels& kernels() {
   // The name is read once; dispatch itself stays dynamic so forEachTarget can force a target.
-  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(TargetNameHere)(), &dispatchBlend, &dispatchBlendDelta,
+  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(targetNameHere)(), &dispatchBlend, &dispatchBlendDelta,
                               &dispatchBlendRectDelta};
   return k;
 }
@@ -242,7 +242,7 @@ void forEachTarget(const std::function<void(const std::string& target)>& fn) {
   (void)kernels();  // name the normal dispatch choice before any target is forced
   for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
-    fn(HWY_DYNAMIC_DISPATCH(TargetNameHere)());
+    fn(HWY_DYNAMIC_DISPATCH(targetNameHere)());
   }
   hwy::SetSupportedTargetsForTest(0);
 }

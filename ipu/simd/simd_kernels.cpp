@@ -1,5 +1,6 @@
 #include "ipu/simd/simd_kernels.hpp"
 
+#include <cstddef>
 #include <cstring>
 
 #undef HWY_TARGET_INCLUDE
@@ -70,7 +71,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 // result. The mismatch toggle alone in row 7 / column 7 adds +-B(7, y) B(7, x) to L, unless the
 // block is read whole (R = 8, CP = 4), where F[7][7] is part of the sums.
 template <int R, int CP>
-HWY_INLINE void IdctMaddImpl(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
+HWY_INLINE void idctMaddImpl(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Repartition<std::int16_t, decltype(d)> d16;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
@@ -86,7 +87,7 @@ HWY_INLINE void IdctMaddImpl(const std::int16_t* block, bool toggle, std::uint8_
       V acc = hn::Zero(d), acc1 = hn::Zero(d);
       for (int p = 0; p < CP; ++p) {
         std::int32_t pair;
-        std::memcpy(&pair, block + 8 * v + 2 * p, 4);
+        std::memcpy(&pair, &block[8 * v + 2 * p], 4);
         acc = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, hn::Set(d, pair)), hn::LoadU(d16, &P[p][2 * x0]), acc,
                                             acc1);
       }
@@ -137,8 +138,8 @@ HWY_INLINE void IdctMaddImpl(const std::int16_t* block, bool toggle, std::uint8_
       }
       const V top = hn::ShiftRight<17>(hn::Add(hn::Add(he, ho), hn::ShiftRight<14>(lt)));
       const V bottom = hn::ShiftRight<17>(hn::Add(hn::Sub(he, ho), hn::ShiftRight<14>(lb)));
-      hn::StoreU(hn::DemoteTo(d8, top), d8, dst + y * stride + x0);
-      hn::StoreU(hn::DemoteTo(d8, bottom), d8, dst + (7 - y) * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, top), d8, dst + static_cast<std::ptrdiff_t>(y) * stride + x0);
+      hn::StoreU(hn::DemoteTo(d8, bottom), d8, dst + static_cast<std::ptrdiff_t>(7 - y) * stride + x0);
     }
   }
 }
@@ -146,22 +147,22 @@ HWY_INLINE void IdctMaddImpl(const std::int16_t* block, bool toggle, std::uint8_
 // The transform on the smallest rectangle of row pairs and column pairs holding every non-zero
 // coefficient (2, 4 or 8 rows; 2, 4 or 8 columns).
 template <int R>
-HWY_INLINE void IdctRows(const std::int16_t* block, unsigned cols, bool toggle, std::uint8_t* dst, int stride) {
-  if (cols <= 0x3) return IdctMaddImpl<R, 1>(block, toggle, dst, stride);
-  if (cols <= 0xF) return IdctMaddImpl<R, 2>(block, toggle, dst, stride);
-  IdctMaddImpl<R, 4>(block, toggle, dst, stride);
+HWY_INLINE void idctRows(const std::int16_t* block, unsigned cols, bool toggle, std::uint8_t* dst, int stride) {
+  if (cols <= 0x3) return idctMaddImpl<R, 1>(block, toggle, dst, stride);
+  if (cols <= 0xF) return idctMaddImpl<R, 2>(block, toggle, dst, stride);
+  idctMaddImpl<R, 4>(block, toggle, dst, stride);
 }
 
-void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   const bool toggle = (rowMask & 0x100) != 0;
   const unsigned rows = rowMask & 0xFF, cols = colMask & 0xFF;
-  if (rows <= 0x3) return IdctRows<2>(block, cols, toggle, dst, stride);
-  if (rows <= 0xF) return IdctRows<4>(block, cols, toggle, dst, stride);
-  IdctRows<8>(block, cols, toggle, dst, stride);
+  if (rows <= 0x3) return idctRows<2>(block, cols, toggle, dst, stride);
+  if (rows <= 0xF) return idctRows<4>(block, cols, toggle, dst, stride);
+  idctRows<8>(block, cols, toggle, dst, stride);
 }
 #else
 // One-lane fallback target: no 16-bit pairs in a 32-bit lane; the scalar reference.
-void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   scalarKernels().idct(block, rowMask, colMask, dst, stride);
 }
 #endif
@@ -172,7 +173,7 @@ void IdctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
 // registers for the two pixels (and the two lines) they cover: (a << 4) * (b << 6) >> 16 ==
 // (a * b) >> 6 exactly for |a| < 2^11 and the coefficients below (the scalar code's floor shift).
 // rc = Cr term of R, gc = both terms of G, bc = Cb term of B.
-void CscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+void cscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                  int width, std::uint8_t* rgba, int rgbaStride, int th0, int th1) {
   int x = 0;
 #if HWY_TARGET != HWY_SCALAR
@@ -202,8 +203,8 @@ void CscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_
     const auto gTerm = doubled(hn::Add(hn::MulHigh(vr, kGcr), hn::MulHigh(vb, kGcb)));
     const auto bTerm = doubled(hn::MulHigh(vb, kBcb));
     for (int row = 0; row < rows; ++row) {
-      const std::uint8_t* yl = y + row * yStride;
-      std::uint8_t* out = rgba + row * rgbaStride + 4 * x;
+      const std::uint8_t* yl = y + static_cast<std::ptrdiff_t>(row) * yStride;
+      std::uint8_t* out = rgba + static_cast<std::ptrdiff_t>(row) * rgbaStride + 4 * static_cast<std::ptrdiff_t>(x);
       const auto yy = hn::PromoteTo(d, hn::SaturatedSub(hn::LoadU(d8, yl + x), hn::Set(d8, 16)));
       const auto lum = hn::Add(hn::MulHigh(hn::ShiftLeft<4>(yy), kY), one);
       const auto r = hn::ShiftRight<1>(hn::Add(lum, rTerm));
@@ -238,7 +239,7 @@ void CscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_
       auto clamp = [](int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); };
       const int r = clamp((lum + rTerm) >> 1), g = clamp((lum + gTerm) >> 1), b = clamp((lum + bTerm) >> 1);
       const int m = r > g ? (r > b ? r : b) : (g > b ? g : b);
-      std::uint8_t* o = rgba + row * rgbaStride + 4 * x;
+      std::uint8_t* o = rgba + static_cast<std::ptrdiff_t>(row) * rgbaStride + 4 * static_cast<std::ptrdiff_t>(x);
       if (m < th0) {
         o[0] = o[1] = o[2] = o[3] = 0;
       } else {
@@ -257,16 +258,16 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace vbim::ipu {
 
-HWY_EXPORT(IdctImpl);
-HWY_EXPORT(CscRowsImpl);
+HWY_EXPORT(idctImpl);
+HWY_EXPORT(cscRowsImpl);
 
 void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  HWY_DYNAMIC_DISPATCH(IdctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+  HWY_DYNAMIC_DISPATCH(idctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
 }
 
 void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                        int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
-  HWY_DYNAMIC_DISPATCH(CscRowsImpl)(y, yStride, rows, cb, cr, width, rgba, rgbaStride, th.th0, th.th1);
+  HWY_DYNAMIC_DISPATCH(cscRowsImpl)(y, yStride, rows, cb, cr, width, rgba, rgbaStride, th.th0, th.th1);
 }
 
 const Kernels& simdKernels() {

@@ -19,9 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() /
-                     ("vbim_iop_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::path d = fs::temp_directory_path() /
+               ("vbim_iop_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -109,7 +109,7 @@ fs::path buildIso(const fs::path& d, std::int64_t fillerSectors) {
   writePatternFile(d / "root" / "VIDEO" / "A.PSS", 200, 1'000'000);
   writePatternFile(d / "root" / "VIDEO" / "B.PSS", 200, 2'000'000);
   writePatternFile(d / "root" / "VIDEO" / "AB_FILL.BIN", fillerSectors, 0);
-  const fs::path iso = d / "disc.iso";
+  fs::path iso = d / "disc.iso";
   const std::string cmd = "xorriso -abort_on FAILURE -report_about FAILURE -as mkisofs -quiet -V VBIM -o '" +
                           iso.string() + "' '" + (d / "root").string() + "' >/dev/null 2>&1";
   if (std::system(cmd.c_str()) != 0) return {};
@@ -197,11 +197,11 @@ TEST(IsoDisc, ReadingTwoFilesAlternatelyCostsSeeks) {
   };
   std::vector<std::pair<std::int64_t, std::int64_t>> alternate, sequential;
   for (int k = 0; k < 6; ++k) {
-    alternate.emplace_back(a.lba + 32 * k, 32);
-    alternate.emplace_back(b.lba + 32 * k, 32);
+    alternate.emplace_back(a.lba + 32LL * k, 32);
+    alternate.emplace_back(b.lba + 32LL * k, 32);
   }
-  for (int k = 0; k < 6; ++k) sequential.emplace_back(a.lba + 32 * k, 32);
-  for (int k = 0; k < 6; ++k) sequential.emplace_back(b.lba + 32 * k, 32);
+  for (int k = 0; k < 6; ++k) sequential.emplace_back(a.lba + 32LL * k, 32);
+  for (int k = 0; k < 6; ++k) sequential.emplace_back(b.lba + 32LL * k, 32);
   Tick tAlt = 0, tSeq = 0;
   const auto [alt, altStats] = run(alternate, tAlt);
   const auto [seq, seqStats] = run(sequential, tSeq);
