@@ -34,6 +34,10 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
   // allocated or cleared; every byte is written either way.
   cmd.staged = std::move(out);
   out = Rgba8Image{};
+  // One IPU decodes the lightmap's and the sky's pictures in turn: a macroblock it conceals is
+  // mid-grey, never the picture decoded before (maybe the other stream's), and the same whatever
+  // came before, as in replay, which decodes each picture on its own.
+  decoder_.clearFrame();
   result.report = decoder_.decode(bytes, runner_, RgbaOutput{&cmd.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();

@@ -64,6 +64,12 @@ class Decoder {
   PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool& pool);
 
   const FrameStore& frame() const { return store_; }
+  // Mid-grey again (Y = Cb = Cr = 128), same size: what the next decode conceals is mid-grey
+  // instead of the previous picture's. The player's IpuUnit does this before every picture, as it
+  // decodes two streams in turn.
+  void clearFrame() {
+    if (!store_.empty()) store_.reset(store_.mbWidth, store_.mbHeight);
+  }
   bool hasSequence() const { return haveSequence_; }
   const SequenceHeader& sequence() const { return seq_; }
   const PictureHeader& picture() const { return pic_; }

@@ -10,13 +10,13 @@
 namespace vbim::ipu {
 namespace {
 
-std::vector<std::uint8_t> firstPicture() {
+std::vector<std::uint8_t> firstPicture(testing::Content content = testing::Content::kBusy) {
   testing::EncodeOptions o;
   o.width = 128;
   o.height = 64;
   o.frames = 1;
   o.quantiser = 3;
-  o.content = testing::Content::kBusy;
+  o.content = content;
   std::vector<std::uint8_t> es = testing::encodeIntra(o);
   const AccessUnit au = splitAccessUnits(es).at(0);
   return {es.begin() + static_cast<std::ptrdiff_t>(au.offset),
@@ -84,6 +84,40 @@ TEST(IpuUnit, DecodesIntoAStaleBufferAsIntoAFreshOne) {
 
 // Doubling base, per-bit and CSC cost moves the completion time by exactly one more sum of
 // per-macroblock costs: the DMA never limits at the default rates.
+Task<void> decodeInTurn(IpuUnit& unit, std::vector<const std::vector<std::uint8_t>*> pictures,
+                        std::vector<TimedRun>& runs) {
+  for (const auto* bytes : pictures) {
+    runs.emplace_back();
+    runs.back().result = co_await unit.decode(*bytes, runs.back().image);
+  }
+}
+
+// The one IPU decodes the lightmap's and the sky's pictures in turn. A macroblock it conceals in one
+// picture is mid-grey: it never shows the picture decoded before, which may be the other stream's
+// (of the same size here), and it is the same whatever came before (so replay, which decodes each
+// picture on its own, shows the same bytes).
+TEST(IpuUnit, AConcealedMacroblockDoesNotShowThePictureDecodedBefore) {
+  const std::vector<std::uint8_t> other = firstPicture(testing::Content::kSmooth);
+  const std::vector<std::uint8_t> whole = firstPicture();
+  const std::vector<std::uint8_t> cut(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(whole.size() / 2));
+  Scheduler s;
+  IpuUnit unit(s, IpuParams{});
+  std::vector<TimedRun> runs;
+  s.spawn("ee", decodeInTurn(unit, {&other, &cut}, runs));
+  s.run();
+  ASSERT_EQ(runs.size(), 2u);
+  ASSERT_GT(runs[1].result.report.macroblocksConcealed, 0);
+  const TimedRun alone = runWith(IpuParams{}, cut);
+  EXPECT_EQ(runs[1].image.pixels, alone.image.pixels);
+  // The last macroblock was cut off: mid-grey (Y = Cb = Cr = 128), not the other picture's.
+  const Rgba8Image& img = runs[1].image;
+  const std::uint8_t* last = img.row(img.height - 1) + 4 * (img.width - 1);
+  // ipu/csc.hpp: lum = ((0x95 * (128 - 16)) >> 6) + 1 = 261, no chroma term, (261 + 0) >> 1 = 130.
+  EXPECT_EQ(std::vector<std::uint8_t>(last, last + 4), (std::vector<std::uint8_t>{130, 130, 130, 0x80}));
+  const std::uint8_t* before = runs[0].image.row(img.height - 1) + 4 * (img.width - 1);
+  EXPECT_NE(std::vector<std::uint8_t>(last, last + 4), std::vector<std::uint8_t>(before, before + 4));
+}
+
 TEST(IpuUnit, DoublingMacroblockCostMovesCompletionByItsSum) {
   const std::vector<std::uint8_t> bytes = firstPicture();
   IpuParams p;

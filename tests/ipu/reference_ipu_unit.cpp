@@ -38,6 +38,7 @@ Task<TimedPicture> ReferenceIpuUnit::decode(std::span<const std::uint8_t> bytes,
   result.started = s_.now();
   const JobRef shared = std::make_shared<Job>(s_);
   Job& job = *shared;
+  decoder_.clearFrame();  // as IpuUnit: a concealed macroblock is mid-grey
   result.report = decoder_.decode(bytes, nullptr, RgbaOutput{&job.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();
