@@ -120,12 +120,13 @@ void runAuthor(const AuthorOptions& o) {
   AuthorSettings settings = streamSettings(o.encode);
   const ToneMapping tone = toneMapping(o.encode);
   InputEncoding enc = InputEncoding::Auto;
-  if (o.input == "linear")
+  if (o.input == "linear") {
     enc = InputEncoding::Linear;
-  else if (o.input == "encoded")
+  } else if (o.input == "encoded") {
     enc = InputEncoding::Encoded;
-  else if (o.input != "auto")
+  } else if (o.input != "auto") {
     throw Exit(2, "--input '" + o.input + "': expected auto, linear or encoded");
+  }
 
   av_log_set_level(AV_LOG_ERROR);
   std::vector<std::uint8_t> bytes;
@@ -170,10 +171,11 @@ void runAuthor(const AuthorOptions& o) {
     streams::appendAuthoringRecord(
         bytes, frameStreamRecord("synthetic", settings, day.frames, {day.width, day.height}, sky, std::move(variants)));
   } else {
-    if (o.frames.empty())
+    if (o.frames.empty()) {
       throw Exit(2,
                  "give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
                  "--synthetic");
+    }
     std::vector<VariantInput> inputs;
     inputs.push_back(VariantInput{o.name, expandFramePattern(o.frames), {}});
     if (!o.sky.empty()) inputs[0].skies = expandFramePattern(o.sky);
@@ -192,15 +194,17 @@ void runAuthor(const AuthorOptions& o) {
     settings.withSky = !inputs[0].skies.empty();
     std::size_t total = 0;
     for (const VariantInput& v : inputs) {
-      if (settings.withSky && v.skies.empty())
+      if (settings.withSky && v.skies.empty()) {
         throw Exit(2, "variant '" + v.name + "' has no sky sequence (give --variant-sky " + v.name +
                           "=PATTERN, or no sky for any variant)");
+      }
       if (!settings.withSky && !v.skies.empty())
         throw Exit(2, "variant '" + v.name + "' has a sky sequence but the first variant has none");
-      if (settings.withSky && v.skies.size() != v.lightmaps.size())
+      if (settings.withSky && v.skies.size() != v.lightmaps.size()) {
         throw Exit(2, "variant '" + v.name + "': " + std::to_string(v.lightmaps.size()) + " lightmap frames but " +
                           std::to_string(v.skies.size()) + " sky frames (first sky file " +
                           v.skies.front().path.string() + ")");
+      }
       total += v.lightmaps.size();
     }
     StreamWriter writer(settings);
@@ -293,10 +297,11 @@ void addAuthor(CLI::App& app) {
       }
       // Technique A renders its own frames: the image-sequence and synthetic options do not apply.
       if (!o->frames.empty() || !o->sky.empty() || !o->variants.empty() || !o->variantSkies.empty() ||
-          !o->synthetic.empty())
+          !o->synthetic.empty()) {
         throw Exit(2, technique +
                           " selects Technique A, which renders its own frames; it excludes --frames, --sky, "
                           "--variant, --variant-sky and --synthetic");
+      }
       runTerrainAuthor(*terrain, o->encode, o->out);
       if (!o->iso.empty()) writeDiscImage(*o);
     } catch (const AuthoringError& e) {

@@ -117,9 +117,10 @@ class DemoProfile {
       c.config.iop.ring.bankmax = ring.bankmax;
       c.config.iop.ring.bufmax_sectors = ring.bufmax;
       c.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
-      for (pr::Criterion crit : {pr::Criterion::late, pr::Criterion::pop})
+      for (pr::Criterion crit : {pr::Criterion::late, pr::Criterion::pop}) {
         rows.push_back(
             pr::StallRow{stream->label, ring, c.config.gs.catchup, crit, pr::longestSurvivableStall(c, search, crit)});
+      }
     }
     plots::writeChartFiles(plots::profile::stallFigure("vbim demo: survivable drive stall against ring size",
                                                        pr::stallPoints(rows), pr::stallSearchSetup(search)),

@@ -39,11 +39,12 @@ nlohmann::json descriptorJson(const Descriptor& d) {
   j["pts_per_frame"] = d.ptsPerFrame;
   j["descriptor_sectors"] = d.descriptorSectors;
   j["total_sectors"] = d.totalSectors;
-  for (const StreamEntry& s : d.streams)
+  for (const StreamEntry& s : d.streams) {
     j["streams"].push_back({{"id", hexId(s.id)},
                             {"role", s.role == StreamRole::Lightmap ? "lightmap" : "sky"},
                             {"width", s.width},
                             {"height", s.height}});
+  }
   for (const Variant& v : d.variants)
     j["variants"].push_back({{"name", v.name}, {"first_frame", v.firstFrame}, {"first_sector", v.firstSector}});
   for (std::size_t s = 0; s < d.index.size(); ++s) {
@@ -71,12 +72,14 @@ void printText(const std::string& path, const StreamScan& scan, const std::vecto
                 d.descriptorSectors, d.gameFps.num, d.gameFps.den, d.framesPerVariant, d.loopFrame);
     std::printf("  container: first PTS %lld, %u ticks (90 kHz) per frame; %u sectors in all\n",
                 static_cast<long long>(d.firstPts), d.ptsPerFrame, d.totalSectors);
-    for (const StreamEntry& s : d.streams)
+    for (const StreamEntry& s : d.streams) {
       std::printf("  stream %s %s %ux%u\n", hexId(s.id).c_str(), s.role == StreamRole::Lightmap ? "lightmap" : "sky",
                   s.width, s.height);
-    for (const Variant& v : d.variants)
+    }
+    for (const Variant& v : d.variants) {
       std::printf("  variant '%s': frames %u..%u, from sector %u\n", v.name.c_str(), v.firstFrame,
                   v.firstFrame + d.framesPerVariant - 1, v.firstSector);
+    }
   } else {
     std::printf("descriptor: none (not a VBIM stream, or damaged); rates below assume %.3g frames/s\n", fps);
   }
@@ -221,13 +224,15 @@ void addInfo(CLI::App& app) {
       if (record) j["authoring"] = nlohmann::json::parse(record->dump());
       for (const StreamReport& r : reports) {
         nlohmann::json pictures = nlohmann::json::array();
-        for (const PictureRecord& p : scan.pictures)
-          if (p.streamId == r.id)
+        for (const PictureRecord& p : scan.pictures) {
+          if (p.streamId == r.id) {
             pictures.push_back({{"first_sector", p.firstSector},
                                 {"last_sector", p.lastSector},
                                 {"bytes", p.bytes},
                                 {"frame", p.frame ? nlohmann::json(*p.frame) : nlohmann::json(nullptr)},
                                 {"damaged", p.damaged}});
+          }
+        }
         j["streams"].push_back(
             {{"id", hexId(r.id)},
              {"pictures", r.pictures},
@@ -238,18 +243,20 @@ void addInfo(CLI::App& app) {
              {"bits_per_second_per_frame", r.bitsPerSecond},
              {"picture_list", pictures}});
       }
-      for (const StreamError& e : scan.errors)
+      for (const StreamError& e : scan.errors) {
         j["errors"].push_back(
             {{"kind", toString(e.kind)}, {"sector", e.sector}, {"byte_offset", e.byteOffset}, {"message", e.message}});
+      }
       if (!j.contains("errors")) j["errors"] = nlohmann::json::array();
       std::cout << j.dump(2) << "\n";
     } else {
       printText(shown, scan, reports, fps, guessed);
       printAuthoring(record);
     }
-    if (!scan.errors.empty())
+    if (!scan.errors.empty()) {
       throw Exit(2, shown + ": " + std::to_string(scan.errors.size()) +
                         " defects found (first: " + scan.errors.front().describe() + ")");
+    }
   });
 }
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
@@ -24,7 +25,7 @@ std::string number(double v) {
 
 // "8 s", "3 min 20 s", "1 h 05 min".
 std::string duration(double seconds) {
-  const long long s = static_cast<long long>(seconds + 0.5);
+  const long long s = std::llround(seconds);
   char text[48];
   if (s < 60) {
     std::snprintf(text, sizeof text, "%lld s", s);

@@ -24,7 +24,7 @@ LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b) {
   return s;
 }
 
-LagMeter::LagMeter(Presenter& run, Presenter& reference, Tracer* tracer, std::string name)
+LagMeter::LagMeter(Presenter& run, Presenter& reference, Tracer* tracer, const std::string& name)
     : run_(run), ref_(reference), tracer_(tracer) {
   if (tracer_ != nullptr && tracer_->enabled()) counter_ = tracer_->counter(name + ".lag");
 }

@@ -22,7 +22,7 @@ LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b);
 
 class LagMeter {
  public:
-  LagMeter(Presenter& run, Presenter& reference, Tracer* tracer = nullptr, std::string name = "gs");
+  LagMeter(Presenter& run, Presenter& reference, Tracer* tracer = nullptr, const std::string& name = "gs");
   // The process: measures vsyncs 0, 1, ... while their time is before `end`.
   Task<void> measure(Tick end);
   const std::vector<LagSample>& samples() const { return samples_; }

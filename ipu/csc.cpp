@@ -1,5 +1,6 @@
 #include "ipu/csc.hpp"
 
+#include <cstddef>
 #include <cstring>
 
 namespace vbim::ipu {
@@ -23,7 +24,7 @@ void cscRowRgba32Scalar(const std::uint8_t* y, const std::uint8_t* cb, const std
   for (int x = 0; x < width; ++x) {
     const Rgb c = ipuYcbcrToRgb(y[x], cb[x >> 1], cr[x >> 1]);
     const int a = thresholdAlpha(c.r, c.g, c.b, th);
-    std::uint8_t* o = rgba + 4 * x;
+    std::uint8_t* o = rgba + 4 * static_cast<std::ptrdiff_t>(x);
     if (a == 0) {
       o[0] = o[1] = o[2] = o[3] = 0;
     } else {
@@ -37,7 +38,10 @@ void cscRowRgba32Scalar(const std::uint8_t* y, const std::uint8_t* cb, const std
 
 void cscRowsRgba32Scalar(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                          int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
-  for (int r = 0; r < rows; ++r) cscRowRgba32Scalar(y + r * yStride, cb, cr, width, rgba + r * rgbaStride, th);
+  for (int r = 0; r < rows; ++r) {
+    cscRowRgba32Scalar(y + static_cast<std::ptrdiff_t>(r) * yStride, cb, cr, width,
+                       rgba + static_cast<std::ptrdiff_t>(r) * rgbaStride, th);
+  }
 }
 
 void convertToRgba32(const FrameStore& fs, int width, int height, CscThresholds th, Rgba8Image& out, CscRowFn row) {
@@ -65,7 +69,7 @@ void convertToRgb16(const FrameStore& fs, int width, int height, CscThresholds t
     cscRowRgba32Scalar(fs.y.data() + static_cast<std::size_t>(yy) * fs.lumaStride, fs.cb.data() + c, fs.cr.data() + c,
                        width, line.data(), th);
     for (int x = 0; x < width; ++x) {
-      const std::uint8_t* p = line.data() + 4 * x;
+      const std::uint8_t* p = line.data() + 4 * static_cast<std::ptrdiff_t>(x);
       int v[3];
       for (int k = 0; k < 3; ++k) {
         int s = p[k];
@@ -84,9 +88,10 @@ void convertToRgb16(const FrameStore& fs, int width, int height, CscThresholds t
 
 void copyToYuv420(const FrameStore& fs, int width, int height, Yuv420Image& out) {
   if (out.width != width || out.height != height) out = Yuv420Image(width, height);
-  for (int yy = 0; yy < height; ++yy)
+  for (int yy = 0; yy < height; ++yy) {
     std::memcpy(out.y.data() + static_cast<std::size_t>(yy) * width,
                 fs.y.data() + static_cast<std::size_t>(yy) * fs.lumaStride, static_cast<std::size_t>(width));
+  }
   const int cw = out.chromaWidth(), ch = out.chromaHeight();
   for (int yy = 0; yy < ch; ++yy) {
     std::memcpy(out.cb.data() + static_cast<std::size_t>(yy) * cw,

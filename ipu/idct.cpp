@@ -1,5 +1,6 @@
 #include "ipu/idct.hpp"
 
+#include <cstddef>
 #include <cstring>
 
 namespace vbim::ipu {
@@ -49,7 +50,7 @@ void idctCore(const std::int16_t* block, unsigned rowMask, Store&& store) {
   std::int32_t r[64];
   for (int v = 0; v < 8; ++v) {
     if (rowMask & (1u << v)) {
-      rowPass(block + 8 * v, r + 8 * v);
+      rowPass(block + static_cast<std::ptrdiff_t>(8 * v), r + static_cast<std::ptrdiff_t>(8 * v));
     } else {
       for (int n = 0; n < 8; ++n) r[8 * v + n] = 0;
     }
@@ -92,7 +93,7 @@ void idctCore(const std::int16_t* block, unsigned rowMask, Store&& store) {
 void idctScalar(const std::int16_t* block, unsigned rowMask, std::uint8_t* dst, int stride) {
   rowMask &= 0xFF;
   if (rowMask == 0) {
-    for (int y = 0; y < 8; ++y) std::memset(dst + y * stride, 0, 8);
+    for (int y = 0; y < 8; ++y) std::memset(dst + static_cast<std::ptrdiff_t>(y) * stride, 0, 8);
     return;
   }
   idctCore(block, rowMask, [dst, stride](int y, int x, std::int64_t v) { dst[y * stride + x] = clampPixel(v); });

@@ -1,6 +1,7 @@
 #include "ipu/picture_decoder.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 #include "ipu/quant_tables.hpp"
@@ -49,7 +50,8 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
 
   const int mbw = (seq_.width + 15) / 16;
   const int mbh = (!seq_.mpeg2 || seq_.progressiveSequence) ? (seq_.height + 15) / 16 : 2 * ((seq_.height + 31) / 32);
-  if (store_.mbWidth != mbw || store_.mbHeight != mbh) store_.reset(mbw, mbh);
+  if (clearFrame_ || store_.mbWidth != mbw || store_.mbHeight != mbh) store_.reset(mbw, mbh);
+  clearFrame_ = false;
   // Fixed for this picture: a sequence extension among its slices may change seq_ (the size
   // extension bits), but not the store the slices write into.
   frameWidth_ = seq_.width;
@@ -79,9 +81,9 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   if (p.fieldPicture) {
     const int bottom = pic_.pictureStructure == 2 ? 1 : 0;
     p.mbRows = mbh / 2;
-    p.y = store_.y.data() + bottom * store_.lumaStride;
-    p.cb = store_.cb.data() + bottom * store_.chromaStride;
-    p.cr = store_.cr.data() + bottom * store_.chromaStride;
+    p.y = store_.y.data() + static_cast<std::ptrdiff_t>(bottom) * store_.lumaStride;
+    p.cb = store_.cb.data() + static_cast<std::ptrdiff_t>(bottom) * store_.chromaStride;
+    p.cr = store_.cr.data() + static_cast<std::ptrdiff_t>(bottom) * store_.chromaStride;
     p.yStride = 2 * store_.lumaStride;
     p.cStride = 2 * store_.chromaStride;
   } else {

@@ -64,12 +64,10 @@ class Decoder {
   PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool& pool);
 
   const FrameStore& frame() const { return store_; }
-  // Mid-grey again (Y = Cb = Cr = 128), same size: what the next decode conceals is mid-grey
+  // The next picture starts from a mid-grey store (Y = Cb = Cr = 128): what it conceals is mid-grey
   // instead of the previous picture's. The player's IpuUnit does this before every picture, as it
   // decodes two streams in turn.
-  void clearFrame() {
-    if (!store_.empty()) store_.reset(store_.mbWidth, store_.mbHeight);
-  }
+  void clearFrame() { clearFrame_ = true; }
   bool hasSequence() const { return haveSequence_; }
   const SequenceHeader& sequence() const { return seq_; }
   const PictureHeader& picture() const { return pic_; }
@@ -106,7 +104,8 @@ class Decoder {
   bool sawSlice_ = false;
   PictureParams params_;
   FrameStore store_;
-  int frameWidth_ = 0;  // display size of the picture the store holds
+  bool clearFrame_ = false;  // clearFrame() was called: the next picture starts from mid-grey
+  int frameWidth_ = 0;       // display size of the picture the store holds
   int frameHeight_ = 0;
   std::vector<Slice> slices_;
   std::vector<std::uint8_t> decoded_;  // per macroblock (row stride decodedStride_): 1 once decoded

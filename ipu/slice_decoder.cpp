@@ -1,5 +1,6 @@
 #include "ipu/slice_decoder.hpp"
 
+#include <cstddef>
 #include <cstring>
 
 #include "ipu/bit_reader.hpp"
@@ -131,7 +132,7 @@ template <bool Mpeg1>
     return Status::kError;
   }
   br.skip(e.len);
-  const int size = e.value;
+  const int size = static_cast<unsigned char>(e.value);  // 0..11 (a DC size)
   if (size != 0) {
     const int bits = static_cast<int>(br.read(size));
     dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
@@ -264,24 +265,24 @@ void SliceDecoder::storeBlock(int b, std::uint8_t* dst, int stride) {
   const bool dcOnly = !mb_.acPresent[b] && (rowMask == 1 || (dc & 7) == 0);
   if (dcOnly) {
     const std::uint8_t v = idctDcValue(dc);
-    for (int yy = 0; yy < 8; ++yy) std::memset(dst + yy * stride, v, 8);
+    for (int yy = 0; yy < 8; ++yy) std::memset(dst + static_cast<std::ptrdiff_t>(yy) * stride, v, 8);
   } else {
     pp_.idct(blk, rowMask, mb_.colMask[b], dst, stride);
   }
   for (int r = 0; r < 8; ++r)
-    if (rowMask & (1u << r)) std::memset(blk + 8 * r, 0, 16);
+    if (rowMask & (1u << r)) std::memset(blk + static_cast<std::ptrdiff_t>(8 * r), 0, 16);
   blk[63] = 0;  // the mismatch toggle (kIdctToggleOnly) is not in the row mask
 }
 
 void SliceDecoder::reconstruct(int mbX, int mbY, bool fieldDct) {
-  std::uint8_t* y = pp_.y + static_cast<std::size_t>(mbY) * 16 * pp_.yStride + mbX * 16;
-  if (fieldDct) {
-    // §6.1.3 field DCT: blocks 0/1 hold the top field lines, 2/3 the bottom field lines.
-    for (int b = 0; b < 4; ++b) storeBlock(b, y + (b & 1) * 8 + (b >> 1) * pp_.yStride, 2 * pp_.yStride);
-  } else {
-    for (int b = 0; b < 4; ++b) storeBlock(b, y + (b & 1) * 8 + (b >> 1) * 8 * pp_.yStride, pp_.yStride);
-  }
-  const std::size_t c = static_cast<std::size_t>(mbY) * 8 * pp_.cStride + mbX * 8;
+  const std::ptrdiff_t stride = pp_.yStride;
+  std::uint8_t* y = pp_.y + stride * 16 * mbY + std::ptrdiff_t{16} * mbX;
+  // Block b is the left or right half (b & 1) and the top or bottom (b >> 1). §6.1.3 field DCT:
+  // blocks 0/1 hold the top field lines, 2/3 the bottom field lines.
+  const std::ptrdiff_t down = fieldDct ? stride : 8 * stride;
+  const int blockStride = fieldDct ? 2 * pp_.yStride : pp_.yStride;
+  for (int b = 0; b < 4; ++b) storeBlock(b, y + std::ptrdiff_t{8} * (b & 1) + down * (b >> 1), blockStride);
+  const std::size_t c = static_cast<std::size_t>(mbY) * 8 * pp_.cStride + static_cast<std::size_t>(mbX) * 8;
   storeBlock(4, pp_.cb + c, pp_.cStride);
   storeBlock(5, pp_.cr + c, pp_.cStride);
 }

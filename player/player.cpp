@@ -95,7 +95,7 @@ void Player::onVsync(std::int64_t n) {
   if (tracer_.enabled() && ref_) tracer_.value(lagCounter_, row.at, row.lag);
   if (sink_) sink_(row, lm.lightmap(), sky ? &sky->lightmap() : nullptr);
   tracer_.advance(row.at);  // a streamed trace writes what is now final
-  last_ = std::move(row);
+  last_ = row;
 }
 
 // Waits until every presenter (run and reference) has presented vsync n, then records it.

@@ -30,9 +30,10 @@ std::optional<std::uint32_t> Descriptor::frameOfPts(std::int64_t pts) const {
 std::string Descriptor::validate() const {
   if (gameFps.num == 0 || gameFps.den == 0) return "game frame rate must be a positive rational";
   if (framesPerVariant == 0) return "a variant must hold at least one frame";
-  if (loopFrame >= framesPerVariant)
+  if (loopFrame >= framesPerVariant) {
     return "loop frame " + std::to_string(loopFrame) + " is not below the frame count " +
            std::to_string(framesPerVariant);
+  }
   if (streams.empty() || streams.size() > 2) return "a stream holds 1 or 2 video streams";
   if (variants.empty() || variants.size() > 255) return "a stream holds 1 to 255 variants";
   if (std::uint64_t{framesPerVariant} * variants.size() > 0xFFFFFFFFull) return "too many frames";
@@ -86,7 +87,7 @@ std::vector<std::uint8_t> serialize(const Descriptor& d) {
     w.u32(v.firstFrame);
     w.u32(v.firstSector);
   }
-  for (const auto& table : d.index)
+  for (const auto& table : d.index) {
     for (const IndexEntry& e : table) {
       w.u32(e.sector);
       w.u16(e.offset);
@@ -94,6 +95,7 @@ std::vector<std::uint8_t> serialize(const Descriptor& d) {
       w.u32(e.bytes);
       w.u32(e.crc);
     }
+  }
   std::vector<std::uint8_t> out = w.take();
   const std::uint32_t crc = crc32(out);
   for (int i = 0; i < 4; ++i) out[kCrcOffset + i] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
@@ -128,9 +130,10 @@ DescriptorParse parseDescriptor(std::span<const std::uint8_t> body) {
   d.totalSectors = in.u32();
   const std::uint32_t storedCrc = in.u32();
   const std::size_t expect = serializedSize(streams, variants, d.framesPerVariant);
-  if (body.size() < expect)
+  if (body.size() < expect) {
     return fail(body.size(),
                 "descriptor of " + std::to_string(body.size()) + " bytes; its counts need " + std::to_string(expect));
+  }
   std::vector<std::uint8_t> copy(body.begin(), body.begin() + static_cast<std::ptrdiff_t>(expect));
   for (std::size_t i = 0; i < 4; ++i) copy[kCrcOffset + i] = 0;
   if (crc32(copy) != storedCrc) return fail(kCrcOffset, "descriptor CRC-32 mismatch (damaged descriptor)");

@@ -31,21 +31,24 @@ class Parser {
       : d_(d), start_(start), sector_(sector), lsn_(lsn), out_(out) {}
 
   std::optional<StreamError> run() {
-    if (sector_ && d_.size() != kSectorBytes)
+    if (sector_ && d_.size() != kSectorBytes) {
       return fail(ErrorKind::ShortSector, 0,
                   "pack of " + std::to_string(d_.size()) + " bytes; every pack is 2048 bytes (truncated stream?)");
+    }
     std::size_t pos = start_;
     if (auto e = packHeader(pos)) return e;
     const char* where = sector_ ? "the pack" : "the data";
     while (pos < d_.size()) {
       const std::size_t left = d_.size() - pos;
-      if (!sector_ && left < 4)
+      if (!sector_ && left < 4) {
         return fail(ErrorKind::Truncated, pos,
                     "the last " + std::to_string(left) + " bytes are too few for a start code (truncated stream?)");
-      if (left < 4 || d_[pos] != 0 || d_[pos + 1] != 0 || d_[pos + 2] != 1)
+      }
+      if (left < 4 || d_[pos] != 0 || d_[pos + 1] != 0 || d_[pos + 2] != 1) {
         return fail(ErrorKind::BadPes, pos,
                     "expected a start code 00 00 01 xx, found " + hexBytes(pos) + " (" + std::to_string(left) +
                         " bytes left in " + where + ")");
+      }
       const std::uint8_t id = d_[pos + 3];
       if (id == kProgramEndCode) {
         out_.hasEndCode = true;
@@ -62,10 +65,11 @@ class Parser {
       const std::size_t len = (std::size_t{d_[pos + 4]} << 8) | d_[pos + 5];
       const std::size_t end = pos + 6 + len;
       if (end > d_.size()) {
-        if (sector_)
+        if (sector_) {
           return fail(ErrorKind::PackOverrun, pos,
                       "packet " + hex(id) + " of " + std::to_string(len + 6) +
                           " bytes overruns the 2048-byte pack by " + std::to_string(end - d_.size()) + " bytes");
+        }
         // Keep what there is of a cut PES packet: a decoder may still use the start of its picture.
         if (id != kSystemHeaderStartCode) (void)pesPacket(id, pos, d_.size());
         return fail(ErrorKind::Truncated, pos,
@@ -99,9 +103,10 @@ class Parser {
   // Reads the pack header at start_ and moves `pos` past it.
   std::optional<StreamError> packHeader(std::size_t& pos) {
     if (auto e = needHeader(4)) return e;
-    if (at(0) != 0 || at(1) != 0 || at(2) != 1 || at(3) != kPackStartCode)
+    if (at(0) != 0 || at(1) != 0 || at(2) != 1 || at(3) != kPackStartCode) {
       return fail(ErrorKind::BadPackHeader, start_,
                   "expected a pack start code 00 00 01 BA, found " + hexBytes(start_));
+    }
     if (auto e = needHeader(5)) return e;
     const std::uint8_t b4 = at(4);
     if ((b4 & 0xF0) == 0x20) {
@@ -169,15 +174,17 @@ class Parser {
   std::optional<StreamError> mpeg2PesHeader(std::uint8_t id, std::size_t pos, std::size_t end, PesPacket& p,
                                             std::size_t& payload) const {
     if (end - pos < 9) return fail(ErrorKind::BadPes, pos, "PES packet " + hex(id) + " too short for its header");
-    if ((d_[pos + 6] & 0xC0) != 0x80)
+    if ((d_[pos + 6] & 0xC0) != 0x80) {
       return fail(ErrorKind::BadPes, pos + 6,
                   "PES packet " + hex(id) + " lacks the MPEG-2 '10' header marker (MPEG-1 PES is not supported)");
+    }
     const unsigned ptsDts = d_[pos + 7] >> 6;
     const std::size_t headerLen = d_[pos + 8];
     payload = pos + 9 + headerLen;
-    if (payload > end)
+    if (payload > end) {
       return fail(ErrorKind::BadPes, pos + 8,
                   "PES header length " + std::to_string(headerLen) + " runs past its packet " + hex(id));
+    }
     if (ptsDts == 1) return fail(ErrorKind::BadPes, pos + 7, "PTS_DTS_flags '01' is forbidden");
     if (ptsDts >= 2) {
       if (headerLen < 5) return fail(ErrorKind::BadPes, pos + 8, "PTS flag set but PES header is too short");
@@ -194,17 +201,18 @@ class Parser {
     while (q < end && d_[q] == 0xFF) ++q;
     if (q < end && (d_[q] & 0xC0) == 0x40) q += 2;
     std::size_t fields = 0;
-    if (q < end && (d_[q] & 0xF0) == 0x20)
+    if (q < end && (d_[q] & 0xF0) == 0x20) {
       fields = 5;
-    else if (q < end && (d_[q] & 0xF0) == 0x30)
+    } else if (q < end && (d_[q] & 0xF0) == 0x30) {
       fields = 10;
-    else if (q < end && d_[q] == 0x0F)
+    } else if (q < end && d_[q] == 0x0F) {
       fields = 1;
-    else
+    } else {
       return fail(ErrorKind::BadPes, q,
                   "MPEG-1 PES packet " + hex(id) +
                       ": expected a PTS ('0010'), a PTS and DTS ('0011') or 0x0F after the stuffing and STD buffer "
                       "fields");
+    }
     if (q + fields > end) return fail(ErrorKind::BadPes, q, "MPEG-1 PES header runs past its packet " + hex(id));
     payload = q + fields;
     if (fields > 1) return readPts(q, fields == 10 ? 3 : 2, p);

@@ -27,11 +27,12 @@ class Scanner {
     scan_.sectors = static_cast<std::uint32_t>(bytes / kSectorBytes);
     scan_.descriptor = demux_.descriptor();
     scan_.errors = demux_.errors();
-    if (scan_.descriptor && bytes < std::uint64_t{scan_.descriptor->totalSectors} * kSectorBytes)
+    if (scan_.descriptor && bytes < std::uint64_t{scan_.descriptor->totalSectors} * kSectorBytes) {
       scan_.errors.push_back(
           StreamError{ErrorKind::ShortSector, bytes, static_cast<std::uint32_t>(bytes / kSectorBytes),
                       "stream ends after " + std::to_string(bytes) + " bytes; its descriptor says " +
                           std::to_string(scan_.descriptor->totalSectors) + " sectors (truncated stream)"});
+    }
     scan_.stats = demux_.stats();
     scan_.every2048 = bytes % kSectorBytes == 0 && scan_.stats.badSectors == 0 && bytes > 0;
     return std::move(scan_);
@@ -39,10 +40,11 @@ class Scanner {
 
  private:
   void collect() {
-    for (const Picture& p : demux_.pictures())
+    for (const Picture& p : demux_.pictures()) {
       scan_.pictures.push_back(PictureRecord{p.streamId, p.firstSector, p.lastSector, p.byteOffset,
                                              static_cast<std::uint32_t>(p.data.size()), crc32(p.data), p.pts, p.frame,
                                              p.damaged});
+    }
     demux_.pictures().clear();
   }
   Demuxer demux_;

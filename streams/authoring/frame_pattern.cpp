@@ -71,10 +71,11 @@ std::vector<FrameFile> expandFramePattern(const std::string& pattern) {
   std::vector<FrameFile> out;
   int expect = found.begin()->first;
   for (const auto& [n, path] : found) {
-    if (n != expect)
+    if (n != expect) {
       throw AuthoringError("frame pattern '" + pattern + "': " + formatFramePattern(pattern, expect) +
                            " is missing (the sequence runs from " + std::to_string(found.begin()->first) + " to " +
                            std::to_string(found.rbegin()->first) + ")");
+    }
     out.push_back(FrameFile{n, path});
     ++expect;
   }

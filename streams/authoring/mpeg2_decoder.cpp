@@ -1,6 +1,7 @@
 #include "streams/authoring/mpeg2_decoder.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -39,14 +40,18 @@ Yuv420Image Mpeg2Decoder::decodeYuv(std::span<const std::uint8_t> picture) {
   if (r < 0) throw AuthoringError("MPEG-2 decoder returned no picture: " + avError(r));
   lastType_ = av_get_picture_type_char(frame_->pict_type);
   Yuv420Image out(frame_->width, frame_->height);
-  for (int y = 0; y < out.height; ++y)
-    std::memcpy(out.y.data() + static_cast<std::size_t>(y) * out.width, frame_->data[0] + y * frame_->linesize[0],
+  for (int y = 0; y < out.height; ++y) {
+    std::memcpy(out.y.data() + static_cast<std::size_t>(y) * out.width,
+                frame_->data[0] + static_cast<std::ptrdiff_t>(y) * frame_->linesize[0],
                 static_cast<std::size_t>(out.width));
+  }
   for (int y = 0; y < out.chromaHeight(); ++y) {
     std::memcpy(out.cb.data() + static_cast<std::size_t>(y) * out.chromaWidth(),
-                frame_->data[1] + y * frame_->linesize[1], static_cast<std::size_t>(out.chromaWidth()));
+                frame_->data[1] + static_cast<std::ptrdiff_t>(y) * frame_->linesize[1],
+                static_cast<std::size_t>(out.chromaWidth()));
     std::memcpy(out.cr.data() + static_cast<std::size_t>(y) * out.chromaWidth(),
-                frame_->data[2] + y * frame_->linesize[2], static_cast<std::size_t>(out.chromaWidth()));
+                frame_->data[2] + static_cast<std::ptrdiff_t>(y) * frame_->linesize[2],
+                static_cast<std::size_t>(out.chromaWidth()));
   }
   av_frame_unref(frame_);
   return out;

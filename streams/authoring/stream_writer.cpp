@@ -56,15 +56,17 @@ std::uint32_t stretchFor(std::int64_t largestFrameBytes, std::uint32_t ptsPerFra
 StreamWriter::StreamWriter(AuthorSettings s) : settings_(s) {
   const Rational c = s.encoder.containerFps;
   if (s.gameFps.num == 0 || s.gameFps.den == 0) throw AuthoringError("the game frame rate must be positive");
-  if (c.num == 0 || c.den == 0 || (std::uint64_t{kPtsHz} * c.den) % c.num != 0)
+  if (c.num == 0 || c.den == 0 || (std::uint64_t{kPtsHz} * c.den) % c.num != 0) {
     throw AuthoringError("container frame rate " + std::to_string(c.num) + "/" + std::to_string(c.den) +
                          " does not give a whole number of 90 kHz ticks per frame (use 24, 25, 30, 30000/1001, 50, "
                          "60 or 60000/1001)");
+  }
   if (s.encoder.bitrate == 0 && (s.encoder.qscale < 1 || s.encoder.qscale > 31))
     throw AuthoringError("quantiser " + std::to_string(s.encoder.qscale) + " is outside 1..31");
-  if (s.encoder.bitrate < 0 || s.encoder.bitrate > kDvdMaxVideoRate)
+  if (s.encoder.bitrate < 0 || s.encoder.bitrate > kDvdMaxVideoRate) {
     throw AuthoringError("bitrate " + std::to_string(s.encoder.bitrate) +
                          " bit/s is outside 1..9800000 (the DVD video maximum)");
+  }
   descriptor_.gameFps = s.gameFps;
   descriptor_.loopFrame = s.loopFrame;
   descriptor_.ptsPerFrame = static_cast<std::uint32_t>(std::uint64_t{kPtsHz} * c.den / c.num);
@@ -105,10 +107,11 @@ void StreamWriter::checkSize(const Rgba8Image& img, const char* what, int& w, in
   const std::string frame = std::string(what) + " frame " + std::to_string(framesInVariant_) + " of variant '" +
                             descriptor_.variants.back().name + "'";
   if (img.width % 16 || img.height % 16 || img.width < 16 || img.height < 16 || img.width > kMaxFrameSide ||
-      img.height > kMaxFrameSide)
+      img.height > kMaxFrameSide) {
     throw AuthoringError(frame + " is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
                          "; width and height must be multiples of 16 from 16 to 4080 (the IPU decodes whole 16x16 "
                          "macroblocks)");
+  }
   if (img.pixels.size() != static_cast<std::size_t>(img.width) * img.height * 4)
     throw AuthoringError(frame + " has a pixel buffer of the wrong size");
   if (w == 0) {
@@ -139,11 +142,12 @@ void StreamWriter::open() {
 void StreamWriter::addFrame(const Rgba8Image& lightmap, const Rgba8Image* sky) {
   if (finished_) throw AuthoringError("addFrame after finish");
   if (descriptor_.variants.empty()) beginVariant("default");
-  if (settings_.withSky != (sky != nullptr))
+  if (settings_.withSky != (sky != nullptr)) {
     throw AuthoringError(std::string("frame ") + std::to_string(framesInVariant_) + " of variant '" +
                          descriptor_.variants.back().name + "' " +
                          (settings_.withSky ? "has no sky picture (the stream was set up with a sky)"
                                             : "has a sky picture but the stream was set up without one"));
+  }
   checkSize(lightmap, "lightmap", lmW_, lmH_);
   if (sky) checkSize(*sky, "sky", skyW_, skyH_);
   if (!enc_) open();
@@ -192,10 +196,11 @@ std::vector<std::uint8_t> StreamWriter::finish() {
 
   // Read the muxed stream back, as a player would, to find where each picture landed.
   const StreamScan scan = scanStream(muxed);
-  if (!scan.every2048 || !scan.errors.empty())
+  if (!scan.every2048 || !scan.errors.empty()) {
     throw AuthoringError(
         "internal: the muxer wrote a malformed pack: " +
         (scan.errors.empty() ? std::string("size not a multiple of 2048") : scan.errors.front().describe()));
+  }
   Descriptor& d = descriptor_;
   d.index.assign(d.streams.size(), std::vector<IndexEntry>(d.totalFrames()));
   // Each stream's pictures come out of the muxer in frame order. Where a picture carries a PTS it
@@ -214,17 +219,20 @@ std::vector<std::uint8_t> StreamWriter::finish() {
   for (const PictureRecord& p : scan.pictures) {
     const auto s = static_cast<std::size_t>(d.streamIndex(p.streamId));
     const std::uint32_t frame = next[s]++;
-    if (frame >= d.totalFrames() || !firstPts || (p.pts && *p.pts != *firstPts + std::int64_t{frame} * d.ptsPerFrame))
+    if (frame >= d.totalFrames() || !firstPts || (p.pts && *p.pts != *firstPts + std::int64_t{frame} * d.ptsPerFrame)) {
       throw AuthoringError("internal: stream " + std::to_string(s) + " picture " + std::to_string(frame) + " has PTS " +
                            (p.pts ? std::to_string(*p.pts) : "none") + ", expected frame " + std::to_string(frame) +
                            "'s time");
+    }
     d.index[s][frame] =
         IndexEntry{p.firstSector, static_cast<std::uint16_t>(p.byteOffset % kSectorBytes), p.bytes, p.crc};
   }
-  for (std::size_t s = 0; s < d.streams.size(); ++s)
-    if (next[s] != d.totalFrames())
+  for (std::size_t s = 0; s < d.streams.size(); ++s) {
+    if (next[s] != d.totalFrames()) {
       throw AuthoringError("internal: stream " + std::to_string(s) + " has " + std::to_string(next[s]) +
                            " pictures, expected " + std::to_string(d.totalFrames()));
+    }
+  }
   d.firstPts = *firstPts;
 
   // The first muxed pack's system header is repeated in the first descriptor pack.
