@@ -192,7 +192,7 @@ void relight(const Precomputed& pre, const FrameLighting& light, const float* ke
         const float* __restrict sky = pre.sky.factor.data() + (base + x0) * patches * 3;
         const float* __restrict horizon = keyHorizonTan + base + x0;
         float* __restrict mask = shadowMask != nullptr ? shadowMask->pixels.data() + base + x0 : nullptr;
-        for (int x = 0; x < n; ++x, o += 3, sky += patches * 3) {
+        for (int x = 0; x < n; ++x, o += 3, sky += static_cast<std::ptrdiff_t>(patches) * 3) {
           const std::size_t i = base + x0 + x;
           const float h = horizon[x];
           float vis = h <= tanLo   ? 1.0f

@@ -31,6 +31,8 @@ double atanUnit(double t) {  // t in [0, 1]
 std::uint16_t codeFromAngle(double radians) {
   if (!(radians > 0)) return 0;
   const double c = radians / kAngleUnit;
+  // floor(c + 0.5), c > 0: the rounding the stream's angle codes are defined with (not lround's).
+  // NOLINTNEXTLINE(bugprone-incorrect-roundings)
   return c >= 65535.0 ? 65535 : static_cast<std::uint16_t>(c + 0.5);
 }
 

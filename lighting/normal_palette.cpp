@@ -10,6 +10,7 @@ namespace {
 
 constexpr std::size_t kSample = 65536;  // k-means subsample size
 constexpr int kGrid = 64;               // buckets over (n_x, n_y) in [-1, 1]^2
+constexpr int kHalfGrid = kGrid / 2;
 constexpr double kCell = 2.0 / kGrid;
 
 double dot(const Vec3& a, const Vec3& b) {
@@ -53,7 +54,7 @@ class NearestSearch {
   }
 
  private:
-  static int cell(float v) { return std::clamp(static_cast<int>((v + 1.0f) * (kGrid / 2)), 0, kGrid - 1); }
+  static int cell(float v) { return std::clamp(static_cast<int>((v + 1.0f) * kHalfGrid), 0, kGrid - 1); }
   void scan(int c, const Vec3& n, int& best, double& bestDot) const {
     for (int e = start_[c]; e < start_[c + 1]; ++e) {
       const int k = entries_[e];

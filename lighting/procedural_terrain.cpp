@@ -52,7 +52,7 @@ Terrain proceduralTerrain(const ProceduralTerrainParams& p) {
       double ridged = 0, hills = 0, amp = 0.5, norm = 0;
       std::int64_t period = 4;
       for (int octave = 0; octave < 8; ++octave) {
-        const double r = valueNoise(u * period, v * period, period, seed + octave * 7919u);
+        const double r = valueNoise(u * period, v * period, period, seed + static_cast<std::uint64_t>(octave) * 7919u);
         const double ridge = 1.0 - std::fabs(2.0 * r - 1.0);
         ridged += amp * ridge * ridge;
         hills += amp * valueNoise(u * period + 17.3, v * period + 5.1, period, seed + 104729u + octave);

@@ -42,7 +42,7 @@ Terrain terrainFromMetres(int width, int height, const std::vector<float>& metre
   t.width = width;
   t.height = height;
   t.cellSize = cellSize;
-  t.heightStep = std::max(1.0 / 256.0, maxAbs / (kMaxHeightUnits / 2));
+  t.heightStep = std::max(1.0 / 256.0, maxAbs / (kMaxHeightUnits / 2.0));
   t.heights.resize(metres.size());
   for (std::size_t i = 0; i < metres.size(); ++i) {
     t.heights[i] = static_cast<std::int32_t>(std::lround(metres[i] / t.heightStep));

@@ -11,7 +11,7 @@ constexpr int kBorder = 3, kGap = 4, kStrip = 14;
 void fill(Rgba8Image& img, int x0, int y0, int w, int h, const std::uint8_t rgb[3]) {
   for (int y = std::max(0, y0); y < std::min(img.height, y0 + h); ++y) {
     for (int x = std::max(0, x0); x < std::min(img.width, x0 + w); ++x) {
-      std::uint8_t* p = img.row(y) + x * 4;
+      std::uint8_t* p = img.row(y) + static_cast<std::ptrdiff_t>(x) * 4;
       p[0] = rgb[0];
       p[1] = rgb[1];
       p[2] = rgb[2];
@@ -38,12 +38,12 @@ Rgba8Image downscale(const Rgba8Image& in, int width) {
       unsigned sum[3] = {0, 0, 0}, n = 0;
       for (int sy = sy0; sy < sy1; ++sy) {
         for (int sx = sx0; sx < sx1; ++sx) {
-          const std::uint8_t* p = in.row(sy) + sx * 4;
+          const std::uint8_t* p = in.row(sy) + static_cast<std::ptrdiff_t>(sx) * 4;
           for (int c = 0; c < 3; ++c) sum[c] += p[c];
           ++n;
         }
       }
-      std::uint8_t* o = out.row(y) + x * 4;
+      std::uint8_t* o = out.row(y) + static_cast<std::ptrdiff_t>(x) * 4;
       for (int c = 0; c < 3; ++c) o[c] = static_cast<std::uint8_t>((sum[c] + n / 2) / n);
       o[3] = 0x80;
     }
@@ -70,7 +70,7 @@ Rgba8Image contactSheet(const std::vector<SheetTile>& tiles, const std::vector<M
     const Rgba8Image thumb = downscale(tiles[i].picture, thumbWidth);
     for (int y = 0; y < std::min(thumb.height, thumbHeight); ++y) {
       std::copy_n(thumb.row(y), static_cast<std::size_t>(thumb.width) * 4,
-                  sheet.row(cy + kBorder + y) + (cx + kBorder) * 4);
+                  sheet.row(cy + kBorder + y) + static_cast<std::ptrdiff_t>(cx + kBorder) * 4);
     }
   }
   if (!states.empty()) {

@@ -36,7 +36,7 @@ class OsmesaContext : public GlContext {
       throw RenderError("no GL context available: OSMesa could not create a 3.3+ core profile context");
     }
     // The context draws into our FBO; OSMesa still wants a buffer to make it current.
-    buffer_.assign(4 * 4 * 4, 0);
+    buffer_.assign(std::size_t{4} * 4 * 4, 0);
     if (!OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 4, 4)) {
       OSMesaDestroyContext(ctx_);
       throw RenderError("no GL context available: OSMesaMakeCurrent failed");

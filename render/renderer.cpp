@@ -165,6 +165,8 @@ Renderer::Renderer(const lighting::Terrain& terrain, const lighting::FloatImage&
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
     glEnableVertexAttribArray(1);
+    // OpenGL takes a buffer offset as a pointer.
+    // NOLINTNEXTLINE(performance-no-int-to-ptr)
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
   }
   g.skyVao = makeVertexArray();  // core profile: a VAO even for attribute-less drawing

@@ -128,10 +128,12 @@ FrameLight SceneLighting::evaluate(std::int64_t seq, const Rgba8Image& lightmap,
     }
     for (int c = 0; c < 3; ++c) out.skyIrradiance[static_cast<std::size_t>(c)] = static_cast<float>(sum[c] / weight);
   } else {
-    for (int q = 0; q < p.skyPatches; ++q)
-      for (int c = 0; c < 3; ++c)
+    for (int q = 0; q < p.skyPatches; ++q) {
+      for (int c = 0; c < 3; ++c) {
         out.skyIrradiance[static_cast<std::size_t>(c)] +=
             a * fl.patch[static_cast<std::size_t>(q)][static_cast<std::size_t>(c)] / static_cast<float>(p.skyPatches);
+      }
+    }
   }
   return out;
 }

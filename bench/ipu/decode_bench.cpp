@@ -86,7 +86,7 @@ struct LibAv {
   AVPacket* pkt = av_packet_alloc();
   AVFrame* frame = av_frame_alloc();
   SwsContext* sws = nullptr;
-  std::vector<std::uint8_t> rgba = std::vector<std::uint8_t>(512 * 512 * 4);
+  std::vector<std::uint8_t> rgba = std::vector<std::uint8_t>(std::size_t{512} * 512 * 4);
   LibAv() {
     const AVCodec* codec = avcodec_find_decoder(AV_CODEC_ID_MPEG2VIDEO);
     ctx = avcodec_alloc_context3(codec);
@@ -106,9 +106,10 @@ struct LibAv {
       pkt->size = static_cast<int>(au.size);
       avcodec_send_packet(ctx, pkt);
       while (avcodec_receive_frame(ctx, frame) == 0) {
-        if (!sws)
+        if (!sws) {
           sws = sws_getContext(frame->width, frame->height, AV_PIX_FMT_YUV420P, frame->width, frame->height,
                                AV_PIX_FMT_RGBA, SWS_BILINEAR, nullptr, nullptr, nullptr);
+        }
         std::uint8_t* dst[1] = {rgba.data()};
         const int stride[1] = {frame->width * 4};
         sws_scale(sws, frame->data, frame->linesize, 0, frame->height, dst, stride);
@@ -137,7 +138,7 @@ struct LibMpeg2 {
       } else if (state == STATE_SEQUENCE) {
         mpeg2_convert(dec, mpeg2convert_rgb32, nullptr);
       } else if ((state == STATE_SLICE || state == STATE_END) && info->display_fbuf) {
-        sum += info->display_fbuf->buf[0][512 * 256 * 4];
+        sum += info->display_fbuf->buf[0][std::ptrdiff_t{512} * 256 * 4];
       }
     }
     mpeg2_close(dec);
@@ -330,7 +331,7 @@ void BM_SliceParallel(benchmark::State& state) {
     // whose speed the timing would disturb).
     double model = 0, total = 0;
     jobs = 0;
-    for (int loop = 0; loop < kLoops; ++loop)
+    for (int loop = 0; loop < kLoops; ++loop) {
       for (const auto& au : c.units) {
         const auto bytes = std::span(c.es).subspan(au.offset, au.size);
         t0 = cpuSeconds();
@@ -349,6 +350,7 @@ void BM_SliceParallel(benchmark::State& state) {
         total += callerCpu + (allJobs - callerJobs);
         jobs += static_cast<double>(runner.jobCpu.size()) / static_cast<double>(kLoops * c.units.size());
       }
+    }
     cpu.push_back(serialCpu / model);
     overhead.push_back(total / serialCpu);
   }

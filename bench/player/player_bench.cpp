@@ -128,7 +128,8 @@ UnitCosts measureUnits(bool simd) {
     const int reps = 50;
     const double t0 = cpuSeconds();
     for (int i = 0; i < reps; ++i) b.blend(dst, src, gs::makeBlendSpec(64), static_cast<std::uint64_t>(i));
-    u.blendPerTile = (cpuSeconds() - t0) / (reps * (512 / gs::kTileWidth) * (512 / gs::kTileHeight));
+    constexpr int kTiles = (512 / gs::kTileWidth) * (512 / gs::kTileHeight);
+    u.blendPerTile = (cpuSeconds() - t0) / (reps * kTiles);
     Rgba8Image sky(256, 128);
     const double t1 = cpuSeconds();
     std::uint64_t h = 0;

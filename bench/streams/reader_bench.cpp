@@ -27,10 +27,12 @@ void BM_PackParse(benchmark::State& state) {
   const auto& b = sample();
   const auto sectors = static_cast<std::uint32_t>(b.size() / kSectorBytes);
   ParsedPack pack;
-  for (auto _ : state)
-    for (std::uint32_t lsn = 0; lsn < sectors; ++lsn)
+  for (auto _ : state) {
+    for (std::uint32_t lsn = 0; lsn < sectors; ++lsn) {
       benchmark::DoNotOptimize(
           parsePack(std::span(b).subspan(std::size_t{lsn} * kSectorBytes, kSectorBytes), lsn, pack));
+    }
+  }
   state.counters["sectors_per_s"] = benchmark::Counter(double(sectors), benchmark::Counter::kIsIterationInvariantRate);
 }
 

@@ -147,9 +147,10 @@ void checkStreamSettings(const TechniqueAStreamSettings& s, int terrainWidth, in
   for (std::size_t i = 0; i < variants.size(); ++i) {
     const WeatherVariant& v = variants[i];
     const std::string who = "variant '" + v.name + "': ";
-    if (v.name.empty() || v.name.size() > streams::Descriptor::kMaxVariantName)
+    if (v.name.empty() || v.name.size() > streams::Descriptor::kMaxVariantName) {
       throw AuthoringError(who + "a variant name must have 1 to " +
                            std::to_string(streams::Descriptor::kMaxVariantName) + " bytes");
+    }
     for (std::size_t j = 0; j < i; ++j)
       if (variants[j].name == v.name) throw AuthoringError(who + "the name is given twice");
     try {
@@ -160,23 +161,26 @@ void checkStreamSettings(const TechniqueAStreamSettings& s, int terrainWidth, in
     checkSide(static_cast<int>(v.params.skyWidth), who + "lighting.sky_width");
     checkSide(static_cast<int>(v.params.skyWidth / 2), who + "the sky height (lighting.sky_width / 2)");
     const WeatherVariant& first = variants.front();
-    if (v.params.frames != first.params.frames)
+    if (v.params.frames != first.params.frames) {
       throw AuthoringError(who + "lighting.frames = " + std::to_string(v.params.frames) + " but variant '" +
                            first.name + "' has " + std::to_string(first.params.frames) +
                            " (variants need equal lengths to branch)");
-    if (v.params.skyWidth != first.params.skyWidth)
+    }
+    if (v.params.skyWidth != first.params.skyWidth) {
       throw AuthoringError(who + "lighting.sky_width = " + std::to_string(v.params.skyWidth) + " but variant '" +
                            first.name + "' has " + std::to_string(first.params.skyWidth) +
                            " (one sky size per stream)");
+    }
   }
 }
 
 Rgba8Image streamFrame(const FloatImage& image, const streams::ToneMapping& tone) {
   streams::FloatRgbImage rgb(image.width, image.height);
   const std::size_t n = static_cast<std::size_t>(image.width) * image.height;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t c = 0; c < 3; ++c)
       rgb.rgb[i * 3 + c] = image.pixels[i * image.channels + (image.channels >= 3 ? c : 0)];
+  }
   return streams::toneMap(rgb, tone);
 }
 
