@@ -71,12 +71,13 @@ Presented presentedSizes(const streams::StreamDisc* disc) {
 }
 
 // The GS checks `vbim play` makes when it builds the presenters: checkParams for the lightmap's,
-// which plans the console's VRAM, and checkSkyParams for the sky's, which draws in that plan.
-void checkPresenters(const ConfigOptions& o, const Presented& p, const PlatformParams& params) {
+// which plans the console's VRAM (returned), and checkSkyParams for the sky's, which draws in it.
+gs::VramLayout checkPresenters(const ConfigOptions& o, const Presented& p, const PlatformParams& params) {
   try {
     const gs::SkyTexture sky = p.sky ? gs::SkyTexture{p.sky->width, p.sky->height} : gs::SkyTexture{};
-    const gs::VramLayout vram = gs::checkParams(params.gs, p.lightmap.width, p.lightmap.height, sky);
+    gs::VramLayout vram = gs::checkParams(params.gs, p.lightmap.width, p.lightmap.height, sky);
     if (p.sky) gs::checkSkyParams(params.gs, vram, p.sky->width, p.sky->height);
+    return vram;
   } catch (const gs::GsError& e) {
     throw Exit(2, gsConfigMessage(e, o.check));
   }
@@ -87,6 +88,7 @@ void runConfig(const ConfigOptions& o) {
   ParamTable table;
   describePlatform(table, params);
   Presented presented;
+  std::optional<gs::VramLayout> vram;  // checked with --check or --stream (--gs-setup needs --stream)
   try {
     if (!o.check.empty()) {
       config::applyTomlFile(table, o.check);
@@ -95,7 +97,7 @@ void runConfig(const ConfigOptions& o) {
     const std::optional<streams::StreamDisc> given = openGivenStream(o);
     const streams::StreamDisc* disc = given ? &*given : nullptr;
     presented = presentedSizes(disc);
-    if (!o.check.empty() || disc != nullptr) checkPresenters(o, presented, params);
+    if (!o.check.empty() || disc != nullptr) vram = checkPresenters(o, presented, params);
     if (!o.faults.empty()) {
       // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
       // disc and LBAs checked against its size, as play does.
@@ -111,7 +113,7 @@ void runConfig(const ConfigOptions& o) {
               << (o.gsSetup ? "GS setup" : "effective config") << " follows\n";
   }
   if (o.gsSetup) {
-    writeGsSetup(std::cout, params.gs, presented.lightmap, presented.sky);
+    writeGsSetup(std::cout, params.gs, *vram, presented.lightmap, presented.sky);
   } else if (o.markdown) {
     table.writeMarkdown(std::cout);
   } else {

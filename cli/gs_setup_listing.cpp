@@ -1,6 +1,5 @@
 #include "cli/gs_setup_listing.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -18,8 +17,7 @@ std::string hex(std::uint64_t v, int digits = 0) {
 
 void writeDraw(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, gs::BlendSurface surface,
                PictureSize size) {
-  const bool strips = params.upload_mode == "strips";
-  const int rows = strips ? std::min<int>(static_cast<int>(params.strip_rows), size.height) : size.height;
+  const int rows = gs::drawRows(params, size.height);
   const gs::BlendDraw draw = gs::blendDrawFor(vram, params, surface, size.width, size.height, 0, rows);
   const int draws = (size.height + rows - 1) / rows;
   out << "\n## " << gs::blendSurfaceName(surface) << " " << size.width << "x" << size.height << ": " << draw.frame.name
@@ -41,10 +39,8 @@ void writeDraw(std::ostream& out, const gs::GsParams& params, const gs::VramLayo
 
 }  // namespace
 
-void writeGsSetup(std::ostream& out, const gs::GsParams& params, PictureSize lightmap, std::optional<PictureSize> sky) {
-  const gs::SkyTexture skyTexture = sky ? gs::SkyTexture{sky->width, sky->height} : gs::SkyTexture{};
-  const gs::VramLayout vram = gs::checkParams(params, lightmap.width, lightmap.height, skyTexture);
-  if (sky) gs::checkSkyParams(params, vram, sky->width, sky->height);
+void writeGsSetup(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, PictureSize lightmap,
+                  std::optional<PictureSize> sky) {
   out << "# GS setup: VRAM and the blend draws' register writes (A+D, after one GIFtag)\n\n## VRAM\n\n";
   out << vram.describe();
   writeDraw(out, params, vram, gs::BlendSurface::Lightmap, lightmap);

@@ -1,7 +1,7 @@
 // `vbim config --gs-setup`: the console's VRAM plan and the register writes of each blend draw, for
 // a port to compare with its own (docs/porting.md, "GS: upload and in-place blend"). The values come
-// from the functions the presenters use (gs::planVram, gs::checkSkyParams, gs::blendDrawFor), so the
-// listing and a run cannot disagree.
+// from the functions the presenters use (gs::checkParams' plan, gs::blendDrawFor), so the listing
+// and a run cannot disagree.
 #pragma once
 
 #include <optional>
@@ -17,9 +17,10 @@ struct PictureSize {
   int height = 0;
 };
 
-// Writes the plan, then one Markdown table per blended surface (the lightmap, then the sky if
-// given): the first draw of a vsync, which in strip mode covers the first strip. Throws gs::GsError
-// as the presenters' checks do.
-void writeGsSetup(std::ostream& out, const gs::GsParams& params, PictureSize lightmap, std::optional<PictureSize> sky);
+// Writes `vram` (the plan gs::checkParams returned, checked for the sky with gs::checkSkyParams),
+// then one Markdown table per blended surface (the lightmap, then the sky if given): the first draw
+// of a vsync, which in strip mode covers the first strip.
+void writeGsSetup(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, PictureSize lightmap,
+                  std::optional<PictureSize> sky);
 
 }  // namespace vbim::cli

@@ -1,5 +1,6 @@
 #include "gs/draw_setup.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "gs/error.hpp"
@@ -104,6 +105,10 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
     out[i] = RegisterWrite{r, v};
   }
   return out;
+}
+
+int drawRows(const GsParams& p, int height) {
+  return p.upload_mode == "strips" ? std::min<int>(static_cast<int>(p.strip_rows), height) : height;
 }
 
 const char* blendSurfaceName(BlendSurface surface) {

@@ -76,6 +76,10 @@ using BlendDrawSetup = std::array<RegisterWrite, kBlendDrawRegisters.size()>;
 // The values of kBlendDrawRegisters for one sprite.
 BlendDrawSetup blendDrawSetup(const BlendDraw& draw);
 
+// The rows one blend draw covers (and its staging area holds): gs.strip_rows, at most the picture's
+// height, in strip mode; the whole picture in full upload mode.
+int drawRows(const GsParams& params, int height);
+
 // The two textures a console blends in place, each from its own staging area (planVram).
 enum class BlendSurface : std::uint8_t {
   Lightmap,  // "lightmap" from "staging"

@@ -30,16 +30,13 @@ VramLayout placeBuffers(const GsParams& p, int lightmapWidth, int lightmapHeight
         {"depth", psmByName(p.depth_format), static_cast<int>(p.frame_width), static_cast<int>(p.frame_height)});
   }
   req.push_back({"lightmap", Psm::Ct32, lightmapWidth, lightmapHeight});
-  const bool strips = p.upload_mode == "strips";
-  const int stagingRows = strips ? std::min<int>(static_cast<int>(p.strip_rows), lightmapHeight) : lightmapHeight;
-  req.push_back({"staging", Psm::Ct32, lightmapWidth, stagingRows});
+  req.push_back({"staging", Psm::Ct32, lightmapWidth, drawRows(p, lightmapHeight)});
   if (p.sky_width > 0 && p.sky_height > 0) {
     req.push_back({"sky", Psm::Ct32, static_cast<int>(p.sky_width), static_cast<int>(p.sky_height)});
   }
   if (sky.width > 0 && sky.height > 0) {
     // The sky is blended in place too: its frames are uploaded to a staging area of their own.
-    const int skyRows = strips ? std::min<int>(static_cast<int>(p.strip_rows), sky.height) : sky.height;
-    req.push_back({"sky staging", Psm::Ct32, sky.width, skyRows});
+    req.push_back({"sky staging", Psm::Ct32, sky.width, drawRows(p, sky.height)});
   }
   return VramLayout::place(req);
 }
@@ -199,11 +196,6 @@ void checkSettings(const GsParams& p) {
   checkedMacroblockUploads(p);
 }
 
-// The rows of the first draw of a vsync: one strip in strip mode, the whole picture otherwise.
-int firstDrawRows(const GsParams& p, int height) {
-  return p.upload_mode == "strips" ? std::min<int>(static_cast<int>(p.strip_rows), height) : height;
-}
-
 }  // namespace
 
 VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky) {
@@ -214,21 +206,17 @@ VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight,
 VramLayout checkSkyParams(const GsParams& p, const VramLayout& console, int skyWidth, int skyHeight) {
   checkSettings(p);
   checkSkyFits(p, SkyTexture{skyWidth, skyHeight});
-  blendDrawFor(console, p, BlendSurface::Sky, skyWidth, skyHeight, 0, firstDrawRows(p, skyHeight));
+  blendDrawFor(console, p, BlendSurface::Sky, skyWidth, skyHeight, 0, drawRows(p, skyHeight));
   return console;
 }
 
 namespace {
 
-// The console's VRAM as the presenter of `o.surface` sees it, checked for a stream of s's size
-// (checkParams for the lightmap's, checkSkyParams for the sky's).
+// The console's VRAM as this presenter sees it, checked for a stream of s's size: checkParams for
+// the lightmap presenter, which plans it; checkSkyParams for the sky presenter, which is given it.
 VramLayout checkedVram(const GsParams& p, const StreamInfo& s, const PresenterOptions& o) {
-  if (o.surface == BlendSurface::Lightmap) return checkParams(p, s.width, s.height, o.sky);
-  if (o.console == nullptr) {
-    throw GsError(
-        "the sky presenter draws into the console's VRAM plan, and none was given (PresenterOptions::console)");
-  }
-  return checkSkyParams(p, *o.console, s.width, s.height);
+  return o.console == nullptr ? checkParams(p, s.width, s.height, o.sky)
+                              : checkSkyParams(p, *o.console, s.width, s.height);
 }
 
 // The streams of `source` checked, and the parameters checked for their size before any member
@@ -271,7 +259,8 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
 }
 
 BlendDraw Presenter::blendDraw(int y0, int y1) const {
-  return blendDrawFor(vram_, params_, opt_.surface, lightmap_.width, lightmap_.height, y0, y1);
+  const BlendSurface surface = opt_.console != nullptr ? BlendSurface::Sky : BlendSurface::Lightmap;
+  return blendDrawFor(vram_, params_, surface, lightmap_.width, lightmap_.height, y0, y1);
 }
 
 void Presenter::scheduleBranch(Tick at, int variant) {

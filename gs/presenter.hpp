@@ -123,11 +123,10 @@ struct PresenterOptions {
   // The GS this presenter draws on, shared with the other presenters of the same console (one GIF,
   // one drawing engine: their work of a vsync runs one after the other). Null: a GS of its own.
   SerialUnit* gs = nullptr;
-  // What this presenter blends. The lightmap presenter plans the console's VRAM (planVram); given
-  // the sky stream's size in `sky`, the plan holds the sky's staging area too. The sky presenter
-  // plans nothing: it draws into that plan's "sky" texture from its "sky staging" area, and
-  // `console` is the plan (the lightmap presenter's vram()), which it copies.
-  BlendSurface surface = BlendSurface::Lightmap;
+  // What this presenter blends. The lightmap presenter (console null) plans the console's VRAM
+  // (planVram); given the sky stream's size in `sky`, the plan holds the sky's staging area too.
+  // The sky presenter is given that plan in `console` (the lightmap presenter's vram(), copied) and
+  // plans nothing: it draws into the plan's "sky" texture from its "sky staging" area.
   SkyTexture sky{};                     // the lightmap presenter only
   const VramLayout* console = nullptr;  // the sky presenter only
 };

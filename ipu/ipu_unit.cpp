@@ -7,8 +7,12 @@
 namespace vbim::ipu {
 namespace {
 
-DecoderOptions withTrace(DecoderOptions o) {
+// The timing needs the macroblock trace. One IPU decodes the lightmap's and the sky's pictures in
+// turn: a macroblock it conceals is mid-grey, never the picture decoded before (maybe the other
+// stream's), and the same whatever came before, as in replay, which decodes each picture alone.
+DecoderOptions unitOptions(DecoderOptions o) {
   o.recordMacroblocks = true;
+  o.freshStorePerDecode = true;
   return o;
 }
 
@@ -18,7 +22,7 @@ IpuUnit::IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer, DecoderOption
     : s_(s),
       p_(p),
       tracer_(tracer && tracer->enabled() ? tracer : nullptr),
-      decoder_(withTrace(options)),
+      decoder_(unitOptions(options)),
       timeline_(p),
       commands_(s, 1, "ipu.commands") {
   if (tracer_) track_ = tracer_->track("ipu");
@@ -34,10 +38,6 @@ Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Ima
   // allocated or cleared; every byte is written either way.
   cmd.staged = std::move(out);
   out = Rgba8Image{};
-  // One IPU decodes the lightmap's and the sky's pictures in turn: a macroblock it conceals is
-  // mid-grey, never the picture decoded before (maybe the other stream's), and the same whatever
-  // came before, as in replay, which decodes each picture on its own.
-  decoder_.clearFrame();
   result.report = decoder_.decode(bytes, runner_, RgbaOutput{&cmd.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();

@@ -231,6 +231,7 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
   const RgbaOutput* rgba = rgbaOutput.image ? &rgbaOutput : nullptr;
   PictureReport report;
   trace_.clear();
+  if (options_.freshStorePerDecode) clearFrame_ = true;
   const std::uint8_t* d = bytes.data();
   const std::size_t n = bytes.size();
   std::size_t pos = findStartCode(d, n, 0);

@@ -37,7 +37,10 @@ struct DecoderOptions {
   // The IPU's IDP field holds 8, 9 or 10 bits; 11 bits is invalid there and PCSX2 treats it as 9
   // (docs/hardware.md#idec). By default we decode 11-bit DC precision as the standard says.
   bool dcPrecision11AsNine = false;
-  bool recordMacroblocks = false;    // fill macroblockTrace() for the timing model
+  bool recordMacroblocks = false;  // fill macroblockTrace() for the timing model
+  // Each decode starts from a mid-grey store (Y = Cb = Cr = 128), so what it conceals is mid-grey
+  // instead of the previous picture's: the player's IpuUnit, which decodes two streams in turn.
+  bool freshStorePerDecode = false;
   const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
 };
 
@@ -64,10 +67,6 @@ class Decoder {
   PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool& pool);
 
   const FrameStore& frame() const { return store_; }
-  // The next picture starts from a mid-grey store (Y = Cb = Cr = 128): what it conceals is mid-grey
-  // instead of the previous picture's. The player's IpuUnit does this before every picture, as it
-  // decodes two streams in turn.
-  void clearFrame() { clearFrame_ = true; }
   bool hasSequence() const { return haveSequence_; }
   const SequenceHeader& sequence() const { return seq_; }
   const PictureHeader& picture() const { return pic_; }
@@ -104,7 +103,7 @@ class Decoder {
   bool sawSlice_ = false;
   PictureParams params_;
   FrameStore store_;
-  bool clearFrame_ = false;  // clearFrame() was called: the next picture starts from mid-grey
+  bool clearFrame_ = false;  // the next picture starts from a mid-grey store (freshStorePerDecode)
   int frameWidth_ = 0;       // display size of the picture the store holds
   int frameHeight_ = 0;
   std::vector<Slice> slices_;

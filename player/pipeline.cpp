@@ -79,7 +79,6 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
     skySource_ = std::make_unique<gs::RecordingSource>(*skyFrames_, recorder(true));
     // The sky is blended in the same VRAM: into the plan's sky texture, from the sky's staging area.
     gs::PresenterOptions skyOptions = presenterOptions(t0_, kernels, tracer_, "gs.sky", gs_);
-    skyOptions.surface = gs::BlendSurface::Sky;
     skyOptions.console = &lightmap_->vram();
     sky_ = std::make_unique<gs::Presenter>(s, *skySource_, config.gs, std::move(skyOptions));
   }

@@ -178,7 +178,6 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
   m.lightmap = std::make_unique<gs::Presenter>(m.sched, *m.lmSource, m.options.config.gs, std::move(lightmapOptions));
   if (skyIndex >= 0) {
     gs::PresenterOptions skyOptions = presenterOptions("gs.sky");
-    skyOptions.surface = gs::BlendSurface::Sky;
     skyOptions.console = &m.lightmap->vram();
     m.skySource = std::make_unique<gs::ArrivalSource>(infos(m.descriptor, skyIndex), imageFn(0xE1), clock, sky);
     m.sky = std::make_unique<gs::Presenter>(m.sched, *m.skySource, m.options.config.gs, std::move(skyOptions));

@@ -11,6 +11,7 @@ constexpr std::uint32_t kQwordsPerRow = 4;
 
 DecoderOptions withTrace(DecoderOptions o) {
   o.recordMacroblocks = true;
+  o.freshStorePerDecode = true;  // as IpuUnit: a concealed macroblock is mid-grey
   return o;
 }
 
@@ -38,7 +39,6 @@ Task<TimedPicture> ReferenceIpuUnit::decode(std::span<const std::uint8_t> bytes,
   result.started = s_.now();
   const JobRef shared = std::make_shared<Job>(s_);
   Job& job = *shared;
-  decoder_.clearFrame();  // as IpuUnit: a concealed macroblock is mid-grey
   result.report = decoder_.decode(bytes, nullptr, RgbaOutput{&job.staged, th, true});
   if (!result.report.produced) {
     result.finished = s_.now();
