@@ -6,8 +6,8 @@
 set -euo pipefail
 
 PACKAGES=(
-  # toolchain
-  build-essential cmake pkg-config git clang libclang-rt-14-dev clang-format clang-tidy
+  # toolchain (ccache: every build tree of scripts/build.sh, check-model.sh and fuzz.sh compiles through it)
+  build-essential cmake pkg-config git ccache clang libclang-rt-14-dev clang-format clang-tidy
   # command line, config, JSON (header-only)
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   # SHA-256 of a run's inputs in stats.json (cli/provenance.cpp)
@@ -17,7 +17,7 @@ PACKAGES=(
   # media around the model: images, encoding, the comparison decoders, ffprobe
   libopenimageio-dev libpng-dev libopenexr-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
-  libmpeg2-4-dev
+  libmpeg2-4-dev mpeg2dec
   # DEMs (GeoTIFF, ASCII grid, SRTM .hgt) and GeoTIFF debug layers for the lighting generator
   libgdal-dev
   # disc images
