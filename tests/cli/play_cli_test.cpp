@@ -281,11 +281,11 @@ TEST(PlayCli, StatsRecordTheInputsAndTheirDigests) {
 namespace {
 
 // busy_share.drive comes from the drive's own counter: present and equal with or without tracing,
-// here with a stall still going on when the run ends.
+// here with a stall still going on when the run ends (the example's stall runs from 20 s to 30 s).
 TEST(PlayCli, DriveBusyShareIsTheSameWithOrWithoutTracing) {
   const fs::path traced = scratch("busy_traced"), bare = scratch("busy_bare");
   const std::string plan = std::string(VBIM_SOURCE_DIR) + "/examples/fault-plans/stall.toml";
-  const std::string args = kSample + " --duration 11s --every 0 --faults " + plan + " --out ";
+  const std::string args = kSample + " --duration 25s --every 0 --faults " + plan + " --out ";
   ASSERT_EQ(play(args + traced.string()).status, 0);
   ASSERT_EQ(play(args + bare.string() + " --no-trace").status, 0);
   const auto driveShare = [](const std::string& stats) {
@@ -298,6 +298,26 @@ TEST(PlayCli, DriveBusyShareIsTheSameWithOrWithoutTracing) {
   EXPECT_NE(b, "\"drive\": 0.0,") << b;
   fs::remove_all(traced);
   fs::remove_all(bare);
+}
+
+// The README's stall example does what its comment promises: on the sample day with the default
+// ring, frames arrive late, the GS catches up, and the lightmap lags the fault-free run.
+TEST(PlayCli, TheStallExampleMakesLateFramesAndACatchUp) {
+  const fs::path out = scratch("stall_example");
+  const std::string plan = std::string(VBIM_SOURCE_DIR) + "/examples/fault-plans/stall.toml";
+  const auto r =
+      play(kSample + " --faults " + plan + " --seed 7 --duration 60s --every 0 --no-trace --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string stats = slurp(out / "stats.json");
+  const auto number = [&stats](const std::string& key) {
+    const auto at = stats.find("\"" + key + "\": ");
+    return at == std::string::npos ? -1L : std::stol(stats.substr(at + key.size() + 4));
+  };
+  EXPECT_GE(number("frames_late"), 3) << stats;
+  EXPECT_GE(number("frames_caught_up"), 3) << stats;
+  EXPECT_NE(r.output.find("lag max "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("lag max 0 "), std::string::npos) << r.output;
+  fs::remove_all(out);
 }
 
 }  // namespace
