@@ -36,7 +36,7 @@ namespace vbim::lighting {
 struct DayCycleParams {
   double latitudeDeg = 45.0;
   std::int64_t dayOfYear = 172;  // 21 June
-  double startHour = 4.0;        // local solar time
+  double startHour = 6.0;        // local solar time: daylight at the default place and day (sunrise ~4:20)
   double endHour = 22.0;
   std::int64_t frames = 120;
   // The sun given directly instead of by place and time: compass azimuth (0 = north, 90 = east,

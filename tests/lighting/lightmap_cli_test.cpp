@@ -71,7 +71,7 @@ TEST(LightmapCli, DemWithNoOptionsAndGeoTiffLayers) {
                           out.string() + " >" + log.string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << readText(log);
   EXPECT_NE(readText(log).find("cell size 25 m from the file"), std::string::npos) << readText(log);
-  EXPECT_NE(readText(out / "frames.csv").find("0,4,30,135,sun"), std::string::npos) << readText(out / "frames.csv");
+  EXPECT_NE(readText(out / "frames.csv").find("0,6,30,135,sun"), std::string::npos) << readText(out / "frames.csv");
 
   OGRSpatialReference utm;
   utm.importFromEPSG(32631);
