@@ -248,7 +248,17 @@ void addInfo(CLI::App& app) {
             {{"kind", toString(e.kind)}, {"sector", e.sector}, {"byte_offset", e.byteOffset}, {"message", e.message}});
       }
       if (!j.contains("errors")) j["errors"] = nlohmann::json::array();
-      std::cout << j.dump(2) << "\n";
+      // Text read from a damaged stream (descriptor names, the authoring record) may not be UTF-8:
+      // such bytes are written as U+FFFD, so the document is always valid JSON, and said so.
+      std::string text;
+      try {
+        text = j.dump(2);
+      } catch (const nlohmann::json::type_error&) {
+        text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+        std::cerr << "vbim info: warning: " << shown
+                  << ": text in the stream is not UTF-8; its bytes are replaced by U+FFFD in the JSON\n";
+      }
+      std::cout << text << "\n";
     } else {
       printText(shown, scan, reports, fps, guessed);
       printAuthoring(record);

@@ -14,8 +14,11 @@
 
 namespace vbim::json {
 
-// `s` as a JSON string literal with its quotes: ", \ and control characters escaped, UTF-8 as is.
+// `s` as a JSON string literal with its quotes: ", \ and control characters escaped, well-formed
+// UTF-8 as is, every byte that is not part of a well-formed UTF-8 sequence as \ufffd.
 std::string quote(std::string_view s);
+// True if `s` is well-formed UTF-8 (RFC 3629), so quote() replaces nothing in it.
+bool isUtf8(std::string_view s);
 
 class Value {
  public:

@@ -2,8 +2,9 @@
 # The corruption harness (issue #16): damaged copies of the sample streams (tests/streams/corruption/
 # corrupt_stream.cpp: bit flips, zeroed runs, truncation, dropped/duplicated/reordered sectors,
 # sectors lost at ring-bank boundaries, mangled pack/PES/sequence/descriptor headers, damage in the
-# sky stream) through `vbim info`, `vbim decode` and `vbim play`. Every run must end with exit 0
-# (play: stats.json written, concealment counted there), or exit 1/2 with a message on stderr; never
+# sky stream) through `vbim info`, `vbim info --json`, `vbim decode` and `vbim play`. Every run must end
+# with exit 0 (play: stats.json written, concealment counted there; info --json: valid UTF-8 JSON on
+# stdout, also with exit 2), or exit 1/2 with a message on stderr; never
 # a signal, a hang (timeout), std::terminate or a sanitizer report.
 #
 #   scripts/corruption-check.sh BUILD_DIR [SEEDS_PER_KIND] [VALGRIND_SEEDS]
@@ -22,7 +23,8 @@ corrupt="$build/tests/streams/vbim_corrupt"
 for f in "$vbim" "$corrupt"; do
   [ -x "$f" ] || { echo "corruption-check: $f is missing (build the vbim and vbim_corrupt targets)" >&2; exit 2; }
 done
-kinds=(bitflips zeros truncate drop duplicate reorder bank_loss pack_header pes_header sequence descriptor sky)
+kinds=(bitflips zeros truncate drop duplicate reorder bank_loss pack_header pes_header sequence descriptor descriptor_text
+  sky)
 work=$(mktemp -d "${TMPDIR:-/tmp}/vbim-corruption.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
@@ -45,13 +47,14 @@ echo "corruption-check: $n damaged streams in $work"
 
 # One stream through the three commands; prints a line per failure.
 check_one() {
-  local s="$1" vbim="$2" wrap="${3:-}" cmds="${4:-info decode play}" base rc log
+  local s="$1" vbim="$2" wrap="${3:-}" cmds="${4:-info json decode play}" base rc log
   base="${s%.vbim}"
   for cmd in $cmds; do
     log="$base.$cmd.log"
     rc=0
     case "$cmd" in
       info) timeout 120 $wrap "$vbim" info "$s" >"$log" 2>&1 || rc=$? ;;
+      json) timeout 120 $wrap "$vbim" info --json "$s" >"$base.json" 2>"$log" || rc=$? ;;
       decode) timeout 120 $wrap "$vbim" decode "$s" --format yuv --force --out "$base.decoded" >"$log" 2>&1 || rc=$? ;;
       play) timeout 300 $wrap "$vbim" play "$s" --duration 4s --force --out "$base.played" >"$log" 2>&1 || rc=$? ;;
     esac
@@ -59,22 +62,26 @@ check_one() {
     if [ "$rc" = 124 ]; then why="timed out"
     elif [ "$rc" -gt 2 ]; then why="exit $rc"
     elif grep -qE "terminate called|AddressSanitizer|LeakSanitizer|runtime error:|ERROR SUMMARY: [1-9]" "$log"; then why="report in output"
+    elif grep -q "internal error" "$log"; then why="internal error"
     elif [ "$rc" != 0 ] && [ ! -s "$log" ]; then why="exit $rc without a message"
     elif [ "$cmd" = play ] && [ "$rc" = 0 ] && [ ! -s "$base.played/stats.json" ]; then why="no stats.json"
+    elif [ "$cmd" = json ] && [ -s "$base.json" ] &&
+      ! python3 -c 'import json, sys; json.load(open(sys.argv[1], encoding="utf-8"))' "$base.json" 2>>"$log"; then
+      why="invalid JSON (or not UTF-8) on stdout"
     fi
     if [ -n "$why" ]; then
       echo "FAIL $cmd $(basename "$s"): $why"
       sed -n 1,30p "$log" | sed 's/^/    /'
     fi
   done
-  rm -rf "$base.decoded" "$base.played"
+  rm -rf "$base.decoded" "$base.played" "$base.json"
 }
 export -f check_one
 
 start=$(date +%s)
 failures=$(find "$work" -name '*.vbim' -print0 | sort -z |
   xargs -0 -P "$(nproc)" -I{} bash -c 'check_one "$1" "$2"' _ {} "$vbim")
-echo "corruption-check: $n streams x (info, decode, play) in $(( $(date +%s) - start )) s"
+echo "corruption-check: $n streams x (info, info --json, decode, play) in $(( $(date +%s) - start )) s"
 if [ "$vgSeeds" -gt 0 ]; then
   [ -x build/cli/vbim ] || { echo "corruption-check: build/cli/vbim (Release) is missing for valgrind" >&2; exit 2; }
   start=$(date +%s)

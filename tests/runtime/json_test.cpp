@@ -22,6 +22,38 @@ TEST(Json, QuoteEscapesLikeNlohmann) {
   EXPECT_EQ(json::quote(""), nlohmann::json("").dump());
 }
 
+// Damaged text (a descriptor from a scratched disc) may hold any bytes: quote() keeps well-formed
+// UTF-8 and replaces every other byte with U+FFFD, so nlohmann's strict parser reads every result;
+// isUtf8() says exactly when nlohmann's strict writer would refuse the text.
+TEST(Json, QuoteKeepsEveryDocumentValidUtf8) {
+  std::mt19937 rng(29);
+  for (int round = 0; round < 20000; ++round) {
+    std::string s(rng() % 12, '\0');
+    for (char& c : s) {
+      // mostly bytes that start or continue multi-byte sequences, where the edge cases are
+      const unsigned r = rng();
+      c = static_cast<char>((r & 3) == 0 ? (r >> 8) % 0x80 : 0x80 + (r >> 8) % 0x80);
+    }
+    bool strictWrites = true;
+    try {
+      (void)nlohmann::json(s).dump();
+    } catch (const nlohmann::json::type_error&) {
+      strictWrites = false;
+    }
+    ASSERT_EQ(json::isUtf8(s), strictWrites) << round;
+    const std::string quoted = json::quote(s);
+    nlohmann::json back;
+    ASSERT_NO_THROW(back = nlohmann::json::parse(quoted)) << quoted;
+    ASSERT_NO_THROW((void)back.dump()) << quoted;  // what it parsed is well-formed UTF-8 again
+    if (strictWrites) {
+      ASSERT_EQ(back.get<std::string>(), s);
+    }
+  }
+  EXPECT_EQ(json::quote("a\x28\xff("), "\"a(\\ufffd(\"");
+  EXPECT_EQ(json::quote("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");  // a surrogate, CESU-style
+  EXPECT_EQ(json::quote("\xf0\x9f\x98\x80"), "\"\xf0\x9f\x98\x80\"");   // U+1F600 kept
+}
+
 // Ours reads back as the same double as nlohmann's text, and is never longer; where Grisu2 found the
 // shortest form (almost always), the two are identical.
 void expectSameDouble(const std::string& text) {

@@ -17,6 +17,8 @@
 //   pes_header    bytes of 1-4 video PES headers (00 00 01 E0/E1 ...) randomised
 //   sequence      bytes of 1-4 sequence headers (00 00 01 B3 ...) randomised
 //   descriptor    bytes of the playback descriptor (private_stream_2 in the first packs) randomised
+//   descriptor_text  the first variant's name in the descriptor replaced by bytes that are not UTF-8,
+//                 with the descriptor's CRC-32 made right again, so readers take the name as given
 //   sky           payload bytes of 1-8 sky PES packets (00 00 01 E1) randomised or zeroed
 #include <cstdint>
 #include <cstdio>
@@ -73,6 +75,51 @@ struct Damage {
             b.begin() + static_cast<std::ptrdiff_t>((first + n) * kSector));
   }
 };
+
+// CRC-32 (IEEE, as zlib), bit by bit: the descriptor's checksum (docs/stream-format.md).
+std::uint32_t crc32(const std::uint8_t* p, std::size_t n) {
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= p[i];
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+  }
+  return ~c;
+}
+
+std::uint32_t be32(const Bytes& b, std::size_t at) {
+  return (std::uint32_t{b[at]} << 24) | (std::uint32_t{b[at + 1]} << 16) | (std::uint32_t{b[at + 2]} << 8) | b[at + 3];
+}
+
+// The first variant's name (24 bytes at body offset 48 + 8 S) gets bytes that are not UTF-8, then
+// the CRC-32 at body offset 44 is recomputed. False if the body is not in one chunk.
+bool damageDescriptorText(Damage& d) {
+  const auto at = d.startCodes(0xBF, 0xBF);
+  if (at.empty()) return false;
+  // The PES payload starts with a 12-byte chunk header ('VBIM', index, count, data bytes n,
+  // reserved); a body in one chunk (count 1) is the n bytes after it.
+  const std::size_t chunk = at.front() + 6;
+  if (chunk + 12 + 48 > d.b.size() || d.b[chunk] != 'V' || d.b[chunk + 6] != 0 || d.b[chunk + 7] != 1) return false;
+  const std::size_t length = (std::size_t{d.b[chunk + 8]} << 8) | d.b[chunk + 9];
+  const std::size_t body = chunk + 12;
+  if (d.b[body] != 0 || d.b[body + 1] != 1) return false;
+  const std::size_t streams = d.b[body + 20], variants = d.b[body + 21];
+  const std::size_t frames = be32(d.b, body + 12);
+  const std::size_t size = 48 + 8 * streams + 32 * variants + 16 * streams * variants * frames;
+  if (variants == 0 || size > length || body + size > d.b.size()) return false;
+  const std::size_t name = body + 48 + 8 * streams;
+  std::size_t nameLength = 0;
+  while (nameLength < 24 && d.b[name + nameLength] != 0) ++nameLength;
+  // Inside the name (bytes after its NUL are padding no reader looks at): a lead byte followed by
+  // '(' (never well-formed), then now and then a lone continuation byte.
+  const std::size_t first = d.below(nameLength > 1 ? nameLength - 1 : 1);
+  d.b[name + first] = static_cast<std::uint8_t>(0xC2 + d.below(0x33));
+  d.b[name + first + 1] = '(';
+  if (first + 2 < 23 && d.below(2) == 0) d.b[name + first + 2] = static_cast<std::uint8_t>(0x80 + d.below(0x40));
+  for (std::size_t i = 0; i < 4; ++i) d.b[body + 44 + i] = 0;
+  const std::uint32_t crc = crc32(&d.b[body], size);
+  for (std::size_t i = 0; i < 4; ++i) d.b[body + 44 + i] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
+  return true;
+}
 
 bool apply(Damage& d, const std::string& kind) {
   const std::size_t sectors = d.sectors();
@@ -132,6 +179,8 @@ bool apply(Damage& d, const std::string& kind) {
       const std::size_t where = at[d.below(at.size())];
       d.randomise(where + d.below(64), d.between(1, 4));  // the PES header and the body's first fields
     }
+  } else if (kind == "descriptor_text") {
+    return damageDescriptorText(d);
   } else if (kind == "sky") {
     const auto at = d.startCodes(0xE1, 0xE1);
     if (at.empty()) return false;
