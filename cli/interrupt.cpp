@@ -1,5 +1,7 @@
 #include "cli/interrupt.hpp"
 
+#include <signal.h>
+
 #include <csignal>
 
 #include "cli/command.hpp"
@@ -10,15 +12,31 @@ namespace {
 
 volatile std::sig_atomic_t gSignal = 0;
 
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
 extern "C" void onSignal(int sig) {
   gSignal = sig;
   std::signal(sig, SIG_DFL);  // a second one ends the process at once
 }
 
+void setMask(int how) {
+  sigset_t set;
+  sigemptyset(&set);
+  for (const int sig : kSignals) sigaddset(&set, sig);
+  sigprocmask(how, &set, nullptr);
+}
+
 }  // namespace
 
 void installInterruptHandlers() {
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, onSignal);
+  for (const int sig : kSignals) std::signal(sig, onSignal);
+  // Signals held back by blockInterruptSignals() (across the exec into vbim-full) arrive now, at
+  // the handler.
+  setMask(SIG_UNBLOCK);
+}
+
+void blockInterruptSignals() {
+  setMask(SIG_BLOCK);
 }
 
 void checkInterrupted() {

@@ -28,8 +28,10 @@ int runFullTool(char** argv) {
     return 1;
   }
   const std::filesystem::path full = self.parent_path() / "vbim-full";
+  vbim::cli::blockInterruptSignals();  // until vbim-full's handlers are in (cli/interrupt.hpp)
   execv(full.c_str(), argv);
   const int err = errno;
+  vbim::cli::installInterruptHandlers();
   std::cerr << "vbim: '" << argv[1] << "' is run by vbim-full, expected at " << full.string() << ": "
             << std::strerror(err) << " (build it with scripts/build.sh, or install it beside vbim)\n";
   return 1;
@@ -41,8 +43,8 @@ int main(int argc, char** argv) {
   try {
     // First, and before handing a command to vbim-full: started with SIGINT ignored (a background
     // job of a script), vbim-full would otherwise keep it ignored until its own handler is in, after
-    // its libraries have loaded. The exec resets caught signals to their default action, so a Ctrl-C
-    // then ends it at once (nothing is written yet), as it reaches play's handler at once.
+    // its libraries have loaded. The exec resets caught signals to their default action, so
+    // runFullTool blocks them across it: a Ctrl-C while vbim-full loads waits for its handler.
     vbim::cli::installInterruptHandlers();
     std::vector<char*> args = vbim::cli::helpAsOption(argc, argv);  // `vbim help author` too
     argv = args.data();

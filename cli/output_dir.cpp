@@ -1,8 +1,7 @@
 #include "cli/output_dir.hpp"
 
-#include <unistd.h>
-
 #include "cli/command.hpp"
+#include "streams/temporary_files.hpp"
 
 namespace vbim::cli {
 
@@ -37,7 +36,9 @@ OutputDir::OutputDir(const fs::path& final, bool force) : final_(outputPath(fina
   const fs::path parent = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
   fs::create_directories(parent, ec);
   if (ec) throw Exit(2, parent.string() + ": cannot create the directory: " + ec.message());
-  tmp_ = parent / ("." + final_.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  // What a killed run left here goes first (streams/temporary_files.hpp), then ours is made.
+  streams::removeStaleTemporaries(parent);
+  tmp_ = streams::temporarySibling(final_);
   fs::remove_all(tmp_, ec);
   fs::create_directory(tmp_, ec);
   if (ec) throw Exit(2, tmp_.string() + ": cannot create the temporary output directory: " + ec.message());

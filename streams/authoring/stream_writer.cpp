@@ -13,6 +13,7 @@
 #include "streams/descriptor_packs.hpp"
 #include "streams/format.hpp"
 #include "streams/stream_stats.hpp"
+#include "streams/temporary_files.hpp"
 
 namespace vbim::streams {
 
@@ -273,7 +274,8 @@ void writeStreamFile(const std::filesystem::path& path, std::span<const std::uin
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(dir, ec))
     throw AuthoringError(path.string() + ": directory " + dir.string() + " does not exist");
-  const fs::path tmp = dir / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  removeStaleTemporaries(dir);  // what a killed run left here (streams/temporary_files.hpp)
+  const fs::path tmp = temporarySibling(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw AuthoringError(path.string() + ": cannot create " + tmp.string() + ": " + std::strerror(errno));

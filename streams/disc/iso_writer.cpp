@@ -15,6 +15,7 @@
 
 #include "iop/error.hpp"
 #include "streams/disc/iso_disc.hpp"
+#include "streams/temporary_files.hpp"
 
 extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX leaves it undeclared
 
@@ -148,9 +149,9 @@ void writeIsoImage(const std::filesystem::path& image, const std::vector<IsoEntr
     }
   }
   const std::filesystem::path dir = image.has_parent_path() ? image.parent_path() : ".";
-  const std::string pid = std::to_string(::getpid());
-  const std::filesystem::path tmp = dir / ("." + image.filename().string() + ".tmp-" + pid);
-  const std::filesystem::path log = dir / ("." + image.filename().string() + ".log-" + pid);
+  streams::removeStaleTemporaries(dir);  // what a killed run left here (streams/temporary_files.hpp)
+  const std::filesystem::path tmp = streams::temporarySibling(image);
+  const std::filesystem::path log = streams::temporarySibling(dir / (image.filename().string() + ".log"));
   std::vector<std::string> args{"xorriso",
                                 "-abort_on",
                                 "FAILURE",

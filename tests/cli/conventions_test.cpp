@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "tests/support/run_command.hpp"
@@ -24,6 +26,11 @@ fs::path scratch(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("vbim_conventions_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 int lines(const std::string& s) {
@@ -303,6 +310,94 @@ TEST(CliConventions, InterruptingRemovesTemporaryFiles) {
     EXPECT_TRUE(fs::is_empty(dir)) << args << ": left " << fs::directory_iterator(dir)->path();
     for (const auto& e : fs::directory_iterator(dir)) fs::remove_all(e.path());
   }
+  fs::remove_all(dir);
+}
+
+// Ctrl-C at any moment (issue #33): 200 runs of play, decode and author (author is run by vbim-full,
+// so its runs cross the exec from vbim), four at a time, each sent one SIGINT at a random moment of
+// its first 0.7 s. Started with SIGINT ignored, as a background job of a script is, so a signal that
+// comes before vbim's handler is in is lost and the run completes. Every run must end either complete
+// (exit 0, its output in place) or interrupted (exit 130 with the message, its output absent), and
+// nothing else may be left in the directory.
+TEST(CliConventions, InterruptsAtRandomMomentsLeaveNothingBehind) {
+  const fs::path dir = scratch("random_interrupts");
+  fs::create_directories(dir);
+  const std::string d = dir.string();
+  const std::string script = R"(export D SAMPLE VBIM
+one() {
+  i=$1; out=$D/r$i
+  case $((i % 3)) in
+    0) args="play $SAMPLE --duration 900s --every 300 --out $out" ;;
+    1) args="decode $SAMPLE --format png --out $out" ;;
+    2) args="author --procedural --size 64 --sky-width 32 --frame-count 4 --out $out.vbim" ;;
+  esac
+  (trap '' INT; exec $VBIM $args) >$D/log$i 2>&1 &
+  pid=$!
+  sleep 0.$(printf '%03d' $(( (RANDOM * 32768 + RANDOM) % 700 )))
+  kill -INT $pid 2>/dev/null
+  wait $pid
+  echo "$i $?" >>$D/status
+}
+export -f one
+seq 200 | xargs -P 4 -I{} bash -c 'one {}'
+)";
+  std::ofstream(dir / "interrupt.sh") << script;
+  const auto r = vbim::testing::runCommand("D=" + d + " SAMPLE=" + kSample + " VBIM=" + std::string(VBIM_BINARY) +
+                                           " bash " + (dir / "interrupt.sh").string());
+  fs::remove(dir / "interrupt.sh");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream status(dir / "status");
+  int runs = 0, complete = 0, interrupted = 0;
+  for (int i = 0, rc = 0; status >> i >> rc; ++runs) {
+    const std::string log = slurp(dir / ("log" + std::to_string(i)));
+    const fs::path out = dir / ("r" + std::to_string(i) + (i % 3 == 2 ? ".vbim" : ""));
+    if (rc == 0) {
+      ++complete;
+      EXPECT_TRUE(fs::exists(out)) << "run " << i << " exited 0 without its output\n" << log;
+      if (i % 3 == 0) {
+        EXPECT_TRUE(fs::exists(out / "stats.json")) << "run " << i;
+      }
+    } else {
+      ++interrupted;
+      EXPECT_EQ(rc, 130) << "run " << i << "\n" << log;
+      EXPECT_NE(log.find("interrupted (Ctrl-C); temporary files removed"), std::string::npos)
+          << "run " << i << " (exit " << rc << ") did not say so:\n"
+          << log;
+      EXPECT_FALSE(fs::exists(out)) << "run " << i << " was interrupted but left " << out;
+    }
+  }
+  EXPECT_EQ(runs, 200);
+  EXPECT_GT(interrupted, 20) << complete << " complete";  // the moments do reach into the work
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_NE(name[0], '.') << "left behind: " << name;
+  }
+  fs::remove_all(dir);
+}
+
+// A run killed outright (SIGKILL cannot be caught) leaves its temporary directory; the next run
+// that writes into the same directory removes it, and leaves a live process's alone.
+TEST(CliConventions, TheNextRunRemovesWhatAKilledRunLeft) {
+  const fs::path dir = scratch("killed_run");
+  fs::create_directories(dir);
+  const std::string d = dir.string();
+  const auto killed =
+      vbim::testing::runCommand(std::string(VBIM_BINARY) + " play " + kSample + " --duration 86400s --out " + d +
+                                "/first >/dev/null 2>&1 & pid=$!; "
+                                "for i in $(seq 200); do ls -a " +
+                                d +
+                                " | grep -q tmp && break; sleep 0.05; done; kill -KILL $pid; wait $pid; "
+                                "ls -a " +
+                                d);
+  ASSERT_NE(killed.output.find(".first.tmp-"), std::string::npos) << killed.output;
+  fs::create_directories(dir / (".other.tmp-" + std::to_string(::getpid())));  // a live process's
+  const auto next = run("play " + kSample + " --duration 2s --no-trace --out " + d + "/second");
+  ASSERT_EQ(next.status, 0) << next.output;
+  std::string left;
+  for (const auto& e : fs::directory_iterator(dir)) left += e.path().filename().string() + " ";
+  EXPECT_EQ(left.find(".first.tmp-"), std::string::npos) << left;
+  EXPECT_NE(left.find(".other.tmp-"), std::string::npos) << left;
+  EXPECT_TRUE(fs::exists(dir / "second" / "stats.json")) << left;
   fs::remove_all(dir);
 }
 
