@@ -18,17 +18,17 @@
 
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
-#include "cli/profile_outputs.hpp"
 #include "gs/blend_simd.hpp"
 #include "iop/fault_plan.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "player/profile_run.hpp"
 #include "plots/profile_figures.hpp"
 #include "plots/write_chart.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
 #include "render/run_dir.hpp"
 #include "streams/authoring/error.hpp"
+#include "sweep/outputs/profile_outputs.hpp"
+#include "sweep/profile_run.hpp"
 
 namespace vbim::cli {
 
@@ -79,7 +79,7 @@ std::filesystem::path authorDemoStream(const std::filesystem::path& out) {
 class DemoProfile {
  public:
   void onRow(const player::VsyncRow& row) {
-    profile::Sample s;
+    sweep::Sample s;
     s.t = toSeconds(row.at);
     s.ringBanks = static_cast<int>(row.ringBanks);
     s.lag = row.lag;
@@ -89,7 +89,7 @@ class DemoProfile {
     series_.push_back(s);
   }
   void write(const std::string& disc, const OutputDir& dir) {
-    namespace pr = profile;
+    namespace pr = sweep;
     const auto wall0 = std::chrono::steady_clock::now();
     std::filesystem::create_directories(dir.path("plots"));
     const pr::RingSize demoRing{player::PlatformConfig{}.iop.ring.bankmax,
@@ -137,7 +137,7 @@ class DemoProfile {
   double seconds() const { return seconds_; }
 
  private:
-  std::vector<profile::Sample> series_;
+  std::vector<sweep::Sample> series_;
   bool shown_ = false;
   double seconds_ = 0;
 };

@@ -17,28 +17,26 @@
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
-#include "cli/profile_outputs.hpp"
 #include "cli/profile_plan.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
 #include "gs/blend_simd.hpp"
 #include "gs/error.hpp"
-#include "iop/memory_disc.hpp"
 #include "iop/params.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "player/profile_sweep.hpp"
 #include "player/report.hpp"
 #include "player/scenario.hpp"
 #include "runtime/params.hpp"
-#include "streams/authoring/error.hpp"
 #include "streams/authoring/transcode.hpp"
 #include "streams/disc/stream_disc.hpp"
+#include "sweep/outputs/profile_outputs.hpp"
+#include "sweep/profile_sweep.hpp"
 
 namespace vbim::cli {
 
 namespace {
 
-using namespace vbim::cli::profile;
+using namespace vbim::sweep;
 
 struct ProfileRequest {
   std::vector<std::string> discs;
@@ -60,14 +58,6 @@ struct ProfileRequest {
   bool force = false;
   std::string out;
 };
-
-Tick parseTime(const std::string& what, const std::string& text) {
-  try {
-    return iop::parseDuration(text);
-  } catch (const std::exception& e) {
-    throw Exit(2, what + " '" + text + "': " + e.what() + " (expected a time with a unit, e.g. 12.5s or 800ms)");
-  }
-}
 
 RingSize parseRing(const std::string& text) {
   const auto colon = text.find(':');
@@ -105,18 +95,6 @@ std::string stem(const std::string& path) {
   return std::filesystem::path(path).stem().string();
 }
 
-std::shared_ptr<Stream> memoryStream(std::string label, std::vector<std::uint8_t> bytes) {
-  auto s = std::make_shared<Stream>();
-  s->label = std::move(label);
-  const auto sectors = static_cast<std::int64_t>(bytes.size() / iop::kSectorBytes);
-  auto disc = std::make_shared<iop::MemoryDisc>(player::kBareFileLba + sectors + player::kBareFilePadSectors,
-                                                s->label + " (re-encoded in memory)");
-  disc->addFile(s->label + ".vbim", player::kBareFileLba, std::move(bytes));
-  s->file = *disc->find(s->label + ".vbim");
-  s->disc = std::move(disc);
-  return s;
-}
-
 // A disc as given: a bare stream file or the stream on an ISO 9660 image, labelled by its name.
 std::shared_ptr<Stream> discStream(const std::string& path, const std::string& file) {
   streams::StreamDisc opened = streams::openStreamDisc(path, file);
@@ -127,15 +105,9 @@ std::shared_ptr<Stream> discStream(const std::string& path, const std::string& f
   return s;
 }
 
-// The first disc re-encoded at other settings; a stream that cannot be re-encoded ends the command.
+// The first disc re-encoded at other settings (a stream that cannot be re-encoded ends the command).
 std::vector<std::uint8_t> reencoded(const Stream& disc, const std::string& name, const streams::EncoderSettings& e) {
-  try {
-    return streams::transcodeStream(streams::readDiscFile(*disc.disc, disc.file), name, e);
-  } catch (const streams::AuthoringError& x) {
-    throw Exit(2, x.what());
-  } catch (const iop::DiscError& x) {
-    throw Exit(2, x.what());
-  }
+  return streams::transcodeStream(streams::readDiscFile(*disc.disc, disc.file), name, e);
 }
 
 void runProfile(const ProfileRequest& r) {
@@ -144,13 +116,7 @@ void runProfile(const ProfileRequest& r) {
   OutputDir dir(r.out, r.force);
   // Streams: every disc as given, then the first one re-encoded at each quantiser and bitrate.
   std::vector<std::shared_ptr<Stream>> streams;
-  for (const std::string& d : r.discs) {
-    try {
-      streams.push_back(discStream(d, r.file));
-    } catch (const iop::DiscError& e) {
-      throw Exit(2, e.what());
-    }
-  }
+  for (const std::string& d : r.discs) streams.push_back(discStream(d, r.file));
   for (int q : r.qscales) {
     if (q < 1 || q > 31) throw Exit(2, "--qscale " + std::to_string(q) + ": expected 1..31");
     streams::EncoderSettings e;
@@ -167,11 +133,7 @@ void runProfile(const ProfileRequest& r) {
   }
 
   player::PlatformConfig base;
-  try {
-    if (!r.config.empty()) base = config::loadPlatformFile(r.config);
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
-  }
+  if (!r.config.empty()) base = config::loadPlatformFile(r.config);
   std::vector<RingSize> rings;
   for (const std::string& s : r.rings) rings.push_back(parseRing(s));
   std::sort(rings.begin(), rings.end(), [](const RingSize& a, const RingSize& b) {
@@ -181,13 +143,7 @@ void runProfile(const ProfileRequest& r) {
   for (const std::string& p : r.policies) policies.push_back(catchupPolicy(p));
   // Fault plans: "none" first, then each file (parsed against the first stream's disc).
   std::vector<std::pair<std::string, iop::FaultPlan>> plans{{"none", iop::FaultPlan{}}};
-  for (const std::string& f : r.faults) {
-    try {
-      plans.emplace_back(stem(f), config::loadFaultPlan(f, streams[0]->disc.get()));
-    } catch (const ConfigError& e) {
-      throw Exit(2, e.what());
-    }
-  }
+  for (const std::string& f : r.faults) plans.emplace_back(stem(f), config::loadFaultPlan(f, streams[0]->disc.get()));
   const Tick duration = parseTime("--duration", r.duration);
   if (duration <= 0) throw Exit(2, "--duration must be positive");
   StallSearch search;
@@ -260,15 +216,11 @@ void runProfile(const ProfileRequest& r) {
   ProfileData data;
   try {
     data = runSweep(plan, progress);
-  } catch (const ee::StreamProbeError& e) {
-    throw Exit(2, e.what());
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
     throw Exit(2, gsConfigMessage(e, r.config));
   }
 
-  const std::vector<std::string> written = writeProfileOutputs(data, dir);
+  const std::vector<std::string> written = writeProfileOutputs(data, dir.directory());
   dir.commit();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   std::cout << "profiled " << data.sweep.size() << " sweep runs and " << data.stalls.size() << " stall searches in "

@@ -7,7 +7,11 @@
 //     its file, and CLI11 would take the next word whatever it is.
 #pragma once
 
+#include <string>
+
 #include <CLI/CLI.hpp>
+
+#include "runtime/clock.hpp"
 
 namespace vbim::cli {
 
@@ -28,5 +32,8 @@ void checkNumbersStrictly(CLI::App& app);
 // check of the value: "--check: expects a file, got the option '--stream'". Call it after
 // checkNumbersStrictly, which sets the type names it reads.
 void refuseOptionsAsValues(CLI::App& app);
+
+// A simulated time with a unit ("12.5s", "800ms"), or Exit(2) naming the option `what` and `text`.
+Tick parseTime(const std::string& what, const std::string& text);
 
 }  // namespace vbim::cli

@@ -17,7 +17,7 @@ namespace vbim::config {
 
 namespace {
 
-using namespace player::profile;
+using namespace sweep;
 
 int lineOf(const toml::node& n) {
   return static_cast<int>(n.source().begin.line);

@@ -1,4 +1,4 @@
-// Sweep plans from TOML (docs/sweeps.md) into the plain player::profile::SweepPlanSpec: axes,
+// Sweep plans from TOML (docs/sweeps.md) into the plain sweep::SweepPlanSpec: axes,
 // fault-plan templates with their seeded draws made here, measures and probabilities. Errors name
 // file:line: key and what was expected (ConfigError).
 #pragma once
@@ -6,14 +6,13 @@
 #include <string>
 #include <string_view>
 
-#include "player/sweep_plan.hpp"
+#include "sweep/plan.hpp"
 
 namespace vbim::config {
 
 // `baseDir` resolves relative paths in the plan (streams, config, fault-plan files): the plan
 // file's folder. Throws ConfigError.
-player::profile::SweepPlanSpec parseSweepPlan(std::string_view text, const std::string& origin,
-                                              const std::string& baseDir);
-player::profile::SweepPlanSpec loadSweepPlan(const std::string& path);
+sweep::SweepPlanSpec parseSweepPlan(std::string_view text, const std::string& origin, const std::string& baseDir);
+sweep::SweepPlanSpec loadSweepPlan(const std::string& path);
 
 }  // namespace vbim::config

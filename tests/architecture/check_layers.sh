@@ -15,7 +15,7 @@ layer_of() {
     runtime/*) echo 0 ;;
     iop/* | ipu/* | gs/* | ee/* | streams/*) echo 1 ;;
     player/*) echo 2 ;;
-    config/* | lighting/* | render/* | plots/* | imageio/*) echo 3 ;;
+    sweep/* | config/* | lighting/* | render/* | plots/* | imageio/*) echo 3 ;;
     cli/*) echo 4 ;;
     *) echo "" ;;
   esac
@@ -30,7 +30,7 @@ component_of() {
 
 bad=0
 checked=0
-files=$(find runtime iop ipu gs ee streams player config lighting render plots imageio cli \
+files=$(find runtime iop ipu gs ee streams player sweep config lighting render plots imageio cli \
              \( -name '*.cpp' -o -name '*.hpp' \) 2>/dev/null | sort)
 for f in $files; do
   from=$(layer_of "$f")

@@ -7,12 +7,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "player/sweep_runner.hpp"
+#include "sweep/runner.hpp"
 
 namespace {
 
 using namespace vbim;
-using namespace vbim::player::profile;
+using namespace vbim::sweep;
 
 const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
 

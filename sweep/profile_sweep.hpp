@@ -1,5 +1,5 @@
 // The sweep behind `vbim profile`: every stream x fault plan x catch-up policy x ring size played
-// once (one case, player/profile_run.hpp), then for every stream x policy x ring size the longest
+// once (one case, sweep/profile_run.hpp), then for every stream x policy x ring size the longest
 // survivable drive stall under both criteria. The order is fixed (streams, then plans, policies,
 // rings; the stall searches after each stream's runs), so the results are the same table on every
 // machine.
@@ -13,9 +13,9 @@
 
 #include "iop/fault_plan.hpp"
 #include "player/platform_config.hpp"
-#include "player/profile_run.hpp"
+#include "sweep/profile_run.hpp"
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
 
 struct RingSize {
   std::int64_t bankmax = 5;
@@ -47,7 +47,7 @@ struct ProfileData {
 
 struct SweepPlan {
   std::vector<const Stream*> streams;
-  PlatformConfig base;                                        // ring size and policy are set per case
+  player::PlatformConfig base;                                // ring size and policy are set per case
   std::vector<std::pair<std::string, iop::FaultPlan>> plans;  // label, plan
   std::vector<std::string> policies;                          // gs.catchup names
   std::vector<RingSize> rings;
@@ -55,7 +55,7 @@ struct SweepPlan {
   Tick duration = 0;
   bool searchStalls = true;
   StallSearch search;
-  Kernels kernels;  // injected SIMD kernels (null: scalar references, same results)
+  player::Kernels kernels;  // injected SIMD kernels (null: scalar references, same results)
 };
 
 // Told of each result as it is made, so a command can print progress.
@@ -68,4 +68,4 @@ struct SweepObserver {
 // gs::GsError).
 ProfileData runSweep(const SweepPlan& plan, const SweepObserver& observer = {});
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

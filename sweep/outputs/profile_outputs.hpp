@@ -4,29 +4,28 @@
 // Shared by `vbim profile` and `vbim demo`.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "cli/output_dir.hpp"
-#include "player/profile_sweep.hpp"
 #include "plots/profile_figures.hpp"
+#include "sweep/profile_sweep.hpp"
 
-namespace vbim::cli::profile {
+namespace vbim::sweep {
 
-// The runs and the sweep are the player's (player/profile_run.hpp, player/profile_sweep.hpp); this
-// file writes their results.
-using namespace vbim::player::profile;
+// The runs and the sweep are sweep/profile_run.hpp's and sweep/profile_sweep.hpp's; this file writes
+// their results into a directory (the caller makes it complete or absent: cli/output_dir.hpp).
 
 // `v` with `decimals` digits after the point (C locale), for the tables and the command's lines.
 std::string fixed(double v, int decimals);
 
 // Writes every output into `dir` and returns the names written (relative), plots first.
-std::vector<std::string> writeProfileOutputs(const ProfileData& d, const OutputDir& dir);
+std::vector<std::string> writeProfileOutputs(const ProfileData& d, const std::filesystem::path& dir);
 
 // The plain inputs of the figures.
 std::vector<plots::profile::TracePoint> tracePoints(const std::vector<Sample>& series);
 std::vector<plots::profile::StallPoint> stallPoints(const std::vector<StallRow>& rows);
 plots::profile::StallSearchSetup stallSearchSetup(const StallSearch& search);
 
-}  // namespace vbim::cli::profile
+}  // namespace vbim::sweep

@@ -15,10 +15,10 @@
 
 #include "iop/fault_plan.hpp"
 #include "player/platform_config.hpp"
-#include "player/profile_run.hpp"
-#include "player/profile_sweep.hpp"
+#include "sweep/profile_run.hpp"
+#include "sweep/profile_sweep.hpp"
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
 
 // A stream axis value: a file, optionally re-encoded (bitrate in bit/s or quantiser; 0: as is).
 struct StreamSpec {
@@ -31,7 +31,7 @@ struct StreamSpec {
 // A platform axis value: the keys it sets (as written, for the table) and the config they make.
 struct PlatformVariant {
   std::vector<std::pair<std::string, std::string>> values;  // key, value as text
-  PlatformConfig config;
+  player::PlatformConfig config;
 };
 
 // One drawn fault plan of a template: the plan and what was drawn ("stall.duration=1.25s; ...").
@@ -97,4 +97,4 @@ std::pair<std::size_t, std::size_t> shardRange(std::size_t cases, std::size_t k,
 
 bool hasMeasure(const SweepPlanSpec& plan, Measure m);
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

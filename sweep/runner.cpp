@@ -1,4 +1,4 @@
-#include "player/sweep_runner.hpp"
+#include "sweep/runner.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -6,7 +6,9 @@
 #include <mutex>
 #include <thread>
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
+
+using namespace player;
 
 CaseRecord runPlanCase(const SweepPlanSpec& plan, const PlanCase& pc, const Stream& stream, const Kernels& kernels) {
   CaseRecord r;
@@ -61,4 +63,4 @@ std::vector<CaseRecord> runPlanCases(const SweepPlanSpec& plan, const std::vecto
   return records;
 }
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

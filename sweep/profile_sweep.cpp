@@ -1,6 +1,8 @@
-#include "player/profile_sweep.hpp"
+#include "sweep/profile_sweep.hpp"
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
+
+using namespace player;
 
 ProfileData runSweep(const SweepPlan& plan, const SweepObserver& observer) {
   ProfileData data;
@@ -43,4 +45,4 @@ ProfileData runSweep(const SweepPlan& plan, const SweepObserver& observer) {
   return data;
 }
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

@@ -27,7 +27,7 @@
 #include "iop/sector_source.hpp"
 #include "player/player.hpp"
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
 
 // A stream to play: a disc and the file on it, with a label for tables and legends.
 struct Stream {
@@ -39,6 +39,9 @@ struct Stream {
 // A bare stream file on a notional disc, as `vbim play` places it (throws iop::DiscError for a file
 // that is missing or not whole sectors).
 std::shared_ptr<Stream> bareStream(const std::string& path);
+// A stream held in memory (a re-encoded one) on a notional disc laid out as bareStream's, labelled
+// `label` (its disc is named "<label> (re-encoded in memory)").
+std::shared_ptr<Stream> memoryStream(const std::string& label, std::vector<std::uint8_t> bytes);
 
 struct Case {
   const Stream* stream = nullptr;
@@ -46,8 +49,8 @@ struct Case {
   iop::FaultPlan faults;
   std::uint64_t seed = 1;
   Tick duration = 0;
-  bool reference = true;  // measure lag against a fault-free reference (costs a second pipeline)
-  Kernels kernels;        // SIMD kernels injected by the caller (null: the scalar references, same bytes)
+  bool reference = true;    // measure lag against a fault-free reference (costs a second pipeline)
+  player::Kernels kernels;  // SIMD kernels injected by the caller (null: the scalar references, same bytes)
 };
 
 // One vsync, as the plots need it.
@@ -99,4 +102,4 @@ struct StallResult {
 // reference pipeline is not built (lag is not a criterion).
 StallResult longestSurvivableStall(const Case& base, const StallSearch& search, Criterion criterion);
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

@@ -1,4 +1,4 @@
-// Runs the cases of a sweep plan (player/sweep_plan.hpp) on host threads. Each case is independent:
+// Runs the cases of a sweep plan (sweep/plan.hpp) on host threads. Each case is independent:
 // its own stream handle, player, scheduler and buffers, nothing shared but read-only inputs, so a
 // case's result does not depend on which thread ran it or on what ran beside it; results are
 // returned by case number, and the tables written from them are the same bytes at any thread count.
@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "player/sweep_plan.hpp"
+#include "sweep/plan.hpp"
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
 
 // What one case gave: the run's figures (no per-vsync series) and, when measured, the stall search;
 // or the error that ended it (then `ok` is false and the figures are zero).
@@ -33,7 +33,7 @@ using CaseDone = std::function<void(const CaseRecord&)>;
 
 struct RunOptions {
   unsigned jobs = 1;
-  Kernels kernels;
+  player::Kernels kernels;
 };
 
 // Runs `cases` (a subset of expandPlan(plan), any order) with `jobs` threads; the records come back
@@ -42,6 +42,7 @@ std::vector<CaseRecord> runPlanCases(const SweepPlanSpec& plan, const std::vecto
                                      const StreamOpener& open, const RunOptions& options, const CaseDone& done = {});
 
 // One case on the calling thread.
-CaseRecord runPlanCase(const SweepPlanSpec& plan, const PlanCase& c, const Stream& stream, const Kernels& kernels);
+CaseRecord runPlanCase(const SweepPlanSpec& plan, const PlanCase& c, const Stream& stream,
+                       const player::Kernels& kernels);
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

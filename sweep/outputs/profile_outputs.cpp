@@ -1,4 +1,5 @@
-#include "cli/profile_outputs.hpp"
+#include "sweep/outputs/profile_outputs.hpp"
+#include "sweep/outputs/table.hpp"
 
 #include "player/report.hpp"
 
@@ -7,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace vbim::cli::profile {
+namespace vbim::sweep {
 
 std::string fixed(double v, int decimals) {
   char b[48];
@@ -16,13 +17,6 @@ std::string fixed(double v, int decimals) {
 }
 
 namespace {
-
-std::string csvQuote(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return o + "\"";
-}
 
 void writeSweepCsv(const ProfileData& d, std::ostream& o) {
   o << "stream,stream_bytes,bankmax,bufmax_sectors,faults,policy,frames_shown,frames_late,frames_dropped,"
@@ -141,28 +135,28 @@ plots::profile::StallSearchSetup stallSearchSetup(const StallSearch& search) {
   return {toSeconds(search.stallAt), toSeconds(search.maxStall), search.popThreshold};
 }
 
-std::vector<std::string> writeProfileOutputs(const ProfileData& d, const OutputDir& dir) {
+std::vector<std::string> writeProfileOutputs(const ProfileData& d, const std::filesystem::path& dir) {
   std::vector<plots::profile::SweepTrace> sweep;
   for (const SweepRun& s : d.sweep)
     sweep.push_back({s.stream, s.faults, s.policy, s.ring.bankmax, s.ring.bufmax, tracePoints(s.result.series)});
   std::vector<std::string> written =
-      plots::profile::writeProfileFigures(sweep, stallPoints(d.stalls), stallSearchSetup(d.search), dir.path(""));
+      plots::profile::writeProfileFigures(sweep, stallPoints(d.stalls), stallSearchSetup(d.search), (dir / ""));
   {
-    std::ofstream o(dir.path("sweep.csv"), std::ios::binary);
+    std::ofstream o((dir / "sweep.csv"), std::ios::binary);
     writeSweepCsv(d, o);
     written.push_back("sweep.csv");
   }
   if (!d.stalls.empty()) {
-    std::ofstream o(dir.path("stall.csv"), std::ios::binary);
+    std::ofstream o((dir / "stall.csv"), std::ios::binary);
     writeStallCsv(d, o);
     written.push_back("stall.csv");
   }
   {
-    std::ofstream o(dir.path("profile.json"), std::ios::binary);
+    std::ofstream o((dir / "profile.json"), std::ios::binary);
     o << profileJson(d).dump(2) << "\n";
     written.push_back("profile.json");
   }
   return written;
 }
 
-}  // namespace vbim::cli::profile
+}  // namespace vbim::sweep

@@ -1,11 +1,14 @@
-#include "player/profile_run.hpp"
+#include "sweep/profile_run.hpp"
 
 #include <filesystem>
 
 #include "iop/file_disc.hpp"
+#include "iop/memory_disc.hpp"
 #include "player/scenario.hpp"
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
+
+using namespace player;
 
 std::shared_ptr<Stream> bareStream(const std::string& path) {
   auto s = std::make_shared<Stream>();
@@ -13,6 +16,18 @@ std::shared_ptr<Stream> bareStream(const std::string& path) {
   iop::FileDisc probe(path, kBareFileLba);
   s->file = probe.file();
   s->disc = std::make_shared<iop::FileDisc>(path, kBareFileLba, kBareFileLba + s->file.sectors() + kBareFilePadSectors);
+  return s;
+}
+
+std::shared_ptr<Stream> memoryStream(const std::string& label, std::vector<std::uint8_t> bytes) {
+  auto s = std::make_shared<Stream>();
+  s->label = label;
+  const auto sectors = static_cast<std::int64_t>(bytes.size() / iop::kSectorBytes);
+  auto disc = std::make_shared<iop::MemoryDisc>(kBareFileLba + sectors + kBareFilePadSectors,
+                                                label + " (re-encoded in memory)");
+  disc->addFile(label + ".vbim", kBareFileLba, std::move(bytes));
+  s->file = *disc->find(label + ".vbim");
+  s->disc = std::move(disc);
   return s;
 }
 
@@ -113,4 +128,4 @@ StallResult longestSurvivableStall(const Case& base, const StallSearch& search, 
   return out;
 }
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

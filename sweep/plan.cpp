@@ -1,8 +1,10 @@
-#include "player/sweep_plan.hpp"
+#include "sweep/plan.hpp"
 
 #include <algorithm>
 
-namespace vbim::player::profile {
+namespace vbim::sweep {
+
+using namespace player;
 
 const char* toString(Measure m) {
   switch (m) {
@@ -54,4 +56,4 @@ bool hasMeasure(const SweepPlanSpec& plan, Measure m) {
   return std::find(plan.measures.begin(), plan.measures.end(), m) != plan.measures.end();
 }
 
-}  // namespace vbim::player::profile
+}  // namespace vbim::sweep

@@ -1,20 +1,17 @@
-#include "cli/sweep_outputs.hpp"
+#include "sweep/outputs/table.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <optional>
 
-#include "cli/profile_outputs.hpp"
 #include "player/report.hpp"
 #include "plots/sweep_figures.hpp"
+#include "sweep/outputs/profile_outputs.hpp"
 
-namespace vbim::cli::sweep {
+namespace vbim::sweep {
 
 namespace {
-
-using namespace player::profile;
-using profile::fixed;
 
 // One cell of the table: its text (as in the CSV) and how JSON writes it.
 struct Cell {
@@ -111,13 +108,6 @@ std::vector<Cell> measureCells(const SweepPlanSpec& plan, const CaseRecord& r) {
   }
   row.push_back(text("error", r.error));
   return row;
-}
-
-std::string csvQuote(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return o + "\"";
 }
 
 std::string jsonLine(const std::vector<Cell>& row) {
@@ -256,7 +246,7 @@ std::vector<std::string> summaryLines(const SweepPlanSpec& plan, const std::vect
 }
 
 std::vector<std::string> writeSweepOutputs(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases,
-                                           const std::vector<CaseRecord>& records, const OutputDir& dir) {
+                                           const std::vector<CaseRecord>& records, const std::filesystem::path& dir) {
   std::vector<std::string> written;
   // Figures first (as `vbim profile` lists them): one per probability, a line per group without ring.
   const std::vector<Group> gs = groups(plan, cases, records);
@@ -279,12 +269,12 @@ std::vector<std::string> writeSweepOutputs(const SweepPlanSpec& plan, const std:
     const plots::Figure fig =
         plots::sweep::probabilityFigure(pr.name + ": P(" + probabilityText(pr) + ")", "95 % Wilson interval", lines);
     for (std::string& w :
-         plots::sweep::writeProbabilityFigure(fig, dir.path(""), "plots/probability_" + std::to_string(p + 1)))
+         plots::sweep::writeProbabilityFigure(fig, (dir / ""), "plots/probability_" + std::to_string(p + 1)))
       written.push_back(std::move(w));
   }
   {
-    std::ofstream csv(dir.path("cases.csv"), std::ios::binary);
-    std::ofstream jsonl(dir.path("cases.jsonl"), std::ios::binary);
+    std::ofstream csv((dir / "cases.csv"), std::ios::binary);
+    std::ofstream jsonl((dir / "cases.jsonl"), std::ios::binary);
     for (std::size_t i = 0; i < cases.size(); ++i) {
       std::vector<Cell> row = axisCells(plan, cases[i]);
       for (Cell& c : measureCells(plan, records[i])) row.push_back(std::move(c));
@@ -300,9 +290,9 @@ std::vector<std::string> writeSweepOutputs(const SweepPlanSpec& plan, const std:
     written.push_back("cases.jsonl");
   }
   if (!plan.probabilities.empty()) {
-    std::ofstream csv(dir.path("summary.csv"), std::ios::binary);
+    std::ofstream csv((dir / "summary.csv"), std::ios::binary);
     writeSummaryCsv(plan, gs, csv);
-    std::ofstream txt(dir.path("summary.txt"), std::ios::binary);
+    std::ofstream txt((dir / "summary.txt"), std::ios::binary);
     for (const std::string& l : summaryLines(plan, cases, records)) txt << l << "\n";
     written.push_back("summary.csv");
     written.push_back("summary.txt");
@@ -376,4 +366,11 @@ CaseRecord recordFromJson(const nlohmann::json& j) {
   return r;
 }
 
-}  // namespace vbim::cli::sweep
+std::string csvQuote(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return o + "\"";
+}
+
+}  // namespace vbim::sweep

@@ -6,23 +6,19 @@
 // with the same code, so their files are the same bytes.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "cli/output_dir.hpp"
-#include "player/sweep_runner.hpp"
+#include "sweep/runner.hpp"
 
-namespace vbim::cli::sweep {
-
-using player::profile::CaseRecord;
-using player::profile::PlanCase;
-using player::profile::SweepPlanSpec;
+namespace vbim::sweep {
 
 // Writes every output into `dir`; `records` are all cases', in case order. Returns the names written.
 std::vector<std::string> writeSweepOutputs(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases,
-                                           const std::vector<CaseRecord>& records, const OutputDir& dir);
+                                           const std::vector<CaseRecord>& records, const std::filesystem::path& dir);
 
 // The lines of summary.txt (also printed by the command).
 std::vector<std::string> summaryLines(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases,
@@ -39,4 +35,7 @@ struct Interval {
 };
 Interval wilson(std::int64_t k, std::int64_t n, double z = 1.959963984540054);
 
-}  // namespace vbim::cli::sweep
+// A CSV cell: as it is, or quoted (quotes doubled) when it holds a comma, a quote or a line break.
+std::string csvQuote(const std::string& s);
+
+}  // namespace vbim::sweep
