@@ -39,12 +39,8 @@ ToneMapping toneMapping(const EncodeOptions& o) {
   ToneMapping tone;
   tone.exposure = o.exposure;
   tone.white = o.white;
-  try {
-    tone.curve = parseCurve(o.tone);
-    parseTransfer(o.transfer, tone);
-  } catch (const AuthoringError& e) {
-    throw Exit(2, e.what());
-  }
+  tone.curve = parseCurve(o.tone);
+  parseTransfer(o.transfer, tone);
   if (!(o.white >= 1 && o.white <= 255)) throw Exit(2, "--white must be in 1..255");
   return tone;
 }

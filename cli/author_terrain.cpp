@@ -132,12 +132,8 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   s.stream = streamSettings(enc);
   s.tone = toneMapping(enc);
   s.threads = o.threads;
-  try {
-    s.base = baseParams(o);
-    s.variants = parseWeather(o.weather, s.base);
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
-  }
+  s.base = baseParams(o);
+  s.variants = parseWeather(o.weather, s.base);
 
   av_log_set_level(AV_LOG_ERROR);
   Progress progress("vbim author", "frames");

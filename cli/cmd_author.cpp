@@ -288,25 +288,21 @@ void addAuthor(CLI::App& app) {
     if (const std::string why = level1PathProblem(o->isoFile); !o->iso.empty() && !why.empty()) {
       throw Exit(2, "--iso-file '" + o->isoFile + "': " + why);
     }
-    try {
-      const std::string technique = firstTerrainOptionGiven(*terrain);
-      if (technique.empty()) {
-        runAuthor(*o);
-        if (!o->iso.empty()) writeDiscImage(*o);
-        return;
-      }
-      // Technique A renders its own frames: the image-sequence and synthetic options do not apply.
-      if (!o->frames.empty() || !o->sky.empty() || !o->variants.empty() || !o->variantSkies.empty() ||
-          !o->synthetic.empty()) {
-        throw Exit(2, technique +
-                          " selects Technique A, which renders its own frames; it excludes --frames, --sky, "
-                          "--variant, --variant-sky and --synthetic");
-      }
-      runTerrainAuthor(*terrain, o->encode, o->out);
+    const std::string technique = firstTerrainOptionGiven(*terrain);
+    if (technique.empty()) {
+      runAuthor(*o);
       if (!o->iso.empty()) writeDiscImage(*o);
-    } catch (const AuthoringError& e) {
-      throw Exit(2, e.what());
+      return;
     }
+    // Technique A renders its own frames: the image-sequence and synthetic options do not apply.
+    if (!o->frames.empty() || !o->sky.empty() || !o->variants.empty() || !o->variantSkies.empty() ||
+        !o->synthetic.empty()) {
+      throw Exit(2, technique +
+                        " selects Technique A, which renders its own frames; it excludes --frames, --sky, "
+                        "--variant, --variant-sky and --synthetic");
+    }
+    runTerrainAuthor(*terrain, o->encode, o->out);
+    if (!o->iso.empty()) writeDiscImage(*o);
   });
 }
 

@@ -37,11 +37,7 @@ struct ConfigOptions {
 // fault plan's file names are looked up on. Empty without --stream.
 std::optional<streams::StreamDisc> openGivenStream(const ConfigOptions& o) {
   if (o.stream.empty()) return std::nullopt;
-  try {
-    return streams::openStreamDisc(o.stream, o.file);
-  } catch (const iop::DiscError& e) {
-    throw Exit(2, e.what());
-  }
+  return streams::openStreamDisc(o.stream, o.file);
 }
 
 // The pictures the presenters of a run blend: the lightmap and, if the stream has one, the sky.
@@ -53,21 +49,15 @@ struct Presented {
 
 Presented presentedSizes(const streams::StreamDisc* disc) {
   if (disc == nullptr) return {};
-  try {
-    const ee::ProbedStream probed = ee::probeStream(*disc->disc, disc->file);
-    const auto size = [&](int index) {
-      const streams::StreamEntry& e = probed.descriptor.streams[static_cast<std::size_t>(index)];
-      return PictureSize{e.width, e.height};
-    };
-    Presented p;
-    if (probed.lightmapIndex >= 0) p.lightmap = size(probed.lightmapIndex);
-    if (probed.skyIndex >= 0) p.sky = size(probed.skyIndex);
-    return p;
-  } catch (const iop::DiscError& e) {
-    throw Exit(2, e.what());
-  } catch (const ee::StreamProbeError& e) {
-    throw Exit(2, e.what());
-  }
+  const ee::ProbedStream probed = ee::probeStream(*disc->disc, disc->file);
+  const auto size = [&](int index) {
+    const streams::StreamEntry& e = probed.descriptor.streams[static_cast<std::size_t>(index)];
+    return PictureSize{e.width, e.height};
+  };
+  Presented p;
+  if (probed.lightmapIndex >= 0) p.lightmap = size(probed.lightmapIndex);
+  if (probed.skyIndex >= 0) p.sky = size(probed.skyIndex);
+  return p;
 }
 
 // The GS checks `vbim play` makes when it builds the presenters: checkParams for the lightmap's,
@@ -89,23 +79,19 @@ void runConfig(const ConfigOptions& o) {
   describePlatform(table, params);
   Presented presented;
   std::optional<gs::VramLayout> vram;  // checked with --check or --stream (--gs-setup needs --stream)
-  try {
-    if (!o.check.empty()) {
-      config::applyTomlFile(table, o.check);
-      validatePlatform(params);
-    }
-    const std::optional<streams::StreamDisc> given = openGivenStream(o);
-    const streams::StreamDisc* disc = given ? &*given : nullptr;
-    presented = presentedSizes(disc);
-    if (!o.check.empty() || disc != nullptr) vram = checkPresenters(o, presented, params);
-    if (!o.faults.empty()) {
-      // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
-      // disc and LBAs checked against its size, as play does.
-      const iop::FaultPlan plan = config::loadFaultPlan(o.faults, disc != nullptr ? disc->disc.get() : nullptr);
-      std::cerr << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
-    }
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
+  if (!o.check.empty()) {
+    config::applyTomlFile(table, o.check);
+    validatePlatform(params);
+  }
+  const std::optional<streams::StreamDisc> given = openGivenStream(o);
+  const streams::StreamDisc* disc = given ? &*given : nullptr;
+  presented = presentedSizes(disc);
+  if (!o.check.empty() || disc != nullptr) vram = checkPresenters(o, presented, params);
+  if (!o.faults.empty()) {
+    // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
+    // disc and LBAs checked against its size, as play does.
+    const iop::FaultPlan plan = config::loadFaultPlan(o.faults, disc != nullptr ? disc->disc.get() : nullptr);
+    std::cerr << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
   }
   if (!o.check.empty() || !o.stream.empty()) {
     std::cerr << (o.check.empty() ? std::string("the default platform config") : o.check)

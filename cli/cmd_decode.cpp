@@ -68,13 +68,9 @@ void run(const Options& o) {
   std::vector<std::uint8_t> file;
   std::string name = o.input;
   if (streams::isIsoImage(o.input) || !o.file.empty()) {
-    try {
-      const streams::StreamDisc disc = streams::openStreamDisc(o.input, o.file);
-      file = streams::readDiscFile(*disc.disc, disc.file);
-      name += " " + disc.file.path;
-    } catch (const iop::DiscError& e) {
-      throw Exit(2, e.what());
-    }
+    const streams::StreamDisc disc = streams::openStreamDisc(o.input, o.file);
+    file = streams::readDiscFile(*disc.disc, disc.file);
+    name += " " + disc.file.path;
   } else {
     file = readFile(o.input);
   }
@@ -83,20 +79,16 @@ void run(const Options& o) {
   streams::DecodeSummary s;
   Progress progress("vbim decode", "pictures");
   int pictures = 0;
-  try {
-    s = streams::decodeStream(
-        file, name, options,
-        [&](int frame, const ipu::Decoder& d) {
-          writer.write(frame, d);
-          progress.show(++pictures, 0);
-        },
-        [&progress](const std::string& line) {
-          progress.finish();  // a report starts on a line of its own
-          std::cerr << "vbim decode: " << line << "\n";
-        });
-  } catch (const streams::DecodeError& e) {
-    throw Exit(2, e.what());
-  }
+  s = streams::decodeStream(
+      file, name, options,
+      [&](int frame, const ipu::Decoder& d) {
+        writer.write(frame, d);
+        progress.show(++pictures, 0);
+      },
+      [&progress](const std::string& line) {
+        progress.finish();  // a report starts on a line of its own
+        std::cerr << "vbim decode: " << line << "\n";
+      });
   if (o.strict && s.issues > 0)
     throw Exit(2, name + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
   dir.commit();

@@ -183,9 +183,7 @@ void addInfo(CLI::App& app) {
       } else {
         scan = scanStreamFile(*path);
       }
-    } catch (const iop::DiscError& e) {
-      throw Exit(2, e.what());
-    } catch (const std::exception& e) {
+    } catch (const std::exception& e) {  // a scan's own checks throw std::exceptions too: bad input
       throw Exit(2, e.what());
     }
     // How the stream was made, when it says (a record after its video sectors).

@@ -255,15 +255,7 @@ void addLightmap(CLI::App& app) {
   cmd->callback([o, given, cellSize, verticalScale] {
     o->cellSizeGiven = cellSize->count() > 0;
     o->verticalScaleGiven = verticalScale->count() > 0;
-    try {
-      run(*o, *given);
-    } catch (const LightingError& e) {
-      throw Exit(2, e.what());
-    } catch (const imageio::ImageIoError& e) {
-      throw Exit(2, e.what());
-    } catch (const ConfigError& e) {
-      throw Exit(2, e.what());
-    }
+    run(*o, *given);
   });
 }
 

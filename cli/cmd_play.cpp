@@ -44,14 +44,6 @@ namespace vbim::cli {
 
 namespace {
 
-Tick parseTime(const std::string& what, const std::string& text) {
-  try {
-    return iop::parseDuration(text);
-  } catch (const std::exception& e) {
-    throw Exit(2, what + " '" + text + "': " + e.what() + " (expected a time with a unit, e.g. 12.5s or 800ms)");
-  }
-}
-
 // --alpha opaque (the default) writes alpha 255, so viewers show the picture as the GS uses it (the
 // lightmap's alpha is not blended on screen); --alpha gs writes the texels as they are in VRAM
 // (0x80 is the GS's 1.0: GS User's Manual, ALPHA register), which is what hashes.txt hashes.
@@ -127,28 +119,16 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::shared_ptr<iop::SectorSource> disc;
   iop::DiscFile file;
   std::string shown = r.disc;  // the disc as the summary names it
-  try {
-    streams::StreamDisc opened = streams::openStreamDisc(r.disc, r.file);
-    disc = std::move(opened.disc);
-    file = opened.file;
-    if (opened.image) shown += " " + file.path + " (LBA " + std::to_string(file.lba) + ")";
-  } catch (const iop::DiscError& e) {
-    throw Exit(2, e.what());
-  }
+  streams::StreamDisc opened = streams::openStreamDisc(r.disc, r.file);
+  disc = std::move(opened.disc);
+  file = opened.file;
+  if (opened.image) shown += " " + file.path + " (LBA " + std::to_string(file.lba) + ")";
   PlayerOptions o;
-  try {
-    if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
-  }
-  try {
-    if (!r.faults.empty()) {
-      o.faults = config::loadFaultPlan(r.faults, disc.get());
-    } else if (!r.faultsText.empty()) {
-      o.faults = config::parseFaultPlan(r.faultsText, "<built-in fault plan>", disc.get());
-    }
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
+  if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
+  if (!r.faults.empty()) {
+    o.faults = config::loadFaultPlan(r.faults, disc.get());
+  } else if (!r.faultsText.empty()) {
+    o.faults = config::parseFaultPlan(r.faultsText, "<built-in fault plan>", disc.get());
   }
   if (const std::string p = policyName(r.policy); !p.empty()) o.config.gs.catchup = p;
   o.seed = r.seed;
@@ -189,10 +169,6 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   std::unique_ptr<Player> player;
   try {
     player = std::make_unique<Player>(*disc, file, o);
-  } catch (const ee::StreamProbeError& e) {
-    throw Exit(2, e.what());
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
   } catch (const gs::GsError& e) {
     throw Exit(2, gsConfigMessage(e, r.config));
   }

@@ -64,26 +64,22 @@ render::RunRenderRequest requestFor(const RenderOptions& o, const render::RunDir
 
 void runRender(RenderOptions& o) {
   using namespace vbim::render;
-  try {
-    if (!o.camera.empty()) o.req.settings.camera = parseCamera(o.camera);
-    o.req.settings.objects = !o.noObjects;
-    o.req.video = !o.noVideo;
-    const RunDir run = readRunDir(o.run);
-    const RunRenderRequest req = requestFor(o, run);
-    OutputDir dir(o.out, o.force);
-    Progress progress("vbim render", "frames");
-    const RunRenderResult r =
-        renderRun(run, req, dir.path(""), [&progress](int done, int total) { progress.show(done, total); });
-    progress.finish();
-    dir.commit();
-    std::cout << "rendered " << r.frames << " frame(s) of " << o.run << " with " << r.context << " ("
-              << static_cast<int>(r.secondsPerFrame * 1000) << " ms/frame)\n"
-              << "  " << dir.finalPath().string() << "/frames/render_NNNNNN.png\n"
-              << "  " << dir.finalPath().string() << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
-    if (req.video) std::cout << "  " << dir.finalPath().string() << "/playback.mp4\n";
-  } catch (const RenderError& e) {
-    throw Exit(2, e.what());
-  }
+  if (!o.camera.empty()) o.req.settings.camera = parseCamera(o.camera);
+  o.req.settings.objects = !o.noObjects;
+  o.req.video = !o.noVideo;
+  const RunDir run = readRunDir(o.run);
+  const RunRenderRequest req = requestFor(o, run);
+  OutputDir dir(o.out, o.force);
+  Progress progress("vbim render", "frames");
+  const RunRenderResult r =
+      renderRun(run, req, dir.path(""), [&progress](int done, int total) { progress.show(done, total); });
+  progress.finish();
+  dir.commit();
+  std::cout << "rendered " << r.frames << " frame(s) of " << o.run << " with " << r.context << " ("
+            << static_cast<int>(r.secondsPerFrame * 1000) << " ms/frame)\n"
+            << "  " << dir.finalPath().string() << "/frames/render_NNNNNN.png\n"
+            << "  " << dir.finalPath().string() << "/contact_sheet.png   (red frame: stall, orange: catch-up)\n";
+  if (req.video) std::cout << "  " << dir.finalPath().string() << "/playback.mp4\n";
 }
 
 }  // namespace

@@ -66,22 +66,12 @@ void run(const ReplayRequest& r) {
   o.kernels.ipu = &ipu::simdKernels();
   // A bare stream file or the stream on an ISO 9660 image, as play takes it.
   std::vector<std::uint8_t> file;
-  try {
-    const streams::StreamDisc disc = streams::openStreamDisc(r.stream, r.file);
-    file = streams::readDiscFile(*disc.disc, disc.file);
-  } catch (const iop::DiscError& e) {
-    throw Exit(2, e.what());
-  }
+  const streams::StreamDisc disc = streams::openStreamDisc(r.stream, r.file);
+  file = streams::readDiscFile(*disc.disc, disc.file);
   std::unique_ptr<Replay> replay;
-  try {
-    const ArrivalLog log = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
-    if (!r.durationGiven) o.vsyncs = log.vsyncs;  // the run's own length, when the log says it
-    replay = std::make_unique<Replay>(std::span<const std::uint8_t>(file), r.stream, log.arrivals, o);
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
-  } catch (const gs::GsError& e) {
-    throw Exit(2, e.what());
-  }
+  const ArrivalLog log = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
+  if (!r.durationGiven) o.vsyncs = log.vsyncs;  // the run's own length, when the log says it
+  replay = std::make_unique<Replay>(std::span<const std::uint8_t>(file), r.stream, log.arrivals, o);
   OutputDir dir(r.out, r.force);
   std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
   std::filesystem::create_directories(dir.path("frames"));

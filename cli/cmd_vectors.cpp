@@ -61,11 +61,7 @@ std::vector<player::VectorFile> generate(const VectorsRequest& r) {
     bytes.emplace_back(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
     streams.push_back(player::VectorStream{std::filesystem::path(path).stem().string(), bytes.back()});
   }
-  try {
-    return player::knownAnswerVectors(streams);
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
-  }
+  return player::knownAnswerVectors(streams);
 }
 
 void run(const VectorsRequest& r) {
