@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=$(cd "${1:?usage: ci-slurm-sweep.sh BUILD_DIR}" && pwd)
 vbim="$build/cli/vbim"
-plan=tests/profile/plans/array64.toml
+plan=tests/sweep/plans/array64.toml
 work=$(mktemp -d "${TMPDIR:-/tmp}/vbim-slurm-sweep.XXXXXX")
 cleanup() {
   bash scripts/slurm-local.sh stop "$work/slurm" >/dev/null 2>&1 || true

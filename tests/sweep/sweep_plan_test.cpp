@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kPlan = std::string(VBIM_SOURCE_DIR) + "/tests/profile/plans/array64.toml";
+const std::string kPlan = std::string(VBIM_SOURCE_DIR) + "/tests/sweep/plans/array64.toml";
 const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
 
 using Result = vbim::testing::CommandResult;
