@@ -1,6 +1,6 @@
 // vbim config: prints the platform config with every default and its source, or checks a config
 // file (and optionally a fault plan) the way `vbim play` will read them: the same key ranges, the
-// same relations between keys, and the same GS checks (gs::checkParams) for the stream given with
+// same relations between keys, and the same GS checks (gs::checkConsole) for the stream given with
 // --stream, or for the smallest lightmap when none is given (a config no stream can play).
 #include <iostream>
 #include <memory>
@@ -14,7 +14,9 @@
 #include "config/params_toml.hpp"
 #include "ee/error.hpp"
 #include "ee/stream_probe.hpp"
-#include "gs/presenter.hpp"
+#include "gs/draw_checks.hpp"
+#include "gs/error.hpp"
+#include "gs/tiled_blender.hpp"
 #include "iop/error.hpp"
 #include "iop/fault_plan.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -60,14 +62,12 @@ Presented presentedSizes(const streams::StreamDisc* disc) {
   return p;
 }
 
-// The GS checks `vbim play` makes when it builds the presenters: checkParams for the lightmap's,
-// which plans the console's VRAM (returned), and checkSkyParams for the sky's, which draws in it.
+// The GS checks `vbim play` makes when it builds the presenters (gs::checkConsole); returns the VRAM
+// plan they make.
 gs::VramLayout checkPresenters(const ConfigOptions& o, const Presented& p, const PlatformParams& params) {
   try {
     const gs::SkyTexture sky = p.sky ? gs::SkyTexture{p.sky->width, p.sky->height} : gs::SkyTexture{};
-    gs::VramLayout vram = gs::checkParams(params.gs, p.lightmap.width, p.lightmap.height, sky);
-    if (p.sky) gs::checkSkyParams(params.gs, vram, p.sky->width, p.sky->height);
-    return vram;
+    return gs::checkConsole(params.gs, p.lightmap.width, p.lightmap.height, sky);
   } catch (const gs::GsError& e) {
     throw Exit(2, gsConfigMessage(e, o.check));
   }

@@ -18,7 +18,7 @@
 
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "iop/fault_plan.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "plots/profile_figures.hpp"

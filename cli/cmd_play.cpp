@@ -25,7 +25,7 @@
 #include "cli/provenance.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "gs/error.hpp"
 #include "imageio/error.hpp"
 #include "imageio/exr_writer.hpp"

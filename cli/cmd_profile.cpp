@@ -20,7 +20,7 @@
 #include "cli/profile_plan.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "gs/error.hpp"
 #include "iop/params.hpp"
 #include "ipu/simd/simd_kernels.hpp"

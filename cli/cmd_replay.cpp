@@ -14,7 +14,7 @@
 #include "cli/platform_params.hpp"
 #include "cli/play_run.hpp"
 #include "config/platform_config.hpp"
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "gs/error.hpp"
 #include "iop/error.hpp"
 #include "iop/fault_plan.hpp"

@@ -7,7 +7,7 @@
 // The written alpha is As (the texture's alpha passed through MODULATE with vertex alpha 0x80), or
 // the old Ad when FRAME.FBMSK masks the alpha byte.
 //
-// The scalar functions here are the reference: SIMD kernels (gs/blend_simd.hpp) must match them
+// The scalar functions here are the reference: SIMD kernels (gs/simd/blend_simd.hpp) must match them
 // bit for bit, and the tests check that exhaustively.
 #pragma once
 

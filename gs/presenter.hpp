@@ -29,12 +29,14 @@
 #include <vector>
 
 #include "gs/blend.hpp"
+#include "gs/draw_checks.hpp"
 #include "gs/draw_setup.hpp"
 #include "gs/frame_source.hpp"
 #include "gs/gs_timing.hpp"
 #include "gs/params.hpp"
 #include "gs/tiled_blender.hpp"
 #include "gs/vram.hpp"
+#include "gs/vram_plan.hpp"
 #include "runtime/event.hpp"
 #include "runtime/scheduler.hpp"
 #include "runtime/serial_unit.hpp"
@@ -42,36 +44,6 @@
 #include "runtime/vsync.hpp"
 
 namespace vbim::gs {
-
-enum class CatchUp : std::uint8_t { BlendThrough, HardSkip, PlayLate };
-CatchUp catchUpByName(const std::string& name);  // throws GsError
-
-// The size of the sky stream a console shows beside the lightmap (width 0: none, or not known).
-struct SkyTexture {
-  int width = 0;
-  int height = 0;
-};
-
-// The VRAM a game using this presenter would have: frame buffers, Z, the lightmap, the upload
-// staging area (the whole frame, or one strip) and the sky texture (gs.sky_width x gs.sky_height).
-// Given the sky stream's size, also the sky's own staging area ("sky staging", sized as the
-// lightmap's), and the sky stream must fit the sky texture. Throws GsError if it does not fit.
-VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky = {});
-
-// The gs.* keys that decide the VRAM layout (a GsError from planVram names them).
-const std::vector<std::string>& vramLayoutKeys();
-
-// Every check the presenter makes of its parameters before it runs, for a stream of
-// lightmapWidth x lightmapHeight: the names (video, colclamp, alpha write, catch-up, upload mode),
-// FIX, strip rows and the VRAM layout. Returns the layout; throws GsError naming the keys. The
-// Presenter calls it, and so does `vbim config --check`, which has no stream to present: the two
-// cannot disagree.
-VramLayout checkParams(const GsParams& p, int lightmapWidth, int lightmapHeight, SkyTexture sky = {});
-
-// The same checks for the sky presenter of a console whose VRAM plan is `console` (planVram given
-// the sky stream's size): the settings, the sky stream within gs.sky_width x gs.sky_height, and its
-// draw within the plan's "sky" texture and "sky staging" area. Returns the plan.
-VramLayout checkSkyParams(const GsParams& p, const VramLayout& console, int skyWidth, int skyHeight);
 
 // What happened at one vsync.
 struct VsyncRecord {

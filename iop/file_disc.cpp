@@ -83,4 +83,9 @@ std::string FileDisc::describe() const {
   return path_ + " (bare stream at LBA " + std::to_string(file_.lba) + ")";
 }
 
+std::shared_ptr<FileDisc> bareFileDisc(const std::string& path) {
+  const std::int64_t sectors = FileDisc(path, kBareFileLba).file().sectors();
+  return std::make_shared<FileDisc>(path, kBareFileLba, kBareFileLba + sectors + kBareFilePadSectors);
+}
+
 }  // namespace vbim::iop

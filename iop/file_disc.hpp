@@ -4,12 +4,20 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "iop/sector_file.hpp"
 #include "iop/sector_source.hpp"
 
 namespace vbim::iop {
+
+// Where a bare stream file lies on the notional disc (`vbim play`, player::Scenario::bareFile, the
+// sweeps): past a small file system, near the hub (the slowest CAV rate, so timings err on the safe
+// side).
+inline constexpr std::int64_t kBareFileLba = 2048;
+// Zero sectors after the file on the disc, so the drive's read-ahead never runs off the disc.
+inline constexpr std::int64_t kBareFilePadSectors = 1024;
 
 class FileDisc final : public SectorSource {
  public:
@@ -32,5 +40,9 @@ class FileDisc final : public SectorSource {
   DiscFile file_;
   std::int64_t discSectors_ = 0;
 };
+
+// A bare stream file placed at kBareFileLba with kBareFilePadSectors of zeros after it. Throws
+// DiscError as FileDisc does.
+std::shared_ptr<FileDisc> bareFileDisc(const std::string& path);
 
 }  // namespace vbim::iop

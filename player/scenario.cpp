@@ -34,9 +34,8 @@ std::string Run::statsJson() const {
 }
 
 Scenario Scenario::bareFile(const std::string& path) {
-  auto probe = std::make_shared<iop::FileDisc>(path, kBareFileLba);
-  const iop::DiscFile file = probe->file();
-  auto disc = std::make_shared<iop::FileDisc>(path, kBareFileLba, kBareFileLba + file.sectors() + kBareFilePadSectors);
+  auto disc = iop::bareFileDisc(path);
+  const iop::DiscFile file = disc->file();
   return Scenario(std::move(disc), file);
 }
 

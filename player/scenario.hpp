@@ -20,16 +20,16 @@
 #include <vector>
 
 #include "iop/fault_plan.hpp"
+#include "iop/file_disc.hpp"
 #include "iop/sector_source.hpp"
 #include "player/player.hpp"
 
 namespace vbim::player {
 
-// Where `vbim play` and Scenario::bareFile put a bare stream file on the notional disc: past a small
-// file system, near the hub (the slowest CAV rate, so timings err on the safe side).
-inline constexpr std::int64_t kBareFileLba = 2048;
-// Zero sectors after the file on the disc, so the drive's read-ahead never runs off the disc.
-inline constexpr std::int64_t kBareFilePadSectors = 1024;
+// Where Scenario::bareFile (and `vbim play`) put a bare stream file on the notional disc: the IOP's
+// placement of a bare file (iop/file_disc.hpp), named here for the test API.
+using iop::kBareFileLba;
+using iop::kBareFilePadSectors;
 
 // A run in progress: the player plus every row recorded so far.
 class Run {

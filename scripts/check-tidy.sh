@@ -14,7 +14,7 @@ fi
 mapfile -t files < <(python3 - "$build/compile_commands.json" "$PWD" <<'PY'
 import json, os, sys
 root = os.path.realpath(sys.argv[2])
-dirs = ("runtime", "iop", "ee", "ipu", "gs", "player", "streams", "config", "cli", "lighting", "render",
+dirs = ("runtime", "iop", "ee", "ipu", "gs", "player", "sweep", "streams", "config", "cli", "lighting", "render",
         "imageio", "plots", "bench")
 seen = set()
 for entry in json.load(open(sys.argv[1])):

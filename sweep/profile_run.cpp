@@ -13,9 +13,9 @@ using namespace player;
 std::shared_ptr<Stream> bareStream(const std::string& path) {
   auto s = std::make_shared<Stream>();
   s->label = std::filesystem::path(path).stem().string();
-  iop::FileDisc probe(path, kBareFileLba);
-  s->file = probe.file();
-  s->disc = std::make_shared<iop::FileDisc>(path, kBareFileLba, kBareFileLba + s->file.sectors() + kBareFilePadSectors);
+  auto disc = iop::bareFileDisc(path);
+  s->file = disc->file();
+  s->disc = std::move(disc);
   return s;
 }
 
@@ -23,9 +23,9 @@ std::shared_ptr<Stream> memoryStream(const std::string& label, std::vector<std::
   auto s = std::make_shared<Stream>();
   s->label = label;
   const auto sectors = static_cast<std::int64_t>(bytes.size() / iop::kSectorBytes);
-  auto disc = std::make_shared<iop::MemoryDisc>(kBareFileLba + sectors + kBareFilePadSectors,
+  auto disc = std::make_shared<iop::MemoryDisc>(iop::kBareFileLba + sectors + iop::kBareFilePadSectors,
                                                 label + " (re-encoded in memory)");
-  disc->addFile(label + ".vbim", kBareFileLba, std::move(bytes));
+  disc->addFile(label + ".vbim", iop::kBareFileLba, std::move(bytes));
   s->file = *disc->find(label + ".vbim");
   s->disc = std::move(disc);
   return s;

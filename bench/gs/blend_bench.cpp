@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "gs/tiled_blender.hpp"
 #include "runtime/image.hpp"
 #include "runtime/rng.hpp"

@@ -16,7 +16,7 @@
 #include <memory>
 
 #include "config/platform_config.hpp"
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "gs/tiled_blender.hpp"
 #include "iop/memory_disc.hpp"
 #include "ipu/ipu_unit.hpp"

@@ -8,7 +8,6 @@
 #include "ee/error.hpp"
 #include "ee/stream_probe.hpp"
 #include "iop/file_disc.hpp"
-#include "player/scenario.hpp"
 #include "streams/authoring_record.hpp"
 #include "streams/disc/iso_disc.hpp"
 
@@ -87,11 +86,10 @@ StreamDisc openStreamDisc(const std::string& path, const std::string& file) {
                          "bare stream file (no volume descriptor at LBA 16)");
   }
   // A bare stream file at kBareFileLba, with zero sectors after it for the drive's read-ahead.
-  const iop::DiscFile bare = iop::FileDisc(path, player::kBareFileLba).file();
+  auto bare = iop::bareFileDisc(path);
   StreamDisc r;
-  r.file = bare;
-  r.disc = std::make_shared<iop::FileDisc>(path, player::kBareFileLba,
-                                           player::kBareFileLba + bare.sectors() + player::kBareFilePadSectors);
+  r.file = bare->file();
+  r.disc = std::move(bare);
   return r;
 }
 

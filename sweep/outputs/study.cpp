@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "streams/authoring/transcode.hpp"
 #include "sweep/outputs/profile_outputs.hpp"

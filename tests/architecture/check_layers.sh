@@ -1,63 +1,116 @@
 #!/bin/sh
-# Dependencies run one way (docs/architecture.md, "Layers"): no file includes a header of a layer
-# above its own, and of the chips only the EE meets its siblings (the IOP's ring, the stream reader,
-# the GS's frame source). Reads every #include "folder/..." of the project's C++ files.
-#   check_layers.sh <repository root>
+# Dependencies run one way (docs/architecture.md, "Layers"). The table (layers.txt beside this script
+# unless given) puts every folder of product sources in exactly one layer; this fails when
+#  - a folder is listed twice, or holds sources and is not listed;
+#  - a folder holds two layers: a folder of the model (layers 0 to 2) with a file in a library outside
+#    the model (a vbim_library(...) without MODEL in a CMakeLists.txt);
+#  - a file includes a header of a folder in a layer above its own;
+#  - a chip (layer 1) includes another chip's header, except the EE (`ee`), which meets them all.
+# Reads every #include "folder/..." of the listed folders' C++ files.
+#   check_layers.sh [repository root] [layer table] [least number of includes expected]
 set -eu
 root="${1:-.}"
+table="${2:-$(cd "$(dirname "$0")" && pwd)/layers.txt}"
+least="${3:-100}"
+case "$table" in /*) ;; *) table="$(pwd)/$table" ;; esac
 cd "$root"
 
-# The layer of a path (longest folder prefix first); empty for folders the rule does not cover.
+bad=0
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# The table, one "folder layer" per line; a folder listed twice is a folder of two layers.
+if ! awk '!/^[[:space:]]*(#|$)/ {
+            if (NF != 2 || $2 !~ /^[0-9]+$/) { print FILENAME ":" NR ": expected \"folder layer\": " $0; bad = 1; next }
+            if ($1 in layer) { print $1 ": listed twice in the layer table (layers " layer[$1] " and " $2 "): a folder holds one layer"; bad = 1 }
+            layer[$1] = $2; print $1, $2 > "/dev/stderr"
+          }
+          END { exit bad }' "$table" 2>"$work/layers"; then
+  bad=$((bad + 1))
+fi
+sort -u "$work/layers" -o "$work/layers"
+roots=$(cut -d' ' -f1 "$work/layers" | cut -d/ -f1 | sort -u)
+
+# layer_of FOLDER: the folder's layer, empty if the table does not list it.
 layer_of() {
-  case "$1" in
-    streams/authoring/* | streams/disc/* | streams/decode/*) echo 3 ;;
-    lighting/authoring/*) echo 3 ;;
-    runtime/*) echo 0 ;;
-    iop/* | ipu/* | gs/* | ee/* | streams/*) echo 1 ;;
-    player/*) echo 2 ;;
-    sweep/* | config/* | lighting/* | render/* | plots/* | imageio/*) echo 3 ;;
-    cli/*) echo 4 ;;
-    *) echo "" ;;
-  esac
-}
-# The component of a path, for the rule between chips.
-component_of() {
-  case "$1" in
-    streams/*) echo streams ;;
-    *) echo "${1%%/*}" ;;
-  esac
+  awk -v d="$1" '$1 == d { print $2; exit }' "$work/layers"
 }
 
-bad=0
-checked=0
-files=$(find runtime iop ipu gs ee streams player sweep config lighting render plots imageio cli \
-             \( -name '*.cpp' -o -name '*.hpp' \) 2>/dev/null | sort)
-for f in $files; do
-  from=$(layer_of "$f")
-  [ -n "$from" ] || continue
-  for inc in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f"); do
-    to=$(layer_of "$inc")
-    [ -n "$to" ] || continue
-    checked=$((checked + 1))
-    if [ "$to" -gt "$from" ]; then
-      echo "$f: includes $inc, a header of a layer above its own ($to > $from)"
-      bad=$((bad + 1))
-    elif [ "$from" = 1 ] && [ "$to" = 1 ]; then
-      a=$(component_of "$f")
-      b=$(component_of "$inc")
-      if [ "$a" != "$b" ] && [ "$a" != ee ]; then
-        echo "$f: includes $inc: a chip meets another chip only through the EE or the kernel"
-        bad=$((bad + 1))
-      fi
-    fi
-  done
-done
-if [ "$checked" -lt 100 ]; then
+# Every folder holding sources is in the table.
+# shellcheck disable=SC2086
+find $roots \( -name '*.cpp' -o -name '*.hpp' \) 2>/dev/null | sort >"$work/files"
+sed 's|/[^/]*$||' "$work/files" | sort -u >"$work/folders"
+while read -r d; do
+  if [ -z "$(layer_of "$d")" ]; then
+    echo "$d: holds sources but has no layer in the table"
+    bad=$((bad + 1))
+  fi
+done <"$work/folders"
+
+# A folder of the model holds model libraries only: each source of each vbim_library(...), with the
+# library's name and whether it is MODEL.
+# shellcheck disable=SC2086
+find $roots -name CMakeLists.txt 2>/dev/null | sort | while read -r cm; do
+  awk -v dir="${cm%/CMakeLists.txt}" '
+    { sub(/#.*/, ""); text = text " " $0 }
+    END {
+      while ((i = index(text, "vbim_library(")) > 0) {
+        text = substr(text, i + 13)
+        j = index(text, ")"); call = substr(text, 1, j - 1); text = substr(text, j + 1)
+        n = split(call, t, /[[:space:]]+/)
+        name = ""; model = "other"; insrc = 0
+        for (k = 1; k <= n; ++k) {
+          if (t[k] == "") continue
+          if (name == "") { name = t[k]; continue }
+          if (t[k] == "MODEL") { model = "model"; continue }
+          if (t[k] == "SOURCES") { insrc = 1; continue }
+          if (t[k] ~ /^(PUBLIC|PRIVATE|INTERFACE)$/) { insrc = 0; continue }
+          if (insrc) print dir "/" t[k], name, model
+        }
+      }
+    }' "$cm"
+done >"$work/libraries"
+while read -r src lib kind; do
+  d=${src%/*}
+  l=$(layer_of "$d")
+  if [ -n "$l" ] && [ "$l" -le 2 ] && [ "$kind" != model ]; then
+    echo "$d: holds two layers: it is in layer $l (the model), and $src builds $lib, a library outside the model"
+    bad=$((bad + 1))
+  fi
+done <"$work/libraries"
+
+# The includes, in one pass: "checked N" last, each finding before it.
+awk -v layers="$work/layers" '
+  BEGIN { while ((getline line < layers) > 0) { split(line, a, " "); layer[a[1]] = a[2] } }
+  function folder(p) { sub(/\/[^\/]*$/, "", p); return p }
+  {
+    f = $0; d = folder(f)
+    if (!(d in layer)) next
+    while ((getline line < f) > 0) {
+      if (line !~ /^[[:space:]]*#[[:space:]]*include[[:space:]]*"/) continue
+      inc = line; sub(/^[^"]*"/, "", inc); sub(/".*$/, "", inc)
+      if (inc !~ /\//) continue
+      e = folder(inc)
+      if (!(e in layer)) continue
+      ++checked
+      if (layer[e] > layer[d]) {
+        print f ": includes " inc ", a header of a layer above its own (" layer[e] " > " layer[d] ")"
+      } else if (layer[d] == 1 && layer[e] == 1 && d != e && d != "ee") {
+        print f ": includes " inc ": a chip meets another chip only through the EE or the kernel"
+      }
+    }
+    close(f)
+  }
+  END { print "checked " checked + 0 }' "$work/files" >"$work/includes"
+checked=$(sed -n 's/^checked //p' "$work/includes")
+grep -v '^checked ' "$work/includes" || true
+bad=$((bad + $(grep -vc '^checked ' "$work/includes" || true)))
+if [ "$checked" -lt "$least" ]; then
   echo "check_layers: only $checked includes read from $root: wrong directory?"
   exit 1
 fi
 if [ "$bad" -ne 0 ]; then
-  echo "check_layers: $bad include(s) against the layering"
+  echo "check_layers: $bad finding(s) against the layering"
   exit 1
 fi
-echo "check_layers: $checked includes follow the layers"
+echo "check_layers: $(wc -l <"$work/folders") folders in one layer each; $checked includes follow the layers"

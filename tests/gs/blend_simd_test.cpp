@@ -1,6 +1,6 @@
 // Every compiled SIMD target against the scalar reference: every (Cs, Cd, FIX) triple in both
 // COLCLAMP and alpha modes, then random frames with odd lengths and offsets (the tails).
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "runtime/rng.hpp"
 
 namespace vbim::gs {

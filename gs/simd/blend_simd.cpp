@@ -9,7 +9,7 @@
 // multiplier of 128 (As written) or 0 (Ad kept). About 13 vector operations per vector of pixels.
 
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "gs/blend_simd.cpp"
+#define HWY_TARGET_INCLUDE "gs/simd/blend_simd.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
@@ -209,7 +209,7 @@ const char* targetNameHere() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include "gs/blend_simd.hpp"
+#include "gs/simd/blend_simd.hpp"
 
 namespace vbim::gs::simd {
 
