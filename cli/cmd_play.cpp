@@ -5,12 +5,10 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -25,16 +23,14 @@
 #include "cli/provenance.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
-#include "gs/simd/blend_simd.hpp"
 #include "gs/error.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "imageio/error.hpp"
-#include "imageio/exr_writer.hpp"
-#include "imageio/png_writer.hpp"
-#include "imageio/rgba8.hpp"
+#include "imageio/texel_files.hpp"
 #include "ipu/pool_runner.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "player/replay.hpp"
 #include "player/report.hpp"
+#include "player/run_dir.hpp"
 #include "player/scenario.hpp"
 #include "runtime/error.hpp"
 #include "runtime/worker_pool.hpp"
@@ -42,30 +38,9 @@
 
 namespace vbim::cli {
 
-namespace {
-
-// --alpha opaque (the default) writes alpha 255, so viewers show the picture as the GS uses it (the
-// lightmap's alpha is not blended on screen); --alpha gs writes the texels as they are in VRAM
-// (0x80 is the GS's 1.0: GS User's Manual, ALPHA register), which is what hashes.txt hashes.
-Rgba8Image withAlpha(const Rgba8Image& img, bool gsAlpha) {
-  if (gsAlpha) return img;
-  Rgba8Image out = img;
-  for (std::size_t i = 3; i < out.pixels.size(); i += 4) out.pixels[i] = 255;
-  return out;
-}
-
-}  // namespace
-
 void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha) {
-  const Rgba8Image img = withAlpha(texels, gsAlpha);
   try {
-    if (exr) {
-      std::vector<float> scaled(img.pixels.size());  // 8-bit texels as 0..1 (alpha 0x80 = 0.502)
-      for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = static_cast<float>(img.pixels[i]) / 255.0f;
-      imageio::writeExr(path, imageio::ImageView<float>{img.width, img.height, 4, scaled.data()});
-    } else {
-      imageio::writePng(path, imageio::rgbaView(img));
-    }
+    imageio::writeTexelImage(path, texels, exr, gsAlpha);
   } catch (const imageio::ImageIoError& e) {
     throw Exit(1, e.what());
   }
@@ -116,12 +91,10 @@ std::string policyName(const std::string& p) {
 std::string runPlay(const PlayRequest& r, bool progress) {
   using namespace vbim::player;
   // The disc: an ISO 9660 image and the stream on it, or a bare stream file at kBareFileLba.
-  std::shared_ptr<iop::SectorSource> disc;
-  iop::DiscFile file;
+  const streams::StreamDisc opened = streams::openStreamDisc(r.disc, r.file);
+  const std::shared_ptr<iop::SectorSource>& disc = opened.disc;
+  const iop::DiscFile& file = opened.file;
   std::string shown = r.disc;  // the disc as the summary names it
-  streams::StreamDisc opened = streams::openStreamDisc(r.disc, r.file);
-  disc = std::move(opened.disc);
-  file = opened.file;
   if (opened.image) shown += " " + file.path + " (LBA " + std::to_string(file.lba) + ")";
   PlayerOptions o;
   if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
@@ -185,51 +158,18 @@ std::string runPlay(const PlayRequest& r, bool progress) {
       a << *record << "\n";  // kept as the stream holds it; render reports what is wrong with it
     }
   }
-  std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
-  std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
-  timeline << timelineHeader();
-  // Each frame the presenters receive, as a port would log it: `vbim replay` reproduces hashes.txt.
-  std::ofstream arrivals(dir.path("arrivals.csv"), std::ios::binary);
-  arrivals << arrivalsHeader();
-  const VsyncClock vsyncs = player->pipeline().lightmap().clock();
-  player->pipeline().setArrivalHook([&](bool sky, int variant, std::int64_t seq, Tick readyAt) {
-    arrivals << arrivalLine(ReplayArrival{gs::firstVsyncAtOrAfter(vsyncs, readyAt), sky, variant, seq});
-  });
-  std::filesystem::create_directories(dir.path("frames"));
-  const bool exr = r.format == "exr";
-  std::int64_t images = 0;
-  auto nextAt = atTimes.begin();
-  std::int64_t presented = 0;  // the vsyncs of hashes.txt: arrivals.csv's end row, for replay
-  player->setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
-    hashes << hashesLine(row);
-    ++presented;
-    timeline << timelineLine(row);
-    if (r.onRow) r.onRow(row);
-    bool shoot = r.every > 0 && row.vsync % r.every == 0;
-    while (nextAt != atTimes.end() && *nextAt <= row.at) {
-      shoot = true;
-      ++nextAt;
-    }
-    if (!shoot) return;
-    char name[64];
-    std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
-    const bool gsAlpha = r.alpha == "gs";
-    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, gsAlpha);
-    if (sky != nullptr) {
-      writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, gsAlpha);
-    }
-    ++images;
-  });
-
-  // The trace streams to its files as the run goes (memory independent of the run's length).
-  std::ofstream traceJson;
-  std::ofstream traceVcd;
-  if (r.trace) {
-    traceJson.open(dir.path("trace.json"), std::ios::binary);
-    traceVcd.open(dir.path("signals.vcd"), std::ios::binary);
-    player->tracer().streamTo(traceJson, traceVcd,
-                              r.traceDetail == "full" ? TraceDetail::kFull : TraceDetail::kCoalesced);
-  }
+  RunDirOptions files;
+  files.every = r.every;
+  files.at = atTimes;
+  files.imageExtension = r.format;
+  files.writeImage = [exr = r.format == "exr", gsAlpha = r.alpha == "gs"](const std::filesystem::path& path,
+                                                                          const Rgba8Image& texels) {
+    writeRunImage(path, texels, exr, gsAlpha);
+  };
+  files.trace = r.trace;
+  files.traceDetail = r.traceDetail == "full" ? TraceDetail::kFull : TraceDetail::kCoalesced;
+  files.onRow = r.onRow;
+  RunDirWriter writer(*player, dir.directory(), files);
 
   const auto wall0 = std::chrono::steady_clock::now();  // host time: the summary only
   const std::clock_t cpu0 = std::clock();               // CPU time of every thread: the summary only
@@ -244,50 +184,23 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
-  hashes.close();
-  timeline.close();
-  arrivals << arrivalsEndLine(presented);
-  arrivals.close();
-  {
-    std::ofstream f(dir.path("stats.json"), std::ios::binary);
+  try {
     const json::Value run = provenance(r, o);
-    writeStatsJson(*player, f, &run);
-  }
-  if (r.trace) {
-    player->tracer().finish();
-    traceJson.close();
-    traceVcd.close();
-    if (!traceJson || !traceVcd) throw Exit(1, dir.path("trace.json").string() + ": cannot write the trace files");
+    writer.finish(&run);
+  } catch (const Error& e) {
+    throw Exit(1, e.what());
   }
   if (r.beforeCommit) r.beforeCommit(dir);
   dir.commit();
 
-  const auto& c = player->pipeline().lightmap().counters();
-  const RunTotals& tot = player->totals();
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(1);
-  s << "played " << toSeconds(o.duration) << " s of " << (r.discLabel.empty() ? shown : r.discLabel) << " ("
-    << tot.vsyncs << " vsyncs) in " << std::setprecision(2) << wall << " s of host time (" << std::setprecision(1)
-    << toSeconds(o.duration) / std::max(wall, 1e-9) << "x real time), " << std::setprecision(2) << cpu
-    << " s of CPU time (" << std::setprecision(1) << toSeconds(o.duration) / std::max(cpu, 1e-9) << "x real time)\n"
-    << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
-    << c.framesCaughtUp << " caught up; " << c.loopWraps << " loop wrap(s), " << c.branches << " branch(es)\n"
-    << "  pop max " << tot.pop.value << " at " << toSeconds(tot.pop.at) << " s; lag max " << tot.lag.value;
-  if (tot.lag.vsync >= 0) s << " at " << toSeconds(tot.lag.at) << " s";
-  s << (player->hasReference() ? " (against a fault-free reference run)" : " (no faults: no reference needed)")
-    << "\n  ring underruns " << player->pipeline().ring().stats().underruns << " ("
-    << player->pipeline().ring().stats().startupPolls << " while the stream started, "
-    << player->pipeline().ring().stats().seekPolls << " after seeks), drive retries "
-    << player->pipeline().drive().stats().retries << ", damaged/lost frames "
-    << player->pipeline().demux().counters().picturesDamaged + player->pipeline().demux().counters().framesLost
-    << ", images written " << images << "\n";
+  std::string s = playSummary(*player, r.discLabel.empty() ? shown : r.discLabel, wall, cpu, writer.images());
   // A run that completed but stopped showing frames says so loudly (stderr) as well as in the summary.
-  if (const std::string warning = healthWarning(runHealth(c, tot)); !warning.empty()) {
-    s << "  " << warning << "\n";
+  if (const std::string warning = healthWarning(runHealth(player->pipeline().lightmap().counters(), player->totals()));
+      !warning.empty()) {
+    s += "  " + warning + "\n";
     std::cerr << "vbim play: " << warning << "\n";
   }
-  return s.str();
+  return s;
 }
 
 void addPlay(CLI::App& app) {

@@ -60,6 +60,7 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   void setArrivalHook(ArrivalHook hook) { arrivalHook_ = std::move(hook); }
 
   gs::Presenter& lightmap() { return *lightmap_; }
+  const gs::Presenter& lightmap() const { return *lightmap_; }
   gs::Presenter* sky() { return sky_.get(); }
   const SerialUnit& gsUnit() const { return gs_; }
   const iop::Drive& drive() const { return drive_; }

@@ -90,6 +90,7 @@ class Player {
   Player& operator=(const Player&) = delete;
 
   void setSink(Sink sink) { sink_ = std::move(sink); }
+  const Sink& sink() const { return sink_; }
   // Runs the simulation up to time t (at most to the duration). May be called repeatedly.
   void runTo(Tick t);
   void runToEnd() { runTo(options_.duration); }

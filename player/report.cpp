@@ -1,9 +1,12 @@
 #include "player/report.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cinttypes>
 #include <cstdio>
+#include <iomanip>
 #include <ostream>
+#include <sstream>
 
 #include "player/frame_hash.hpp"
 #include "runtime/json.hpp"
@@ -250,6 +253,30 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
   j["ee_reorder"] = json::object({{"qwords", dc.reorderedQwords}, {"busy_ticks", dc.reorderBusy}});
   j["vsyncs_recorded"] = t.vsyncs;
   out << j.dump(2) << "\n";
+}
+
+std::string playSummary(const Player& player, const std::string& disc, double wall, double cpu, std::int64_t images) {
+  const Pipeline& p = player.pipeline();
+  const gs::PresenterCounters& c = p.lightmap().counters();
+  const RunTotals& tot = player.totals();
+  const double seconds = toSeconds(player.duration());
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << "played " << seconds << " s of " << disc << " (" << tot.vsyncs << " vsyncs) in " << std::setprecision(2) << wall
+    << " s of host time (" << std::setprecision(1) << seconds / std::max(wall, 1e-9) << "x real time), "
+    << std::setprecision(2) << cpu << " s of CPU time (" << std::setprecision(1) << seconds / std::max(cpu, 1e-9)
+    << "x real time)\n"
+    << "  frames: " << c.framesShown << " shown, " << c.framesLate << " late, " << c.framesDropped << " dropped, "
+    << c.framesCaughtUp << " caught up; " << c.loopWraps << " loop wrap(s), " << c.branches << " branch(es)\n"
+    << "  pop max " << tot.pop.value << " at " << toSeconds(tot.pop.at) << " s; lag max " << tot.lag.value;
+  if (tot.lag.vsync >= 0) s << " at " << toSeconds(tot.lag.at) << " s";
+  s << (player.hasReference() ? " (against a fault-free reference run)" : " (no faults: no reference needed)")
+    << "\n  ring underruns " << p.ring().stats().underruns << " (" << p.ring().stats().startupPolls
+    << " while the stream started, " << p.ring().stats().seekPolls << " after seeks), drive retries "
+    << p.drive().stats().retries << ", damaged/lost frames "
+    << p.demux().counters().picturesDamaged + p.demux().counters().framesLost << ", images written " << images << "\n";
+  return s.str();
 }
 
 }  // namespace vbim::player

@@ -33,6 +33,12 @@ std::string healthWarning(const RunHealth& h);
 std::string hashesLine(const VsyncRow& row);
 std::string timelineHeader();
 std::string timelineLine(const VsyncRow& row);
+// The paragraph `vbim play` prints after a run: its length, host and CPU time (measured by the
+// caller: the model reads no clock), frames shown, late, dropped and caught up, pop and lag maxima,
+// ring underruns, retries, damage and the `images` written. `disc` names the disc.
+std::string playSummary(const Player& player, const std::string& disc, double wallSeconds, double cpuSeconds,
+                        std::int64_t images);
+
 // Everything stats.json holds, for a run that has been run to its end (or to now()).
 // `run`, when given, is written first as "run": where the run came from (the command's inputs and
 // their digests, the vbim version: cli/provenance.hpp), so the totals can be traced to their inputs.
