@@ -317,7 +317,25 @@ TEST(PlayCli, TheStallExampleMakesLateFramesAndACatchUp) {
   EXPECT_GE(number("frames_caught_up"), 3) << stats;
   EXPECT_NE(r.output.find("lag max "), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("lag max 0 "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("the faults changed nothing"), std::string::npos) << r.output;
   fs::remove_all(out);
+}
+
+// A stall that the buffers absorb (the sample day is in the EE's buffers by 8 s) changes nothing,
+// and the summary says so instead of letting it pass for a survived fault.
+TEST(PlayCli, FaultsThatChangeNothingAreNamedInTheSummary) {
+  const fs::path out = scratch("absorbed_stall");
+  const fs::path plan = scratch("absorbed_stall.toml");
+  std::ofstream(plan) << "[[fault]]\nkind = \"stall\"\nat = \"8s\"\nduration = \"6s\"\n";
+  const auto r =
+      play(kSample + " --faults " + plan.string() + " --duration 30s --every 0 --no-trace --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("the faults changed nothing on screen"), std::string::npos) << r.output;
+  const auto clean = play(kSample + " --duration 5s --every 0 --no-trace --out " + out.string() + " --force");
+  ASSERT_EQ(clean.status, 0) << clean.output;
+  EXPECT_EQ(clean.output.find("the faults changed nothing"), std::string::npos) << clean.output;  // no faults at all
+  fs::remove_all(out);
+  fs::remove(plan);
 }
 
 }  // namespace
