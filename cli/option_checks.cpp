@@ -119,9 +119,13 @@ void refuseOptionsAsValues(CLI::App& app) {
   for (CLI::Option* opt : app.get_options({})) {
     if (!opt->nonpositional() || opt->get_type_size_min() <= 0) continue;  // flags and positionals
     const std::string expected = expectedValue(*opt);
+    const std::string expectedIfEmpty = opt->check_lname("out") ? "the name of what to write" : expected;
     // transform() puts the check first, so it speaks before inputFile() says "no such file".
     opt->transform(CLI::Validator(
-        [expected](std::string& s) {
+        [expected, expectedIfEmpty](std::string& s) {
+          // An empty value (`--out ''`, an unset shell variable) would otherwise run the whole job
+          // and fail only when the output is moved into place.
+          if (s.empty()) return "is empty; expected " + expectedIfEmpty;
           return s.rfind("--", 0) == 0 ? "expects " + expected + ", got the option '" + s + "'" : std::string();
         },
         "", "not an option"));

@@ -28,8 +28,9 @@ const CLI::Validator& nonNegativeInteger();
 void checkNumbersStrictly(CLI::App& app);
 
 // Makes every option of `app` and its subcommands that takes a value refuse a value starting with
-// "--" (the user left the value out and the next option was taken in its place), before any other
-// check of the value: "--check: expects a file, got the option '--stream'". Call it after
+// "--" (the user left the value out and the next option was taken in its place) and an empty value
+// (`--out ''`), before any other check of the value and so before any work: "--check: expects a
+// file, got the option '--stream'", "--out: is empty; expected the name of what to write". Call it after
 // checkNumbersStrictly, which sets the type names it reads.
 void refuseOptionsAsValues(CLI::App& app);
 

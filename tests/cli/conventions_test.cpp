@@ -401,4 +401,17 @@ TEST(CliConventions, TheNextRunRemovesWhatAKilledRunLeft) {
   fs::remove_all(dir);
 }
 
+// An empty value is refused before any work (issue #33: `--out ''` ran the whole job and failed only
+// when the output was moved into place).
+TEST(CliConventions, EmptyValuesAreRefusedBeforeAnyWork) {
+  for (const std::string& args : {"play " + kSample + " --duration 2s --out ''", "decode " + kSample + " --out ''",
+                                  std::string("author --procedural --size 64 --frame-count 2 --out ''"),
+                                  "play " + kSample + " --seed '' --out x"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(": is empty; expected "), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("cannot move"), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
 }  // namespace
