@@ -35,6 +35,7 @@ struct Options {
   std::string outDir;
   std::string format = "png";
   std::string stream;
+  std::string idct = ipu::idctKindName(ipu::kDefaultIdct);
   unsigned threads = 0;
   bool force = false;
   bool strict = false;
@@ -63,6 +64,7 @@ streams::FrameFileFormat formatOf(const std::string& name) {
 void run(const Options& o) {
   streams::DecodeOptions options;
   options.threads = o.threads;
+  options.idct = ipu::idctKindByName(o.idct).value_or(ipu::kDefaultIdct);
   if (!o.stream.empty()) options.streamId = parseStreamId(o.stream);
   // A disc image: the picked file's bytes, named by image and file in messages.
   std::vector<std::uint8_t> file;
@@ -118,6 +120,9 @@ void addDecode(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)")
       ->capture_default_str()
       ->check(hostThreads());
+  cmd->add_option("--idct", o->idct, "Inverse DCT as ipu.idct: pcsx2, libmpeg2 (mpeg2dec -c) or exact")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"pcsx2", "libmpeg2", "exact"}));
   cmd->add_option("--th0", o->th0, "SETTH TH0: pixels with R, G, B all below it become transparent black")
       ->check(CLI::Range(0, 511));
   cmd->add_option("--th1", o->th1, "SETTH TH1: pixels with R, G, B all below it get alpha 0x40")

@@ -26,6 +26,7 @@ struct VectorsRequest {
   std::vector<std::string> streams;  // --stream; empty: kDefaultStreams
   std::string out;
   std::string check;
+  std::string idct = ipu::idctKindName(ipu::kDefaultIdct);
   bool force = false;
 };
 
@@ -61,7 +62,7 @@ std::vector<player::VectorFile> generate(const VectorsRequest& r) {
     bytes.emplace_back(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
     streams.push_back(player::VectorStream{std::filesystem::path(path).stem().string(), bytes.back()});
   }
-  return player::knownAnswerVectors(streams);
+  return player::knownAnswerVectors(streams, ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct));
 }
 
 void run(const VectorsRequest& r) {
@@ -107,6 +108,9 @@ void addVectors(CLI::App& app) {
                   "Stream files whose pictures become IPU vectors (repeatable; default: the samples day_clear.vbim "
                   "and day_weather.vbim, from share/vbim/samples beside an installed vbim or the source tree)")
       ->check(inputFile());
+  cmd->add_option("--idct", r->idct, "The platform's inverse DCT (ipu.idct): pcsx2, libmpeg2 or exact")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"pcsx2", "libmpeg2", "exact"}));
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
   cmd->footer(
       "Examples:\n"

@@ -105,4 +105,9 @@ void idctSigned(const std::int16_t* block, std::int16_t* out) {
   });
 }
 
+void idctSignedUnclipped(const std::int16_t* block, unsigned rowMask, std::int16_t* out) {
+  idctCore(block, rowMask & 0xFF,
+           [out](int y, int x, std::int64_t v) { out[8 * y + x] = static_cast<std::int16_t>(v); });
+}
+
 }  // namespace vbim::ipu

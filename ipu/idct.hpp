@@ -28,6 +28,9 @@ void idctScalar(const std::int16_t* block, unsigned rowMask, std::uint8_t* dst, 
 
 // The same transform with signed output clipped to [-256, 255] (IEEE 1180-1990 test interface).
 void idctSigned(const std::int16_t* block, std::int16_t* out);
+// The same transform's signed result before any clip (|result| < 2^14 for any input in range): the
+// residual of a non-intra block. rowMask as for idctScalar.
+void idctSignedUnclipped(const std::int16_t* block, unsigned rowMask, std::int16_t* out);
 
 // The value every sample of a block takes when only F[0][0] is non-zero: (dc + 4) >> 3, clamped.
 inline std::uint8_t idctDcValue(int dc) {

@@ -10,8 +10,9 @@ namespace {
 // The timing needs the macroblock trace. One IPU decodes the lightmap's and the sky's pictures in
 // turn: a macroblock it conceals is mid-grey, never the picture decoded before (maybe the other
 // stream's), and the same whatever came before, as in replay, which decodes each picture alone.
-DecoderOptions unitOptions(DecoderOptions o) {
+DecoderOptions unitOptions(DecoderOptions o, const IpuParams& p) {
   o.recordMacroblocks = true;
+  o.idct = idctKindOf(p);  // the platform's IDCT
   o.freshStorePerDecode = true;
   return o;
 }
@@ -22,7 +23,7 @@ IpuUnit::IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer, DecoderOption
     : s_(s),
       p_(p),
       tracer_(tracer && tracer->enabled() ? tracer : nullptr),
-      decoder_(unitOptions(options)),
+      decoder_(unitOptions(options, p)),
       timeline_(p),
       commands_(s, 1, "ipu.commands") {
   if (tracer_) track_ = tracer_->track("ipu");

@@ -43,6 +43,7 @@ struct TimedPicture {
 
 class IpuUnit {
  public:
+  // The inverse DCT is the platform's (p.idct), whatever options.idct says.
   IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer = nullptr, DecoderOptions options = {});
   IpuUnit(const IpuUnit&) = delete;
   IpuUnit& operator=(const IpuUnit&) = delete;

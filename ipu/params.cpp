@@ -28,6 +28,14 @@ void describeParams(ParamTable& t, IpuParams& p) {
            "T-DMA: DMAC moves 1 qword per bus cycle while the FIFO has room (docs/hardware.md#ipu-dma)");
   t.addInt("ipu.fromipu_cycles_per_qword", &p.fromipu_cycles_per_qword, 1, 1'000, "bus cycles/qword",
            "T-DMA: DMAC moves 1 qword per bus cycle (docs/hardware.md#ipu-dma)");
+  t.addChoice("ipu.idct", &p.idct, {"pcsx2", "libmpeg2", "exact"},
+              "the inverse DCT, not known from a hardware capture [A]: pcsx2 = PCSX2's IPU (libmpeg2 0.4's "
+              "integer IDCT), libmpeg2 = libmpeg2 0.5.1's C IDCT (mpeg2dec -c), exact = exact-rounded "
+              "(docs/timing/ipu.md#idct)");
+}
+
+IdctKind idctKindOf(const IpuParams& p) {
+  return idctKindByName(p.idct).value_or(kDefaultIdct);
 }
 
 }  // namespace vbim::ipu

@@ -4,23 +4,29 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
+#include "ipu/kernels.hpp"
 #include "runtime/params.hpp"
 
 namespace vbim::ipu {
 
 struct IpuParams {
-  std::int64_t mb_base_cycles = 400;          // per macroblock, VLD + IQ + IDCT fixed part
-  std::int64_t mb_cycles_per_bit = 1;         // per input bit of the macroblock
-  std::int64_t csc_cycles_per_mb = 256;       // colour conversion, 1 pixel per cycle
-  std::int64_t idec_start_cycles = 32;        // IDEC start latency (PCSX2: 64 EE cycles)
-  std::int64_t slice_restart_cycles = 300;    // EE restart of IDEC at each later slice (assumption)
-  std::int64_t in_fifo_qwords = 8;            // input FIFO depth
-  std::int64_t in_buffer_qwords = 2;          // internal bit buffer (IPU_BP.FP)
-  std::int64_t out_fifo_qwords = 8;           // output FIFO depth
-  std::int64_t toipu_cycles_per_qword = 1;    // DMAC ch4 (toIPU) rate
-  std::int64_t fromipu_cycles_per_qword = 1;  // DMAC ch3 (fromIPU) rate
+  std::int64_t mb_base_cycles = 400;              // per macroblock, VLD + IQ + IDCT fixed part
+  std::int64_t mb_cycles_per_bit = 1;             // per input bit of the macroblock
+  std::int64_t csc_cycles_per_mb = 256;           // colour conversion, 1 pixel per cycle
+  std::int64_t idec_start_cycles = 32;            // IDEC start latency (PCSX2: 64 EE cycles)
+  std::int64_t slice_restart_cycles = 300;        // EE restart of IDEC at each later slice (assumption)
+  std::int64_t in_fifo_qwords = 8;                // input FIFO depth
+  std::int64_t in_buffer_qwords = 2;              // internal bit buffer (IPU_BP.FP)
+  std::int64_t out_fifo_qwords = 8;               // output FIFO depth
+  std::int64_t toipu_cycles_per_qword = 1;        // DMAC ch4 (toIPU) rate
+  std::int64_t fromipu_cycles_per_qword = 1;      // DMAC ch3 (fromIPU) rate
+  std::string idct = idctKindName(kDefaultIdct);  // the inverse DCT: "pcsx2", "libmpeg2" or "exact"
 };
+
+// The IdctKind named by p.idct (a choice parameter, so always one of the three).
+IdctKind idctKindOf(const IpuParams& p);
 
 void describeParams(ParamTable& table, IpuParams& p);
 

@@ -60,7 +60,7 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   PictureParams& p = params_;
   p = PictureParams{};
   p.mpeg1 = !seq_.mpeg2;
-  p.idct = (options_.kernels ? *options_.kernels : scalarKernels()).idct;
+  p.idct = kernels().idctOf(options_.idct).copy;
   p.mbWidth = mbw;
   p.intraMatrix = seq_.intraMatrix;
   p.tallPicture = seq_.height > 2800;

@@ -42,6 +42,7 @@ struct DecoderOptions {
   // instead of the previous picture's: the player's IpuUnit, which decodes two streams in turn.
   bool freshStorePerDecode = false;
   const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
+  IdctKind idct = kDefaultIdct;      // which inverse DCT (ipu/kernels.hpp; platform parameter ipu.idct)
 };
 
 // RGB32 output written by the decode itself (alpha 0x80, SETTH thresholds): after each picture the

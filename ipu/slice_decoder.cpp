@@ -260,8 +260,8 @@ void SliceDecoder::storeBlock(int b, std::uint8_t* dst, int stride) {
   const unsigned rowMask = mb_.rowMask[b];
   const int dc = blk[0];
   // DC only, or DC that is a multiple of 8 plus only the mismatch toggle of F[7][7]: the exact
-  // transform is the constant dc / 8 (the toggle adds less than 0.25 everywhere), and idctScalar
-  // gives the same value (checked exhaustively in tests/ipu/idct_test.cpp).
+  // transform is the constant dc / 8 (the toggle adds less than 0.25 everywhere), and every
+  // IdctKind gives the same value (checked exhaustively in tests/ipu/idct_test.cpp).
   const bool dcOnly = !mb_.acPresent[b] && (rowMask == 1 || (dc & 7) == 0);
   if (dcOnly) {
     const std::uint8_t v = idctDcValue(dc);

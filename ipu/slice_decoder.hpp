@@ -18,7 +18,7 @@ namespace vbim::ipu {
 // Everything a slice needs that is fixed for the picture.
 struct PictureParams {
   bool mpeg1 = false;
-  IdctFn idct = nullptr;  // inverse DCT kernel (scalarKernels() or simdKernels())
+  IdctFn idct = nullptr;  // inverse DCT kernel of the chosen IdctKind (scalarKernels() or simdKernels())
   int mbWidth = 0;
   int mbRows = 0;            // macroblock rows of this picture (a field picture has half the frame's)
   bool tallPicture = false;  // vertical_size > 2800: slices carry slice_vertical_position_extension

@@ -122,8 +122,8 @@ VectorFile blendVectors() {
   return VectorFile{"blend.txt", t};
 }
 
-std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& streams) {
-  return {frameHashVectors(), blendVectors(), streamReadVectors(), ipuVectors(streams)};
+std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& streams, ipu::IdctKind idct) {
+  return {frameHashVectors(), blendVectors(), streamReadVectors(), ipuVectors(streams, idct)};
 }
 
 std::optional<VectorDifference> compareVectors(const VectorFile& expected, const std::string* found) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "ipu/kernels.hpp"
 #include "runtime/image.hpp"
 
 namespace vbim::player {
@@ -29,14 +30,16 @@ struct VectorStream {
   std::span<const std::uint8_t> bytes;
 };
 
-// The four files, in a fixed order: frame_hash.txt, blend.txt, cdstread.txt, ipu.txt.
-std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& streams);
+// The four files, in a fixed order: frame_hash.txt, blend.txt, cdstread.txt, ipu.txt. `idct` is the
+// platform's inverse DCT (ipu.idct): the IPU vectors depend on it.
+std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& streams,
+                                           ipu::IdctKind idct = ipu::kDefaultIdct);
 
 VectorFile frameHashVectors();
 VectorFile blendVectors();
 VectorFile streamReadVectors();
 // Throws ConfigError when a stream holds no descriptor or no picture.
-VectorFile ipuVectors(const std::vector<VectorStream>& streams);
+VectorFile ipuVectors(const std::vector<VectorStream>& streams, ipu::IdctKind idct = ipu::kDefaultIdct);
 
 // The frame hash (player/frame_hash.hpp) of `bytes` read as an RGBA8 image `width` pixels (4 bytes
 // each) wide: how the vectors hash any IPU output (RGB16 output is read as 2 pixels per 4 bytes).

@@ -65,8 +65,10 @@ std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> picturesOf(co
   return out;
 }
 
-void addPicture(std::string& t, const std::string& prefix, const std::vector<std::uint8_t>& data) {
-  ipu::Decoder decoder;
+void addPicture(std::string& t, const std::string& prefix, const std::vector<std::uint8_t>& data, ipu::IdctKind idct) {
+  ipu::DecoderOptions options;
+  options.idct = idct;
+  ipu::Decoder decoder(options);
   decoder.decode(data);
   const int w = decoder.width();
   const int h = decoder.height();
@@ -95,7 +97,7 @@ void addPicture(std::string& t, const std::string& prefix, const std::vector<std
 
 }  // namespace
 
-VectorFile ipuVectors(const std::vector<VectorStream>& streams) {
+VectorFile ipuVectors(const std::vector<VectorStream>& streams, ipu::IdctKind idct) {
   std::string t =
       "# vbim known answers: the IPU's output per picture (ipu/picture_decoder.hpp, ipu/csc.hpp)\n"
       "# KEY ipu/STREAM/lightmap|sky/frame=GLOBAL_FRAME/picture  VALUE bytes=N,size=WxH: the picture as the\n"
@@ -104,7 +106,9 @@ VectorFile ipuVectors(const std::vector<VectorStream>& streams) {
       "#   OUTPUT rgb32 (OFM 0), rgb16 (OFM 1, DTE 0), rgb16_dither (OFM 1, DTE 1); _th: SETTH TH0 = 32,\n"
       "#   TH1 = 96, else TH0 = TH1 = 0. raster: rows top to bottom; macroblock: the IPU's order, 16x16\n"
       "#   macroblocks left to right, top to bottom, each 16 rows of 16 pixels (64 qwords RGB32, 32 RGB16).\n"
-      "#   The bytes are hashed as an RGBA8 image W x H (RGB32) or W/2 x H (RGB16, little-endian pixels).\n";
+      "#   The bytes are hashed as an RGBA8 image W x H (RGB32) or W/2 x H (RGB16, little-endian pixels).\n"
+      "# IDCT: " +
+      std::string(ipu::idctKindName(idct)) + " (platform parameter ipu.idct, docs/timing/ipu.md#idct)\n";
   for (const VectorStream& s : streams) {
     const auto pictures = picturesOf(s);
     for (const auto& [id, name] : {std::pair<int, const char*>{0xE0, "lightmap"}, {0xE1, "sky"}}) {
@@ -118,7 +122,7 @@ VectorFile ipuVectors(const std::vector<VectorStream>& streams) {
       if (frames.size() > 1) chosen.push_back(frames[1]);
       if (frames.size() > 2) chosen.push_back(frames.back());
       for (const std::uint32_t f : chosen) {
-        addPicture(t, "ipu/" + s.label + "/" + name + "/frame=" + std::to_string(f), pictures.at({id, f}));
+        addPicture(t, "ipu/" + s.label + "/" + name + "/frame=" + std::to_string(f), pictures.at({id, f}), idct);
       }
     }
   }

@@ -153,6 +153,7 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
       }
       ipu::DecoderOptions o;
       o.kernels = im.options.kernels.ipu;
+      o.idct = ipu::idctKindOf(im.options.config.ipu);
       ipu::Decoder decoder(o);
       ipu::decodeToRgba(decoder, it->second, out);
       return out;

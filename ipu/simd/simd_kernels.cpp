@@ -163,7 +163,7 @@ void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
 #else
 // One-lane fallback target: no 16-bit pairs in a 32-bit lane; the scalar reference.
 void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  scalarKernels().idct(block, rowMask, colMask, dst, stride);
+  scalarKernels().idctOf(IdctKind::Exact).copy(block, rowMask, colMask, dst, stride);
 }
 #endif
 
@@ -271,7 +271,9 @@ void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::
 }
 
 const Kernels& simdKernels() {
-  static const Kernels k{idctSimd, cscRowsRgba32Simd, "highway"};
+  // The libmpeg2-family kinds and the exact kind's non-intra entry: the scalar references for now.
+  const Kernels& s = scalarKernels();
+  static const Kernels k{{s.idct[0], s.idct[1], {idctSimd, s.idct[2].add}}, cscRowsRgba32Simd, "highway"};
   return k;
 }
 

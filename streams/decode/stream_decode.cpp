@@ -49,6 +49,7 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
 
   ipu::DecoderOptions decoderOptions;
   decoderOptions.kernels = &ipu::simdKernels();  // same bytes as the scalar reference, faster
+  decoderOptions.idct = options.idct;
   ipu::Decoder decoder(decoderOptions);
   std::unique_ptr<WorkerPool> pool;
   if (options.threads > 1) pool = std::make_unique<WorkerPool>(options.threads - 1);

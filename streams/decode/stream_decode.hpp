@@ -19,8 +19,9 @@
 namespace vbim::streams {
 
 struct DecodeOptions {
-  std::optional<std::uint8_t> streamId;  // PES id of the video stream; default: the first one
-  unsigned threads = 0;                  // > 1: slice-parallel decode on this many host threads (same bytes)
+  std::optional<std::uint8_t> streamId;    // PES id of the video stream; default: the first one
+  unsigned threads = 0;                    // > 1: slice-parallel decode on this many host threads (same bytes)
+  ipu::IdctKind idct = ipu::kDefaultIdct;  // the inverse DCT (platform parameter ipu.idct)
 };
 
 struct DecodeSummary {

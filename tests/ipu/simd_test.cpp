@@ -63,7 +63,7 @@ TEST(IpuSimd, IdctMatchesScalar) {
         cols &= 0x7F;
       }
       std::uint8_t a[8 * 9], b[8 * 9];
-      scalarKernels().idct(block, rows, cols, a, 9);
+      scalarKernels().idctOf(IdctKind::Exact).copy(block, rows, cols, a, 9);
       idctSimd(block, rows, cols, b, 9);
       for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) ASSERT_EQ(a[y * 9 + x], b[y * 9 + x]) << "block " << t;
