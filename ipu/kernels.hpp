@@ -12,14 +12,14 @@
 namespace vbim::ipu {
 
 // Which 8x8 inverse DCT the decoder computes (platform parameter ipu.idct, docs/timing/ipu.md#idct):
-// - Pcsx2: the integer IDCT of PCSX2's IPU (libmpeg2 0.4's form, ipu/idct_libmpeg2.hpp);
+// - Pcsx2: the integer IDCT of PCSX2's IPU (libmpeg2 0.4's form, ipu/idct_libmpeg2.hpp), the default;
 // - Libmpeg2: the C IDCT of libmpeg2 0.5.1 (`mpeg2dec -c`), which differs from Pcsx2's in the last bit;
-// - Exact: the exact-rounded integer IDCT of ipu/idct.hpp.
+// - Exact: the exact-rounded integer IDCT of ipu/idct.hpp, the default before issue #29.
 enum class IdctKind : std::uint8_t { Pcsx2, Libmpeg2, Exact };
 inline constexpr int kIdctKinds = 3;
 inline constexpr IdctKind kAllIdctKinds[kIdctKinds] = {IdctKind::Pcsx2, IdctKind::Libmpeg2, IdctKind::Exact};
 // The default of DecoderOptions, ipu.idct, `vbim decode --idct` and `vbim vectors --idct`.
-inline constexpr IdctKind kDefaultIdct = IdctKind::Exact;
+inline constexpr IdctKind kDefaultIdct = IdctKind::Pcsx2;
 
 // "pcsx2", "libmpeg2", "exact": the names of ipu.idct and `vbim decode --idct`.
 const char* idctKindName(IdctKind k);
