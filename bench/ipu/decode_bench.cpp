@@ -1,8 +1,10 @@
-// Single-thread decode of 512x512 intra MPEG-2 to RGBA: our IPU decoder against libavcodec
-// (threads = 1, swscale to RGBA) and libmpeg2 (its SIMD decoder and its RGB32 converter), on the
-// same bytes, for smooth lightmap-like content (content 4) and a busy test card (content 5) at
-// two quantisers. Counters: frames/s (best round) and the ratio of the others' time per frame to
-// ours (> 1: we are faster; median of per-round ratios). Also slice-parallel decode on 2 workers
+// Single-thread decode of 512x512 intra MPEG-2 to RGBA: our IPU decoder (the default IDCT,
+// ipu.idct = pcsx2) against libavcodec (threads = 1, swscale to RGBA) and libmpeg2 (its SIMD
+// decoder and its RGB32 converter), on the same bytes, for smooth lightmap-like content (content 4)
+// and a busy test card (content 5) at two quantisers. Counters: frames/s (best round) and the ratio
+// of the others' time per frame to ours (> 1: we are faster; median of per-round ratios); ours with
+// the exact IDCT too (ours_exact_fps, x_exact: its time over the default's), the default before
+// issue #29. Also slice-parallel decode on 2 workers
 // against 1 (wall clock and a two-core CPU-time model, see BM_SliceParallel).
 #include <benchmark/benchmark.h>
 
@@ -62,14 +64,16 @@ const Clip& clip(Content c, int q) {
 
 // --- the three decoders, each decoding the whole clip to RGBA once ---------------------------
 
-vbim::ipu::DecoderOptions simdOptions() {
+vbim::ipu::DecoderOptions simdOptions(vbim::ipu::IdctKind idct = vbim::ipu::kDefaultIdct) {
   vbim::ipu::DecoderOptions o;
   o.kernels = &vbim::ipu::simdKernels();
+  o.idct = idct;
   return o;
 }
 
 struct Ours {
-  vbim::ipu::Decoder dec{simdOptions()};
+  explicit Ours(vbim::ipu::IdctKind idct = vbim::ipu::kDefaultIdct) : dec(simdOptions(idct)) {}
+  vbim::ipu::Decoder dec;
   vbim::Rgba8Image rgba;
   std::uint64_t run(const Clip& c) {
     std::uint64_t sum = 0;
@@ -176,10 +180,14 @@ void BM_DecodeToRgba(benchmark::State& state) {
   // Interleaved rounds: neighbours' load on the shared machine hits all three alike within a round,
   // so the ratios are taken per round and their median reported; fps are the best of the rounds.
   constexpr int kRounds = 15;
-  double tOurs = 1e9, tAv = 1e9, tM2 = 1e9;
-  std::vector<double> xAv, xM2, xFaster;
+  Ours exact(vbim::ipu::IdctKind::Exact);
+  double tOurs = 1e9, tAv = 1e9, tM2 = 1e9, tExact = 1e9;
+  std::vector<double> xAv, xM2, xFaster, xExact;
   for (int r = 0; r < kRounds; ++r) {
     const double o = secondsOnce(ours, c), a = secondsOnce(av, c), m = secondsOnce(m2, c);
+    const double e = secondsOnce(exact, c);
+    tExact = std::min(tExact, e);
+    xExact.push_back(e / o);
     tOurs = std::min(tOurs, o);
     tAv = std::min(tAv, a);
     tM2 = std::min(tM2, m);
@@ -194,6 +202,8 @@ void BM_DecodeToRgba(benchmark::State& state) {
   state.counters["x_libavcodec"] = median(xAv);
   state.counters["x_libmpeg2"] = median(xM2);
   state.counters["x_faster"] = median(xFaster);
+  state.counters["ours_exact_fps"] = 1.0 / tExact;
+  state.counters["x_exact"] = median(xExact);
   state.SetItemsProcessed(state.iterations() * kFrames);
 }
 BENCHMARK(BM_DecodeToRgba)

@@ -16,7 +16,8 @@ import subprocess
 import sys
 
 COUNTERS = {
-    "BM_DecodeToRgba": ["ours_fps", "libavcodec_fps", "libmpeg2_fps", "x_libavcodec", "x_libmpeg2", "x_faster"],
+    "BM_DecodeToRgba": ["ours_fps", "libavcodec_fps", "libmpeg2_fps", "x_libavcodec", "x_libmpeg2", "x_faster",
+                        "ours_exact_fps", "x_exact"],
     "BM_SliceParallel": ["speedup_wall", "ceiling", "efficiency", "speedup_cpu", "speedup_wall_nospin", "identical"],
 }
 

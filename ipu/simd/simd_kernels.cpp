@@ -1,5 +1,7 @@
 #include "ipu/simd/simd_kernels.hpp"
 
+#include <array>
+#include <bit>
 #include <cstddef>
 #include <cstring>
 
@@ -9,6 +11,7 @@
 #include "hwy/highway.h"
 
 #include "ipu/csc.hpp"
+#include "ipu/idct_libmpeg2.hpp"
 
 // Basis of the 1-D transform as used by ipu/idct.cpp: B(k, n) = 2^14 for k = 0, else
 // W_j * sign with cos((2n+1) k pi / 16) = sign * cos(j pi / 16).
@@ -55,6 +58,57 @@ inline constexpr Basis kBasis{};
 inline const Basis& basis() {
   return kBasis;
 }
+
+// The libmpeg2-family IDCTs (ipu/idct_libmpeg2.cpp) with one row per vector: lane n holds output n
+// of the row pass, computed from the row's coefficients paired as 16-bit (x0, x4), (x2, x6),
+// (x1, x7), (x3, x5) and multiplied with per-lane constants (pmaddwd: each pair's sum is exact in
+// 32 bits, every later sum wraps as the scalar code's wrap32). Even lanes give a0..a3 (with the
+// bias), odd lanes b0, b3 (signs included) or u +- v, which the 181/256 step then takes.
+struct Mpeg2Tables {
+  alignas(64) std::int16_t even04[16]{};  // [2n + j]: lane n's factors of (x0, x4)
+  alignas(64) std::int16_t even26[16]{};  // ... of (x2, x6)
+  alignas(64) std::int16_t odd17[16]{};   // ... of (x1, x7)
+  alignas(64) std::int16_t odd35[16]{};   // ... of (x3, x5)
+  alignas(64) std::int32_t rotated[8]{};  // -1 in lanes 1, 2, 5, 6: the 181/256 step applies
+  alignas(64) std::int32_t negated[8]{};  // -1 in lanes 5, 6: that step's result is subtracted
+  alignas(16) std::uint8_t pairs[16]{};   // the row's bytes reordered to x0 x4 x2 x6 x1 x7 x3 x5
+  constexpr Mpeg2Tables() {
+    constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
+    // a0, a1, a2, a3 as factors of x0, x4, x2, x6; lanes 4..7 mirror 3..0.
+    constexpr int kEven[4][4] = {
+        {2048, 2048, kW2, kW6}, {2048, -2048, kW6, -kW2}, {2048, -2048, -kW6, kW2}, {2048, 2048, -kW2, -kW6}};
+    // Lanes 0..7 as factors of x1, x7, x3, x5: b0, u + v, u - v, b3, -b3, u - v, u + v, -b0 with
+    // o0 = W7 x7 + W1 x1, o1 = W7 x1 - W1 x7, o2 = W3 x3 + W5 x5, o3 = W3 x5 - W5 x3,
+    // b0 = o0 + o2, b3 = o1 + o3, u = o0 - o2, v = o1 - o3.
+    constexpr int kOdd[8][4] = {{kW1, kW7, kW3, kW5},
+                                {kW1 + kW7, kW7 - kW1, kW5 - kW3, -kW5 - kW3},
+                                {kW1 - kW7, kW7 + kW1, -kW3 - kW5, kW3 - kW5},
+                                {kW7, -kW1, -kW5, kW3},
+                                {-kW7, kW1, kW5, -kW3},
+                                {kW1 - kW7, kW7 + kW1, -kW3 - kW5, kW3 - kW5},
+                                {kW1 + kW7, kW7 - kW1, kW5 - kW3, -kW5 - kW3},
+                                {-kW1, -kW7, -kW3, -kW5}};
+    for (int n = 0; n < 8; ++n) {
+      const int* e = kEven[n < 4 ? n : 7 - n];
+      even04[2 * n] = static_cast<std::int16_t>(e[0]);
+      even04[2 * n + 1] = static_cast<std::int16_t>(e[1]);
+      even26[2 * n] = static_cast<std::int16_t>(e[2]);
+      even26[2 * n + 1] = static_cast<std::int16_t>(e[3]);
+      odd17[2 * n] = static_cast<std::int16_t>(kOdd[n][0]);
+      odd17[2 * n + 1] = static_cast<std::int16_t>(kOdd[n][1]);
+      odd35[2 * n] = static_cast<std::int16_t>(kOdd[n][2]);
+      odd35[2 * n + 1] = static_cast<std::int16_t>(kOdd[n][3]);
+      rotated[n] = (n == 1 || n == 2 || n == 5 || n == 6) ? -1 : 0;
+      negated[n] = (n == 5 || n == 6) ? -1 : 0;
+    }
+    constexpr int kOrder[8] = {0, 4, 2, 6, 1, 7, 3, 5};
+    for (int i = 0; i < 8; ++i) {
+      pairs[2 * i] = static_cast<std::uint8_t>(2 * kOrder[i]);
+      pairs[2 * i + 1] = static_cast<std::uint8_t>(2 * kOrder[i] + 1);
+    }
+  }
+};
+inline constexpr Mpeg2Tables kMpeg2{};
 }  // namespace vbim::ipu::simd_detail
 #endif
 
@@ -160,10 +214,194 @@ void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
   if (rows <= 0xF) return idctRows<4>(block, cols, toggle, dst, stride);
   idctRows<8>(block, cols, toggle, dst, stride);
 }
+
+// One row of the libmpeg2-family row pass (Pcsx2: PCSX2's IPU form, else libmpeg2 0.5.1's) into
+// out[0..7], each result truncated to 16 bits and sign-extended, as the decoders store it.
+template <bool Pcsx2>
+HWY_INLINE void mpeg2Row(const std::int16_t* row, std::int32_t* out) {
+  const hn::CappedTag<std::int32_t, 8> d;
+  const hn::Repartition<std::int16_t, decltype(d)> d16;
+  const hn::Repartition<std::uint8_t, decltype(d)> d8;
+  const std::size_t N = hn::Lanes(d);
+  const auto& T = simd_detail::kMpeg2;
+  auto v = hn::LoadDup128(d16, row);
+  if constexpr (!Pcsx2) v = hn::ShiftLeft<4>(v);  // libmpeg2 0.5.1 holds coefficients x16 (in 16 bits)
+  const auto ordered = hn::BitCast(d, hn::TableLookupBytes(hn::BitCast(d8, v), hn::LoadDup128(d8, T.pairs)));
+  const auto p04 = hn::BitCast(d16, hn::Broadcast<0>(ordered));
+  const auto p26 = hn::BitCast(d16, hn::Broadcast<1>(ordered));
+  const auto p17 = hn::BitCast(d16, hn::Broadcast<2>(ordered));
+  const auto p35 = hn::BitCast(d16, hn::Broadcast<3>(ordered));
+  constexpr int kShift = Pcsx2 ? 8 : 12;
+  const auto bias = hn::Set(d, Pcsx2 ? 128 : 2048), k181 = hn::Set(d, 181);
+  for (std::size_t n0 = 0; n0 < 8; n0 += N) {
+    auto e1 = hn::Zero(d), o1 = hn::Zero(d);
+    auto e = hn::ReorderWidenMulAccumulate(d, p04, hn::LoadU(d16, T.even04 + 2 * n0), hn::Zero(d), e1);
+    e = hn::RearrangeToOddPlusEven(hn::ReorderWidenMulAccumulate(d, p26, hn::LoadU(d16, T.even26 + 2 * n0), e, e1), e1);
+    e = hn::Add(e, bias);
+    auto o = hn::ReorderWidenMulAccumulate(d, p17, hn::LoadU(d16, T.odd17 + 2 * n0), hn::Zero(d), o1);
+    o = hn::RearrangeToOddPlusEven(hn::ReorderWidenMulAccumulate(d, p35, hn::LoadU(d16, T.odd35 + 2 * n0), o, o1), o1);
+    const auto r = Pcsx2 ? hn::ShiftRight<8>(hn::Mul(o, k181)) : hn::Mul(hn::ShiftRight<8>(o), k181);
+    o = hn::IfThenElse(hn::MaskFromVec(hn::LoadU(d, T.rotated + n0)), r, o);
+    const auto neg = hn::LoadU(d, T.negated + n0);
+    o = hn::Sub(hn::Xor(o, neg), neg);
+    const auto x = hn::ShiftRight<kShift>(hn::Add(e, o));
+    hn::StoreU(hn::ShiftRight<16>(hn::ShiftLeft<16>(x)), d, out + n0);
+  }
+}
+
+// The column pass on columns c0 .. c0 + N - 1 of the row results t (rows R and below are zero):
+// out[y] = the 16-bit result of output row y, before any clip.
+template <bool Pcsx2, int R, class D, class V = hn::Vec<D>>
+HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, std::size_t c0, V* out) {
+  constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
+  const auto x = [&](int r) { return hn::LoadU(d, t + static_cast<std::ptrdiff_t>(8 * r) + c0); };
+  const auto k = [&](int c) { return hn::Set(d, c); };
+  const V x0 = x(0), x1 = x(1);
+  const V d0 = hn::Add(hn::ShiftLeft<11>(x0), k(65536));
+  // Rows 0 and 1 only (R = 2): the even part is d0 and the odd sums are o0 and o1 alone.
+  V a0 = d0, a1 = d0, a2 = d0, a3 = d0;
+  V o0 = hn::Mul(k(kW1), x1), o1 = hn::Mul(k(kW7), x1);
+  V b0 = o0, b3 = o1, u = o0, v = o1, b1, b2;
+  if constexpr (R > 2) {
+    const V x2 = x(2), x3 = x(3);
+    V e0 = d0, e1 = d0, e2 = hn::Mul(k(kW2), x2), e3 = hn::Mul(k(kW6), x2);
+    V o2 = hn::Mul(k(kW3), x3), o3 = hn::Mul(k(-kW5), x3);
+    if constexpr (R > 4) {
+      const V x4 = x(4), x5 = x(5), x6 = x(6), x7 = x(7);
+      const V d4 = hn::ShiftLeft<11>(x4);
+      e0 = hn::Add(d0, d4);
+      e1 = hn::Sub(d0, d4);
+      e2 = hn::Add(e2, hn::Mul(k(kW6), x6));
+      e3 = hn::Sub(e3, hn::Mul(k(kW2), x6));
+      o0 = hn::Add(o0, hn::Mul(k(kW7), x7));
+      o1 = hn::Sub(o1, hn::Mul(k(kW1), x7));
+      o2 = hn::Add(o2, hn::Mul(k(kW5), x5));
+      o3 = hn::Add(o3, hn::Mul(k(kW3), x5));
+    }
+    a0 = hn::Add(e0, e2);
+    a1 = hn::Add(e1, e3);
+    a2 = hn::Sub(e1, e3);
+    a3 = hn::Sub(e0, e2);
+    b0 = hn::Add(o0, o2);
+    b3 = hn::Add(o1, o3);
+    u = hn::Sub(o0, o2);
+    v = hn::Sub(o1, o3);
+  }
+  if constexpr (Pcsx2) {
+    u = hn::ShiftRight<8>(u);
+    v = hn::ShiftRight<8>(v);
+    b1 = hn::Mul(hn::Add(u, v), k(181));
+    b2 = hn::Mul(hn::Sub(u, v), k(181));
+  } else {
+    b1 = hn::Mul(hn::ShiftRight<8>(hn::Add(u, v)), k(181));
+    b2 = hn::Mul(hn::ShiftRight<8>(hn::Sub(u, v)), k(181));
+  }
+  out[0] = hn::ShiftRight<17>(hn::Add(a0, b0));
+  out[1] = hn::ShiftRight<17>(hn::Add(a1, b1));
+  out[2] = hn::ShiftRight<17>(hn::Add(a2, b2));
+  out[3] = hn::ShiftRight<17>(hn::Add(a3, b3));
+  out[4] = hn::ShiftRight<17>(hn::Sub(a3, b3));
+  out[5] = hn::ShiftRight<17>(hn::Sub(a2, b2));
+  out[6] = hn::ShiftRight<17>(hn::Sub(a1, b1));
+  out[7] = hn::ShiftRight<17>(hn::Sub(a0, b0));
+}
+
+// True if x1..x7 of the row are zero: bytes 2..15 of the row, tested as two 64-bit words.
+HWY_INLINE bool onlyFirst(const std::int16_t* row) {
+  constexpr std::uint64_t kNotX0 =
+      std::bit_cast<std::uint64_t>(std::array<std::uint8_t, 8>{0, 0, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
+  std::uint64_t lo, hi;
+  std::memcpy(&lo, row, 8);
+  std::memcpy(&hi, row + 4, 8);
+  return ((lo & kNotX0) | hi) == 0;
+}
+
+// The whole transform; with Add the result is added to dst, else it replaces it (both clamped).
+template <bool Pcsx2, bool Add, int R>
+HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned cols, std::uint8_t* dst, int stride) {
+  const hn::CappedTag<std::int32_t, 8> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const std::size_t N = hn::Lanes(d);
+  alignas(64) std::int32_t t[8 * R];
+  for (int r = 0; r < R; ++r) {
+    std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
+    if (!(rows & (1u << r))) {
+      hn::StoreU(hn::Zero(d), d, out);
+      if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
+    } else if (cols == 1 || onlyFirst(block + static_cast<std::ptrdiff_t>(8 * r))) {
+      // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
+      const auto v = hn::Set(d, static_cast<std::int16_t>(block[8 * r] * 8));
+      hn::StoreU(v, d, out);
+      if (N < 8) hn::StoreU(v, d, out + N);
+    } else {
+      mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), out);
+    }
+  }
+  for (std::size_t c0 = 0; c0 < 8; c0 += N) {
+    hn::Vec<decltype(d)> res[8];
+    mpeg2Columns<Pcsx2, R>(d, t, c0, res);
+    for (int y = 0; y < 8; ++y) {
+      std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride + c0;
+      auto v = res[y];
+      if constexpr (Add) v = hn::Add(v, hn::PromoteTo(d, hn::LoadU(d8, p)));
+      hn::StoreU(hn::DemoteTo(d8, v), d8, p);
+    }
+  }
+}
+
+template <bool Pcsx2, bool Add>
+HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst,
+                          int stride) {
+  if (Add && (rowMask & kIdctFirstOnly) && nonIntraDcShortcut(block[0])) {
+    // Both decoders' non-intra DC shortcut: a constant residual, F[7][7] ignored.
+    const hn::CappedTag<std::int32_t, 8> d;
+    const hn::Rebind<std::uint8_t, decltype(d)> d8;
+    const auto dc = hn::Set(d, nonIntraDcResidual(block[0]));
+    for (int y = 0; y < 8; ++y)
+      for (std::size_t c0 = 0; c0 < 8; c0 += hn::Lanes(d)) {
+        std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride + c0;
+        hn::StoreU(hn::DemoteTo(d8, hn::Add(dc, hn::PromoteTo(d, hn::LoadU(d8, p)))), d8, p);
+      }
+    return;
+  }
+  // The toggle alone in row 7 is part of both transforms: row 7 goes through the row pass.
+  const unsigned rows = (rowMask & 0xFF) | ((rowMask & kIdctToggleOnly) ? 0x80u : 0u);
+  const unsigned cols = (colMask & 0xFF) | ((rowMask & kIdctToggleOnly) ? 0x80u : 0u);
+  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2>(block, rows, cols, dst, stride);
+  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4>(block, rows, cols, dst, stride);
+  mpeg2Rows<Pcsx2, Add, 8>(block, rows, cols, dst, stride);
+}
+
+void idctPcsx2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  mpeg2Impl<true, false>(block, rowMask, colMask, dst, stride);
+}
+void idctPcsx2AddImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  mpeg2Impl<true, true>(block, rowMask, colMask, dst, stride);
+}
+void idctLibmpeg2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst,
+                          int stride) {
+  mpeg2Impl<false, false>(block, rowMask, colMask, dst, stride);
+}
+void idctLibmpeg2AddImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  mpeg2Impl<false, true>(block, rowMask, colMask, dst, stride);
+}
 #else
-// One-lane fallback target: no 16-bit pairs in a 32-bit lane; the scalar reference.
+// One-lane fallback target: no 16-bit pairs in a 32-bit lane; the scalar references.
 void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   scalarKernels().idctOf(IdctKind::Exact).copy(block, rowMask, colMask, dst, stride);
+}
+void idctPcsx2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  scalarKernels().idctOf(IdctKind::Pcsx2).copy(block, rowMask, colMask, dst, stride);
+}
+void idctPcsx2AddImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  scalarKernels().idctOf(IdctKind::Pcsx2).add(block, rowMask, colMask, dst, stride);
+}
+void idctLibmpeg2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst,
+                          int stride) {
+  scalarKernels().idctOf(IdctKind::Libmpeg2).copy(block, rowMask, colMask, dst, stride);
+}
+void idctLibmpeg2AddImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  scalarKernels().idctOf(IdctKind::Libmpeg2).add(block, rowMask, colMask, dst, stride);
 }
 #endif
 
@@ -259,10 +497,27 @@ HWY_AFTER_NAMESPACE();
 namespace vbim::ipu {
 
 HWY_EXPORT(idctImpl);
+HWY_EXPORT(idctPcsx2CopyImpl);
+HWY_EXPORT(idctPcsx2AddImpl);
+HWY_EXPORT(idctLibmpeg2CopyImpl);
+HWY_EXPORT(idctLibmpeg2AddImpl);
 HWY_EXPORT(cscRowsImpl);
 
 void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   HWY_DYNAMIC_DISPATCH(idctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+}
+
+void idctPcsx2Simd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  HWY_DYNAMIC_DISPATCH(idctPcsx2CopyImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+}
+void idctPcsx2AddSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  HWY_DYNAMIC_DISPATCH(idctPcsx2AddImpl)(block, rowMask & 0x3FF, colMask & 0xFF, dst, stride);
+}
+void idctLibmpeg2Simd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  HWY_DYNAMIC_DISPATCH(idctLibmpeg2CopyImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+}
+void idctLibmpeg2AddSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
+  HWY_DYNAMIC_DISPATCH(idctLibmpeg2AddImpl)(block, rowMask & 0x3FF, colMask & 0xFF, dst, stride);
 }
 
 void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
@@ -271,9 +526,12 @@ void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::
 }
 
 const Kernels& simdKernels() {
-  // The libmpeg2-family kinds and the exact kind's non-intra entry: the scalar references for now.
-  const Kernels& s = scalarKernels();
-  static const Kernels k{{s.idct[0], s.idct[1], {idctSimd, s.idct[2].add}}, cscRowsRgba32Simd, "highway"};
+  // The exact kind's non-intra entry is the scalar one (no P or B picture uses it by default).
+  static const Kernels k{{{idctPcsx2Simd, idctPcsx2AddSimd},
+                          {idctLibmpeg2Simd, idctLibmpeg2AddSimd},
+                          {idctSimd, scalarKernels().idctOf(IdctKind::Exact).add}},
+                         cscRowsRgba32Simd,
+                         "highway"};
   return k;
 }
 

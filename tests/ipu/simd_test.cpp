@@ -11,18 +11,13 @@
 #include "ipu/idct.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "tests/ipu/support/idct_blocks.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 
 namespace vbim::ipu {
 namespace {
 
-struct Lcg {
-  std::uint32_t s;
-  int below(int n) {
-    s = s * 1664525u + 1013904223u;
-    return static_cast<int>((s >> 8) % static_cast<std::uint32_t>(n));
-  }
-};
+using testing::Lcg;
 
 template <class F>
 void forEachTarget(F&& f) {
@@ -96,6 +91,50 @@ TEST(IpuSimd, IdctMatchesScalar) {
   });
 }
 
+// The libmpeg2-family kernels and every kind's non-intra entry: scalar and SIMD give the same bytes
+// on sparse, dense and extreme blocks, with and without the toggle and the first-only flag.
+TEST(IpuSimd, EveryIdctKindMatchesScalar) {
+  forEachTarget([] {
+    for (IdctKind kind : kAllIdctKinds) {
+      SCOPED_TRACE(idctKindName(kind));
+      const IdctKernels& s = scalarKernels().idctOf(kind);
+      const IdctKernels& v = simdKernels().idctOf(kind);
+      Lcg rng{17};
+      for (int t = 0; t < 40000; ++t) {
+        const testing::IdctBlock b = testing::makeIdctBlock(t, rng);
+        std::uint8_t a[8 * 9], c[8 * 9];
+        s.copy(b.c, b.rows & 0x1FF, b.cols, a, 9);
+        v.copy(b.c, b.rows & 0x1FF, b.cols, c, 9);
+        for (int y = 0; y < 8; ++y)
+          for (int x = 0; x < 8; ++x) ASSERT_EQ(a[y * 9 + x], c[y * 9 + x]) << "copy, block " << t;
+        for (int i = 0; i < 8 * 9; ++i) a[i] = c[i] = static_cast<std::uint8_t>(rng.below(256));
+        s.add(b.c, b.rows, b.cols, a, 9);
+        v.add(b.c, b.rows, b.cols, c, 9);
+        for (int i = 0; i < 8 * 9; ++i) ASSERT_EQ(a[i], c[i]) << "add, block " << t;
+      }
+      // Every DC value and toggle sign, intra and non-intra (first-only or not).
+      for (int dc = -2048; dc <= 2047; ++dc)
+        for (int toggle : {0, 1, -1}) {
+          std::int16_t blk[64] = {};
+          blk[0] = static_cast<std::int16_t>(dc);
+          blk[63] = static_cast<std::int16_t>(toggle);
+          const unsigned rows = 1u | (toggle ? kIdctToggleOnly : 0u);
+          std::uint8_t a[64], c[64];
+          s.copy(blk, rows, 1, a, 8);
+          v.copy(blk, rows, 1, c, 8);
+          for (int i = 0; i < 64; ++i) ASSERT_EQ(a[i], c[i]) << "dc " << dc << " toggle " << toggle;
+          for (unsigned first : {0u, kIdctFirstOnly}) {
+            std::fill(a, a + 64, std::uint8_t{100});
+            std::fill(c, c + 64, std::uint8_t{100});
+            s.add(blk, rows | first, 1, a, 8);
+            v.add(blk, rows | first, 1, c, 8);
+            for (int i = 0; i < 64; ++i) ASSERT_EQ(a[i], c[i]) << "add dc " << dc << " toggle " << toggle;
+          }
+        }
+    }
+  });
+}
+
 TEST(IpuSimd, CscMatchesScalar) {
   forEachTarget([] {
     Lcg rng{11};
@@ -139,18 +178,23 @@ TEST(IpuSimd, WholeDecodeMatchesScalar) {
   o.quantiser = 2;
   o.content = testing::Content::kNoise;
   const auto es = testing::encodeIntra(o);
-  DecoderOptions simd;
-  simd.kernels = &simdKernels();
-  Decoder a, b(simd);
-  for (const AccessUnit& au : splitAccessUnits(es)) {
-    a.decode(std::span(es).subspan(au.offset, au.size));
-    b.decode(std::span(es).subspan(au.offset, au.size));
-    EXPECT_EQ(a.frame().y, b.frame().y);
-    EXPECT_EQ(a.frame().cb, b.frame().cb);
-    Rgba8Image ra, rb;
-    convertToRgba32(a.frame(), a.width(), a.height(), {}, ra);
-    convertToRgba32(b.frame(), b.width(), b.height(), {}, rb, cscRowsRgba32Simd);
-    EXPECT_EQ(ra.pixels, rb.pixels);
+  for (IdctKind kind : kAllIdctKinds) {
+    SCOPED_TRACE(idctKindName(kind));
+    DecoderOptions scalar, simd;
+    scalar.idct = simd.idct = kind;
+    simd.kernels = &simdKernels();
+    Decoder a(scalar), b(simd);
+    for (const AccessUnit& au : splitAccessUnits(es)) {
+      a.decode(std::span(es).subspan(au.offset, au.size));
+      b.decode(std::span(es).subspan(au.offset, au.size));
+      EXPECT_EQ(a.frame().y, b.frame().y);
+      EXPECT_EQ(a.frame().cb, b.frame().cb);
+      EXPECT_EQ(a.frame().cr, b.frame().cr);
+      Rgba8Image ra, rb;
+      convertToRgba32(a.frame(), a.width(), a.height(), {}, ra);
+      convertToRgba32(b.frame(), b.width(), b.height(), {}, rb, cscRowsRgba32Simd);
+      EXPECT_EQ(ra.pixels, rb.pixels);
+    }
   }
   std::printf("SIMD target: %s\n", simdTargetName());
 }
