@@ -41,20 +41,22 @@ template <IdctKind K>
 void addKernel(const std::int16_t* block, unsigned rowMask, unsigned, std::uint8_t* dst, int stride) {
   if (K != IdctKind::Exact && (rowMask & kIdctFirstOnly) && nonIntraDcShortcut(block[0])) {
     const int v = nonIntraDcResidual(block[0]);
-    for (int y = 0; y < 8; ++y)
+    for (int y = 0; y < 8; ++y) {
       for (int x = 0; x < 8; ++x) {
         std::uint8_t& p = dst[static_cast<std::ptrdiff_t>(y) * stride + x];
         p = clampPixel(p + v);
       }
+    }
     return;
   }
   std::int16_t r[64];
   transform<K>(block, rowMask, r);
-  for (int y = 0; y < 8; ++y)
+  for (int y = 0; y < 8; ++y) {
     for (int x = 0; x < 8; ++x) {
       std::uint8_t& p = dst[static_cast<std::ptrdiff_t>(y) * stride + x];
       p = clampPixel(p + r[8 * y + x]);
     }
+  }
 }
 
 constexpr const char* kNames[kIdctKinds] = {"pcsx2", "libmpeg2", "exact"};

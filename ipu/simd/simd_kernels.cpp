@@ -324,17 +324,18 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned col
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
   for (int r = 0; r < R; ++r) {
+    const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
     std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
     if (!(rows & (1u << r))) {
       hn::StoreU(hn::Zero(d), d, out);
       if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
-    } else if (cols == 1 || onlyFirst(block + static_cast<std::ptrdiff_t>(8 * r))) {
+    } else if (cols == 1 || onlyFirst(row)) {
       // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
-      const auto v = hn::Set(d, static_cast<std::int16_t>(block[8 * r] * 8));
+      const auto v = hn::Set(d, static_cast<std::int16_t>(row[0] * 8));
       hn::StoreU(v, d, out);
       if (N < 8) hn::StoreU(v, d, out + N);
     } else {
-      mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), out);
+      mpeg2Row<Pcsx2>(row, out);
     }
   }
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
@@ -357,11 +358,12 @@ HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned 
     const hn::CappedTag<std::int32_t, 8> d;
     const hn::Rebind<std::uint8_t, decltype(d)> d8;
     const auto dc = hn::Set(d, nonIntraDcResidual(block[0]));
-    for (int y = 0; y < 8; ++y)
+    for (int y = 0; y < 8; ++y) {
       for (std::size_t c0 = 0; c0 < 8; c0 += hn::Lanes(d)) {
         std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride + c0;
         hn::StoreU(hn::DemoteTo(d8, hn::Add(dc, hn::PromoteTo(d, hn::LoadU(d8, p)))), d8, p);
       }
+    }
     return;
   }
   // The toggle alone in row 7 is part of both transforms: row 7 goes through the row pass.
