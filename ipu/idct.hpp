@@ -1,5 +1,6 @@
-// The 8x8 inverse DCT of the decoder: integer, separable, exact for a DC-only block, accurate to
-// IEEE 1180-1990 (tests/ipu/idct_ieee1180_test.cpp runs that standard's procedure). Integer
+// The exact-rounded 8x8 inverse DCT (ipu.idct = "exact"; the default is PCSX2's, in
+// ipu/idct_libmpeg2.hpp): integer, separable, exact for a DC-only block, accurate to
+// IEEE 1180-1990 (tests/ipu/idct_test.cpp runs that standard's procedure). Integer
 // arithmetic only, so every compiler and every SIMD path gives the same bits; this scalar code is
 // the reference the fast paths are tested against.
 //
