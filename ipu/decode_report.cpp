@@ -29,7 +29,11 @@ const char* issueName(IssueKind k) {
     case IssueKind::kUnsupportedChromaFormat:
       return "chroma format other than 4:2:0 (the IPU decodes 4:2:0 only)";
     case IssueKind::kUnsupportedPictureType:
-      return "not an intra picture (the IPU's IDEC decodes I pictures only)";
+      return "D picture (DC-only pictures are not supported)";
+    case IssueKind::kBadMotionVector:
+      return "motion vector points outside the reference frame";
+    case IssueKind::kMissingReference:
+      return "reference frame missing (predicted from mid-grey)";
   }
   return "unknown";
 }

@@ -22,7 +22,9 @@ enum class IssueKind : std::uint8_t {
   kBadHeader,                // a header or extension too short or with invalid values
   kAbsurdSize,               // picture size zero or beyond the configured limit
   kUnsupportedChromaFormat,  // 4:2:2 or 4:4:4 (the IPU decodes 4:2:0 only)
-  kUnsupportedPictureType,   // P, B or D picture (the IPU's IDEC decodes intra pictures)
+  kUnsupportedPictureType,   // a D picture (MPEG-1 DC-only pictures are not decoded)
+  kBadMotionVector,          // a motion vector pointing outside the reference frame (clamped to its edge)
+  kMissingReference,         // a P or B picture without its reference frame(s): predicted from mid-grey
 };
 
 const char* issueName(IssueKind k);
@@ -44,7 +46,8 @@ struct PictureReport {
   int height = 0;
   int macroblocks = 0;  // in the picture
   int macroblocksDecoded = 0;
-  int macroblocksConcealed = 0;     // kept their previous value (mid-grey for the first picture)
+  int macroblocksConcealed = 0;     // kept their previous value (mid-grey for the first picture), or
+                                    // predicted from a missing reference frame
   int fieldDctMacroblocks = 0;      // decoded with dct_type = 1
   std::size_t issueCount = 0;       // all issues, also those not kept in `issues`
   std::vector<DecodeIssue> issues;  // the first kMaxIssues

@@ -76,9 +76,11 @@ bool parsePictureHeader(BitReader& br, PictureHeader& pic) {
   PictureHeader p;
   p.temporalReference = static_cast<int>(br.read(10));
   p.codingType = static_cast<int>(br.read(3));
-  br.skip(16);                                             // vbv_delay
-  if (p.codingType == 2 || p.codingType == 3) br.skip(4);  // full_pel_forward_vector, forward_f_code
-  if (p.codingType == 3) br.skip(4);                       // full_pel_backward_vector, backward_f_code
+  br.skip(16);  // vbv_delay
+  for (int s = 0; s < 2 && p.codingType >= 2 + s && p.codingType <= 3; ++s) {
+    p.fullPel[s] = br.readBit();
+    p.headerFCode[s] = static_cast<int>(br.read(3));
+  }
   // extra_information_picture: bounded by the header's bytes (the reader returns zeros past them).
   while (br.readBit()) {
     br.skip(8);

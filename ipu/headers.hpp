@@ -36,6 +36,10 @@ struct SequenceHeader {
 struct PictureHeader {
   int temporalReference = 0;
   int codingType = 0;  // 1 I, 2 P, 3 B, 4 D
+  // The picture header's vector fields (MPEG-1 uses them; MPEG-2 sets them to 0 and 7 and uses f_code):
+  // full_pel_forward_vector, forward_f_code, full_pel_backward_vector, backward_f_code.
+  bool fullPel[2] = {false, false};
+  int headerFCode[2] = {7, 7};
   bool hasCodingExtension = false;
   int fCode[2][2] = {{15, 15}, {15, 15}};
   int intraDcPrecision = 0;  // 0..3 = 8..11 bits

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <vector>
 
+#include "ipu/idct_libmpeg2.hpp"
 #include "ipu/quant_tables.hpp"
 #include "ipu/start_code.hpp"
 
@@ -45,13 +48,24 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   if (seq_.width <= 0 || seq_.height <= 0 || seq_.width > options_.maxWidth || seq_.height > options_.maxHeight)
     return fail(IssueKind::kAbsurdSize);
   if (seq_.chromaFormat != 1) return fail(IssueKind::kUnsupportedChromaFormat);
-  if (pic_.codingType != 1) return fail(IssueKind::kUnsupportedPictureType);
+  if (pic_.codingType < 1 || pic_.codingType > 3) return fail(IssueKind::kUnsupportedPictureType);
   if (seq_.mpeg2 && !pic_.hasCodingExtension) return fail(IssueKind::kMissingCodingExtension);
 
   const int mbw = (seq_.width + 15) / 16;
   const int mbh = (!seq_.mpeg2 || seq_.progressiveSequence) ? (seq_.height + 15) / 16 : 2 * ((seq_.height + 31) / 32);
-  if (clearFrame_ || store_.mbWidth != mbw || store_.mbHeight != mbh) store_.reset(mbw, mbh);
-  clearFrame_ = false;
+  // Field pictures (§6.1.1.4): the second field of a frame is the one of the other parity after a
+  // first field, both B or both not B (I then P is allowed); it fills the same frame.
+  const int structure = seq_.mpeg2 ? pic_.pictureStructure : 3;
+  const FrameStore& cur = frames_.current();
+  const bool second = structure != 3 && pendingField_ != 0 && pendingField_ != structure &&
+                      (frameType_ == 3) == (pic_.codingType == 3) && cur.mbWidth == mbw && cur.mbHeight == mbh;
+  if (!second) {
+    if (pendingField_ != 0) completeFrame();  // a lone field: its frame ends here
+    beginFrame(pic_.codingType, mbw, mbh);
+  }
+  pendingField_ = (structure != 3 && !second) ? structure : 0;
+  concealedBefore_ = report.macroblocksConcealed;
+  FrameStore& store = frames_.current();
   // Fixed for this picture: a sequence extension among its slices may change seq_ (the size
   // extension bits), but not the store the slices write into.
   frameWidth_ = seq_.width;
@@ -61,6 +75,7 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   p = PictureParams{};
   p.mpeg1 = !seq_.mpeg2;
   p.idct = kernels().idctOf(options_.idct).copy;
+  p.blockIdct = options_.libmpeg2Idct ? idctLibmpeg2 : nullptr;
   p.mbWidth = mbw;
   p.intraMatrix = seq_.intraMatrix;
   p.tallPicture = seq_.height > 2800;
@@ -81,18 +96,37 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   if (p.fieldPicture) {
     const int bottom = pic_.pictureStructure == 2 ? 1 : 0;
     p.mbRows = mbh / 2;
-    p.y = store_.y.data() + static_cast<std::ptrdiff_t>(bottom) * store_.lumaStride;
-    p.cb = store_.cb.data() + static_cast<std::ptrdiff_t>(bottom) * store_.chromaStride;
-    p.cr = store_.cr.data() + static_cast<std::ptrdiff_t>(bottom) * store_.chromaStride;
-    p.yStride = 2 * store_.lumaStride;
-    p.cStride = 2 * store_.chromaStride;
+    p.y = store.y.data() + static_cast<std::ptrdiff_t>(bottom) * store.lumaStride;
+    p.cb = store.cb.data() + static_cast<std::ptrdiff_t>(bottom) * store.chromaStride;
+    p.cr = store.cr.data() + static_cast<std::ptrdiff_t>(bottom) * store.chromaStride;
+    p.yStride = 2 * store.lumaStride;
+    p.cStride = 2 * store.chromaStride;
   } else {
     p.mbRows = mbh;
-    p.y = store_.y.data();
-    p.cb = store_.cb.data();
-    p.cr = store_.cr.data();
-    p.yStride = store_.lumaStride;
-    p.cStride = store_.chromaStride;
+    p.y = store.y.data();
+    p.cb = store.cb.data();
+    p.cr = store.cr.data();
+    p.yStride = store.lumaStride;
+    p.cStride = store.chromaStride;
+  }
+  interPicture_ = pic_.codingType != 1;
+  if (interPicture_) {
+    InterParams& ip = inter_;
+    ip = InterParams{};
+    ip.codingType = pic_.codingType;
+    ip.pictureStructure = structure;
+    ip.framePredFrameDct = !seq_.mpeg2 || pic_.framePredFrameDct;
+    ip.topFieldFirst = pic_.topFieldFirst;
+    ip.secondField = second;
+    for (int s = 0; s < 2; ++s) {
+      for (int t = 0; t < 2; ++t) ip.fCode[s][t] = seq_.mpeg2 ? pic_.fCode[s][t] : pic_.headerFCode[s];
+      ip.fullPel[s] = !seq_.mpeg2 && pic_.fullPel[s];
+    }
+    ip.nonIntraMatrix = seq_.nonIntraMatrix;
+    // A P picture predicts from the I or P frame decoded last; a B picture from the two last.
+    ip.refs.forward = pic_.codingType == 2 ? frames_.backward() : frames_.forward();
+    ip.refs.backward = pic_.codingType == 3 ? frames_.backward() : nullptr;
+    ip.refs.current = &store;
   }
   report.macroblocks += p.mbWidth * p.mbRows;
   // One row of flags per cache line multiple, so jobs on neighbouring rows never share a line.
@@ -102,14 +136,18 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
 }
 
 void Decoder::convertLines(int y0, int y1, const RgbaOutput& rgba) const {
-  if (y0 < y1) convertLinesToRgba32(store_, y0, y1, rgba.thresholds, *rgba.image, kernels().cscRow);
+  if (y0 < y1) convertLinesToRgba32(frame(), y0, y1, rgba.thresholds, *rgba.image, kernels().cscRow);
 }
 
 void Decoder::decodeSlices(std::span<const std::uint8_t> bytes, std::size_t first, std::size_t last,
                            const SliceOutput& out, const RgbaOutput* rgba) {
   for (std::size_t j = first; j < last; ++j) {
     const Slice& sl = slices_[j];
-    decodeSlice(params_, sl.code, bytes.data() + sl.begin, bytes.data() + sl.end, sl.begin, out);
+    if (interPicture_) {
+      decodeInterSlice(params_, inter_, sl.code, bytes.data() + sl.begin, bytes.data() + sl.end, sl.begin, out);
+    } else {
+      decodeSlice(params_, sl.code, bytes.data() + sl.begin, bytes.data() + sl.end, sl.begin, out);
+    }
   }
   if (rgba && first < last) convertLines(16 * slices_[first].row, 16 * slices_[last - 1].row + 16, *rgba);
 }
@@ -129,8 +167,8 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   auto byRow = [](const Slice& a, const Slice& b) { return a.row < b.row; };
   if (rgba) {
     Rgba8Image& img = *rgba->image;
-    const int w = rgba->wholeMacroblocks ? store_.mbWidth * 16 : frameWidth_;
-    const int h = rgba->wholeMacroblocks ? store_.mbHeight * 16 : frameHeight_;
+    const int w = rgba->wholeMacroblocks ? frame().mbWidth * 16 : frameWidth_;
+    const int h = rgba->wholeMacroblocks ? frame().mbHeight * 16 : frameHeight_;
     if (img.width != w || img.height != h) img = Rgba8Image(w, h);
   }
   // On the parallel path each job converts its rows once it has decoded them, so the conversion is
@@ -183,6 +221,7 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
       const JobResult& r = jobResults_[k];
       report.issueCount += r.report.issueCount;
       report.fieldDctMacroblocks += r.report.fieldDctMacroblocks;
+      report.macroblocksConcealed += r.report.macroblocksConcealed;
       for (const DecodeIssue& issue : r.report.issues)
         if (report.issues.size() < PictureReport::kMaxIssues) report.issues.push_back(issue);
       trace_.insert(trace_.end(), r.trace.begin(), r.trace.end());
@@ -191,6 +230,23 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
     SliceOutput out{&report, &decoded_, decodedStride_, options_.recordMacroblocks ? &trace_ : nullptr};
     decodeSlices(bytes, 0, slices_.size(), out, nullptr);
   }
+  // Macroblocks no slice decoded: counted, and copied from the picture decoded before (or the
+  // reference of a P or B picture) when this frame's store held another picture.
+  int done = 0;
+  int firstMissing = -1;
+  const int mbCount = params_.mbWidth * params_.mbRows;
+  std::vector<int> missingRows;
+  for (int y = 0; y < params_.mbRows; ++y) {
+    const std::uint8_t* flags = decoded_.data() + static_cast<std::size_t>(y) * decodedStride_;
+    const int rowDone = static_cast<int>(std::count(flags, flags + params_.mbWidth, std::uint8_t{1}));
+    done += rowDone;
+    if (rowDone < params_.mbWidth) {
+      missingRows.push_back(y);
+      if (firstMissing < 0)
+        firstMissing = y * params_.mbWidth + static_cast<int>(std::find(flags, flags + params_.mbWidth, 0) - flags);
+    }
+  }
+  if (!missingRows.empty()) concealMissing(missingRows, convertInJobs ? rgba : nullptr);
   if (rgba) {
     // The lines no job converted: the rows between the jobs' rows (no slice reached them), or all.
     int line = 0;
@@ -204,23 +260,73 @@ void Decoder::finishPicture(std::span<const std::uint8_t> bytes, PictureReport& 
   }
   const std::size_t lastEnd = slices_.empty() ? 0 : slices_.back().end;
   slices_.clear();
-  int done = 0;
-  int firstMissing = -1;
-  const int mbCount = params_.mbWidth * params_.mbRows;
-  for (int y = 0; y < params_.mbRows; ++y) {
-    const std::uint8_t* flags = decoded_.data() + static_cast<std::size_t>(y) * decodedStride_;
-    const int rowDone = static_cast<int>(std::count(flags, flags + params_.mbWidth, std::uint8_t{1}));
-    done += rowDone;
-    if (rowDone < params_.mbWidth && firstMissing < 0)
-      firstMissing = y * params_.mbWidth + static_cast<int>(std::find(flags, flags + params_.mbWidth, 0) - flags);
-  }
-  report.macroblocksDecoded += done;
+  // Macroblocks predicted from a missing reference count as concealed, not decoded.
+  const int fromMissingReference = report.macroblocksConcealed - concealedBefore_;
+  report.macroblocksDecoded += done - fromMissingReference;
   const int missing = mbCount - done;
+  if (fromMissingReference > 0) report.add(IssueKind::kMissingReference, lastEnd);
   report.macroblocksConcealed += missing;
   if (missing > 0) {
     report.add(IssueKind::kMissingMacroblocks, lastEnd, firstMissing % params_.mbWidth, firstMissing / params_.mbWidth);
   }
+  if (pendingField_ == 0) completeFrame();
   report.produced = true;
+}
+
+void Decoder::beginFrame(int codingType, int mbw, int mbh) {
+  const FrameStore& before = frames_.current();
+  const bool hadPicture = !before.empty();
+  FrameStore& s = frames_.begin(codingType, mbw, mbh, clearFrame_);
+  // A store that held another picture: what no slice reaches shows the picture before (an I
+  // picture) or the reference (P, B), as one persistent store would; a new store stays mid-grey.
+  concealFrom_ = nullptr;
+  if (!clearFrame_ && hadPicture) {
+    const FrameStore* ref = codingType == 1 ? nullptr : frames_.backward();
+    concealFrom_ = ref ? ref : frames_.previous();
+    if (concealFrom_ == &s) concealFrom_ = nullptr;
+  }
+  clearFrame_ = false;
+  frameType_ = codingType;
+}
+
+void Decoder::completeFrame() {
+  frames_.complete(frameType_, frameWidth_, frameHeight_);
+  pendingField_ = 0;
+}
+
+bool Decoder::flushDisplay() {
+  frames_.clearDisplay();
+  if (pendingField_ != 0) {
+    completeFrame();
+    if (frames_.display()) return true;  // a lone last field of a B frame
+  }
+  return frames_.flush();
+}
+
+void Decoder::concealMissing(const std::vector<int>& rows, const RgbaOutput* rgba) {
+  if (!concealFrom_) return;
+  FrameStore& cur = frames_.current();
+  // Offsets of this picture's first line in the stores (a bottom field starts one line down).
+  const std::ptrdiff_t yOff = params_.y - cur.y.data();
+  const std::ptrdiff_t cOff = params_.cb - cur.cb.data();
+  for (const int y : rows) {
+    const std::uint8_t* flags = decoded_.data() + static_cast<std::size_t>(y) * decodedStride_;
+    for (int x = 0; x < params_.mbWidth; ++x) {
+      if (flags[x]) continue;
+      const std::ptrdiff_t ly = yOff + std::ptrdiff_t{16} * y * params_.yStride + std::ptrdiff_t{16} * x;
+      const std::ptrdiff_t lc = cOff + std::ptrdiff_t{8} * y * params_.cStride + std::ptrdiff_t{8} * x;
+      for (int r = 0; r < 16; ++r) {
+        const std::ptrdiff_t i = ly + std::ptrdiff_t{r} * params_.yStride;
+        std::memcpy(cur.y.data() + i, concealFrom_->y.data() + i, 16);
+      }
+      for (int r = 0; r < 8; ++r) {
+        const std::ptrdiff_t i = lc + std::ptrdiff_t{r} * params_.cStride;
+        std::memcpy(cur.cb.data() + i, concealFrom_->cb.data() + i, 8);
+        std::memcpy(cur.cr.data() + i, concealFrom_->cr.data() + i, 8);
+      }
+    }
+    if (rgba) convertLines(16 * y, 16 * y + 16, *rgba);
+  }
 }
 
 PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* pool) {
@@ -231,6 +337,7 @@ PictureReport Decoder::decode(std::span<const std::uint8_t> bytes, SliceRunner* 
   const RgbaOutput* rgba = rgbaOutput.image ? &rgbaOutput : nullptr;
   PictureReport report;
   trace_.clear();
+  frames_.clearDisplay();
   if (options_.freshStorePerDecode) clearFrame_ = true;
   const std::uint8_t* d = bytes.data();
   const std::size_t n = bytes.size();

@@ -14,6 +14,8 @@
 #include "ipu/decode_report.hpp"
 #include "ipu/frame_store.hpp"
 #include "ipu/headers.hpp"
+#include "ipu/inter_slice_decoder.hpp"
+#include "ipu/reference_frames.hpp"
 #include "ipu/slice_decoder.hpp"
 
 namespace vbim {
@@ -43,6 +45,10 @@ struct DecoderOptions {
   bool freshStorePerDecode = false;
   const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
   IdctKind idct = kDefaultIdct;      // which inverse DCT (ipu/kernels.hpp; platform parameter ipu.idct)
+  // Every block through libmpeg2 0.5.1's C IDCT (ipu/idct_libmpeg2.hpp) and its rule for DC-only
+  // non-intra blocks: output bit-identical to `mpeg2dec -c`. Off: the exact IDCT. A stand-in for
+  // the IDCT choice (IdctKind::Libmpeg2) that replaces it.
+  bool libmpeg2Idct = false;
 };
 
 // RGB32 output written by the decode itself (alpha 0x80, SETTH thresholds): after each picture the
@@ -67,7 +73,17 @@ class Decoder {
   // The same on a kernel worker pool (defined in ipu/pool_runner.cpp, library vbim_ipu).
   PictureReport decode(std::span<const std::uint8_t> bytes, WorkerPool& pool);
 
-  const FrameStore& frame() const { return store_; }
+  // The frame the last picture was decoded into (decode order; a field picture fills half of it).
+  const FrameStore& frame() const { return frames_.current(); }
+  // Display order (§6.1.1.11): the frame that became due for display during the last decode(), or
+  // null (an I or P frame waits for the next I or P frame; the first field of a frame waits for the
+  // second). With several pictures in one decode() call, only the last frame due is kept.
+  const FrameStore* displayFrame() const { return frames_.display(); }
+  int displayWidth() const { return frames_.displayWidth(); }
+  int displayHeight() const { return frames_.displayHeight(); }
+  // End of the stream: completes a frame waiting for its second field and makes the last I or P
+  // frame the display frame if it was not shown. False if nothing is left to show.
+  bool flushDisplay();
   bool hasSequence() const { return haveSequence_; }
   const SequenceHeader& sequence() const { return seq_; }
   const PictureHeader& picture() const { return pic_; }
@@ -87,6 +103,9 @@ class Decoder {
     std::size_t end;
   };
   void beginPicture(PictureReport& report, std::size_t offset);
+  void beginFrame(int codingType, int mbw, int mbh);
+  void completeFrame();
+  void concealMissing(const std::vector<int>& rows, const RgbaOutput* rgba);
   void finishPicture(std::span<const std::uint8_t> bytes, PictureReport& report, SliceRunner* pool,
                      const RgbaOutput* rgba);
   void handleExtension(BitReader& br, PictureReport& report, std::size_t offset);
@@ -103,9 +122,15 @@ class Decoder {
   bool pictureValid_ = false;  // it can be decoded
   bool sawSlice_ = false;
   PictureParams params_;
-  FrameStore store_;
-  bool clearFrame_ = false;  // the next picture starts from a mid-grey store (freshStorePerDecode)
-  int frameWidth_ = 0;       // display size of the picture the store holds
+  InterParams inter_;
+  bool interPicture_ = false;  // P or B: slices go to decodeInterSlice()
+  FrameBuffers frames_;
+  int pendingField_ = 0;                     // picture_structure of a first field waiting for its second (0: none)
+  int frameType_ = 0;                        // picture_coding_type of the frame being decoded (its first field's)
+  const FrameStore* concealFrom_ = nullptr;  // where macroblocks no slice decoded are copied from
+  int concealedBefore_ = 0;                  // report.macroblocksConcealed when the picture began
+  bool clearFrame_ = false;                  // the next picture starts from a mid-grey store (freshStorePerDecode)
+  int frameWidth_ = 0;                       // display size of the picture the store holds
   int frameHeight_ = 0;
   std::vector<Slice> slices_;
   std::vector<std::uint8_t> decoded_;  // per macroblock (row stride decodedStride_): 1 once decoded

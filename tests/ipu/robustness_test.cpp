@@ -1,6 +1,6 @@
-// Bad input: corrupt VLC codes, truncated slices, missing headers, absurd sizes and unsupported
-// streams are concealed or refused with a report; the decoder never crashes or loops (these run
-// under ASan+UBSan in CI). Also: slice-parallel decode is bit-identical to the serial decode.
+// Bad input: corrupt VLC codes, truncated slices, missing headers and references, broken GOPs,
+// absurd sizes and unsupported streams are concealed or refused with a report; the decoder never crashes or loops
+// (these run under ASan+UBSan in CI). Also: slice-parallel decode is bit-identical to the serial decode.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
+#include "ipu/motion_compensation.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "ipu/start_code.hpp"
 #include "runtime/worker_pool.hpp"
@@ -250,20 +251,145 @@ TEST(IpuRobustness, Chroma422IsUndecodable) {
   EXPECT_TRUE(hasIssue(r, IssueKind::kUnsupportedChromaFormat));
 }
 
-TEST(IpuRobustness, PredictedPictureIsUndecodable) {
+// A GOP of I, P and B pictures with real motion (issue #29).
+std::vector<std::uint8_t> gopStream(int frames, int bFrames, bool interlaced = false) {
   testing::EncodeOptions o;
-  o.width = 64;
-  o.height = 32;
-  o.frames = 2;
-  o.gopSize = 12;  // I then P
-  const auto es = testing::encodeIntra(o);
+  o.width = 96;
+  o.height = 64;
+  o.frames = frames;
+  o.gopSize = 6;
+  o.bFrames = bFrames;
+  o.quantiser = 4;
+  o.interlacedDct = interlaced;
+  o.interlacedMe = interlaced;
+  o.content = testing::Content::kPan;
+  return testing::encodeIntra(o);
+}
+
+TEST(IpuRobustness, PredictedPicturesDecode) {
+  const auto es = gopStream(7, 2);
   Decoder dec;
-  EXPECT_TRUE(dec.decode(unit(es, 0)).clean());
+  int types[4] = {};
+  for (const AccessUnit& au : splitAccessUnits(es)) {
+    const PictureReport r = dec.decode(std::span(es).subspan(au.offset, au.size));
+    EXPECT_TRUE(r.produced);
+    EXPECT_TRUE(r.clean()) << r.describe();
+    EXPECT_EQ(r.macroblocksDecoded, r.macroblocks);
+    ++types[r.pictureCodingType & 3];
+  }
+  EXPECT_EQ(types[1], 2);  // I P B B P B B with a GOP of 6: I B B P B B I ... in decode order I P B B I B
+  EXPECT_GT(types[2], 0);
+  EXPECT_GT(types[3], 0);
+}
+
+// A P or B picture whose reference frame never arrived (a stream cut after its I picture, a
+// broken GOP) is predicted from mid-grey, reported once, and its macroblocks count as concealed.
+// The sequence header and what follows it up to the first picture's header.
+std::vector<std::uint8_t> headersBeforeFirstPicture(const std::vector<std::uint8_t>& es) {
+  for (std::size_t i = 0; i + 3 < es.size(); ++i)
+    if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0) return {es.begin(), es.begin() + i};
+  return es;
+}
+
+TEST(IpuRobustness, MissingReferenceIsConcealedAndReported) {
+  const auto es = gopStream(4, 0);  // I P P P
+  Decoder dec;
+  dec.decode(headersBeforeFirstPicture(es));
   const PictureReport r = dec.decode(unit(es, 1));
   EXPECT_EQ(r.pictureCodingType, 2);
-  EXPECT_TRUE(r.undecodable);
-  EXPECT_FALSE(r.produced);
-  EXPECT_TRUE(hasIssue(r, IssueKind::kUnsupportedPictureType));
+  EXPECT_TRUE(r.produced);
+  EXPECT_FALSE(r.undecodable);
+  EXPECT_TRUE(hasIssue(r, IssueKind::kMissingReference));
+  EXPECT_EQ(r.macroblocksConcealed, r.macroblocks);
+  EXPECT_EQ(r.macroblocksDecoded + r.macroblocksConcealed, r.macroblocks);
+  // The next P picture has its reference (the concealed one): no new issue.
+  const PictureReport next = dec.decode(unit(es, 2));
+  EXPECT_TRUE(next.clean()) << next.describe();
+  // B pictures without their references.
+  const auto withB = gopStream(4, 2);  // decode order I P B B
+  Decoder fresh;
+  fresh.decode(headersBeforeFirstPicture(withB));
+  const PictureReport b = fresh.decode(unit(withB, 2));
+  EXPECT_EQ(b.pictureCodingType, 3);
+  EXPECT_TRUE(hasIssue(b, IssueKind::kMissingReference));
+  EXPECT_FALSE(fresh.flushDisplay());  // a B frame is shown at once and is not kept
+}
+
+// Pictures dropped anywhere (a broken GOP), P and B slices cut anywhere, and random bit flips in
+// P and B pictures: concealed and counted, never a crash (ASan, UBSan in CI).
+TEST(IpuRobustness, BrokenGopsAndDamagedPredictedPicturesAreSafe) {
+  for (const bool interlaced : {false, true}) {
+    const auto es = gopStream(7, 2, interlaced);
+    const auto units = splitAccessUnits(es);
+    for (std::size_t drop = 0; drop < units.size(); ++drop) {
+      Decoder dec;
+      for (std::size_t i = 0; i < units.size(); ++i) {
+        if (i == drop) continue;
+        const PictureReport r = dec.decode(std::span(es).subspan(units[i].offset, units[i].size));
+        EXPECT_EQ(r.macroblocksDecoded + r.macroblocksConcealed, r.macroblocks);
+      }
+      while (dec.flushDisplay()) {
+      }
+    }
+    const auto p = unit(es, 1);
+    for (std::size_t n = 0; n <= p.size(); n += 5) {
+      Decoder dec;
+      dec.decode(unit(es, 0));
+      const PictureReport r = dec.decode(p.subspan(0, n));
+      if (r.produced) {
+        EXPECT_EQ(r.macroblocksDecoded + r.macroblocksConcealed, r.macroblocks);
+      }
+    }
+    std::uint32_t s = 777;
+    int withIssues = 0;
+    for (int trial = 0; trial < 150; ++trial) {
+      std::vector<std::uint8_t> bad = es;
+      for (int k = 0; k < 1 + trial % 4; ++k) {
+        s = s * 1664525u + 1013904223u;
+        const std::size_t pos = units[1].offset + (s >> 8) % (bad.size() - units[1].offset);
+        bad[pos] ^= static_cast<std::uint8_t>(1u << (s & 7));
+      }
+      Decoder dec;
+      for (const AccessUnit& au : splitAccessUnits(bad)) {
+        const PictureReport r = dec.decode(std::span(bad).subspan(au.offset, au.size));
+        EXPECT_EQ(r.macroblocksDecoded + r.macroblocksConcealed, r.macroblocks);
+        withIssues += r.issueCount > 0;
+      }
+    }
+    EXPECT_GT(withIssues, 40);
+  }
+}
+
+// A vector far outside the picture is moved to the reference's edge and reported; nothing outside
+// the reference frame is read (ASan).
+TEST(IpuRobustness, OutOfRangeVectorIsClamped) {
+  FrameStore ref;
+  ref.reset(2, 2);
+  for (std::size_t i = 0; i < ref.y.size(); ++i) ref.y[i] = static_cast<std::uint8_t>(i);
+  FrameStore cur;
+  cur.reset(2, 2);
+  PictureParams pp;
+  pp.mbWidth = 2;
+  pp.mbRows = 2;
+  pp.y = cur.y.data();
+  pp.cb = cur.cb.data();
+  pp.cr = cur.cr.data();
+  pp.yStride = cur.lumaStride;
+  pp.cStride = cur.chromaStride;
+  Macroblock mb;
+  mb.mbX = 1;
+  mb.mbY = 1;
+  mb.opCount = 1;
+  const int cases[][3] = {{4001, -4001, 1}, {-4001, 4001, 1}, {-3, -5, 0}, {0, 0, 0}, {1, 0, 1}};
+  for (const auto& c : cases) {
+    mb.ops[0].mvx = static_cast<std::int16_t>(c[0]);
+    mb.ops[0].mvy = static_cast<std::int16_t>(c[1]);
+    const PredictionResult r = predictMacroblock(mb, ReferenceSet{&ref, nullptr, &cur}, pp);
+    EXPECT_EQ(r.clamped, c[2] != 0) << c[0] << "," << c[1];
+    EXPECT_FALSE(r.missingReference);
+  }
+  mb.ops[0].ref = PredictionRef::kBackward;
+  EXPECT_TRUE(predictMacroblock(mb, ReferenceSet{&ref, nullptr, &cur}, pp).missingReference);
 }
 
 TEST(IpuRobustness, AbsurdSizeIsRefused) {

@@ -41,7 +41,9 @@ std::string EncodeOptions::describe() const {
   if (dcPrecision) s += " dc" + std::to_string(8 + dcPrecision);
   if (customMatrix) s += " custom_matrix";
   if (interlacedDct) s += " field_dct";
-  static const char* const kNames[] = {" smooth", " busy", " noise", " interlaced", " lightmap", " pattern"};
+  if (interlacedMe) s += " field_me";
+  if (gopSize > 1) s += " gop" + std::to_string(gopSize) + "b" + std::to_string(bFrames);
+  static const char* const kNames[] = {" smooth", " busy", " noise", " interlaced", " lightmap", " pattern", " pan"};
   s += kNames[static_cast<int>(content)];
   return s;
 }
@@ -81,6 +83,13 @@ std::vector<Yuv420Image> makeFrames(const EncodeOptions& o) {
             }
             break;
           }
+          case Content::kPan: {  // in 1/4 samples: 6 per frame across, 3 down
+            const int u = 4 * x + 6 * f;
+            const int w = 4 * y + 3 * f;
+            v = static_cast<int>(128 + 70 * std::sin(u / 37.0) * std::cos(w / 53.0) +
+                                 25 * std::sin((u + 2 * w) / 19.0));
+            break;
+          }
           default:
             v = static_cast<int>(rng.next() & 0xFF);
             break;
@@ -94,6 +103,11 @@ std::vector<Yuv420Image> makeFrames(const EncodeOptions& o) {
         if (o.content == Content::kNoise) {
           img.cb[i] = static_cast<std::uint8_t>(rng.next() & 0xFF);
           img.cr[i] = static_cast<std::uint8_t>(rng.next() & 0xFF);
+        } else if (o.content == Content::kPan) {
+          const int u = 8 * x + 6 * f;
+          const int w = 8 * y + 3 * f;
+          img.cb[i] = static_cast<std::uint8_t>(128 + 40 * std::sin(u / 41.0 + w / 67.0));
+          img.cr[i] = static_cast<std::uint8_t>(128 + 40 * std::cos(w / 29.0 - u / 83.0));
         } else if (o.content == Content::kLightmap) {
           img.cb[i] = static_cast<std::uint8_t>(118 + 8 * std::sin(x / 31.0));
           img.cr[i] = static_cast<std::uint8_t>(134 + 10 * std::cos(y / 27.0 + f * 0.03));
@@ -127,7 +141,7 @@ std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<
   c->time_base = AVRational{1, 25};
   c->framerate = AVRational{25, 1};
   c->gop_size = o.gopSize;
-  c->max_b_frames = 0;
+  c->max_b_frames = o.bFrames;
   c->thread_count = 1;
   c->flags |= AV_CODEC_FLAG_QSCALE;
   c->qmin = 1;
@@ -136,6 +150,10 @@ std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<
   c->intra_dc_precision = o.dcPrecision;
   if (o.dcPrecision == 3) c->profile = FF_PROFILE_MPEG2_HIGH;  // 11-bit DC needs the high profile
   if (o.interlacedDct) c->flags |= AV_CODEC_FLAG_INTERLACED_DCT;
+  if (o.interlacedMe) {
+    c->flags |= AV_CODEC_FLAG_INTERLACED_ME;
+    c->field_order = AV_FIELD_TT;
+  }
   std::uint16_t* matrix = nullptr;
   if (o.customMatrix) {
     matrix = static_cast<std::uint16_t*>(av_malloc(64 * sizeof(std::uint16_t)));
@@ -176,6 +194,10 @@ std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<
                   img.cr.data() + static_cast<std::size_t>(y) * img.chromaWidth(), img.chromaWidth());
     }
     frame->pts = static_cast<std::int64_t>(f);
+    if (o.interlacedMe) {
+      frame->interlaced_frame = 1;
+      frame->top_field_first = 1;
+    }
     frame->quality = c->global_quality;
     frame->pict_type = o.gopSize == 1 ? AV_PICTURE_TYPE_I : AV_PICTURE_TYPE_NONE;
     check(avcodec_send_frame(c, frame), "avcodec_send_frame");

@@ -10,14 +10,18 @@
 
 namespace vbim::ipu::testing {
 
-enum class Content { kSmooth, kBusy, kNoise, kInterlaced, kLightmap, kPattern };
+// kPan: a smooth texture panned by 1.5 samples right and 0.75 lines down per frame, so motion
+// vectors are non-trivial and half-sample.
+enum class Content { kSmooth, kBusy, kNoise, kInterlaced, kLightmap, kPattern, kPan };
 
 struct EncodeOptions {
   int width = 64;
   int height = 48;
   int frames = 2;
-  int gopSize = 1;    // 1: intra only; more: P pictures follow the I picture
-  int quantiser = 5;  // fixed qscale 1..31 (frame->quality, docs/dependencies.md#fixed-quantiser)
+  int gopSize = 1;            // 1: intra only; more: P pictures follow the I picture
+  int bFrames = 0;            // B pictures between references (max_b_frames)
+  bool interlacedMe = false;  // field motion estimation (AV_CODEC_FLAG_INTERLACED_ME), top field first
+  int quantiser = 5;          // fixed qscale 1..31 (frame->quality, docs/dependencies.md#fixed-quantiser)
   bool mpeg1 = false;
   bool intraVlc = false;  // B.15
   bool alternateScan = false;
@@ -32,7 +36,8 @@ struct EncodeOptions {
 
 // Deterministic synthetic frames.
 std::vector<Yuv420Image> makeFrames(const EncodeOptions& o);
-// Encodes frames (intra only, gop 1) to an elementary stream. Throws std::runtime_error on failure.
+// Encodes frames to an elementary stream (intra only with gop 1; GOPs with P and B pictures otherwise). Throws
+// std::runtime_error on failure.
 std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<Yuv420Image>& frames);
 inline std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o) {
   return encodeIntra(o, makeFrames(o));

@@ -1,0 +1,500 @@
+#include "ipu/inter_slice_decoder.hpp"
+
+#include <cstring>
+
+#include "ipu/bit_reader.hpp"
+#include "ipu/inter_vlc.hpp"
+#include "ipu/motion_vectors.hpp"
+#include "ipu/quant_tables.hpp"
+#include "ipu/vlc_tables.hpp"
+
+namespace vbim::ipu {
+namespace {
+
+// frame_motion_type / field_motion_type values (Tables 6-17, 6-18).
+constexpr int kMotionField = 1;  // field-based
+constexpr int kMotionFrame = 2;  // frame-based (frame pictures); 16x8 (field pictures)
+constexpr int kMotion16x8 = 2;
+constexpr int kMotionDualPrime = 3;
+
+class InterSliceDecoder {
+ public:
+  InterSliceDecoder(const PictureParams& pp, const InterParams& ip, const std::uint8_t* begin, const std::uint8_t* end,
+                    std::size_t offset, const SliceOutput& out)
+      : pp_(pp), ip_(ip), t_(vlcTables()), it_(interVlcTables()), br_(begin, end), offset_(offset), out_(out) {
+    frame_ = ip.pictureStructure == 3;
+    parity_ = ip.pictureStructure == 2 ? 1 : 0;
+  }
+
+  void run(int code);
+
+ private:
+  void issue(IssueKind kind, int mbX, int mbY) { out_.report->add(kind, offset_ + br_.bytePosition(), mbX, mbY); }
+  void setQuantiserScale(int code) {
+    scale_ = pp_.mpeg1 ? code : (pp_.qScaleType ? kNonLinearQuantiserScale[code] : 2 * code);
+  }
+  void resetDc() {
+    const int reset = pp_.mpeg1 ? 128 : (1 << (7 + pp_.intraDcPrecision));
+    dcPred_[0] = dcPred_[1] = dcPred_[2] = reset;
+  }
+  void resetPmv(int s) {
+    for (auto& r : pmv_) r[s][0] = r[s][1] = 0;
+  }
+  bool readIncrement(int& inc);
+  PredictionRef refOf(int s, int srcField) const {
+    if (s == 1) return PredictionRef::kBackward;
+    if (!frame_ && ip_.codingType == 2 && ip_.secondField && srcField != parity_) return PredictionRef::kCurrent;
+    return PredictionRef::kForward;
+  }
+  void addOp(PredictionRef ref, int srcField, int dstField, int top, int height, bool average, int mvx, int mvy) {
+    PredictionOp& op = mb_.ops[mb_.opCount++];
+    op.ref = ref;
+    op.srcField = static_cast<std::int8_t>(srcField);
+    op.dstField = static_cast<std::int8_t>(dstField);
+    op.top = static_cast<std::uint8_t>(top);
+    op.height = static_cast<std::uint8_t>(height);
+    op.average = average;
+    op.mvx = static_cast<std::int16_t>(mvx);
+    op.mvy = static_cast<std::int16_t>(mvy);
+  }
+  // The zero-vector prediction of a P macroblock without motion (§7.6.3.5, §7.6.6.2).
+  void zeroPrediction() { addOp(PredictionRef::kForward, frame_ ? -1 : parity_, -1, 0, 16, false, 0, 0); }
+  bool vector(int s, int r, bool fieldFormat, int& mvx, int& mvy, int* dmv);
+  bool motionVectors(int s, int motionType);
+  bool concealmentVectors();
+  bool parseBlock(int b, bool intra, IssueKind& why);
+  void predictAndStore(bool parsed);
+  void skipped(int address);
+
+  const PictureParams& pp_;
+  const InterParams& ip_;
+  const VlcTables& t_;
+  const InterVlcTables& it_;
+  BitReader br_;
+  std::size_t offset_;
+  const SliceOutput& out_;
+  bool frame_ = true;
+  int parity_ = 0;  // a field picture's field: 0 top, 1 bottom
+  int scale_ = 0;
+  int dcPred_[3] = {128, 128, 128};
+  int pmv_[2][2][2] = {};      // PMV[r][s][t] (§7.6.3.1)
+  std::uint8_t prevType_ = 0;  // macroblock_type of the last coded macroblock (B skips repeat it)
+  Macroblock mb_;
+};
+
+bool InterSliceDecoder::readIncrement(int& inc) {
+  inc = 0;
+  for (;;) {
+    const VlcEntry e = t_.mbAddressIncrement[br_.peek(11)];
+    if (e.len == 0 || br_.overrun()) return false;
+    br_.skip(e.len);
+    if (e.value > 0) {
+      inc += e.value;
+      return true;
+    }
+    if (e.value == kMbaEscape) inc += 33;  // stuffing adds nothing
+  }
+}
+
+// One motion_vector(r, s) (§6.2.5.3) and its reconstruction (§7.6.3.1); a field-format vector of a
+// frame picture predicts its vertical part from PMV / 2 and stores it back doubled.
+bool InterSliceDecoder::vector(int s, int r, bool fieldFormat, int& mvx, int& mvy, int* dmv) {
+  const int fx = ip_.fCode[s][0];
+  const int fy = ip_.fCode[s][1];
+  if (fx < 1 || fx > 9 || fy < 1 || fy > 9) return false;  // 15 (no vectors) or reserved
+  int dx = 0;
+  int dy = 0;
+  int len = 0;
+  if (!readMotionDelta(br_, fx, dx)) return false;
+  if (dmv) {
+    dmv[0] = dmvectorOf(br_.peek(2), len);
+    br_.skip(len);
+  }
+  if (!readMotionDelta(br_, fy, dy)) return false;
+  if (dmv) {
+    dmv[1] = dmvectorOf(br_.peek(2), len);
+    br_.skip(len);
+  }
+  const bool halfVertical = fieldFormat && frame_;
+  mvx = wrapVector(pmv_[r][s][0], dx, fx);
+  mvy = wrapVector(halfVertical ? pmv_[r][s][1] >> 1 : pmv_[r][s][1], dy, fy);
+  pmv_[r][s][0] = mvx;
+  pmv_[r][s][1] = halfVertical ? mvy * 2 : mvy;
+  return true;
+}
+
+// motion_vectors(s) of one direction and the predictions they make (§6.2.5.2, §7.6.3, §7.6.4).
+bool InterSliceDecoder::motionVectors(int s, int motionType) {
+  const bool average = s == 1 && (mb_.type & kMbForward);
+  int mvx = 0;
+  int mvy = 0;
+  if (pp_.mpeg1) {
+    // 11172-2 §2.4.4.2: one frame vector, in whole samples with full_pel_*_vector.
+    if (!vector(s, 0, false, mvx, mvy, nullptr)) return false;
+    const int shift = ip_.fullPel[s] ? 1 : 0;
+    addOp(refOf(s, -1), -1, -1, 0, 16, average, mvx * (1 << shift), mvy * (1 << shift));
+    return true;
+  }
+  if (frame_) {
+    if (motionType == kMotionFrame) {
+      if (!vector(s, 0, false, mvx, mvy, nullptr)) return false;
+      pmv_[1][s][0] = mvx;
+      pmv_[1][s][1] = mvy;
+      addOp(refOf(s, -1), -1, -1, 0, 16, average, mvx, mvy);
+    } else if (motionType == kMotionField) {
+      for (int r = 0; r < 2; ++r) {
+        const int sel = static_cast<int>(br_.read(1));
+        if (!vector(s, r, true, mvx, mvy, nullptr)) return false;
+        addOp(refOf(s, sel), sel, r, 0, 8, average, mvx, mvy);
+      }
+    } else {  // dual prime (§7.6.3.6): P pictures only
+      if (s != 0 || ip_.codingType != 2) return false;
+      int dmv[2];
+      if (!vector(s, 0, true, mvx, mvy, dmv)) return false;
+      pmv_[1][s][0] = pmv_[0][s][0];
+      pmv_[1][s][1] = pmv_[0][s][1];
+      // Each field from the opposite-parity field with the derived vector, averaged with the
+      // same-parity prediction.
+      const int mTop = ip_.topFieldFirst ? 1 : 3;
+      const int mBottom = ip_.topFieldFirst ? 3 : 1;
+      addOp(PredictionRef::kForward, 1, 0, 0, 8, false, dualPrimeScale(mvx, mTop) + dmv[0],
+            dualPrimeScale(mvy, mTop) + dmv[1] - 1);
+      addOp(PredictionRef::kForward, 0, 1, 0, 8, false, dualPrimeScale(mvx, mBottom) + dmv[0],
+            dualPrimeScale(mvy, mBottom) + dmv[1] + 1);
+      addOp(PredictionRef::kForward, 0, 0, 0, 8, true, mvx, mvy);
+      addOp(PredictionRef::kForward, 1, 1, 0, 8, true, mvx, mvy);
+    }
+    return true;
+  }
+  // Field pictures.
+  if (motionType == kMotionField) {
+    const int sel = static_cast<int>(br_.read(1));
+    if (!vector(s, 0, true, mvx, mvy, nullptr)) return false;
+    pmv_[1][s][0] = mvx;
+    pmv_[1][s][1] = mvy;
+    addOp(refOf(s, sel), sel, -1, 0, 16, average, mvx, mvy);
+  } else if (motionType == kMotion16x8) {
+    for (int r = 0; r < 2; ++r) {
+      const int sel = static_cast<int>(br_.read(1));
+      if (!vector(s, r, true, mvx, mvy, nullptr)) return false;
+      addOp(refOf(s, sel), sel, -1, 8 * r, 8, average, mvx, mvy);
+    }
+  } else {
+    if (s != 0 || ip_.codingType != 2) return false;
+    int dmv[2];
+    if (!vector(s, 0, true, mvx, mvy, dmv)) return false;
+    pmv_[1][s][0] = mvx;
+    pmv_[1][s][1] = mvy;
+    const int other = 1 - parity_;
+    addOp(refOf(0, parity_), parity_, -1, 0, 16, false, mvx, mvy);
+    addOp(refOf(0, other), other, -1, 0, 16, true, dualPrimeScale(mvx, 1) + dmv[0],
+          dualPrimeScale(mvy, 1) + dmv[1] + (parity_ ? 1 : -1));
+  }
+  return true;
+}
+
+// The forward vector and marker bit of an intra macroblock with concealment_motion_vectors: they
+// only set the vector predictors (§7.6.3.4); a decoder may use them to conceal lost data.
+bool InterSliceDecoder::concealmentVectors() {
+  if (!frame_) br_.skip(1);  // motion_vertical_field_select[0][0]
+  int mvx = 0;
+  int mvy = 0;
+  if (!vector(0, 0, false, mvx, mvy, nullptr)) return false;
+  pmv_[1][0][0] = mvx;
+  pmv_[1][0][1] = mvy;
+  br_.skip(1);  // marker_bit
+  return !br_.overrun();
+}
+
+// One block's coefficients (§7.2, §7.3, §7.4): intra with its DC differential, or non-intra whose
+// first code may be '1s' (run 0, level 1).
+bool InterSliceDecoder::parseBlock(int b, bool intra, IssueKind& why) {
+  std::int16_t* blk = mb_.block[b];
+  const std::uint8_t* matrix = intra ? pp_.intraMatrix.data() : ip_.nonIntraMatrix.data();
+  unsigned parity = 0;
+  int i = -1;
+  int coded = 0;
+  if (intra) {
+    const int cc = b < 4 ? 0 : b - 3;
+    const VlcEntry e = cc == 0 ? t_.dcSizeLuma[br_.peek(9)] : t_.dcSizeChroma[br_.peek(10)];
+    if (e.len == 0) {
+      why = IssueKind::kBadVlc;
+      return false;
+    }
+    br_.skip(e.len);
+    const int size = static_cast<unsigned char>(e.value);
+    if (size != 0) {
+      const int bits = static_cast<int>(br_.read(size));
+      dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
+    }
+    int dc = pp_.mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] * (1 << (3 - pp_.intraDcPrecision));
+    dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);
+    blk[0] = static_cast<std::int16_t>(dc);
+    parity = static_cast<unsigned>(dc);
+    i = 0;
+  }
+  const int table = (intra && !pp_.mpeg1 && pp_.intraVlcFormat) ? 1 : 0;
+  const int k = intra ? 0 : 1;  // the non-intra (2 QF + sign(QF)) term
+  auto place = [&](int mag, bool negative) {
+    if (i > 63) {
+      why = IssueKind::kCoefficientOverrun;
+      return false;
+    }
+    const int pos = pp_.scan[i];
+    int v;
+    if (pp_.mpeg1) {
+      // 11172-2 §2.4.4.1-2.4.4.3: then towards an odd value.
+      v = ((2 * mag + k) * scale_ * matrix[pos]) >> 4;
+      if ((v & 1) == 0 && v != 0) v -= 1;
+    } else {
+      v = ((2 * mag + k) * matrix[pos] * scale_) >> 5;  // §7.4.2.3
+    }
+    v = negative ? -(v > 2048 ? 2048 : v) : (v > 2047 ? 2047 : v);  // §7.4.3
+    blk[pos] = static_cast<std::int16_t>(v);
+    parity ^= static_cast<unsigned>(v);
+    ++coded;
+    return true;
+  };
+  if (!intra && br_.peek(1)) {  // '1s': the first coefficient, run 0, level 1
+    const bool negative = br_.peek(2) & 1;
+    br_.skip(2);
+    i = 0;
+    if (!place(1, negative)) return false;
+  }
+  for (;;) {
+    DctCodeEntry s = t_.dctShort[table][br_.peek(VlcTables::kDctShortBits)];
+    if (s.level == 0 && s.step == kDctKindLong) {
+      s = t_.dctLong[br_.peek(VlcTables::kDctLongBits)];
+      if (s.level == 0) {
+        why = IssueKind::kBadVlc;
+        return false;
+      }
+    }
+    if (s.level != 0) {
+      br_.skip(s.bits);
+      i += s.step;
+      if (!place(s.level, s.negative != 0)) return false;
+    } else if (s.step == kDctKindEob) {
+      br_.skip(s.bits);
+      break;
+    } else if (s.step == kDctKindEscape) {
+      br_.skip(6);
+      const int run = static_cast<int>(br_.read(6));
+      int level;
+      if (pp_.mpeg1) {
+        level = br_.readSigned(8);
+        if (level == 0) {
+          level = static_cast<int>(br_.read(8));
+        } else if (level == -128) {
+          level = static_cast<int>(br_.read(8)) - 256;
+        }
+      } else {
+        level = br_.readSigned(12);
+      }
+      i += run + 1;
+      if (!place(level < 0 ? -level : level, level < 0)) return false;
+    } else {
+      why = IssueKind::kBadVlc;
+      return false;
+    }
+    if (br_.overrun()) {
+      why = IssueKind::kTruncatedSlice;
+      return false;
+    }
+  }
+  if (!pp_.mpeg1 && (parity & 1) == 0) blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);  // §7.4.4
+  mb_.onlyFirst[b] = !intra && coded == 1 && i == 0;
+  return true;
+}
+
+void InterSliceDecoder::predictAndStore(bool parsed) {
+  const PredictionResult r = predictMacroblock(mb_, ip_.refs, pp_);
+  if (r.clamped) issue(IssueKind::kBadMotionVector, mb_.mbX, mb_.mbY);
+  if (r.missingReference) ++out_.report->macroblocksConcealed;
+  if (parsed) reconstructBlocks(mb_, pp_);
+  (*out_.decoded)[static_cast<std::size_t>(mb_.mbY) * static_cast<std::size_t>(out_.decodedStride) +
+                  static_cast<std::size_t>(mb_.mbX)] = 1;
+}
+
+// A skipped macroblock (§7.6.6): P pictures predict with a zero vector and reset the vector
+// predictors; B pictures repeat the previous macroblock's directions and vectors (frame-based in
+// frame pictures, from the same-parity field in field pictures).
+void InterSliceDecoder::skipped(int address) {
+  mb_.mbX = address % pp_.mbWidth;
+  mb_.mbY = address / pp_.mbWidth;
+  mb_.type = 0;
+  mb_.skipped = true;
+  mb_.fieldDct = false;
+  mb_.opCount = 0;
+  mb_.pattern = 0;
+  if (ip_.codingType == 2) {
+    resetPmv(0);
+    zeroPrediction();
+  } else {
+    const std::uint8_t dirs = prevType_ & (kMbForward | kMbBackward);
+    if (dirs == 0) {
+      issue(IssueKind::kBadMacroblockAddress, mb_.mbX, mb_.mbY);  // a skip after an intra macroblock
+      zeroPrediction();
+    }
+    const int src = frame_ ? -1 : parity_;
+    for (int s = 0; s < 2; ++s) {
+      if (!(dirs & (s ? kMbBackward : kMbForward))) continue;
+      const int shift = pp_.mpeg1 && ip_.fullPel[s] ? 1 : 0;
+      mb_.type |= s ? kMbBackward : kMbForward;
+      addOp(s ? PredictionRef::kBackward : PredictionRef::kForward, src, -1, 0, 16, s == 1 && (dirs & kMbForward),
+            pmv_[0][s][0] * (1 << shift), pmv_[0][s][1] * (1 << shift));
+    }
+  }
+  predictAndStore(false);
+}
+
+void InterSliceDecoder::run(int code) {
+  int row = code - 1;
+  if (pp_.tallPicture && !pp_.mpeg1) row += static_cast<int>(br_.read(3)) << 7;
+  if (row >= pp_.mbRows) {
+    issue(IssueKind::kBadSlicePosition, -1, row);
+    return;
+  }
+  int qsc = static_cast<int>(br_.read(5));
+  if (!pp_.mpeg1 && br_.peek(1)) br_.skip(9);  // intra_slice_flag, intra_slice, reserved_bits
+  while (br_.readBit()) {                      // extra_bit_slice / extra_information_slice
+    br_.skip(8);
+    if (br_.overrun()) break;
+  }
+  if (br_.overrun() || qsc == 0) {
+    issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadHeader, -1, row);
+    return;
+  }
+  setQuantiserScale(qsc);
+  resetDc();
+  std::memset(pmv_, 0, sizeof pmv_);
+  std::memset(mb_.block, 0, sizeof mb_.block);
+
+  const int total = pp_.mbWidth * pp_.mbRows;
+  int address = row * pp_.mbWidth - 1;
+  bool first = true;
+  std::size_t mbStart = 0;
+  for (;;) {
+    int inc = 0;
+    const int curX = address < 0 ? 0 : (address + 1) % pp_.mbWidth;
+    const int curY = address < 0 ? row : (address + 1) / pp_.mbWidth;
+    if (!readIncrement(inc)) {
+      issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, curX, curY);
+      return;
+    }
+    if (!first && inc > 1) {
+      resetDc();
+      for (int k = 1; k < inc; ++k) {
+        const int a = address + k;
+        if (a >= total || (!pp_.mpeg1 && a / pp_.mbWidth != row)) {
+          issue(IssueKind::kBadMacroblockAddress, a % pp_.mbWidth, a / pp_.mbWidth);
+          return;
+        }
+        skipped(a);
+      }
+    }
+    address += inc;
+    first = false;
+    const int mbX = address % pp_.mbWidth;
+    const int mbY = address / pp_.mbWidth;
+    if (address >= total || (!pp_.mpeg1 && mbY != row)) {
+      issue(IssueKind::kBadMacroblockAddress, mbX, mbY);
+      return;
+    }
+    mb_.mbX = mbX;
+    mb_.mbY = mbY;
+    mb_.skipped = false;
+    mb_.opCount = 0;
+    const InterVlcEntry type = (ip_.codingType == 2 ? it_.mbTypeP : it_.mbTypeB)[br_.peek(6)];
+    if (type.len == 0) {
+      issue(IssueKind::kBadVlc, mbX, mbY);
+      return;
+    }
+    br_.skip(type.len);
+    mb_.type = type.value;
+    const bool intra = (type.value & kMbIntra) != 0;
+    int motionType = kMotionFrame;
+    if (!pp_.mpeg1 && (type.value & (kMbForward | kMbBackward))) {
+      if (!frame_ || !ip_.framePredFrameDct) motionType = static_cast<int>(br_.read(2));
+      if (motionType == 0) {
+        issue(IssueKind::kBadVlc, mbX, mbY);  // reserved motion type
+        return;
+      }
+    }
+    mb_.fieldDct = false;
+    if (pp_.fieldDctAllowed && (intra || (type.value & kMbPattern))) mb_.fieldDct = br_.readBit();
+    if (mb_.fieldDct) ++out_.report->fieldDctMacroblocks;
+    if (type.value & kMbQuant) {
+      qsc = static_cast<int>(br_.read(5));
+      if (qsc == 0) {
+        issue(IssueKind::kBadHeader, mbX, mbY);
+        return;
+      }
+      setQuantiserScale(qsc);
+    }
+    bool ok = true;
+    if (intra) {
+      if (pp_.concealmentMotionVectors) {
+        ok = concealmentVectors();
+      } else {
+        std::memset(pmv_, 0, sizeof pmv_);
+      }
+      mb_.pattern = 0x3F;
+    } else {
+      resetDc();
+      if (ip_.codingType == 2 && !(type.value & kMbForward)) {
+        resetPmv(0);
+        zeroPrediction();  // "No MC"
+      }
+      if (type.value & kMbForward) ok = motionVectors(0, motionType);
+      if (ok && (type.value & kMbBackward)) ok = motionVectors(1, motionType);
+      mb_.pattern = 0;
+      if (ok && (type.value & kMbPattern)) {
+        const InterVlcEntry cbp = it_.codedBlockPattern[br_.peek(9)];
+        ok = cbp.len != 0;
+        br_.skip(cbp.len);
+        mb_.pattern = cbp.value;
+      }
+    }
+    if (!ok) {
+      issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, mbX, mbY);
+      return;
+    }
+    IssueKind why = IssueKind::kBadVlc;
+    for (int b = 0; b < 6; ++b) {
+      mb_.onlyFirst[b] = false;
+      if (!(mb_.pattern & (32 >> b))) continue;
+      if (!parseBlock(b, intra, why)) {
+        if (br_.overrun()) why = IssueKind::kTruncatedSlice;
+        issue(why, mbX, mbY);
+        std::memset(mb_.block, 0, sizeof mb_.block);
+        return;
+      }
+    }
+    if (br_.overrun()) {
+      issue(IssueKind::kTruncatedSlice, mbX, mbY);
+      std::memset(mb_.block, 0, sizeof mb_.block);
+      return;
+    }
+    prevType_ = mb_.type;
+    predictAndStore(true);
+    const std::size_t pos = br_.position();
+    if (out_.trace) {
+      out_.trace->push_back(MacroblockBits{static_cast<std::uint32_t>(address),
+                                           static_cast<std::uint32_t>(pos - mbStart),
+                                           static_cast<std::uint32_t>(offset_ + (pos + 7) / 8), mbStart == 0});
+    }
+    mbStart = pos;
+    if (br_.peek(23) == 0) return;
+  }
+}
+
+}  // namespace
+
+void decodeInterSlice(const PictureParams& pp, const InterParams& ip, int code, const std::uint8_t* begin,
+                      const std::uint8_t* end, std::size_t offset, const SliceOutput& out) {
+  InterSliceDecoder d(pp, ip, begin, end, offset, out);
+  d.run(code);
+}
+
+}  // namespace vbim::ipu

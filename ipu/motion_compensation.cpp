@@ -1,0 +1,179 @@
+#include "ipu/motion_compensation.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+
+#include "ipu/idct.hpp"
+#include "ipu/idct_libmpeg2.hpp"
+#include "ipu/inter_vlc.hpp"
+
+namespace vbim::ipu {
+namespace {
+
+inline std::uint8_t clip(int v) {
+  return static_cast<std::uint8_t>(v < 0 ? 0 : (v > 255 ? 255 : v));
+}
+
+// One plane of a reference: a frame, or one field of it.
+struct SourcePlane {
+  const std::uint8_t* base;
+  std::ptrdiff_t stride;
+  int width;
+  int rows;
+};
+
+// Predicts a w x h block whose top-left sample is (x, y) in the source's coordinates, displaced by
+// (hx2, hy2) half samples (already inside the plane).
+void predictBlock(const SourcePlane& s, int px, int py, std::uint8_t* dst, std::ptrdiff_t dstStride, int w, int h,
+                  bool average) {
+  const std::uint8_t* a = s.base + static_cast<std::ptrdiff_t>(py >> 1) * s.stride + (px >> 1);
+  const int hx = px & 1;
+  const int hy = py & 1;
+  const std::ptrdiff_t down = hy ? s.stride : 0;
+  for (int r = 0; r < h; ++r) {
+    const std::uint8_t* p = a + r * s.stride;
+    std::uint8_t* d = dst + r * dstStride;
+    for (int c = 0; c < w; ++c) {
+      int v;
+      if (hx && hy) {
+        v = (p[c] + p[c + 1] + p[c + down] + p[c + down + 1] + 2) >> 2;
+      } else if (hx) {
+        v = (p[c] + p[c + 1] + 1) >> 1;
+      } else if (hy) {
+        v = (p[c] + p[c + down] + 1) >> 1;
+      } else {
+        v = p[c];
+      }
+      d[c] = static_cast<std::uint8_t>(average ? (d[c] + v + 1) >> 1 : v);
+    }
+  }
+}
+
+// Keeps a position (half samples) of a block of `size` samples inside [0, 2 * (extent - size)].
+bool bound(int& pos, int extent, int size) {
+  const int hi = 2 * (extent - size);
+  if (pos >= 0 && pos <= hi) return false;
+  pos = pos < 0 ? 0 : hi;
+  return true;
+}
+
+SourcePlane planeOf(const std::vector<std::uint8_t>& plane, int stride, int rows, int width, int field) {
+  if (field < 0) return {plane.data(), stride, width, rows};
+  return {plane.data() + static_cast<std::ptrdiff_t>(field) * stride, 2 * static_cast<std::ptrdiff_t>(stride), width,
+          rows / 2};
+}
+
+}  // namespace
+
+PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& refs, const PictureParams& pp) {
+  PredictionResult result;
+  for (int k = 0; k < mb.opCount; ++k) {
+    const PredictionOp& op = mb.ops[k];
+    const FrameStore* ref = op.ref == PredictionRef::kForward    ? refs.forward
+                            : op.ref == PredictionRef::kBackward ? refs.backward
+                                                                 : refs.current;
+    // Destination: the rows of the macroblock (or of one of its fields) in the picture.
+    const bool fieldRows = op.dstField >= 0;
+    const std::ptrdiff_t yStride = pp.yStride;
+    const std::ptrdiff_t cStride = pp.cStride;
+    std::uint8_t* dy;
+    std::uint8_t* dcb;
+    std::uint8_t* dcr;
+    std::ptrdiff_t dyStride = yStride;
+    std::ptrdiff_t dcStride = cStride;
+    const std::ptrdiff_t x = std::ptrdiff_t{16} * mb.mbX;
+    if (fieldRows) {
+      dy = pp.y + (std::ptrdiff_t{16} * mb.mbY + op.dstField) * yStride + x;
+      dcb = pp.cb + (std::ptrdiff_t{8} * mb.mbY + op.dstField) * cStride + x / 2;
+      dcr = pp.cr + (std::ptrdiff_t{8} * mb.mbY + op.dstField) * cStride + x / 2;
+      dyStride *= 2;
+      dcStride *= 2;
+    } else {
+      dy = pp.y + (std::ptrdiff_t{16} * mb.mbY + op.top) * yStride + x;
+      dcb = pp.cb + (std::ptrdiff_t{8} * mb.mbY + op.top / 2) * cStride + x / 2;
+      dcr = pp.cr + (std::ptrdiff_t{8} * mb.mbY + op.top / 2) * cStride + x / 2;
+    }
+    const int h = op.height;
+    if (ref == nullptr) {
+      // No reference frame: mid-grey (concealed, reported by the caller).
+      result.missingReference = true;
+      for (int r = 0; r < h; ++r) std::memset(dy + r * dyStride, 128, 16);
+      for (int r = 0; r < h / 2; ++r) {
+        std::memset(dcb + r * dcStride, 128, 8);
+        std::memset(dcr + r * dcStride, 128, 8);
+      }
+      continue;
+    }
+    // Source position of the block in the reference's (frame or field) coordinates.
+    const int y0 = (fieldRows ? 8 * mb.mbY : 16 * mb.mbY + op.top);
+    const int x0 = 16 * mb.mbX;
+    const SourcePlane ly = planeOf(ref->y, ref->lumaStride, ref->mbHeight * 16, ref->lumaStride, op.srcField);
+    int px = 2 * x0 + op.mvx;
+    int py = 2 * y0 + op.mvy;
+    const bool cx = bound(px, ly.width, 16);
+    const bool cy = bound(py, ly.rows, h);
+    result.clamped = result.clamped || cx || cy;
+    predictBlock(ly, px, py, dy, dyStride, 16, h, op.average);
+    // Chroma: the (bounded) luma vector halved toward zero (§7.6.3.7), at half the position.
+    const int mvx = px - 2 * x0;
+    const int mvy = py - 2 * y0;
+    const SourcePlane lc = planeOf(ref->cb, ref->chromaStride, ref->mbHeight * 8, ref->chromaStride, op.srcField);
+    const SourcePlane lr = planeOf(ref->cr, ref->chromaStride, ref->mbHeight * 8, ref->chromaStride, op.srcField);
+    int qx = x0 + mvx / 2;
+    int qy = y0 + mvy / 2;
+    bound(qx, lc.width, 8);
+    bound(qy, lc.rows, h / 2);
+    predictBlock(lc, qx, qy, dcb, dcStride, 8, h / 2, op.average);
+    predictBlock(lr, qx, qy, dcr, dcStride, 8, h / 2, op.average);
+  }
+  return result;
+}
+
+void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
+  const bool intra = (mb.type & kMbIntra) != 0;
+  const std::ptrdiff_t stride = pp.yStride;
+  std::uint8_t* y = pp.y + stride * 16 * mb.mbY + std::ptrdiff_t{16} * mb.mbX;
+  const std::ptrdiff_t down = mb.fieldDct ? stride : 8 * stride;
+  const std::ptrdiff_t lumaStride = mb.fieldDct ? 2 * stride : stride;
+  const std::size_t c = static_cast<std::size_t>(mb.mbY) * 8 * pp.cStride + static_cast<std::size_t>(mb.mbX) * 8;
+  std::int16_t out[64];
+  for (int b = 0; b < 6; ++b) {
+    if (!intra && !(mb.pattern & (32 >> b))) continue;
+    std::uint8_t* dst;
+    std::ptrdiff_t ds;
+    if (b < 4) {
+      dst = y + std::ptrdiff_t{8} * (b & 1) + down * (b >> 1);
+      ds = lumaStride;
+    } else {
+      dst = (b == 4 ? pp.cb : pp.cr) + c;
+      ds = pp.cStride;
+    }
+    std::int16_t* blk = mb.block[b];
+    if (intra) {
+      if (pp.blockIdct) {
+        pp.blockIdct(blk, out);
+        for (int r = 0; r < 8; ++r)
+          for (int k = 0; k < 8; ++k) dst[r * ds + k] = clip(out[8 * r + k]);
+      } else {
+        pp.idct(blk, 0xFF, 0xFF, dst, static_cast<int>(ds));
+      }
+    } else if (pp.blockIdct && mb.onlyFirst[b] && nonIntraDcShortcut(blk[0])) {
+      // libmpeg2's rule for a block whose only coded coefficient is the first (idct_libmpeg2.hpp).
+      const int v = nonIntraDcResidual(blk[0]);
+      for (int r = 0; r < 8; ++r)
+        for (int k = 0; k < 8; ++k) dst[r * ds + k] = clip(dst[r * ds + k] + v);
+    } else {
+      if (pp.blockIdct) {
+        pp.blockIdct(blk, out);
+      } else {
+        idctSigned(blk, out);  // exact; its clip to [-256, 255] cannot change the clipped sum
+      }
+      for (int r = 0; r < 8; ++r)
+        for (int k = 0; k < 8; ++k) dst[r * ds + k] = clip(dst[r * ds + k] + out[8 * r + k]);
+    }
+    std::memset(blk, 0, sizeof(mb.block[b]));
+  }
+}
+
+}  // namespace vbim::ipu
