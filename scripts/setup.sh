@@ -17,7 +17,9 @@ PACKAGES=(
   # media around the model: images, encoding, the comparison decoders, ffprobe
   libopenimageio-dev libpng-dev libopenexr-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
-  libmpeg2-4-dev mpeg2dec
+  libmpeg2-4-dev
+  # libmpeg2 as a program: `vbim decode` is checked against `mpeg2dec -c` (tests/ipu/cli_decode_test.cpp)
+  mpeg2dec
   # DEMs (GeoTIFF, ASCII grid, SRTM .hgt) and GeoTIFF debug layers for the lighting generator
   libgdal-dev
   # disc images

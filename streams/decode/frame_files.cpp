@@ -29,9 +29,12 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
   char name[64];
   std::snprintf(name, sizeof name, "frame_%05d.%s", frame, extensionOf(format_));
   const std::filesystem::path path = directory_ / name;
-  const int w = decoder.width(), h = decoder.height();
+  // The frame due for display (display order), else the one decoded last.
+  const ipu::FrameStore& fs = decoder.displayFrame() ? *decoder.displayFrame() : decoder.frame();
+  const int w = decoder.displayFrame() ? decoder.displayWidth() : decoder.width();
+  const int h = decoder.displayFrame() ? decoder.displayHeight() : decoder.height();
   if (format_ == FrameFileFormat::kYuv) {
-    ipu::copyToYuv420(decoder.frame(), w, h, yuv_);
+    ipu::copyToYuv420(fs, w, h, yuv_);
     std::ofstream f(path, std::ios::binary);
     f.write(reinterpret_cast<const char*>(yuv_.y.data()), static_cast<std::streamsize>(yuv_.y.size()));
     f.write(reinterpret_cast<const char*>(yuv_.cb.data()), static_cast<std::streamsize>(yuv_.cb.size()));
@@ -39,7 +42,7 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
     if (!f) throw DecodeError(path.string() + ": cannot write");
     return;
   }
-  ipu::convertToRgba32(decoder.frame(), w, h, thresholds_, rgba_, decoder.kernels().cscRow);
+  ipu::convertToRgba32(fs, w, h, thresholds_, rgba_, decoder.kernels().cscRow);
   // GS alpha 0x80 = 1.0: PNG alpha 255 = 2 * a (clamped), EXR alpha = a / 128.
   if (format_ == FrameFileFormat::kPng) {
     for (std::size_t i = 3; i < rgba_.pixels.size(); i += 4)

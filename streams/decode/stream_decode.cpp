@@ -50,6 +50,7 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
   ipu::DecoderOptions decoderOptions;
   decoderOptions.kernels = &ipu::simdKernels();  // same bytes as the scalar reference, faster
   decoderOptions.idct = options.idct;
+  decoderOptions.libmpeg2Idct = options.idct == ipu::IdctKind::Libmpeg2;
   ipu::Decoder decoder(decoderOptions);
   std::unique_ptr<WorkerPool> pool;
   if (options.threads > 1) pool = std::make_unique<WorkerPool>(options.threads - 1);
@@ -57,7 +58,6 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
   DecodeSummary summary;
   if (video.streamId) summary.streamLabel = " (video stream " + hexId(*video.streamId) + ")";
   const std::string source = name + summary.streamLabel;
-  int pendingField = 0;  // parity of a first field waiting for its second
   for (const ipu::AccessUnit& au : ipu::splitAccessUnits(video.bytes)) {
     const auto bytes = std::span(video.bytes).subspan(au.offset, au.size);
     const ipu::PictureReport r = pool ? decoder.decode(bytes, *pool) : decoder.decode(bytes);
@@ -77,19 +77,12 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
       throw DecodeError(source + ": byte " + std::to_string(video.fileOffsetOf(au.offset)) +
                         ": cannot decode: " + ipu::issueName(k));
     }
-    if (!r.produced) continue;
-    const int structure = decoder.picture().pictureStructure;
-    if (structure != 3) {  // a field picture
-      if (pendingField == 0 || pendingField == structure) {
-        pendingField = structure;
-        continue;
-      }
-      pendingField = 0;
-    }
     summary.concealedMacroblocks += r.macroblocksConcealed;
-    frames(summary.frames, decoder);
-    ++summary.frames;
+    // Frames leave in display order (§6.1.1.11): B frames at once, I and P frames when the next
+    // one is complete, the last at the end.
+    if (decoder.displayFrame()) frames(summary.frames++, decoder);
   }
+  if (decoder.flushDisplay()) frames(summary.frames++, decoder);
   if (summary.frames == 0) {
     if (!decoder.hasSequence()) throw DecodeError(source + ": no sequence header: nothing can be decoded");
     throw DecodeError(source + ": no picture could be decoded");

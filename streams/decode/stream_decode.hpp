@@ -34,8 +34,8 @@ struct DecodeSummary {
   long concealedMacroblocks = 0;
 };
 
-// Called with each complete frame (numbered from 0) while the decoder holds it. A field picture
-// completes its frame only with the second field, of the other parity.
+// Called with each frame in display order (numbered from 0) while the decoder holds it as its
+// displayFrame(). A field picture completes its frame only with the second field, of the other parity.
 using FrameSink = std::function<void(int frame, const ipu::Decoder& decoder)>;
 // Called with one line per diagnostic: defects skipped in the container ("warning: ..."), issues
 // found while decoding (with their file byte offset and macroblock).
