@@ -9,6 +9,7 @@
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
+#include "tests/ipu/support/field_picture_writer.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 #include "tests/ipu/support/libmpeg2_decode.hpp"
 
@@ -113,6 +114,41 @@ TEST(IpuGop, InterlacedFieldPredictionAndFieldDct) {
 
 TEST(IpuGop, LargeStillPicture) {
   expectIdentical(gop(1024, 1024, 4, 12, 2, testing::Content::kLightmap, 3));
+}
+
+// What libavcodec never writes: field pictures (the second field of a P frame predicting from the
+// first, §7.6.3.5), 16x8 prediction, dual prime in field and frame pictures, skips in field
+// pictures; written by tests/ipu/support/field_picture_writer.* after a libavcodec I frame.
+void expectFieldStreamIdentical(const testing::FieldStreamOptions& o) {
+  SCOPED_TRACE(std::string(o.fieldPictures ? "field" : "frame") + " pictures, dual prime " +
+               (o.dualPrime ? "on" : "off") + ", seed " + std::to_string(o.seed));
+  const std::vector<std::uint8_t> es = testing::makeFieldStream(o);
+  const std::vector<Yuv420Image> ref = testing::decodeWithLibmpeg2(es);
+  const OurDecode ours = decodeOurs(es);
+  EXPECT_EQ(ours.issues, 0u) << ours.firstIssues;
+  ASSERT_EQ(ref.size(), static_cast<std::size_t>(1 + o.pictures));
+  ASSERT_EQ(ours.frames.size(), ref.size());
+  for (std::size_t f = 0; f < ref.size(); ++f) {
+    const testing::PlaneDiff d = testing::compare(ours.frames[f], ref[f]);
+    EXPECT_EQ(d.different, 0u) << "display frame " << f << ": max difference " << d.maxAbs;
+  }
+}
+
+TEST(IpuGop, FieldPicturesAndDualPrime) {
+  for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+    testing::FieldStreamOptions o;
+    o.seed = seed;
+    o.pictures = 3;
+    expectFieldStreamIdentical(o);  // P field pairs with field, 16x8 and dual-prime prediction
+    o.dualPrime = false;
+    expectFieldStreamIdentical(o);
+    o.fieldPictures = false;  // P frame pictures: field prediction and field DCT
+    expectFieldStreamIdentical(o);
+    o.dualPrime = true;  // and dual prime
+    o.width = 128;
+    o.height = 96;
+    expectFieldStreamIdentical(o);
+  }
 }
 
 // Slice-parallel decode of P and B pictures gives the same bytes.
