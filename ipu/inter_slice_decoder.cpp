@@ -6,6 +6,7 @@
 #include "ipu/inter_vlc.hpp"
 #include "ipu/motion_vectors.hpp"
 #include "ipu/quant_tables.hpp"
+#include "ipu/slice_syntax.hpp"
 #include "ipu/vlc_tables.hpp"
 
 namespace vbim::ipu {
@@ -14,8 +15,7 @@ namespace {
 // frame_motion_type / field_motion_type values (Tables 6-17, 6-18).
 constexpr int kMotionField = 1;  // field-based
 constexpr int kMotionFrame = 2;  // frame-based (frame pictures); 16x8 (field pictures)
-constexpr int kMotion16x8 = 2;
-constexpr int kMotionDualPrime = 3;
+constexpr int kMotion16x8 = 2;   // 3 is dual prime in both
 
 class InterSliceDecoder {
  public:
@@ -40,7 +40,6 @@ class InterSliceDecoder {
   void resetPmv(int s) {
     for (auto& r : pmv_) r[s][0] = r[s][1] = 0;
   }
-  bool readIncrement(int& inc);
   PredictionRef refOf(int s, int srcField) const {
     if (s == 1) return PredictionRef::kBackward;
     if (!frame_ && ip_.codingType == 2 && ip_.secondField && srcField != parity_) return PredictionRef::kCurrent;
@@ -81,20 +80,6 @@ class InterSliceDecoder {
   std::uint8_t prevType_ = 0;  // macroblock_type of the last coded macroblock (B skips repeat it)
   Macroblock mb_;
 };
-
-bool InterSliceDecoder::readIncrement(int& inc) {
-  inc = 0;
-  for (;;) {
-    const VlcEntry e = t_.mbAddressIncrement[br_.peek(11)];
-    if (e.len == 0 || br_.overrun()) return false;
-    br_.skip(e.len);
-    if (e.value > 0) {
-      inc += e.value;
-      return true;
-    }
-    if (e.value == kMbaEscape) inc += 33;  // stuffing adds nothing
-  }
-}
 
 // One motion_vector(r, s) (§6.2.5.3) and its reconstruction (§7.6.3.1); a field-format vector of a
 // frame picture predicts its vertical part from PMV / 2 and stores it back doubled.
@@ -278,19 +263,8 @@ bool InterSliceDecoder::parseBlock(int b, bool intra, IssueKind& why) {
       br_.skip(s.bits);
       break;
     } else if (s.step == kDctKindEscape) {
-      br_.skip(6);
-      const int run = static_cast<int>(br_.read(6));
-      int level;
-      if (pp_.mpeg1) {
-        level = br_.readSigned(8);
-        if (level == 0) {
-          level = static_cast<int>(br_.read(8));
-        } else if (level == -128) {
-          level = static_cast<int>(br_.read(8)) - 256;
-        }
-      } else {
-        level = br_.readSigned(12);
-      }
+      int run = 0;
+      const int level = pp_.mpeg1 ? readEscapeLevel<true>(br_, run) : readEscapeLevel<false>(br_, run);
       i += run + 1;
       if (!place(level < 0 ? -level : level, level < 0)) return false;
     } else {
@@ -349,22 +323,13 @@ void InterSliceDecoder::skipped(int address) {
 }
 
 void InterSliceDecoder::run(int code) {
-  int row = code - 1;
-  if (pp_.tallPicture && !pp_.mpeg1) row += static_cast<int>(br_.read(3)) << 7;
-  if (row >= pp_.mbRows) {
-    issue(IssueKind::kBadSlicePosition, -1, row);
+  const SliceHeader h = readSliceHeader(br_, pp_, code);
+  const int row = h.row;
+  if (!h.ok) {
+    issue(h.why, -1, row);
     return;
   }
-  int qsc = static_cast<int>(br_.read(5));
-  if (!pp_.mpeg1 && br_.peek(1)) br_.skip(9);  // intra_slice_flag, intra_slice, reserved_bits
-  while (br_.readBit()) {                      // extra_bit_slice / extra_information_slice
-    br_.skip(8);
-    if (br_.overrun()) break;
-  }
-  if (br_.overrun() || qsc == 0) {
-    issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadHeader, -1, row);
-    return;
-  }
+  int qsc = h.quantiserScaleCode;
   setQuantiserScale(qsc);
   resetDc();
   std::memset(pmv_, 0, sizeof pmv_);
@@ -378,7 +343,7 @@ void InterSliceDecoder::run(int code) {
     int inc = 0;
     const int curX = address < 0 ? 0 : (address + 1) % pp_.mbWidth;
     const int curY = address < 0 ? row : (address + 1) / pp_.mbWidth;
-    if (!readIncrement(inc)) {
+    if (!readAddressIncrement(br_, t_, inc)) {
       issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, curX, curY);
       return;
     }
@@ -478,13 +443,7 @@ void InterSliceDecoder::run(int code) {
     }
     prevType_ = mb_.type;
     predictAndStore(true);
-    const std::size_t pos = br_.position();
-    if (out_.trace) {
-      out_.trace->push_back(MacroblockBits{static_cast<std::uint32_t>(address),
-                                           static_cast<std::uint32_t>(pos - mbStart),
-                                           static_cast<std::uint32_t>(offset_ + (pos + 7) / 8), mbStart == 0});
-    }
-    mbStart = pos;
+    recordMacroblock(out_.trace, address, br_.position(), mbStart, offset_);
     if (br_.peek(23) == 0) return;
   }
 }

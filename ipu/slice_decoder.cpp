@@ -6,6 +6,7 @@
 #include "ipu/bit_reader.hpp"
 #include "ipu/idct.hpp"
 #include "ipu/quant_tables.hpp"
+#include "ipu/slice_syntax.hpp"
 #include "ipu/vlc_tables.hpp"
 
 namespace vbim::ipu {
@@ -38,7 +39,6 @@ class SliceDecoder {
     const int reset = pp_.mpeg1 ? 128 : (1 << (7 + pp_.intraDcPrecision));
     dcPred_[0] = dcPred_[1] = dcPred_[2] = reset;
   }
-  bool readAddressIncrement(int& inc);
   bool skipConcealmentVectors();
   template <bool Mpeg1>
   Status parseBlocks(IssueKind& why);
@@ -76,22 +76,6 @@ void SliceDecoder::setQuantiserScale(int code) {
     scan_[i].pos = static_cast<std::uint8_t>(pos);
     scan_[i].wq = pp_.intraMatrix[pos] * scale;
     scan_[i].mask = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
-  }
-}
-
-bool SliceDecoder::readAddressIncrement(int& inc) {
-  inc = 0;
-  for (;;) {
-    const VlcEntry e = t_.mbAddressIncrement[br_.peek(11)];
-    if (e.len == 0 || br_.overrun()) return false;
-    br_.skip(e.len);
-    if (e.value == kMbaEscape) {
-      inc += 33;
-    } else if (e.value != kMbaStuffing) {
-      inc += e.value;
-      return true;
-    }
-    // Escapes and stuffing are 11 bits each, so the loop ends at the slice's last byte.
   }
 }
 
@@ -210,19 +194,8 @@ template <bool Mpeg1>
     } else if (s.step == kDctKindEscape) {
       // Escape: 6-bit run, then a 12-bit signed level (MPEG-1: 8 or 16 bits, 11172-2 §2.4.3.7).
       // skip() and read() refill as they go.
-      br.skip(6);
-      const int run = static_cast<int>(br.read(6));
-      int level;
-      if (Mpeg1) {
-        level = br.readSigned(8);
-        if (level == 0) {
-          level = static_cast<int>(br.read(8));
-        } else if (level == -128) {
-          level = static_cast<int>(br.read(8)) - 256;
-        }
-      } else {
-        level = br.readSigned(12);
-      }
+      int run = 0;
+      const int level = readEscapeLevel<Mpeg1>(br, run);
       const int negative = level < 0;
       i += run + 1;
       if (!place(negative ? -level : level, negative)) {
@@ -300,24 +273,13 @@ void SliceDecoder::reconstruct(int mbX, int mbY, bool fieldDct) {
 }
 
 void SliceDecoder::run(int code) {
-  int row = code - 1;
-  if (pp_.tallPicture && !pp_.mpeg1) row += static_cast<int>(br_.read(3)) << 7;
-  if (row >= pp_.mbRows) {
-    issue(IssueKind::kBadSlicePosition, -1, row);
+  const SliceHeader h = readSliceHeader(br_, pp_, code);
+  const int row = h.row;
+  if (!h.ok) {
+    issue(h.why, -1, row);
     return;
   }
-  int qsc = static_cast<int>(br_.read(5));
-  if (!pp_.mpeg1 && br_.peek(1)) {
-    br_.skip(9);  // intra_slice_flag, intra_slice, reserved_bits
-  }
-  while (br_.readBit()) {  // extra_bit_slice / extra_information_slice
-    br_.skip(8);
-    if (br_.overrun()) break;
-  }
-  if (br_.overrun() || qsc == 0) {
-    issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadHeader, -1, row);
-    return;
-  }
+  int qsc = h.quantiserScaleCode;
   setQuantiserScale(qsc);
   resetDcPredictors();
 
@@ -329,7 +291,7 @@ void SliceDecoder::run(int code) {
     int inc = 0;
     const int curX = address < 0 ? 0 : (address + 1) % pp_.mbWidth;
     const int curY = address < 0 ? row : (address + 1) / pp_.mbWidth;
-    if (!readAddressIncrement(inc)) {
+    if (!readAddressIncrement(br_, t_, inc)) {
       issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, curX, curY);
       return;
     }
@@ -383,13 +345,7 @@ void SliceDecoder::run(int code) {
     reconstruct(mbX, mbY, fieldDct);
     (*out_.decoded)[static_cast<std::size_t>(mbY) * static_cast<std::size_t>(out_.decodedStride) +
                     static_cast<std::size_t>(mbX)] = 1;
-    const std::size_t pos = br_.position();
-    if (out_.trace) {
-      out_.trace->push_back(MacroblockBits{static_cast<std::uint32_t>(address),
-                                           static_cast<std::uint32_t>(pos - mbStart),
-                                           static_cast<std::uint32_t>(offset_ + (pos + 7) / 8), mbStart == 0});
-    }
-    mbStart = pos;
+    recordMacroblock(out_.trace, address, br_.position(), mbStart, offset_);
     // The slice ends where the next start code begins: 23 zero bits (§6.2.4 nextbits()). Past the
     // slice's bytes the reader supplies zeros, so this also ends a slice cut short.
     if (br_.peek(23) == 0) return;

@@ -1,7 +1,7 @@
 // libFuzzer target for the picture decoder: any bytes, as one access unit and split into access
-// units. The decoder must not crash, read out of bounds (ASan) or hang; the Highway kernels must
-// give the same frame as the scalar reference; the slice-parallel path the same frame, and an RGBA
-// image of the decoded picture's size equal to the conversion of that frame. Built with
+// units (I, P and B pictures; seeds with GOPs, field pictures and dual prime). The decoder must not crash, read out of
+// bounds (ASan) or hang; the Highway kernels must give the same frame as the scalar reference; the slice-parallel path
+// the same frame, and an RGBA image of the decoded picture's size equal to the conversion of that frame. Built with
 // -DVBIM_FUZZ=ON and clang; scripts/fuzz.sh runs it for a bounded time from the seed corpus
 // next to this file.
 #include <cstddef>
@@ -58,10 +58,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (expected.pixels != splitRgba.pixels) std::abort();
   }
   if (a.produced && a.macroblocksDecoded + a.macroblocksConcealed != a.macroblocks) std::abort();
+  // Picture by picture (P and B pictures predict from the frames before), with libmpeg2's IDCT
+  // on a second decoder, and every frame leaving in display order read whole.
+  vbim::ipu::DecoderOptions m2 = small;
+  m2.libmpeg2Idct = true;
+  vbim::ipu::Decoder ordered(m2);
+  vbim::Yuv420Image shown;
+  auto show = [&]() {
+    if (ordered.displayFrame())
+      vbim::ipu::copyToYuv420(*ordered.displayFrame(), ordered.displayWidth(), ordered.displayHeight(), shown);
+  };
   for (const vbim::ipu::AccessUnit& au : vbim::ipu::splitAccessUnits(bytes)) {
     if (au.offset + au.size > size) std::abort();
     scalar.decode(bytes.subspan(au.offset, au.size));
+    const vbim::ipu::PictureReport r = ordered.decode(bytes.subspan(au.offset, au.size));
+    if (r.produced && r.macroblocksDecoded + r.macroblocksConcealed != r.macroblocks) std::abort();
+    show();
   }
+  if (ordered.flushDisplay()) show();
   if (scalar.hasSequence() && !scalar.frame().empty()) {
     vbim::Rgba8Image img;
     vbim::ipu::convertToRgba32(scalar.frame(), scalar.frame().mbWidth * 16, scalar.frame().mbHeight * 16, {40, 90}, img,
