@@ -81,8 +81,8 @@ class Decoder {
   const FrameStore* displayFrame() const { return frames_.display(); }
   int displayWidth() const { return frames_.displayWidth(); }
   int displayHeight() const { return frames_.displayHeight(); }
-  // End of the stream: completes a frame waiting for its second field and makes the last I or P
-  // frame the display frame if it was not shown. False if nothing is left to show.
+  // End of the stream, called until it returns false: each call makes the next frame still due
+  // the display frame (a frame left waiting for its second field, then the last I or P frame).
   bool flushDisplay();
   bool hasSequence() const { return haveSequence_; }
   const SequenceHeader& sequence() const { return seq_; }

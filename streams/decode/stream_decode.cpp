@@ -82,7 +82,7 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
     // one is complete, the last at the end.
     if (decoder.displayFrame()) frames(summary.frames++, decoder);
   }
-  if (decoder.flushDisplay()) frames(summary.frames++, decoder);
+  while (decoder.flushDisplay()) frames(summary.frames++, decoder);
   if (summary.frames == 0) {
     if (!decoder.hasSequence()) throw DecodeError(source + ": no sequence header: nothing can be decoded");
     throw DecodeError(source + ": no picture could be decoded");

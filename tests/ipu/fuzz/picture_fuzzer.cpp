@@ -75,7 +75,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (r.produced && r.macroblocksDecoded + r.macroblocksConcealed != r.macroblocks) std::abort();
     show();
   }
-  if (ordered.flushDisplay()) show();
+  while (ordered.flushDisplay()) show();
   if (scalar.hasSequence() && !scalar.frame().empty()) {
     vbim::Rgba8Image img;
     vbim::ipu::convertToRgba32(scalar.frame(), scalar.frame().mbWidth * 16, scalar.frame().mbHeight * 16, {40, 90}, img,
