@@ -121,7 +121,8 @@ TEST(IpuGop, LargeStillPicture) {
 // pictures; written by tests/ipu/support/field_picture_writer.* after a libavcodec I frame.
 void expectFieldStreamIdentical(const testing::FieldStreamOptions& o) {
   SCOPED_TRACE(std::string(o.fieldPictures ? "field" : "frame") + " pictures, dual prime " +
-               (o.dualPrime ? "on" : "off") + ", seed " + std::to_string(o.seed));
+               (o.dualPrime ? "on" : "off") + (o.concealmentVectors ? ", concealment vectors" : "") + ", seed " +
+               std::to_string(o.seed));
   const std::vector<std::uint8_t> es = testing::makeFieldStream(o);
   const std::vector<Yuv420Image> ref = testing::decodeWithLibmpeg2(es);
   const OurDecode ours = decodeOurs(es);
@@ -147,6 +148,10 @@ TEST(IpuGop, FieldPicturesAndDualPrime) {
     o.dualPrime = true;  // and dual prime
     o.width = 128;
     o.height = 96;
+    expectFieldStreamIdentical(o);
+    o.concealmentVectors = true;  // intra macroblocks in P pictures, with concealment vectors
+    expectFieldStreamIdentical(o);
+    o.fieldPictures = true;
     expectFieldStreamIdentical(o);
   }
 }

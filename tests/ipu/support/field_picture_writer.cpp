@@ -91,16 +91,16 @@ class PictureWriter {
     w_.put(15, 4);
     w_.put(0, 2);  // intra_dc_precision
     w_.put(static_cast<std::uint32_t>(structure), 2);
-    w_.put(1, 1);  // top_field_first
-    w_.put(0, 1);  // frame_pred_frame_dct
-    w_.put(0, 1);  // concealment_motion_vectors
-    w_.put(0, 1);  // q_scale_type
-    w_.put(0, 1);  // intra_vlc_format
-    w_.put(0, 1);  // alternate_scan
-    w_.put(0, 1);  // repeat_first_field
-    w_.put(0, 1);  // chroma_420_type
-    w_.put(0, 1);  // progressive_frame
-    w_.put(0, 1);  // composite_display_flag
+    w_.put(1, 1);                              // top_field_first
+    w_.put(0, 1);                              // frame_pred_frame_dct
+    w_.put(o_.concealmentVectors ? 1 : 0, 1);  // concealment_motion_vectors
+    w_.put(0, 1);                              // q_scale_type
+    w_.put(0, 1);                              // intra_vlc_format
+    w_.put(0, 1);                              // alternate_scan
+    w_.put(0, 1);                              // repeat_first_field
+    w_.put(0, 1);                              // chroma_420_type
+    w_.put(0, 1);                              // progressive_frame
+    w_.put(0, 1);                              // composite_display_flag
     const int mbw = o_.width / 16;
     const int rows = structure == 3 ? o_.height / 16 : o_.height / 32;
     for (int row = 0; row < rows; ++row) slice(row, mbw);
@@ -134,6 +134,11 @@ class PictureWriter {
         w_.put(1, 1);  // increment 1
       }
       first = false;
+      if (o_.concealmentVectors && rng_.next(0, 4) == 0) {
+        intraMacroblock();
+        ++x;
+        continue;
+      }
       const bool coded = rng_.next(0, 2) == 0;
       w_.put(1, coded ? 1 : 3);  // '1' MC coded, '001' MC not coded
       if (structure_ == 3) {
@@ -149,6 +154,29 @@ class PictureWriter {
         }
       }
       ++x;
+    }
+  }
+
+  // An intra macroblock ('00011') with its concealment vector (frame format in frame pictures,
+  // field select and vector in field pictures; it sets both predictors) and six DC-only blocks.
+  void intraMacroblock() {
+    w_.put(3, 5);
+    if (structure_ == 3) w_.put(static_cast<std::uint32_t>(rng_.next(0, 1)), 1);  // dct_type
+    if (structure_ != 3) w_.put(static_cast<std::uint32_t>(rng_.next(0, 1)), 1);  // field select
+    const int vx = rng_.next(-16, 15);
+    const int vy = rng_.next(-16, 15);
+    motionCode(w_, deltaFor(vx, pmv_[0][0]));
+    motionCode(w_, deltaFor(vy, pmv_[0][1]));
+    pmv_[0][0] = pmv_[1][0] = vx;
+    pmv_[0][1] = pmv_[1][1] = vy;
+    w_.put(1, 1);  // marker_bit
+    for (int b = 0; b < 6; ++b) {
+      if (b < 4) {
+        w_.put(4, 3);  // dct_dc_size_luminance 0
+      } else {
+        w_.put(0, 2);  // dct_dc_size_chrominance 0
+      }
+      w_.put(2, 2);  // EOB
     }
   }
 

@@ -13,9 +13,10 @@ namespace vbim::ipu::testing {
 struct FieldStreamOptions {
   int width = 96;  // multiples of 16; the height a multiple of 32
   int height = 64;
-  bool fieldPictures = true;  // P field pairs (top then bottom); false: P frame pictures
-  bool dualPrime = true;      // dual prime among the predictions (only these pictures: no B pictures follow)
-  int pictures = 2;           // P frames appended
+  bool fieldPictures = true;        // P field pairs (top then bottom); false: P frame pictures
+  bool dualPrime = true;            // dual prime among the predictions (only these pictures: no B pictures follow)
+  int pictures = 2;                 // P frames appended
+  bool concealmentVectors = false;  // concealment_motion_vectors, with intra macroblocks among the P ones
   std::uint32_t seed = 1;
 };
 
