@@ -4,16 +4,11 @@
 #include <cstddef>
 #include <cstring>
 
-#include "ipu/idct.hpp"
-#include "ipu/idct_libmpeg2.hpp"
 #include "ipu/inter_vlc.hpp"
+#include "ipu/kernels.hpp"
 
 namespace vbim::ipu {
 namespace {
-
-inline std::uint8_t clip(int v) {
-  return static_cast<std::uint8_t>(v < 0 ? 0 : (v > 255 ? 255 : v));
-}
 
 // One plane of a reference: a frame, or one field of it.
 struct SourcePlane {
@@ -137,7 +132,6 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
   const std::ptrdiff_t down = mb.fieldDct ? stride : 8 * stride;
   const std::ptrdiff_t lumaStride = mb.fieldDct ? 2 * stride : stride;
   const std::size_t c = static_cast<std::size_t>(mb.mbY) * 8 * pp.cStride + static_cast<std::size_t>(mb.mbX) * 8;
-  std::int16_t out[64];
   for (int b = 0; b < 6; ++b) {
     if (!intra && !(mb.pattern & (32 >> b))) continue;
     std::uint8_t* dst;
@@ -151,26 +145,11 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
     }
     std::int16_t* blk = mb.block[b];
     if (intra) {
-      if (pp.blockIdct) {
-        pp.blockIdct(blk, out);
-        for (int r = 0; r < 8; ++r)
-          for (int k = 0; k < 8; ++k) dst[r * ds + k] = clip(out[8 * r + k]);
-      } else {
-        pp.idct(blk, 0xFF, 0xFF, dst, static_cast<int>(ds));
-      }
-    } else if (pp.blockIdct && mb.onlyFirst[b] && nonIntraDcShortcut(blk[0])) {
-      // libmpeg2's rule for a block whose only coded coefficient is the first (idct_libmpeg2.hpp).
-      const int v = nonIntraDcResidual(blk[0]);
-      for (int r = 0; r < 8; ++r)
-        for (int k = 0; k < 8; ++k) dst[r * ds + k] = clip(dst[r * ds + k] + v);
+      pp.idct(blk, 0xFF, 0xFF, dst, static_cast<int>(ds));
     } else {
-      if (pp.blockIdct) {
-        pp.blockIdct(blk, out);
-      } else {
-        idctSigned(blk, out);  // exact; its clip to [-256, 255] cannot change the clipped sum
-      }
-      for (int r = 0; r < 8; ++r)
-        for (int k = 0; k < 8; ++k) dst[r * ds + k] = clip(dst[r * ds + k] + out[8 * r + k]);
+      // The kind's add kernel; kIdctFirstOnly lets Pcsx2 and Libmpeg2 take their decoders' shortcut
+      // for a block whose only coded coefficient is the first (ipu/idct_libmpeg2.hpp).
+      pp.idctAdd(blk, 0xFF | (mb.onlyFirst[b] ? kIdctFirstOnly : 0u), 0xFF, dst, static_cast<int>(ds));
     }
     std::memset(blk, 0, sizeof(mb.block[b]));
   }

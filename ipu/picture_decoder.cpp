@@ -75,7 +75,7 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
   p = PictureParams{};
   p.mpeg1 = !seq_.mpeg2;
   p.idct = kernels().idctOf(options_.idct).copy;
-  p.blockIdct = options_.libmpeg2Idct ? idctLibmpeg2 : nullptr;
+  p.idctAdd = kernels().idctOf(options_.idct).add;
   p.mbWidth = mbw;
   p.intraMatrix = seq_.intraMatrix;
   p.tallPicture = seq_.height > 2800;

@@ -45,10 +45,6 @@ struct DecoderOptions {
   bool freshStorePerDecode = false;
   const Kernels* kernels = nullptr;  // null: scalarKernels(); any choice gives the same bytes
   IdctKind idct = kDefaultIdct;      // which inverse DCT (ipu/kernels.hpp; platform parameter ipu.idct)
-  // Every block through libmpeg2 0.5.1's C IDCT (ipu/idct_libmpeg2.hpp) and its rule for DC-only
-  // non-intra blocks: output bit-identical to `mpeg2dec -c`. Off: the exact IDCT. A stand-in for
-  // the IDCT choice (IdctKind::Libmpeg2) that replaces it.
-  bool libmpeg2Idct = false;
 };
 
 // RGB32 output written by the decode itself (alpha 0x80, SETTH thresholds): after each picture the

@@ -231,18 +231,6 @@ template <bool Mpeg1>
 void SliceDecoder::storeBlock(int b, std::uint8_t* dst, int stride) {
   std::int16_t* blk = mb_.block[b];
   const unsigned rowMask = mb_.rowMask[b];
-  if (pp_.blockIdct) [[unlikely]] {
-    // Stand-in for the IDCT choice (PictureParams::blockIdct): that IDCT, clipped.
-    std::int16_t out[64];
-    pp_.blockIdct(blk, out);
-    for (int i = 0; i < 64; ++i) {
-      const int v = out[i];
-      dst[static_cast<std::ptrdiff_t>(i >> 3) * stride + (i & 7)] =
-          static_cast<std::uint8_t>(v < 0 ? 0 : (v > 255 ? 255 : v));
-    }
-    std::memset(blk, 0, 128);
-    return;
-  }
   const int dc = blk[0];
   // DC only, or DC that is a multiple of 8 plus only the mismatch toggle of F[7][7]: the exact
   // transform is the constant dc / 8 (the toggle adds less than 0.25 everywhere), and every

@@ -15,17 +15,11 @@
 
 namespace vbim::ipu {
 
-// An 8x8 inverse DCT before the clip: 64 dequantised coefficients (raster) to 64 samples.
-using BlockIdctFn = void (*)(const std::int16_t* coeffs, std::int16_t* out);
-
 // Everything a slice needs that is fixed for the picture.
 struct PictureParams {
   bool mpeg1 = false;
-  IdctFn idct = nullptr;  // inverse DCT kernel of the chosen IdctKind (scalarKernels() or simdKernels())
-  // Set: every block (intra ones too) goes through this IDCT, with libmpeg2's rule for non-intra
-  // blocks whose only coefficient is the first (DecoderOptions::libmpeg2Idct). Null: the exact
-  // IDCT. A stand-in until the IDCT choice (IdctKind) replaces it.
-  BlockIdctFn blockIdct = nullptr;
+  IdctFn idct = nullptr;        // intra blocks: the chosen IdctKind's kernel (scalarKernels() or simdKernels())
+  IdctAddFn idctAdd = nullptr;  // non-intra blocks: residual added to the prediction, same kind
   int mbWidth = 0;
   int mbRows = 0;            // macroblock rows of this picture (a field picture has half the frame's)
   bool tallPicture = false;  // vertical_size > 2800: slices carry slice_vertical_position_extension

@@ -50,7 +50,6 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
   ipu::DecoderOptions decoderOptions;
   decoderOptions.kernels = &ipu::simdKernels();  // same bytes as the scalar reference, faster
   decoderOptions.idct = options.idct;
-  decoderOptions.libmpeg2Idct = options.idct == ipu::IdctKind::Libmpeg2;
   ipu::Decoder decoder(decoderOptions);
   std::unique_ptr<WorkerPool> pool;
   if (options.threads > 1) pool = std::make_unique<WorkerPool>(options.threads - 1);

@@ -25,7 +25,7 @@ struct OurDecode {
 
 OurDecode decodeOurs(const std::vector<std::uint8_t>& es, SliceRunner* runner = nullptr) {
   DecoderOptions options;
-  options.libmpeg2Idct = true;
+  options.idct = IdctKind::Libmpeg2;
   Decoder dec(options);
   OurDecode out;
   auto take = [&]() {

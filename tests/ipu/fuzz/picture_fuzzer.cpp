@@ -61,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // Picture by picture (P and B pictures predict from the frames before), with libmpeg2's IDCT
   // on a second decoder, and every frame leaving in display order read whole.
   vbim::ipu::DecoderOptions m2 = small;
-  m2.libmpeg2Idct = true;
+  m2.idct = vbim::ipu::IdctKind::Libmpeg2;
   vbim::ipu::Decoder ordered(m2);
   vbim::Yuv420Image shown;
   auto show = [&]() {
