@@ -1,6 +1,5 @@
 #include "cli/author_common.hpp"
 
-#include <cstdio>
 #include <sstream>
 
 #include "cli/command.hpp"
@@ -67,16 +66,6 @@ void parseSize(const std::string& s, int& w, int& h, const char* what) {
   char x = 0;
   std::istringstream in(s);
   if (!(in >> w >> x >> h) || x != 'x' || !in.eof()) throw Exit(2, std::string(what) + " '" + s + "': expected WxH");
-}
-
-std::string containerStretchNote(std::uint32_t stretch, streams::Rational containerFps) {
-  if (stretch <= 1) return {};
-  char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3g", static_cast<double>(stretch) * containerFps.den / containerFps.num);
-  return "container time: frames " + std::to_string(stretch) + " periods apart (" + seconds +
-         " s): the largest frame holds more than the DVD mux rate sends in one period at " +
-         std::to_string(containerFps.num) + (containerFps.den == 1 ? "" : "/" + std::to_string(containerFps.den)) +
-         " fps; playback follows the game rate in the descriptor, ffplay shows each frame that long\n";
 }
 
 }  // namespace vbim::cli

@@ -34,8 +34,4 @@ streams::Rational parseRational(const std::string& s, const char* what);
 // "WxH"; Exit(2) naming `what` otherwise.
 void parseSize(const std::string& s, int& w, int& h, const char* what);
 
-// The line `vbim author` prints when the writer spaced the frames more than one container period
-// apart (StreamWriter::containerStretch): nothing when stretch is 1.
-std::string containerStretchNote(std::uint32_t stretch, streams::Rational containerFps);
-
 }  // namespace vbim::cli

@@ -12,10 +12,7 @@
 #include "config/params_toml.hpp"
 #include "runtime/params.hpp"
 #include "streams/authoring/error.hpp"
-
-extern "C" {
-#include <libavutil/log.h>
-}
+#include "streams/authoring/frame_stream.hpp"
 
 namespace vbim::cli {
 
@@ -33,29 +30,6 @@ DayCycleParams baseParams(const TerrainAuthorOptions& o) {
   }
   applyGivenLightingOptions(o.given, params);
   return params;
-}
-
-// --weather clear,overcast,storm=storm.toml: presets, or NAME=FILE with lighting.* keys applied on
-// top of the base settings.
-std::vector<lighting::WeatherVariant> parseWeather(const std::string& list, const DayCycleParams& base) {
-  std::vector<lighting::WeatherVariant> out;
-  std::stringstream in(list);
-  for (std::string item; std::getline(in, item, ',');) {
-    const std::size_t eq = item.find('=');
-    if (eq == std::string::npos) {
-      out.push_back(lighting::weatherVariant(item, base));
-      continue;
-    }
-    if (eq == 0 || eq + 1 == item.size())
-      throw Exit(2, "--weather '" + item + "': expected a preset name or NAME=FILE.toml");
-    lighting::WeatherVariant v{item.substr(0, eq), base};
-    ParamTable table;
-    lighting::describeParams(table, v.params);
-    config::applyTomlFile(table, item.substr(eq + 1));
-    out.push_back(std::move(v));
-  }
-  if (out.empty()) throw Exit(2, "--weather names no variant");
-  return out;
 }
 
 }  // namespace
@@ -133,9 +107,8 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   s.tone = toneMapping(enc);
   s.threads = o.threads;
   s.base = baseParams(o);
-  s.variants = parseWeather(o.weather, s.base);
+  s.variants = lighting::weatherVariants(o.weather, s.base);
 
-  av_log_set_level(AV_LOG_ERROR);
   Progress progress("vbim author", "frames");
   const lighting::AuthoredStream stream =
       lighting::authorTechniqueA(s, out, [&](const lighting::TechniqueAProgress& p) {
@@ -144,11 +117,18 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   progress.finish();
   for (const std::string& note : stream.terrainNotes)
     std::cout << "vbim author: " << o.terrain.heightfield << ": " << note << "\n";
+  std::cout << authoredSummary(out, stream, s.stream.encoder.containerFps);
+}
+
+std::string authoredSummary(const std::string& out, const lighting::AuthoredStream& stream,
+                            streams::Rational containerFps) {
   const streams::Descriptor& d = stream.descriptor;
-  std::cout << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
-            << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width
-            << "x" << d.streams[0].height << ", sky " << d.streams[1].width << "x" << d.streams[1].height << "\n"
-            << containerStretchNote(stream.containerStretch, s.stream.encoder.containerFps);
+  std::ostringstream o;
+  o << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
+    << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width << "x"
+    << d.streams[0].height << ", sky " << d.streams[1].width << "x" << d.streams[1].height << "\n"
+    << streams::containerStretchNote(stream.containerStretch, containerFps);
+  return o.str();
 }
 
 }  // namespace vbim::cli

@@ -31,6 +31,9 @@ struct TerrainAuthorOptions {
 void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o);
 // The first Technique A option on the command line ("" if none): selects this source.
 std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o);
+// What `vbim author` (and `vbim demo`) prints about a Technique A stream written to `out`.
+std::string authoredSummary(const std::string& out, const lighting::AuthoredStream& stream,
+                            streams::Rational containerFps);
 void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, const std::string& out);
 
 }  // namespace vbim::cli

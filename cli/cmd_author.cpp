@@ -2,32 +2,18 @@
 // one VBIM stream file.
 #include <filesystem>
 #include <iostream>
-#include <optional>
 #include <sstream>
 #include <utility>
 
-#include <nlohmann/json.hpp>
 #include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
-#include "imageio/error.hpp"
-#include "imageio/image_reader.hpp"
 #include "iop/error.hpp"
-
-#include "streams/authoring/error.hpp"
-#include "streams/authoring/frame_pattern.hpp"
-#include "streams/authoring/stream_writer.hpp"
-#include "streams/authoring/synthetic_day.hpp"
-#include "streams/authoring/tone_map.hpp"
-#include "streams/authoring_record.hpp"
+#include "streams/authoring/frame_stream.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "streams/disc/iso_writer.hpp"
-
-extern "C" {
-#include <libavutil/log.h>
-}
 
 namespace vbim::cli {
 
@@ -72,52 +58,29 @@ std::vector<std::pair<std::string, std::string>> parsePairs(const std::vector<st
   return out;
 }
 
-// One input frame file to 8-bit (streams/authoring/tone_map.hpp); a file that cannot be read is an
-// AuthoringError naming it.
-Rgba8Image loadFrame(const std::filesystem::path& path, InputEncoding enc, const ToneMapping& tone) {
-  imageio::FloatRgbFrame frame;
-  try {
-    frame = imageio::readFloatRgb(path);
-  } catch (const imageio::ImageIoError& e) {
-    throw AuthoringError(e.what());
+// --frames/--sky and each --variant with its --variant-sky, in stream order.
+ImageSequences imageSequences(const AuthorOptions& o, InputEncoding enc) {
+  ImageSequences in;
+  in.input = enc;
+  in.variants.push_back(SequenceVariant{o.name, o.frames, o.sky});
+  const auto skies = parsePairs(o.variantSkies, "--variant-sky");
+  for (const auto& [name, pattern] : parsePairs(o.variants, "--variant")) {
+    SequenceVariant v{name, pattern, {}};
+    for (const auto& [skyName, skyPattern] : skies)
+      if (skyName == name) v.skies = skyPattern;
+    in.variants.push_back(std::move(v));
   }
-  FloatRgbImage rgb(frame.rgb.width, frame.rgb.height);
-  rgb.rgb = std::move(frame.rgb.samples);
-  return encodeFrame(rgb, frame.floatingPoint, enc, tone);
+  for (const auto& [skyName, skyPattern] : skies) {
+    bool known = false;
+    for (const SequenceVariant& v : in.variants) known |= v.name == skyName;
+    if (!known) throw Exit(2, "--variant-sky " + skyName + "=...: no --variant named '" + skyName + "'");
+  }
+  return in;
 }
 
-struct VariantInput {
-  std::string name;
-  std::vector<FrameFile> lightmaps, skies;
-};
-
-// The authoring record of a stream made from image files or by the synthetic day generator: what is
-// known of it (the source, the frame sizes and times, the encoder settings), in the form Technique A
-// streams carry (lighting/authoring/authoring_record.hpp) but without a terrain, which these sources
-// do not have. `vbim info` shows it, `vbim play` copies it, `vbim render` notes that no terrain is
-// recorded and keeps its defaults. Appended after the video, so players never read it.
-std::string frameStreamRecord(const std::string& source, const AuthorSettings& s, std::uint32_t framesPerVariant,
-                              std::pair<int, int> lightmap, std::optional<std::pair<int, int>> sky,
-                              nlohmann::ordered_json variants) {
-  nlohmann::ordered_json j;
-  j["record"] = "vbim-authoring";
-  j["record_version"] = 1;
-  j["vbim_version"] = VBIM_VERSION;
-  j["source"] = source;
-  j["stream"] = {{"game_fps", {s.gameFps.num, s.gameFps.den}},
-                 {"loop_frame", s.loopFrame},
-                 {"frames_per_variant", framesPerVariant},
-                 {"frame_period_s", static_cast<double>(s.gameFps.den) / static_cast<double>(s.gameFps.num)},
-                 {"qscale", s.encoder.qscale},
-                 {"bitrate", s.encoder.bitrate}};
-  j["frames"] = {{"lightmap", {lightmap.first, lightmap.second}}};
-  j["frames"]["sky"] = sky ? nlohmann::ordered_json{sky->first, sky->second} : nlohmann::ordered_json();
-  j["variants"] = std::move(variants);
-  return j.dump();
-}
-
+// Image sequences or the synthetic day (streams/authoring/frame_stream.hpp).
 void runAuthor(const AuthorOptions& o) {
-  AuthorSettings settings = streamSettings(o.encode);
+  const AuthorSettings settings = streamSettings(o.encode);
   const ToneMapping tone = toneMapping(o.encode);
   InputEncoding enc = InputEncoding::Auto;
   if (o.input == "linear") {
@@ -127,10 +90,11 @@ void runAuthor(const AuthorOptions& o) {
   } else if (o.input != "auto") {
     throw Exit(2, "--input '" + o.input + "': expected auto, linear or encoded");
   }
-
-  av_log_set_level(AV_LOG_ERROR);
-  std::vector<std::uint8_t> bytes;
-  std::string stretchNote;
+  Progress progress("vbim author", "frames");
+  const auto show = [&](const FrameAuthorProgress& p) {
+    progress.show(static_cast<double>(p.done), static_cast<double>(p.total), p.label);
+  };
+  FrameStream stream;
   if (!o.synthetic.empty()) {
     if (!o.frames.empty() || !o.variants.empty())
       throw Exit(2, "--synthetic replaces --frames and --variant; give one or the other");
@@ -138,117 +102,22 @@ void runAuthor(const AuthorOptions& o) {
     day.frames = o.syntheticFrames;
     parseSize(o.syntheticSize, day.width, day.height, "--synthetic-size");
     parseSize(o.syntheticSkySize, day.skyWidth, day.skyHeight, "--synthetic-sky-size");
-    settings.withSky = day.skyWidth > 0;
     std::vector<std::string> weathers;
     std::stringstream list(o.synthetic);
     for (std::string w; std::getline(list, w, ',');) weathers.push_back(w);
-    StreamWriter writer(settings);
-    const std::size_t total = weathers.size() * day.frames;
-    std::size_t done = 0;
-    Progress progress("vbim author", "frames");
-    for (const std::string& w : weathers) {
-      day.weather = w;
-      checkSyntheticDay(day);
-      writer.beginVariant(w);
-      for (std::uint32_t f = 0; f < day.frames; ++f) {
-        const Rgba8Image lm = toneMap(syntheticLightmap(day, f), tone);
-        if (settings.withSky) {
-          const Rgba8Image sky = toneMap(syntheticSky(day, f), tone);
-          writer.addFrame(lm, &sky);
-        } else {
-          writer.addFrame(lm);
-        }
-        progress.show(static_cast<double>(++done), static_cast<double>(total), w + " " + std::to_string(f));
-      }
-    }
-    progress.finish();
-    bytes = writer.finish();
-    stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
-    nlohmann::ordered_json variants = nlohmann::ordered_json::array();
-    for (const std::string& w : weathers) variants.push_back({{"name", w}, {"weather", w}});
-    std::optional<std::pair<int, int>> sky;
-    if (settings.withSky) sky = std::pair<int, int>(day.skyWidth, day.skyHeight);
-    streams::appendAuthoringRecord(
-        bytes, frameStreamRecord("synthetic", settings, day.frames, {day.width, day.height}, sky, std::move(variants)));
+    stream = authorSyntheticStream(day, weathers, settings, tone, show);
   } else {
     if (o.frames.empty()) {
       throw Exit(2,
                  "give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
                  "--synthetic");
     }
-    std::vector<VariantInput> inputs;
-    inputs.push_back(VariantInput{o.name, expandFramePattern(o.frames), {}});
-    if (!o.sky.empty()) inputs[0].skies = expandFramePattern(o.sky);
-    const auto skies = parsePairs(o.variantSkies, "--variant-sky");
-    for (const auto& [name, pattern] : parsePairs(o.variants, "--variant")) {
-      VariantInput v{name, expandFramePattern(pattern), {}};
-      for (const auto& [skyName, skyPattern] : skies)
-        if (skyName == name) v.skies = expandFramePattern(skyPattern);
-      inputs.push_back(std::move(v));
-    }
-    for (const auto& [skyName, skyPattern] : skies) {
-      bool known = false;
-      for (const VariantInput& v : inputs) known |= v.name == skyName;
-      if (!known) throw Exit(2, "--variant-sky " + skyName + "=...: no --variant named '" + skyName + "'");
-    }
-    settings.withSky = !inputs[0].skies.empty();
-    std::size_t total = 0;
-    for (const VariantInput& v : inputs) {
-      if (settings.withSky && v.skies.empty()) {
-        throw Exit(2, "variant '" + v.name + "' has no sky sequence (give --variant-sky " + v.name +
-                          "=PATTERN, or no sky for any variant)");
-      }
-      if (!settings.withSky && !v.skies.empty())
-        throw Exit(2, "variant '" + v.name + "' has a sky sequence but the first variant has none");
-      if (settings.withSky && v.skies.size() != v.lightmaps.size()) {
-        throw Exit(2, "variant '" + v.name + "': " + std::to_string(v.lightmaps.size()) + " lightmap frames but " +
-                          std::to_string(v.skies.size()) + " sky frames (first sky file " +
-                          v.skies.front().path.string() + ")");
-      }
-      total += v.lightmaps.size();
-    }
-    StreamWriter writer(settings);
-    std::size_t done = 0;
-    std::pair<int, int> lmSize{0, 0};  // of the first frames, for the authoring record
-    std::optional<std::pair<int, int>> skySize;
-    Progress progress("vbim author", "frames");
-    for (const VariantInput& v : inputs) {
-      writer.beginVariant(v.name);
-      for (std::size_t i = 0; i < v.lightmaps.size(); ++i) {
-        const auto& lmPath = v.lightmaps[i].path;
-        const Rgba8Image lm = loadFrame(lmPath, enc, tone);
-        std::optional<Rgba8Image> sky;
-        if (settings.withSky) sky = loadFrame(v.skies[i].path, enc, tone);
-        if (done == 0) {
-          lmSize = {lm.width, lm.height};
-          if (sky) skySize = std::pair<int, int>(sky->width, sky->height);
-        }
-        try {
-          writer.addFrame(lm, sky ? &*sky : nullptr);
-        } catch (const AuthoringError& e) {
-          const bool skyFault = std::string(e.what()).rfind("sky", 0) == 0;
-          throw AuthoringError((skyFault ? v.skies[i].path : lmPath).string() + ": " + e.what());
-        }
-        progress.show(static_cast<double>(++done), static_cast<double>(total), lmPath.filename().string());
-      }
-    }
-    progress.finish();
-    bytes = writer.finish();
-    stretchNote = containerStretchNote(writer.containerStretch(), settings.encoder.containerFps);
-    nlohmann::ordered_json variants = nlohmann::ordered_json::array();
-    for (const VariantInput& v : inputs) {
-      nlohmann::ordered_json files = {{"name", v.name},
-                                      {"first_lightmap", v.lightmaps.front().path.filename().string()},
-                                      {"last_lightmap", v.lightmaps.back().path.filename().string()}};
-      if (!v.skies.empty()) files["first_sky"] = v.skies.front().path.filename().string();
-      variants.push_back(std::move(files));
-    }
-    streams::appendAuthoringRecord(bytes, frameStreamRecord("image-sequence", settings,
-                                                            static_cast<std::uint32_t>(inputs.front().lightmaps.size()),
-                                                            lmSize, skySize, std::move(variants)));
+    stream = authorImageSequences(imageSequences(o, enc), settings, tone, show);
   }
-  writeStreamFile(o.out, bytes);
-  std::cout << o.out << ": " << bytes.size() / 2048 << " sectors (" << bytes.size() << " bytes)\n" << stretchNote;
+  progress.finish();
+  writeStreamFile(o.out, stream.bytes);
+  std::cout << o.out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes)\n"
+            << containerStretchNote(stream.containerStretch, settings.encoder.containerFps);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // vbim demo: the README's main job, on built-in defaults with nothing downloaded.
 //  1. Authors a day cycle from the procedural terrain with Technique A, exactly as the committed
-//     sample streams/samples/day_clear.vbim is made (the same `vbim author` recipe, run in-process).
+//     sample streams/samples/day_clear.vbim is made (lighting/authoring/sample_day.hpp).
 //  2. Plays it through the whole pipeline with a built-in fault plan (a long drive stall, a
 //     scratched sector, and a run past the loop point so the stream wraps), writing everything
 //     `vbim play` writes into out/demo/.
@@ -8,7 +8,6 @@
 //  4. Renders the saved frames with OSMesa: terrain, sky and hemisphere-lit objects, a contact sheet
 //     with the stall and catch-up marked, and a video.
 // Everything lands in out/demo/ together (complete or absent), and it says what to open.
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -16,17 +15,18 @@
 
 #include <unistd.h>
 
+#include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "iop/fault_plan.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "lighting/authoring/sample_day.hpp"
+#include "player/run_dir_reader.hpp"
 #include "plots/profile_figures.hpp"
 #include "plots/write_chart.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
-#include "render/run_dir.hpp"
-#include "streams/authoring/error.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
 #include "sweep/profile_run.hpp"
 
@@ -48,30 +48,6 @@ kind = "read_error"     # a scratched sector in the stream file: drive retries, 
 lba = 2090              # file sector 42 (the bare file lies at LBA 2048)
 attempts = 300
 )";
-
-// The sample's recipe (streams/samples/README.md): 256x256 lightmap + 128x64 sky, 24 frames from 0 h to
-// 24 h, one per game second. Run through the `vbim author` command itself so the demo's stream and
-// the committed sample cannot drift apart (a test checks they are byte-identical).
-const std::vector<std::string> kDemoAuthorArgs = {
-    "--procedural", "--size", "256", "--cell-size",   "20", "--sky-width",  "128", "--exposure",
-    "-1",           "--q",    "6",   "--frame-count", "24", "--start-hour", "0",   "--end-hour",
-    "24",           "--fps",  "1"};
-
-std::filesystem::path authorDemoStream(const std::filesystem::path& out) {
-  CLI::App app;
-  addAuthor(app);
-  std::vector<std::string> args = {"author"};
-  args.insert(args.end(), kDemoAuthorArgs.begin(), kDemoAuthorArgs.end());
-  args.push_back("--out");
-  args.push_back(out.string());
-  std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last-first
-  try {
-    app.parse(args);
-  } catch (const CLI::ParseError& e) {
-    throw Exit(1, std::string("internal error in the authoring recipe: ") + e.what());
-  }
-  return out;
-}
 
 // The demo's profile pass: the occupancy, lag and pop of the demo run itself, and a small
 // survivable-stall curve (five ring sizes, blend-through, both criteria) on the same stream. A few
@@ -126,12 +102,7 @@ class DemoProfile {
                                                        pr::stallPoints(rows), pr::stallSearchSetup(search)),
                            dir.path("plots/survivable_stall"));
     std::ofstream csv(dir.path("plots/survivable_stall.csv"), std::ios::binary);
-    csv << "bankmax,bufmax_sectors,policy,criterion,longest_stall_s,saturated\n";
-    for (const pr::StallRow& r : rows) {
-      csv << r.ring.bankmax << "," << r.ring.bufmax << "," << r.policy << "," << pr::toString(r.criterion) << ","
-          << (r.result.longest ? std::to_string(toSeconds(*r.result.longest)) : std::string()) << ","
-          << (r.result.saturated ? 1 : 0) << "\n";
-    }
+    pr::writeStallCsv(rows, search, csv);
     seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   }
   double seconds() const { return seconds_; }
@@ -179,7 +150,11 @@ void addDemo(CLI::App& app) {
       }
     } cleanup{stream};
     std::cout << "vbim demo: authoring a day cycle from the procedural terrain (Technique A)\n";
-    authorDemoStream(stream);
+    // The sample's recipe, so that the demo's stream and the committed sample cannot drift apart (a
+    // test checks they are byte-identical).
+    const lighting::TechniqueAStreamSettings recipe = lighting::sampleDaySettings();
+    std::cout << authoredSummary(stream.string(), lighting::authorTechniqueA(recipe, stream),
+                                 recipe.stream.encoder.containerFps);
     r->disc = stream.string();
     r->discLabel = "day.vbim";  // as it is saved in the output: the summary is the same on every run
     if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
@@ -199,7 +174,7 @@ void addDemo(CLI::App& app) {
       fs::create_directories(dir.path("render"));
       try {
         // The terrain and day the stream was authored with, from the record play copied.
-        render::RunDir run = render::readRunDir(dir.path(""));
+        player::RunDir run = player::readRunDir(dir.path(""));
         run.path = "..";  // render.json names the run as seen from render/, not the temporary directory
         render::RunRenderRequest request;
         if (run.authoring) render::applyAuthoring(*run.authoring, "authoring.json", request);

@@ -20,12 +20,6 @@ using namespace vbim::streams;
 
 constexpr std::size_t kTextBuckets = 24;  // rows of the bitrate table in text output
 
-std::string hexId(std::uint8_t id) {
-  char b[8];
-  std::snprintf(b, sizeof b, "0x%02X", id);
-  return b;
-}
-
 nlohmann::json summaryJson(const Summary& s) {
   return {{"min", s.min}, {"mean", s.mean}, {"max", s.max}};
 }

@@ -23,7 +23,6 @@
 #include "lighting/fixed_angle.hpp"
 #include "lighting/geotiff_layers.hpp"
 #include "lighting/image_files.hpp"
-#include "lighting/procedural_terrain.hpp"
 #include "lighting/terrain_file.hpp"
 #include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"
@@ -35,13 +34,11 @@ namespace {
 using namespace vbim::lighting;
 
 struct LightmapOptions {
-  std::string terrain, albedo, bounceAlbedo, cloudTexture, config, out, format = "png", debug, layersFormat = "exr";
-  double cellSize = 10.0, verticalScale = 1000.0, relief = 900.0;
-  std::int64_t size = 512, seed = 1;
+  TerrainSource terrain;  // its *Given flags set after parsing: overrides for a DEM
+  std::string config, out, format = "png", debug, layersFormat = "exr";
   unsigned threads = 2;
   bool force = false, noMoon = false;
-  bool cellSizeGiven = false, verticalScaleGiven = false;  // set after parsing: overrides for a DEM
-  DayCycleParams params;                                   // values given on the command line
+  DayCycleParams params;  // values given on the command line
 };
 
 std::string frameName(const std::string& stem, int i, const std::string& ext) {
@@ -74,28 +71,6 @@ DebugLayers parseDebug(const std::string& list) {
     }
   }
   return d;
-}
-
-// The terrain and its georeferencing (a DEM's, else a local grid in metres). A terrain file's notes
-// (what it said, what was overridden) are printed.
-TerrainFile loadTerrain(const LightmapOptions& o) {
-  TerrainFile f;
-  if (o.terrain.empty()) {
-    f.terrain = proceduralTerrain({.size = o.size, .cellSize = o.cellSize, .reliefMetres = o.relief, .seed = o.seed});
-    if (o.albedo.empty()) setAlbedo(f.terrain, proceduralAlbedo(f.terrain), "procedural albedo");
-    f.geo = localGrid(o.cellSize);
-  } else {
-    TerrainFileOptions options;
-    options.pictureCellSize = o.cellSize;
-    options.pictureFullScale = o.verticalScale;
-    if (o.cellSizeGiven) options.cellSize = o.cellSize;
-    if (o.verticalScaleGiven) options.verticalScale = o.verticalScale;
-    f = loadTerrainFile(o.terrain, options);
-    for (const std::string& note : f.notes) std::printf("vbim lightmap: %s: %s\n", o.terrain.c_str(), note.c_str());
-  }
-  if (!o.albedo.empty()) setAlbedo(f.terrain, lighting::readColourMap(o.albedo), o.albedo);
-  if (!o.bounceAlbedo.empty()) setBounceAlbedo(f.terrain, lighting::readColourMap(o.bounceAlbedo), o.bounceAlbedo);
-  return f;
 }
 
 // A float layer as `stem`.exr, or as `stem`.tif with the terrain's georeferencing.
@@ -155,11 +130,14 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
   applyGivenLightingOptions(given, params);
   validateParams(params);  // before any heavy work or output
   FloatImage cloudTexture;
-  if (!o.cloudTexture.empty()) {
-    cloudTexture = lighting::readDensityMap(o.cloudTexture);
+  if (!o.terrain.cloudTexture.empty()) {
+    cloudTexture = lighting::readDensityMap(o.terrain.cloudTexture);
     params.clouds.enabled = true;
   }
-  TerrainFile terrain = loadTerrain(o);
+  o.terrain.procedural.cellSize = o.terrain.cellSize;
+  TerrainFile terrain = loadTerrainAsIs(o.terrain);
+  for (const std::string& note : terrain.notes)
+    std::printf("vbim lightmap: %s: %s\n", o.terrain.heightfield.c_str(), note.c_str());
 
   OutputDir dir(o.out, o.force);
   WorkerPool pool(o.threads > 1 ? o.threads - 1 : 0);
@@ -212,25 +190,27 @@ void addLightmap(CLI::App& app) {
   auto* cmd = app.add_subcommand(kLightmapCommand.name, kLightmapCommand.summary);
   auto o = std::make_shared<LightmapOptions>();
   auto given = std::make_shared<LightingOverrides>();
-  cmd->add_option("--terrain", o->terrain,
+  cmd->add_option("--terrain", o->terrain.heightfield,
                   "Heightfield (single-channel; 16-bit PNG, TIFF, EXR...). Default: built-in procedural terrain");
-  cmd->add_option("--bounce-albedo", o->bounceAlbedo,
+  cmd->add_option("--bounce-albedo", o->terrain.bounceAlbedo,
                   "Colour (albedo) of the surrounding terrain for the coloured bounce light only, same size "
                   "(default: the texel's own albedo)");
-  cmd->add_option("--albedo", o->albedo,
+  cmd->add_option("--albedo", o->terrain.albedo,
                   "Diffuse colour map, same size as the heightfield (8/16-bit = sRGB, float = linear)");
-  CLI::Option* cellSize =
-      cmd->add_option("--cell-size", o->cellSize, "Metres between heightfield samples (a DEM's own unless given)")
-          ->default_val(10.0);
+  CLI::Option* cellSize = cmd->add_option("--cell-size", o->terrain.cellSize,
+                                          "Metres between heightfield samples (a DEM's own unless given)")
+                              ->default_val(10.0);
   CLI::Option* verticalScale =
-      cmd->add_option("--vertical-scale", o->verticalScale,
+      cmd->add_option("--vertical-scale", o->terrain.verticalScale,
                       "Metres at full scale for integer heightfields; a multiplier for float ones and DEMs (heights "
                       "in metres are used as they are unless given)")
           ->default_val(1000.0);
-  cmd->add_option("--size", o->size, "Procedural terrain size in texels")->default_val(512);
-  cmd->add_option("--seed", o->seed, "Procedural terrain seed")->default_val(1);
-  cmd->add_option("--relief", o->relief, "Procedural terrain relief in metres")->default_val(900.0);
-  cmd->add_option("--cloud-texture", o->cloudTexture, "Single-channel cloud density texture (implies --clouds)");
+  cmd->add_option("--size", o->terrain.procedural.size, "Procedural terrain size in texels")->default_val(512);
+  cmd->add_option("--seed", o->terrain.procedural.seed, "Procedural terrain seed")->default_val(1);
+  cmd->add_option("--relief", o->terrain.procedural.reliefMetres, "Procedural terrain relief in metres")
+      ->default_val(900.0);
+  cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
+                  "Single-channel cloud density texture (implies --clouds)");
   addLightingOptions(cmd, o->params, o->noMoon, *given, LightingOptionNames{}, [](CLI::Option*) {});
   cmd->add_option("--config", o->config, "TOML file of lighting.* parameters (command-line values win)")
       ->check(inputFile());
@@ -253,8 +233,8 @@ void addLightmap(CLI::App& app) {
       "  vbim lightmap --out lm/\n"
       "  vbim lightmap --size 256 --frames 24 --debug all --format both --out lm/\n");
   cmd->callback([o, given, cellSize, verticalScale] {
-    o->cellSizeGiven = cellSize->count() > 0;
-    o->verticalScaleGiven = verticalScale->count() > 0;
+    o->terrain.cellSizeGiven = cellSize->count() > 0;
+    o->terrain.verticalScaleGiven = verticalScale->count() > 0;
     run(*o, *given);
   });
 }

@@ -28,7 +28,7 @@ struct RenderOptions {
 
 // The request: the run's authoring record when it has one, else the defaults; options given on the
 // command line win either way.
-render::RunRenderRequest requestFor(const RenderOptions& o, const render::RunDir& run) {
+render::RunRenderRequest requestFor(const RenderOptions& o, const player::RunDir& run) {
   using namespace vbim::render;
   RunRenderRequest req = o.req;  // every option, given or default
   // A record from image files or the synthetic generator (cmd_author.cpp) holds no terrain to light.
@@ -67,7 +67,7 @@ void runRender(RenderOptions& o) {
   if (!o.camera.empty()) o.req.settings.camera = parseCamera(o.camera);
   o.req.settings.objects = !o.noObjects;
   o.req.video = !o.noVideo;
-  const RunDir run = readRunDir(o.run);
+  const player::RunDir run = player::readRunDir(o.run);
   const RunRenderRequest req = requestFor(o, run);
   OutputDir dir(o.out, o.force);
   Progress progress("vbim render", "frames");

@@ -32,3 +32,26 @@ TerrainFile loadTerrainFile(const std::string& path, const TerrainFileOptions& o
 }
 
 }  // namespace vbim::lighting
+
+namespace vbim::lighting {
+
+TerrainFile loadTerrainAsIs(const TerrainSource& src) {
+  TerrainFile f;
+  if (src.heightfield.empty()) {
+    f.terrain = proceduralTerrain(src.procedural);
+    if (src.albedo.empty()) setAlbedo(f.terrain, proceduralAlbedo(f.terrain), "procedural albedo");
+    f.geo = localGrid(src.procedural.cellSize);
+  } else {
+    TerrainFileOptions options;
+    options.pictureCellSize = src.cellSize;
+    options.pictureFullScale = src.verticalScale;
+    if (src.cellSizeGiven) options.cellSize = src.cellSize;
+    if (src.verticalScaleGiven) options.verticalScale = src.verticalScale;
+    f = loadTerrainFile(src.heightfield, options);
+  }
+  if (!src.albedo.empty()) setAlbedo(f.terrain, readColourMap(src.albedo), src.albedo);
+  if (!src.bounceAlbedo.empty()) setBounceAlbedo(f.terrain, readColourMap(src.bounceAlbedo), src.bounceAlbedo);
+  return f;
+}
+
+}  // namespace vbim::lighting

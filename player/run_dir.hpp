@@ -8,7 +8,7 @@
 // `vbim play` and `vbim demo` write through it, and a test can too (docs/test-api.md): attach a
 // RunDirWriter to the run's Player before it runs, finish() it after. Picture files are written by
 // a function the caller gives (the model writes no image format: `vbim play` gives PNG or EXR); the
-// rest is the model's own text. `vbim render` reads what it wrote (render/run_dir.hpp).
+// rest is the model's own text. `vbim render` reads what it wrote (player/run_dir_reader.hpp).
 #pragma once
 
 #include <cstdint>

@@ -79,13 +79,13 @@ void writePicture(const std::filesystem::path& path, const Rgba8Image& picture) 
   }
 }
 
-Moment momentOf(const TimelineRow& r) {
+Moment momentOf(const player::TimelineRow& r) {
   return r.behind ? Moment::Stall : r.catchUp ? Moment::CatchUp : Moment::OnTime;
 }
 
 }  // namespace
 
-RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const std::filesystem::path& outDir,
+RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& req, const std::filesystem::path& outDir,
                           const RenderProgressFn& progress) {
   namespace fs = std::filesystem;
   RunRenderResult result;
@@ -146,7 +146,7 @@ RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& req, const 
   std::int64_t previousTileVsync = -1;
   double renderSeconds = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const RunFrame& f = run.frames[i];
+    const player::RunFrame& f = run.frames[i];
     const Rgba8Image lm = i == 0 ? first : readFrame(f.lightmap);
     std::optional<Rgba8Image> sky;
     if (f.sky) sky = readFrame(*f.sky);

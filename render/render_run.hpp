@@ -1,7 +1,7 @@
 // `vbim render` as a library call: every frame a play run saved, rendered, plus the day's contact
 // sheet and the video. Also what `vbim demo` calls (docs/render.md).
 //
-//   const render::RunDir run = render::readRunDir(runDir);
+//   const player::RunDir run = player::readRunDir(runDir);
 //   render::RunRenderRequest req;                         // procedural terrain, samples' day settings
 //   if (run.authoring) render::applyAuthoring(*run.authoring, runDir / "authoring.json", req);
 //   cli::OutputDir dir(out, force);                        // complete or absent
@@ -22,7 +22,7 @@
 #include "lighting/day_cycle.hpp"
 #include "render/camera.hpp"
 #include "render/gl_context.hpp"
-#include "render/run_dir.hpp"
+#include "player/run_dir_reader.hpp"
 
 namespace vbim::render {
 
@@ -70,7 +70,7 @@ using RenderProgressFn = std::function<void(int done, int total)>;
 
 // Throws RenderError for any problem (no GL context, a missing or unreadable frame, a lightmap
 // that does not match the terrain, a camera outside the terrain).
-RunRenderResult renderRun(const RunDir& run, const RunRenderRequest& request, const std::filesystem::path& outDir,
+RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& request, const std::filesystem::path& outDir,
                           const RenderProgressFn& progress = {});
 
 }  // namespace vbim::render

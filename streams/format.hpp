@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 namespace vbim::streams {
 
@@ -38,6 +39,12 @@ inline constexpr std::int64_t kPtsHz = 90000;
 
 inline bool isVideoStream(std::uint8_t id) {
   return id >= 0xE0 && id <= 0xEF;
+}
+
+// A PES stream id as `vbim info` and `vbim decode` name it: "0xE0".
+inline std::string hexId(std::uint8_t id) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  return std::string("0x") + kHex[(id >> 4) & 15] + kHex[id & 15];
 }
 
 }  // namespace vbim::streams

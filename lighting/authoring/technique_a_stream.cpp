@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <sstream>
 
+#include "config/params_toml.hpp"
 #include "imageio/error.hpp"
 #include "lighting/authoring/authoring_record.hpp"
 #include "lighting/error.hpp"
 #include "lighting/image_files.hpp"
 #include "lighting/terrain_file.hpp"
+#include "runtime/params.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring_record.hpp"
@@ -40,6 +43,27 @@ void checkSide(int side, const std::string& what) {
 }
 
 }  // namespace
+
+std::vector<WeatherVariant> weatherVariants(const std::string& list, const DayCycleParams& base) {
+  std::vector<WeatherVariant> out;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      out.push_back(weatherVariant(item, base));
+      continue;
+    }
+    if (eq == 0 || eq + 1 == item.size())
+      throw streams::AuthoringError("--weather '" + item + "': expected a preset name or NAME=FILE.toml");
+    WeatherVariant v{item.substr(0, eq), base};
+    ParamTable table;
+    describeParams(table, v.params);
+    config::applyTomlFile(table, item.substr(eq + 1));
+    out.push_back(std::move(v));
+  }
+  if (out.empty()) throw streams::AuthoringError("--weather names no variant");
+  return out;
+}
 
 const std::vector<std::string>& weatherPresetNames() {
   static const std::vector<std::string> names{"clear", "overcast"};
@@ -185,6 +209,7 @@ Rgba8Image streamFrame(const FloatImage& image, const streams::ToneMapping& tone
 }
 
 AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const TechniqueAProgressFn& progress) {
+  streams::quietLibavLog();
   std::vector<WeatherVariant> variants = s.variants;
   if (variants.empty()) variants.push_back(weatherVariant("clear", s.base));
   // Cheap checks first (settings), then the terrain file, then its size: nothing heavy runs on a

@@ -26,33 +26,12 @@
 
 #include "lighting/day_cycle.hpp"
 #include "lighting/procedural_terrain.hpp"
-#include "lighting/terrain_fit.hpp"
+#include "lighting/terrain_file.hpp"
 #include "runtime/image.hpp"
 #include "streams/authoring/stream_writer.hpp"
 #include "streams/authoring/tone_map.hpp"
 
 namespace vbim::lighting {
-
-// Where the terrain comes from.
-struct TerrainSource {
-  std::string heightfield;   // single-channel image (16-bit PNG, TIFF, EXR); empty: the procedural one
-  std::string albedo;        // optional colour map of the heightfield's size (the procedural terrain has its own)
-  std::string bounceAlbedo;  // optional colour of the surroundings, for the bounce light only
-  std::string cloudTexture;  // optional single-channel density texture; enables clouds in every variant
-  // Metres between samples, and the vertical scale (metres at full scale for integer pictures, a
-  // multiplier for float pictures and DEMs). A DEM's own cell size and a float file's heights are
-  // used unless the matching *Given flag says the value was chosen (lighting/terrain_file.hpp).
-  // The procedural terrain has its own (`procedural.cellSize`; `vbim author` sets both).
-  double cellSize = 10.0;
-  double verticalScale = 1000.0;
-  bool cellSizeGiven = false;
-  bool verticalScaleGiven = false;
-  ProceduralTerrainParams procedural;  // 512x512 by default, as `vbim lightmap`
-  // Sides that are not multiples of 16 (whole macroblocks): cropped (centred), padded or left for
-  // the encoder to refuse (lighting/terrain_fit.hpp). Colour maps of the heightfield file's size
-  // follow the heightfield (cropped, padded, or resampled with a DEM's grid).
-  TerrainFit fit = TerrainFit::Crop;
-};
 
 // One weather of the stream: its name (1..23 bytes) and the generator's settings.
 struct WeatherVariant {
@@ -67,6 +46,10 @@ struct WeatherVariant {
 //               frame dimmer (exposure_klux x 1.6): dim, soft direct light, relatively more skylight.
 // Throws streams::AuthoringError for another name.
 WeatherVariant weatherVariant(const std::string& name, const DayCycleParams& base);
+// A list of variants, comma-separated: preset names (weatherVariant) or NAME=FILE, a TOML file of
+// lighting.* keys applied over `base` (`vbim author --weather clear,overcast,storm=storm.toml`).
+// Throws streams::AuthoringError, or ConfigError for a file.
+std::vector<WeatherVariant> weatherVariants(const std::string& list, const DayCycleParams& base);
 // The names weatherVariant accepts.
 const std::vector<std::string>& weatherPresetNames();
 

@@ -54,6 +54,10 @@ std::uint32_t stretchFor(std::int64_t largestFrameBytes, std::uint32_t ptsPerFra
 
 }  // namespace
 
+void quietLibavLog() {
+  av_log_set_level(AV_LOG_ERROR);
+}
+
 StreamWriter::StreamWriter(AuthorSettings s) : settings_(s) {
   const Rational c = s.encoder.containerFps;
   if (s.gameFps.num == 0 || s.gameFps.den == 0) throw AuthoringError("the game frame rate must be positive");

@@ -82,6 +82,10 @@ class StreamWriter {
   std::uint32_t stretch_ = 1;
 };
 
+// Drops libav's own messages below errors for the rest of the process (the authoring functions call
+// it: their errors are thrown, libav's warnings are noise to a user).
+void quietLibavLog();
+
 // Writes `bytes` to `path` under a temporary name in the same directory and renames it into place,
 // so `path` holds a complete stream or is left as it was. Throws AuthoringError naming the file.
 void writeStreamFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);

@@ -6,15 +6,11 @@
 #include "ipu/elementary_stream.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "runtime/worker_pool.hpp"
+#include "streams/format.hpp"
 #include "streams/video_elementary_stream.hpp"
 
 namespace vbim::streams {
 namespace {
-
-std::string hexId(std::uint8_t id) {
-  static const char kHex[] = "0123456789ABCDEF";
-  return std::string("0x") + kHex[(id >> 4) & 15] + kHex[id & 15];
-}
 
 VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::string& name,
                               std::optional<std::uint8_t> streamId) {

@@ -36,18 +36,6 @@ void writeSweepCsv(const ProfileData& d, std::ostream& o) {
   }
 }
 
-void writeStallCsv(const ProfileData& d, std::ostream& o) {
-  o << "stream,bankmax,bufmax_sectors,policy,criterion,pop_threshold,stall_at_s,longest_stall_s,saturated,runs\n";
-  for (const StallRow& s : d.stalls) {
-    o << csvQuote(s.stream) << "," << s.ring.bankmax << "," << s.ring.bufmax << "," << s.policy << ","
-      << toString(s.criterion) << ","
-      << (s.result.popThreshold >= 0 ? std::to_string(s.result.popThreshold) : std::string()) << ","
-      << fixed(toSeconds(d.search.stallAt), 6) << ","
-      << (s.result.longest ? fixed(toSeconds(*s.result.longest), 6) : std::string()) << ","
-      << (s.result.saturated ? 1 : 0) << "," << s.result.runs << "\n";
-  }
-}
-
 nlohmann::ordered_json profileJson(const ProfileData& d) {
   using nlohmann::ordered_json;
   ordered_json j;
@@ -112,6 +100,18 @@ nlohmann::ordered_json profileJson(const ProfileData& d) {
 
 }  // namespace
 
+void writeStallCsv(const std::vector<StallRow>& rows, const StallSearch& search, std::ostream& o) {
+  o << "stream,bankmax,bufmax_sectors,policy,criterion,pop_threshold,stall_at_s,longest_stall_s,saturated,runs\n";
+  for (const StallRow& s : rows) {
+    o << csvQuote(s.stream) << "," << s.ring.bankmax << "," << s.ring.bufmax << "," << s.policy << ","
+      << toString(s.criterion) << ","
+      << (s.result.popThreshold >= 0 ? std::to_string(s.result.popThreshold) : std::string()) << ","
+      << fixed(toSeconds(search.stallAt), 6) << ","
+      << (s.result.longest ? fixed(toSeconds(*s.result.longest), 6) : std::string()) << ","
+      << (s.result.saturated ? 1 : 0) << "," << s.result.runs << "\n";
+  }
+}
+
 std::vector<plots::profile::TracePoint> tracePoints(const std::vector<Sample>& series) {
   std::vector<plots::profile::TracePoint> points;
   points.reserve(series.size());
@@ -148,7 +148,7 @@ std::vector<std::string> writeProfileOutputs(const ProfileData& d, const std::fi
   }
   if (!d.stalls.empty()) {
     std::ofstream o((dir / "stall.csv"), std::ios::binary);
-    writeStallCsv(d, o);
+    writeStallCsv(d.stalls, d.search, o);
     written.push_back("stall.csv");
   }
   {

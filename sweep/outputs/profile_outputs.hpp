@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,10 @@ std::string fixed(double v, int decimals);
 
 // Writes every output into `dir` and returns the names written (relative), plots first.
 std::vector<std::string> writeProfileOutputs(const ProfileData& d, const std::filesystem::path& dir);
+
+// stall.csv: one row per stall search (ring, policy, criterion), the longest stall survived. Also
+// `vbim demo`'s plots/survivable_stall.csv.
+void writeStallCsv(const std::vector<StallRow>& rows, const StallSearch& search, std::ostream& o);
 
 // The plain inputs of the figures.
 std::vector<plots::profile::TracePoint> tracePoints(const std::vector<Sample>& series);

@@ -10,6 +10,7 @@
 #include "imageio/image_reader.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
+#include "player/run_dir_reader.hpp"
 #include "render/contact_sheet.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
@@ -19,6 +20,8 @@ namespace vbim::render {
 namespace {
 
 namespace fs = std::filesystem;
+using player::readRunDir;
+using player::RunDir;
 
 fs::path freshDir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("vbim_render_test_" + name + "_" + std::to_string(::getpid()));
@@ -153,11 +156,11 @@ TEST(RenderRun, RunWithoutFramesIsAClearError) {
   std::ofstream(run / "timeline.csv") << "vsync,time_s\n";
   try {
     readRunDir(run);
-    FAIL() << "expected RenderError";
-  } catch (const RenderError& e) {
+    FAIL() << "expected vbim::Error";
+  } catch (const Error& e) {  // the reader is player/run_dir_reader.hpp
     EXPECT_NE(std::string(e.what()).find("no frames"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(readRunDir(run / "missing"), RenderError);
+  EXPECT_THROW(readRunDir(run / "missing"), Error);
   fs::remove_all(run);
 }
 
@@ -166,8 +169,8 @@ TEST(RenderRun, BadTimelineRowNamesTheLine) {
   std::ofstream(run / "timeline.csv", std::ios::app) << "121,oops\n";
   try {
     readRunDir(run);
-    FAIL() << "expected RenderError";
-  } catch (const RenderError& e) {
+    FAIL() << "expected vbim::Error";
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("timeline.csv:123"), std::string::npos) << e.what();
   }
   fs::remove_all(run);

@@ -1,4 +1,5 @@
-// What a `vbim play ... --every N --out RUN_DIR` run left behind, as the renderer needs it:
+// The reader of a run directory (the writer is player/run_dir.hpp): what a `vbim play ... --every N
+// --out RUN_DIR` run left behind, as the renderer (render/render_run.hpp) needs it:
 // frames/lightmap_NNNNNN.png (+ sky_NNNNNN.png), timeline.csv (one row per vsync, docs/player.md),
 // and authoring.json (how the stream was made, when it carried a record).
 #pragma once
@@ -10,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace vbim::render {
+namespace vbim::player {
 
 struct RunFrame {
   std::int64_t vsync = 0;
@@ -35,8 +36,8 @@ struct RunDir {
   std::optional<std::string> authoring;          // authoring.json as written, if the run has one
 };
 
-// Throws RenderError: not a directory, no frames/lightmap_*.png|exr, a timeline row that does not
+// Throws vbim::Error: not a directory, no frames/lightmap_*.png|exr, a timeline row that does not
 // parse (file:line and what was expected).
 RunDir readRunDir(const std::filesystem::path& dir);
 
-}  // namespace vbim::render
+}  // namespace vbim::player

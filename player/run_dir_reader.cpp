@@ -1,4 +1,4 @@
-#include "render/run_dir.hpp"
+#include "player/run_dir_reader.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "render/error.hpp"
+#include "runtime/error.hpp"
 
-namespace vbim::render {
+namespace vbim::player {
 
 namespace {
 
@@ -24,11 +24,11 @@ void readTimeline(const std::filesystem::path& file, RunDir& run) {
   std::ifstream in(file);
   if (!in) return;
   std::string line;
-  if (!std::getline(in, line)) throw RenderError(file.string() + ":1: empty file (expected the timeline header)");
+  if (!std::getline(in, line)) throw Error(file.string() + ":1: empty file (expected the timeline header)");
   const std::vector<std::string> header = split(line);
   auto column = [&](const char* name) {
     const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) throw RenderError(file.string() + ":1: no column '" + name + "' in the header");
+    if (it == header.end()) throw Error(file.string() + ":1: no column '" + name + "' in the header");
     return static_cast<std::size_t>(it - header.begin());
   };
   const std::size_t cVsync = column("vsync"), cTime = column("time_s"), cTarget = column("target_seq"),
@@ -50,7 +50,7 @@ void readTimeline(const std::filesystem::path& file, RunDir& run) {
       r.snapped = f[cSnapped] == "1";
       run.timeline[std::stoll(f[cVsync])] = r;
     } catch (const std::exception&) {
-      throw RenderError(file.string() + ":" + std::to_string(lineNo) + ": expected " + std::to_string(header.size()) +
+      throw Error(file.string() + ":" + std::to_string(lineNo) + ": expected " + std::to_string(header.size()) +
                         " comma-separated fields as in the header (vsync,time_s,...)");
     }
   }
@@ -61,7 +61,7 @@ void readTimeline(const std::filesystem::path& file, RunDir& run) {
 
 RunDir readRunDir(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
-  if (!fs::is_directory(dir)) throw RenderError(dir.string() + ": not a directory (expected a `vbim play --out` run)");
+  if (!fs::is_directory(dir)) throw Error(dir.string() + ": not a directory (expected a `vbim play --out` run)");
   RunDir run;
   run.path = dir;
   const fs::path frames = dir / "frames";
@@ -83,7 +83,7 @@ RunDir readRunDir(const std::filesystem::path& dir) {
   std::sort(run.frames.begin(), run.frames.end(),
             [](const RunFrame& a, const RunFrame& b) { return a.vsync < b.vsync; });
   if (run.frames.empty()) {
-    throw RenderError(dir.string() +
+    throw Error(dir.string() +
                       ": no frames/lightmap_NNNNNN.png in this run (play it with --every N or --at TIMES)");
   }
   readTimeline(dir / "timeline.csv", run);
@@ -93,4 +93,4 @@ RunDir readRunDir(const std::filesystem::path& dir) {
   return run;
 }
 
-}  // namespace vbim::render
+}  // namespace vbim::player
