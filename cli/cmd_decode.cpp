@@ -56,9 +56,9 @@ std::uint8_t parseStreamId(const std::string& text) {
 }
 
 streams::FrameFileFormat formatOf(const std::string& name) {
-  if (name == "exr") return streams::FrameFileFormat::kExr;
-  if (name == "yuv") return streams::FrameFileFormat::kYuv;
-  return streams::FrameFileFormat::kPng;
+  if (name == "exr") return streams::FrameFileFormat::Exr;
+  if (name == "yuv") return streams::FrameFileFormat::Yuv;
+  return streams::FrameFileFormat::Png;
 }
 
 void run(const Options& o) {

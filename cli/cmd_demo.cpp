@@ -93,7 +93,7 @@ class DemoProfile {
       c.config.iop.ring.bankmax = ring.bankmax;
       c.config.iop.ring.bufmax_sectors = ring.bufmax;
       c.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
-      for (pr::Criterion crit : {pr::Criterion::late, pr::Criterion::pop}) {
+      for (pr::Criterion crit : {pr::Criterion::Late, pr::Criterion::Pop}) {
         rows.push_back(
             pr::StallRow{stream->label, ring, c.config.gs.catchup, crit, pr::longestSurvivableStall(c, search, crit)});
       }

@@ -167,7 +167,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     writeRunImage(path, texels, exr, gsAlpha);
   };
   files.trace = r.trace;
-  files.traceDetail = r.traceDetail == "full" ? TraceDetail::kFull : TraceDetail::kCoalesced;
+  files.traceDetail = r.traceDetail == "full" ? TraceDetail::Full : TraceDetail::Coalesced;
   files.onRow = r.onRow;
   RunDirWriter writer(*player, dir.directory(), files);
 

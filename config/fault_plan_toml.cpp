@@ -31,12 +31,12 @@ struct Kind {
 
 const std::vector<Kind>& kinds() {
   static const std::vector<Kind> k = {
-      {"stall", Fault::Kind::stall, {"at", "duration"}, {}},
-      {"read_error", Fault::Kind::read_error, {"lba", "attempts"}, {"from"}},
-      {"seek_away", Fault::Kind::seek_away, {"at", "sectors"}, {"lba", "file"}},
-      {"contention", Fault::Kind::contention, {"from", "duration", "share"}, {"period", "lba", "file"}},
-      {"random_stall", Fault::Kind::random_stall, {"from", "duration", "mean_interval", "stall"}, {}},
-      {"random_error", Fault::Kind::random_error, {"from", "duration", "per_million"}, {"attempts"}},
+      {"stall", Fault::Kind::Stall, {"at", "duration"}, {}},
+      {"read_error", Fault::Kind::ReadError, {"lba", "attempts"}, {"from"}},
+      {"seek_away", Fault::Kind::SeekAway, {"at", "sectors"}, {"lba", "file"}},
+      {"contention", Fault::Kind::Contention, {"from", "duration", "share"}, {"period", "lba", "file"}},
+      {"random_stall", Fault::Kind::RandomStall, {"from", "duration", "mean_interval", "stall"}, {}},
+      {"random_error", Fault::Kind::RandomError, {"from", "duration", "per_million"}, {"attempts"}},
   };
   return k;
 }
@@ -190,27 +190,27 @@ iop::FaultPlan parseFaultPlan(std::string_view text, const std::string& origin, 
 
 void checkDrawnFaultPlan(const iop::FaultPlan& plan, const std::string& origin) {
   for (const Fault& f : plan.faults) {
-    if (f.kind == Fault::Kind::random_stall && f.stallLength >= f.meanInterval) {
+    if (f.kind == Fault::Kind::RandomStall && f.stallLength >= f.meanInterval) {
       throw ConfigError(origin + ":" + std::to_string(f.line) +
                         ": fault 'random_stall': the drawn stall is not shorter than the drawn mean_interval");
     }
-    if (f.kind == Fault::Kind::contention && f.period > f.duration) {
+    if (f.kind == Fault::Kind::Contention && f.period > f.duration) {
       throw ConfigError(origin + ":" + std::to_string(f.line) +
                         ": fault 'contention': the drawn period is longer than the drawn duration");
     }
-    if (f.kind == Fault::Kind::contention && f.period < iop::kMinFaultInterval) {
+    if (f.kind == Fault::Kind::Contention && f.period < iop::kMinFaultInterval) {
       throw ConfigError(origin + ":" + std::to_string(f.line) +
                         ": fault 'contention': the drawn period is shorter than 1ms, the least it may be");
     }
-    if (f.kind == Fault::Kind::random_stall && f.meanInterval < iop::kMinFaultInterval) {
+    if (f.kind == Fault::Kind::RandomStall && f.meanInterval < iop::kMinFaultInterval) {
       throw ConfigError(origin + ":" + std::to_string(f.line) +
                         ": fault 'random_stall': the drawn mean_interval is shorter than 1ms, the least it may be");
     }
   }
-  rejectOverlaps(origin, plan.faults, Fault::Kind::stall);
-  rejectOverlaps(origin, plan.faults, Fault::Kind::contention);
-  rejectOverlaps(origin, plan.faults, Fault::Kind::random_stall);
-  rejectOverlaps(origin, plan.faults, Fault::Kind::random_error);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::Stall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::Contention);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::RandomStall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::RandomError);
 }
 
 iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin, const iop::SectorSource* disc,
@@ -261,11 +261,11 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
     f.kind = kind->kind;
     f.line = line;
     switch (f.kind) {
-      case Fault::Kind::stall:
+      case Fault::Kind::Stall:
         f.at = r.time("at", false);
         f.duration = r.time("duration", true);
         break;
-      case Fault::Kind::read_error:
+      case Fault::Kind::ReadError:
         f.lba = r.location(true);
         f.attempts = r.integer("attempts", 1, 1'000'000);
         f.at = r.has("from") ? r.time("from", false) : 0;
@@ -276,7 +276,7 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
         errorLbas.insert(f.lba);
         errorLines[f.lba] = line;
         break;
-      case Fault::Kind::seek_away: {
+      case Fault::Kind::SeekAway: {
         f.at = r.time("at", false);
         std::int64_t fileSectors = 0;
         f.lba = r.location(true, &fileSectors);
@@ -287,7 +287,7 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
         }
         break;
       }
-      case Fault::Kind::contention:
+      case Fault::Kind::Contention:
         f.at = r.time("from", false);
         f.duration = r.time("duration", true);
         f.share = r.integer("share", 1, 99);
@@ -298,7 +298,7 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
         }
         if (f.period > f.duration) r.fail("period", "is longer than the contention's duration");
         break;
-      case Fault::Kind::random_stall:
+      case Fault::Kind::RandomStall:
         f.at = r.time("from", false);
         f.duration = r.time("duration", true);
         f.meanInterval = r.time("mean_interval", true);
@@ -310,7 +310,7 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
           r.fail("stall", "must be shorter than mean_interval, or the drive would never run");
         }
         break;
-      case Fault::Kind::random_error:
+      case Fault::Kind::RandomError:
         f.at = r.time("from", false);
         f.duration = r.time("duration", true);
         f.perMillion = r.integer("per_million", 1, 1'000'000);
@@ -319,10 +319,10 @@ iop::FaultPlan parseFaultArray(const toml::node* node, const std::string& origin
     }
     plan.faults.push_back(f);
   }
-  rejectOverlaps(origin, plan.faults, Fault::Kind::stall);
-  rejectOverlaps(origin, plan.faults, Fault::Kind::contention);
-  rejectOverlaps(origin, plan.faults, Fault::Kind::random_stall);
-  rejectOverlaps(origin, plan.faults, Fault::Kind::random_error);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::Stall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::Contention);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::RandomStall);
+  rejectOverlaps(origin, plan.faults, Fault::Kind::RandomError);
   return plan;
 }
 

@@ -269,24 +269,24 @@ void readFaults(const Section& top, const std::string& origin, const std::string
   if (plan.faults.empty()) plan.faults.push_back({"none", {FaultDraw{}}});
 }
 
-const std::array<std::pair<const char*, Measure>, 7> kMeasures{{{"frames_late", Measure::frames_late},
-                                                                {"frames_dropped", Measure::frames_dropped},
-                                                                {"frames_caught_up", Measure::frames_caught_up},
-                                                                {"pop_max", Measure::pop_max},
-                                                                {"lag_max", Measure::lag_max},
-                                                                {"ring_occupancy", Measure::ring_occupancy},
-                                                                {"survivable_stall", Measure::survivable_stall}}};
+const std::array<std::pair<const char*, Measure>, 7> kMeasures{{{"frames_late", Measure::FramesLate},
+                                                                {"frames_dropped", Measure::FramesDropped},
+                                                                {"frames_caught_up", Measure::FramesCaughtUp},
+                                                                {"pop_max", Measure::PopMax},
+                                                                {"lag_max", Measure::LagMax},
+                                                                {"ring_occupancy", Measure::RingOccupancy},
+                                                                {"survivable_stall", Measure::SurvivableStall}}};
 
 // The table column a probability may test, and the measure that makes it.
-const std::array<std::pair<const char*, Measure>, 9> kColumns{{{"frames_late", Measure::frames_late},
-                                                               {"frames_dropped", Measure::frames_dropped},
-                                                               {"frames_caught_up", Measure::frames_caught_up},
-                                                               {"pop_max", Measure::pop_max},
-                                                               {"lag_max", Measure::lag_max},
-                                                               {"ring_banks_min", Measure::ring_occupancy},
-                                                               {"ring_banks_mean", Measure::ring_occupancy},
-                                                               {"ring_underruns", Measure::ring_occupancy},
-                                                               {"longest_stall_s", Measure::survivable_stall}}};
+const std::array<std::pair<const char*, Measure>, 9> kColumns{{{"frames_late", Measure::FramesLate},
+                                                               {"frames_dropped", Measure::FramesDropped},
+                                                               {"frames_caught_up", Measure::FramesCaughtUp},
+                                                               {"pop_max", Measure::PopMax},
+                                                               {"lag_max", Measure::LagMax},
+                                                               {"ring_banks_min", Measure::RingOccupancy},
+                                                               {"ring_banks_mean", Measure::RingOccupancy},
+                                                               {"ring_underruns", Measure::RingOccupancy},
+                                                               {"longest_stall_s", Measure::SurvivableStall}}};
 
 void readMeasures(const Section& top, const std::string& origin, SweepPlanSpec& plan) {
   if (const toml::table* m = subTable(top, "measures")) {
@@ -305,7 +305,7 @@ void readMeasures(const Section& top, const std::string& origin, SweepPlanSpec& 
   }
   if (plan.measures.empty()) {
     for (const auto& [name, m] : kMeasures) {
-      if (m != Measure::survivable_stall) plan.measures.push_back(m);
+      if (m != Measure::SurvivableStall) plan.measures.push_back(m);
     }
   }
   std::sort(plan.measures.begin(), plan.measures.end());
@@ -319,7 +319,7 @@ void readMeasures(const Section& top, const std::string& origin, SweepPlanSpec& 
     const std::string crit = s.string("criterion", "no-late-frame");
     if (crit != "no-late-frame" && crit != "pop")
       s.fail(s.get("criterion"), "criterion", "expected no-late-frame or pop");
-    plan.stallCriterion = crit == "pop" ? Criterion::pop : Criterion::late;
+    plan.stallCriterion = crit == "pop" ? Criterion::Pop : Criterion::Late;
     plan.search.stallAt = s.time("stall_at", plan.search.stallAt);
     plan.search.maxStall = s.time("max_stall", plan.search.maxStall);
     plan.search.resolution = s.time("resolution", plan.search.resolution);

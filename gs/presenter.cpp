@@ -210,7 +210,7 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
   // In strip mode a vsync is 2 x strips spans of about a microsecond (32 for a 512x512 lightmap:
   // 700 MB of trace.json per simulated hour). Unless the trace keeps full detail they share one
   // label, so the tracer joins the vsync's back-to-back GS work into one `strips` span.
-  const bool oneSpan = strips_ && tr != nullptr && tr->detail() != TraceDetail::kFull;
+  const bool oneSpan = strips_ && tr != nullptr && tr->detail() != TraceDetail::Full;
   const char* uploadLabel = oneSpan ? "strips" : "upload";
   const char* blendLabel = oneSpan ? "strips" : "blend";
   // Full mode re-uploads only a new frame (the staging texture keeps it); strip mode has room for one

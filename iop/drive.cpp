@@ -11,13 +11,13 @@ namespace vbim::iop {
 
 const char* toString(SeekClass c) {
   switch (c) {
-    case SeekClass::buffered:
+    case SeekClass::Buffered:
       return "buffered";
-    case SeekClass::contiguous:
+    case SeekClass::Contiguous:
       return "contiguous";
-    case SeekClass::fast:
+    case SeekClass::Fast:
       return "fast";
-    case SeekClass::full:
+    case SeekClass::Full:
       return "full";
   }
   return "?";
@@ -61,9 +61,9 @@ Tick Drive::revolutionTicks() const {
 
 Tick Drive::seekTicks(SeekClass c) const {
   switch (c) {
-    case SeekClass::fast:
+    case SeekClass::Fast:
       return fromUs(p_.fast_seek_us);
-    case SeekClass::full:
+    case SeekClass::Full:
       return fromUs(p_.full_seek_us);
     default:
       return 0;
@@ -78,9 +78,9 @@ SeekClass Drive::classify(std::int64_t from, std::int64_t to) const {
   const std::int64_t d = to - from;
   // Forward jumps inside the window are read through; the head cannot read backwards, so any
   // backward jump is a seek (P-CDVDi uses |d| < 16 for both directions; see docs/timing/iop.md).
-  if (d >= 0 && d < p_.contiguous_window_sectors) return SeekClass::contiguous;
+  if (d >= 0 && d < p_.contiguous_window_sectors) return SeekClass::Contiguous;
   const std::int64_t ad = d < 0 ? -d : d;
-  return ad < p_.fast_seek_window_sectors ? SeekClass::fast : SeekClass::full;
+  return ad < p_.fast_seek_window_sectors ? SeekClass::Fast : SeekClass::Full;
 }
 
 // --- commands ---------------------------------------------------------------------------------
@@ -136,7 +136,7 @@ Task<void> Drive::run() {
 Task<void> Drive::execute(DriveCommand& c) {
   if (c.aborted) co_return;
   co_await waitOutStall();
-  if (c.kind == DriveCommand::Kind::hold) {
+  if (c.kind == DriveCommand::Kind::Hold) {
     // Another client has the drive: it ends somewhere else, so the next read of ours seeks.
     co_await work(c.holdFor, "other client");
     if (c.lsn >= 0) head_ = c.lsn;
@@ -282,24 +282,24 @@ Task<void> Drive::executeRead(DriveCommand& c) {
   }
   std::int64_t hits = 0;
   if (headValid_ && c.lsn >= head_ && c.lsn < head_ + buffered) {
-    c.seek = SeekClass::buffered;
+    c.seek = SeekClass::Buffered;
     hits = std::min(head_ + buffered - c.lsn, c.sectors);
   } else {
     const std::int64_t from = head_ + buffered;
     c.seek = classify(from, c.lsn);
-    if (c.seek == SeekClass::contiguous) {
+    if (c.seek == SeekClass::Contiguous) {
       // Read through the gap: those sectors pass under the head.
       Tick skip = 0;
       for (std::int64_t l = from; l < c.lsn; ++l) skip += sectorTicks(l);
       co_await work(skip, "skip");
     } else {
-      co_await work(seekTicks(c.seek), c.seek == SeekClass::fast ? "seek fast" : "seek full");
+      co_await work(seekTicks(c.seek), c.seek == SeekClass::Fast ? "seek fast" : "seek full");
       co_await work(static_cast<Tick>(latencyRng_.below(static_cast<std::uint64_t>(revolutionTicks()))), "latency");
     }
   }
   ++stats_.seeks[static_cast<int>(c.seek)];
   headValid_ = true;
-  head_ = c.seek == SeekClass::buffered ? head_ + buffered : c.lsn;
+  head_ = c.seek == SeekClass::Buffered ? head_ + buffered : c.lsn;
 
   std::array<std::uint8_t, kSectorBytes> scratch{};
   Tick dmaFree = s_.now();

@@ -30,12 +30,12 @@
 
 namespace vbim::iop {
 
-enum class SeekClass { buffered, contiguous, fast, full };
+enum class SeekClass { Buffered, Contiguous, Fast, Full };
 const char* toString(SeekClass c);
 
 struct DriveCommand {
-  enum class Kind { read, hold };
-  Kind kind = Kind::read;
+  enum class Kind { Read, Hold };
+  Kind kind = Kind::Read;
   std::int64_t lsn = 0;
   std::int64_t sectors = 0;
   std::uint8_t* dest = nullptr;  // sectors x 2048 bytes of IOP RAM, or null: the data goes elsewhere
@@ -49,7 +49,7 @@ struct DriveCommand {
   std::int64_t sectorsDone = 0;
   Tick issuedAt = 0;
   Tick finishedAt = 0;
-  SeekClass seek = SeekClass::contiguous;
+  SeekClass seek = SeekClass::Contiguous;
 };
 
 struct DriveStats {

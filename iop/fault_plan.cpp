@@ -17,17 +17,17 @@ namespace vbim::iop {
 
 const char* toString(Fault::Kind k) {
   switch (k) {
-    case Fault::Kind::stall:
+    case Fault::Kind::Stall:
       return "stall";
-    case Fault::Kind::read_error:
+    case Fault::Kind::ReadError:
       return "read_error";
-    case Fault::Kind::seek_away:
+    case Fault::Kind::SeekAway:
       return "seek_away";
-    case Fault::Kind::contention:
+    case Fault::Kind::Contention:
       return "contention";
-    case Fault::Kind::random_stall:
+    case Fault::Kind::RandomStall:
       return "random_stall";
-    case Fault::Kind::random_error:
+    case Fault::Kind::RandomError:
       return "random_error";
   }
   return "?";
@@ -103,10 +103,10 @@ std::shared_ptr<DriveCommand> foreignCommand(const Fault& f) {
   auto c = std::make_shared<DriveCommand>();
   c->foreign = true;
   c->lsn = f.lba;
-  if (f.kind == Fault::Kind::seek_away) {
+  if (f.kind == Fault::Kind::SeekAway) {
     c->sectors = f.sectors;
   } else {
-    c->kind = DriveCommand::Kind::hold;
+    c->kind = DriveCommand::Kind::Hold;
     c->holdFor = contentionSlice(f);
   }
   return c;
@@ -126,7 +126,7 @@ Task<void> foreignClient(Scheduler& s, Drive& drive, std::vector<ForeignSeries> 
     const Fault& f = series[i].fault;
     drive.enqueue(foreignCommand(f));
     ForeignSeries& next = series[i];
-    if (f.kind == Fault::Kind::contention && next.periodBegin + f.period < f.at + f.duration) {
+    if (f.kind == Fault::Kind::Contention && next.periodBegin + f.period < f.at + f.duration) {
       next.periodBegin += f.period;
       next.next = sliceTimeIn(next.periodBegin, f, next.rng);
       heads.emplace(next.next, i);
@@ -154,21 +154,21 @@ void applyFaults(Scheduler& s, Drive& drive, const FaultPlan& plan, Rng rng) {
   for (const Fault& f : plan.faults) {
     ++index;
     switch (f.kind) {
-      case Fault::Kind::stall:
+      case Fault::Kind::Stall:
         drive.addStall(f.at, f.at + f.duration);
         break;
-      case Fault::Kind::read_error:
+      case Fault::Kind::ReadError:
         drive.addSectorFault(f.lba, f.attempts, f.at);
         break;
-      case Fault::Kind::random_error:
+      case Fault::Kind::RandomError:
         drive.addRandomErrors(f.at, f.at + f.duration, f.perMillion, f.attempts);
         break;
-      case Fault::Kind::random_stall:
+      case Fault::Kind::RandomStall:
         drive.addStallSeries(randomStalls(f, rng.fork("faults.random_stall." + std::to_string(index))));
         break;
-      case Fault::Kind::seek_away:
-      case Fault::Kind::contention:
-        if (f.kind == Fault::Kind::seek_away) {
+      case Fault::Kind::SeekAway:
+      case Fault::Kind::Contention:
+        if (f.kind == Fault::Kind::SeekAway) {
           foreign.push_back({f, f.at, f.at, Rng(0)});
         } else if (f.duration > 0) {
           Rng r = rng.fork("faults.contention." + std::to_string(index));

@@ -27,8 +27,8 @@ class SectorSource;
 class Drive;
 
 struct Fault {
-  enum class Kind { stall, read_error, seek_away, contention, random_stall, random_error };
-  Kind kind = Kind::stall;
+  enum class Kind { Stall, ReadError, SeekAway, Contention, RandomStall, RandomError };
+  Kind kind = Kind::Stall;
   int line = 0;       // line of the [[fault]] header in the plan
   Tick at = 0;        // stall, seek_away: when; others: start of the interval ("from")
   Tick duration = 0;  // stall, contention, random_*: length

@@ -19,7 +19,7 @@ StreamRing::StreamRing(Scheduler& s, Drive& drive, SifChannel& sif, const RingPa
 }
 
 bool StreamRing::init(std::int64_t bufmax, std::int64_t bankmax) {
-  if (bankmax < 1 || bufmax < bankmax || wait_ != Wait::none || owner_) return false;
+  if (bankmax < 1 || bufmax < bankmax || wait_ != Wait::None || owner_) return false;
   bankmax_ = bankmax;
   bankSectors_ = bufmax / bankmax;
   buffer_.assign(static_cast<std::size_t>(bankSectors_ * bankmax_) * kSectorBytes, 0);
@@ -45,7 +45,7 @@ void StreamRing::publish() {
 }
 
 void StreamRing::armAlarm(Tick delay) {
-  wait_ = Wait::alarm;
+  wait_ = Wait::Alarm;
   alarmAt_ = s_.now() + delay;
   kick_.notifyAt(alarmAt_);
 }
@@ -64,7 +64,7 @@ bool StreamRing::issueRead(std::int64_t lba, Tick timeout) {
   ++stats_.bankReads;
   readLog_.emplace_back(s_.now(), lba);
   cmd_ = std::move(c);
-  wait_ = Wait::drive;
+  wait_ = Wait::Drive;
   timeoutAt_ = s_.now() + timeout;
   kick_.notifyAt(timeoutAt_);
   return true;
@@ -75,19 +75,19 @@ bool StreamRing::issueRead(std::int64_t lba, Tick timeout) {
 Task<void> StreamRing::produce() {
   for (;;) {
     co_await kick_.wait();
-    if (wait_ == Wait::drive) {
+    if (wait_ == Wait::Drive) {
       if (cmd_->done) {
-        wait_ = Wait::none;
+        wait_ = Wait::None;
         callback(cmd_->error);
       } else if (s_.now() >= timeoutAt_) {
         ++stats_.timeouts;
         if (tracer_ != nullptr) tracer_->instant(track_, s_.now(), "timeout");
         drive_.abort(*cmd_);  // sceCdBreak: the read ends at once with 0x01, an abort
-        wait_ = Wait::none;
+        wait_ = Wait::None;
         callback(cmd_->error);
       }
-    } else if (wait_ == Wait::alarm && s_.now() >= alarmAt_) {
-      wait_ = Wait::none;
+    } else if (wait_ == Wait::Alarm && s_.now() >= alarmAt_) {
+      wait_ = Wait::None;
       callback(kCdErNone);
     }
   }
@@ -149,7 +149,7 @@ void StreamRing::callback(std::uint32_t err) {
 }
 
 Task<bool> StreamRing::start(std::int64_t lbn) {
-  wait_ = Wait::none;  // cancel alarm and timeout
+  wait_ = Wait::None;  // cancel alarm and timeout
   owner_ = false;
   clearBanks();
   lsn_ = lbn;
@@ -165,7 +165,7 @@ Task<bool> StreamRing::start(std::int64_t lbn) {
 
 Task<bool> StreamRing::seek(std::int64_t lbn) {
   if (stmstart_ == 2) co_return false;
-  wait_ = Wait::none;
+  wait_ = Wait::None;
   owner_ = false;
   lsn_ = lbn;
   offs_ = cur_ = gp_ = 0;
@@ -189,7 +189,7 @@ bool StreamRing::seekDeferred(std::int64_t lbn) {
 
 Task<bool> StreamRing::pause() {
   if (stmstart_ == 2) co_return false;
-  wait_ = Wait::none;
+  wait_ = Wait::None;
   owner_ = false;
   co_await drive_.sync();
   changed_.notify();
@@ -198,7 +198,7 @@ Task<bool> StreamRing::pause() {
 
 bool StreamRing::resume() {
   if (stmstart_ == 2) return false;
-  if (wait_ != Wait::none || drive_.busy()) return false;  // sceCdNop refused while busy
+  if (wait_ != Wait::None || drive_.busy()) return false;  // sceCdNop refused while busy
   owner_ = true;
   armAlarm(0);
   return true;
@@ -206,7 +206,7 @@ bool StreamRing::resume() {
 
 Task<bool> StreamRing::stop() {
   stmstart_ = 0;
-  wait_ = Wait::none;
+  wait_ = Wait::None;
   owner_ = false;
   if (cmd_ && !cmd_->done) drive_.abort(*cmd_);
   offs_ = cur_ = gp_ = 0;

@@ -94,7 +94,7 @@ class StreamRing {
   Process& producer() { return *proc_; }
 
  private:
-  enum class Wait { none, drive, alarm };
+  enum class Wait { None, Drive, Alarm };
 
   Task<void> produce();
   void callback(std::uint32_t err);
@@ -131,7 +131,7 @@ class StreamRing {
   bool bankSinceSeek_ = true;    // a bank became visible since sceCdStSeek (seekPolls)
   bool owner_ = false;           // the stream owns the drive (sceCdSC(2)); false before start, when paused/stopped
 
-  Wait wait_ = Wait::none;
+  Wait wait_ = Wait::None;
   std::shared_ptr<DriveCommand> cmd_;
   Tick timeoutAt_ = 0;
   Tick alarmAt_ = 0;

@@ -101,7 +101,7 @@ Task<void> IpuUnit::run(IpuUnit& u) {
       // Per macroblock (a few us) only in full detail; otherwise the same label throughout, so the
       // tracer joins a busy stretch into one span (at 290 macroblocks/s the two spans per macroblock
       // were 150 MB of trace.json per simulated hour).
-      const bool fine = u.tracer_->detail() == TraceDetail::kFull;
+      const bool fine = u.tracer_->detail() == TraceDetail::Full;
       std::size_t stall = 0;
       const Tick restartCycles = u.p_.slice_restart_cycles + u.p_.idec_start_cycles;
       for (std::size_t i = 0; i < tm.mbEnd.size(); ++i) {

@@ -170,7 +170,7 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
                                    {"gs", share(gsBusy, elapsed)}});
   busy["drive"] = share(p.drive().busyTime(elapsed), elapsed);
   std::int64_t stalls = 0;
-  for (const iop::Fault& f : o.faults.faults) stalls += f.kind == iop::Fault::Kind::stall ? 1 : 0;
+  for (const iop::Fault& f : o.faults.faults) stalls += f.kind == iop::Fault::Kind::Stall ? 1 : 0;
 
   json::Value hist = json::Value::array();
   for (std::int64_t v : t.ringHistogram) hist.push(v);

@@ -32,7 +32,7 @@ struct RunDirOptions {
   std::function<void(const std::filesystem::path&, const Rgba8Image&)> writeImage;
   std::string imageExtension = "png";
   bool trace = true;  // trace.json and signals.vcd (the Player must trace: PlayerOptions::trace)
-  TraceDetail traceDetail = TraceDetail::kCoalesced;
+  TraceDetail traceDetail = TraceDetail::Coalesced;
   std::function<void(const VsyncRow&)> onRow;  // every vsync, after its lines are written
 };
 

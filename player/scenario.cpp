@@ -54,7 +54,7 @@ Scenario& Scenario::faults(const iop::FaultPlan& plan) {
 
 Scenario& Scenario::stall(Tick at, Tick duration) {
   iop::Fault f;
-  f.kind = iop::Fault::Kind::stall;
+  f.kind = iop::Fault::Kind::Stall;
   f.at = at;
   f.duration = duration;
   options_.faults.faults.push_back(f);
@@ -63,7 +63,7 @@ Scenario& Scenario::stall(Tick at, Tick duration) {
 
 Scenario& Scenario::readError(std::int64_t fileSector, std::int64_t attempts) {
   iop::Fault f;
-  f.kind = iop::Fault::Kind::read_error;
+  f.kind = iop::Fault::Kind::ReadError;
   f.lba = file_.lba + fileSector;
   f.attempts = attempts;
   options_.faults.faults.push_back(f);

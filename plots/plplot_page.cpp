@@ -20,7 +20,7 @@ std::mutex& plplotMutex() {
 }
 
 const char* deviceName(Device d) {
-  return d == Device::png ? "pngcairo" : "svgcairo";
+  return d == Device::Png ? "pngcairo" : "svgcairo";
 }
 
 // The file a fatal PLplot error concerns (set while a page exists, under plplotMutex()).
@@ -125,7 +125,7 @@ std::string PlplotPage::finish() {
   end();
   check();
   // PLplot's cairo devices ignore write errors; a complete picture starts with its signature.
-  const std::string_view signature = device_ == Device::png ? std::string_view("\x89PNG\r\n\x1a\n", 8) : "<?xml";
+  const std::string_view signature = device_ == Device::Png ? std::string_view("\x89PNG\r\n\x1a\n", 8) : "<?xml";
   std::string out(bytes_ != nullptr ? bytes_ : "", size_);
   if (!out.starts_with(signature)) throw PlotError(file_ + ": PLplot wrote no complete picture");
   return out;

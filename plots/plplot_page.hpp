@@ -19,7 +19,7 @@
 
 namespace vbim::plots {
 
-enum class Device { png, svg };
+enum class Device { Png, Svg };
 
 class PlplotPage {
  public:

@@ -8,11 +8,11 @@
 namespace vbim::plots {
 
 std::string renderChart(const Figure& fig, Format format, const std::string& name) {
-  PlplotPage page(format == Format::png ? Device::png : Device::svg, fig.width, figureHeight(fig), name);
+  PlplotPage page(format == Format::Png ? Device::Png : Device::Svg, fig.width, figureHeight(fig), name);
   drawChart(fig);
   page.check();
   std::string bytes = page.finish();
-  return format == Format::svg ? renumberCairoIds(bytes) : bytes;
+  return format == Format::Svg ? renumberCairoIds(bytes) : bytes;
 }
 
 void writeChart(const Figure& fig, const std::filesystem::path& file, Format format) {
@@ -21,9 +21,9 @@ void writeChart(const Figure& fig, const std::filesystem::path& file, Format for
 
 std::vector<std::filesystem::path> writeChartFiles(const Figure& fig, const std::filesystem::path& stem) {
   std::vector<std::filesystem::path> files;
-  for (const Format f : {Format::png, Format::svg}) {
+  for (const Format f : {Format::Png, Format::Svg}) {
     std::filesystem::path file = stem;
-    file += f == Format::png ? ".png" : ".svg";
+    file += f == Format::Png ? ".png" : ".svg";
     writeChart(fig, file, f);
     files.push_back(std::move(file));
   }

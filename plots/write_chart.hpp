@@ -13,7 +13,7 @@
 
 namespace vbim::plots {
 
-enum class Format { png, svg };
+enum class Format { Png, Svg };
 
 // The picture's bytes; `name` names it in error messages. Throws PlotError.
 std::string renderChart(const Figure& fig, Format format, const std::string& name);

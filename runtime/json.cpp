@@ -116,7 +116,7 @@ Value Value::decimal(std::string_view text) {
       (dot != std::string_view::npos && t.find('.', dot + 1) != std::string_view::npos)) {
     throw std::invalid_argument("json::Value::decimal: not a plain decimal: " + std::string(text));
   }
-  Value v(Kind::number);
+  Value v(Kind::Number);
   if (dot == std::string_view::npos) {
     // An integer stays an integer.
     const std::size_t first = std::min(t.find_first_not_of('0'), t.size() - 1);
@@ -157,8 +157,8 @@ Value Value::decimal(std::string_view text) {
 }
 
 Value& Value::operator[](const std::string& key) {
-  if (kind_ == Kind::null) kind_ = Kind::object;
-  if (kind_ != Kind::object) throw std::logic_error("json::Value: member of a non-object");
+  if (kind_ == Kind::Null) kind_ = Kind::Object;
+  if (kind_ != Kind::Object) throw std::logic_error("json::Value: member of a non-object");
   for (std::size_t i = 0; i < keys_.size(); ++i) {
     if (keys_[i] == key) return items_[i];
   }
@@ -168,8 +168,8 @@ Value& Value::operator[](const std::string& key) {
 }
 
 void Value::push(Value v) {
-  if (kind_ == Kind::null) kind_ = Kind::array;
-  if (kind_ != Kind::array) throw std::logic_error("json::Value: element of a non-array");
+  if (kind_ == Kind::Null) kind_ = Kind::Array;
+  if (kind_ != Kind::Array) throw std::logic_error("json::Value: element of a non-array");
   items_.push_back(std::move(v));
 }
 
@@ -183,15 +183,15 @@ void Value::write(std::string& out, int indent, int depth) const {
   const std::string inner(static_cast<std::size_t>(indent * (depth + 1)), ' ');
   const std::string outer(static_cast<std::size_t>(indent * depth), ' ');
   switch (kind_) {
-    case Kind::null:
+    case Kind::Null:
       out += "null";
       return;
-    case Kind::boolean:
-    case Kind::number:
-    case Kind::string:
+    case Kind::Boolean:
+    case Kind::Number:
+    case Kind::String:
       out += text_;
       return;
-    case Kind::array:
+    case Kind::Array:
       if (items_.empty()) {
         out += "[]";
         return;
@@ -204,7 +204,7 @@ void Value::write(std::string& out, int indent, int depth) const {
       }
       out += outer + "]";
       return;
-    case Kind::object: {
+    case Kind::Object: {
       if (items_.empty()) {
         out += "{}";
         return;

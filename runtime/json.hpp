@@ -23,20 +23,20 @@ bool isUtf8(std::string_view s);
 class Value {
  public:
   Value() = default;  // null
-  Value(bool b) : kind_(Kind::boolean), text_(b ? "true" : "false") {}
+  Value(bool b) : kind_(Kind::Boolean), text_(b ? "true" : "false") {}
   Value(int v) : Value(static_cast<std::int64_t>(v)) {}
-  Value(long v) : kind_(Kind::number), text_(std::to_string(v)) {}
-  Value(long long v) : kind_(Kind::number), text_(std::to_string(v)) {}
-  Value(unsigned long v) : kind_(Kind::number), text_(std::to_string(v)) {}
-  Value(unsigned long long v) : kind_(Kind::number), text_(std::to_string(v)) {}
-  Value(const char* s) : kind_(Kind::string), text_(quote(s)) {}
-  Value(const std::string& s) : kind_(Kind::string), text_(quote(s)) {}
+  Value(long v) : kind_(Kind::Number), text_(std::to_string(v)) {}
+  Value(long long v) : kind_(Kind::Number), text_(std::to_string(v)) {}
+  Value(unsigned long v) : kind_(Kind::Number), text_(std::to_string(v)) {}
+  Value(unsigned long long v) : kind_(Kind::Number), text_(std::to_string(v)) {}
+  Value(const char* s) : kind_(Kind::String), text_(quote(s)) {}
+  Value(const std::string& s) : kind_(Kind::String), text_(quote(s)) {}
 
   // A number given as exact decimal text ("12.500000", "0", "-3.25"), printed the way a double
   // parsed from it prints: "12.5", "0", "-3.25", "1.6e-05". At most 15 significant digits.
   static Value decimal(std::string_view text);
-  static Value array() { return Value(Kind::array); }
-  static Value object() { return Value(Kind::object); }
+  static Value array() { return Value(Kind::Array); }
+  static Value object() { return Value(Kind::Object); }
 
   // Object member (created, as null, when missing); turns a null value into an object.
   Value& operator[](const std::string& key);
@@ -47,11 +47,11 @@ class Value {
   std::string dump(int indent) const;
 
  private:
-  enum class Kind { null, boolean, number, string, array, object };
+  enum class Kind { Null, Boolean, Number, String, Array, Object };
   explicit Value(Kind k) : kind_(k) {}
   void write(std::string& out, int indent, int depth) const;
 
-  Kind kind_ = Kind::null;
+  Kind kind_ = Kind::Null;
   std::string text_;  // scalars: their JSON text
   std::vector<std::string> keys_;
   std::vector<Value> items_;  // array elements, or object values in the order of keys_

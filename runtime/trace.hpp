@@ -52,7 +52,7 @@ class Tracer {
   // track and counter created; then advance(now) as the clock moves (VCD changes more than
   // `window` before it are written) and finish() at the end. The streams must outlive the Tracer's
   // use of them.
-  void streamTo(std::ostream& json, std::ostream& vcd, TraceDetail detail = TraceDetail::kCoalesced,
+  void streamTo(std::ostream& json, std::ostream& vcd, TraceDetail detail = TraceDetail::Coalesced,
                 Tick window = fromMs(10'000));
   void advance(Tick now);
   void finish();
@@ -103,7 +103,7 @@ class Tracer {
   std::vector<Sample> samples_;
   std::unique_ptr<TraceStream> stream_;
   bool headerWritten_ = false;
-  TraceDetail detail_ = TraceDetail::kFull;
+  TraceDetail detail_ = TraceDetail::Full;
 };
 
 }  // namespace vbim

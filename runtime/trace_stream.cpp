@@ -229,7 +229,7 @@ void TraceStream::flushBefore(Tick limit) {
 
 void TraceStream::writeGroup(Tick t) {
   const std::vector<Change>* changes = &group_;
-  if (detail_ == TraceDetail::kCoalesced) {
+  if (detail_ == TraceDetail::Coalesced) {
     // Per variable, the value it ends the instant with, in the order of its last change.
     last_.clear();
     for (const Change& c : group_) {

@@ -26,7 +26,7 @@
 
 namespace vbim {
 
-enum class TraceDetail { kCoalesced, kFull };
+enum class TraceDetail { Coalesced, Full };
 
 // Text for one of the trace files, gathered in a buffer and handed to the stream in pieces of
 // kChunk bytes: the stream's formatted output (std::ostream's number formatting goes through

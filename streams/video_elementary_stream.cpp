@@ -10,10 +10,10 @@ namespace vbim::streams {
 StreamForm detectStreamForm(std::span<const std::uint8_t> file) {
   static constexpr std::uint8_t kPrefix[3] = {0, 0, 1};
   if (file.size() >= 4 && file[0] == 0 && file[1] == 0 && file[2] == 1 && file[3] == kPackStartCode)
-    return StreamForm::kProgramStream;
+    return StreamForm::ProgramStream;
   if (std::search(file.begin(), file.end(), std::begin(kPrefix), std::end(kPrefix)) != file.end())
-    return StreamForm::kElementaryStream;
-  return StreamForm::kNotMpeg;
+    return StreamForm::ElementaryStream;
+  return StreamForm::NotMpeg;
 }
 
 std::uint64_t VideoElementaryStream::fileOffsetOf(std::size_t esOffset) const {

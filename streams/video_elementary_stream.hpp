@@ -16,9 +16,9 @@ namespace vbim::streams {
 
 // What a file holds, judged by its first bytes.
 enum class StreamForm {
-  kProgramStream,     // starts with a pack start code 00 00 01 BA
-  kElementaryStream,  // otherwise holds a start code 00 00 01 (the decoder judges the rest)
-  kNotMpeg,           // neither
+  ProgramStream,     // starts with a pack start code 00 00 01 BA
+  ElementaryStream,  // otherwise holds a start code 00 00 01 (the decoder judges the rest)
+  NotMpeg,           // neither
 };
 StreamForm detectStreamForm(std::span<const std::uint8_t> file);
 

@@ -8,19 +8,19 @@ using namespace player;
 
 const char* toString(Measure m) {
   switch (m) {
-    case Measure::frames_late:
+    case Measure::FramesLate:
       return "frames_late";
-    case Measure::frames_dropped:
+    case Measure::FramesDropped:
       return "frames_dropped";
-    case Measure::frames_caught_up:
+    case Measure::FramesCaughtUp:
       return "frames_caught_up";
-    case Measure::pop_max:
+    case Measure::PopMax:
       return "pop_max";
-    case Measure::lag_max:
+    case Measure::LagMax:
       return "lag_max";
-    case Measure::ring_occupancy:
+    case Measure::RingOccupancy:
       return "ring_occupancy";
-    case Measure::survivable_stall:
+    case Measure::SurvivableStall:
       return "survivable_stall";
   }
   return "?";

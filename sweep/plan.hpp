@@ -47,15 +47,7 @@ struct FaultTemplate {
 };
 
 // What a case measures (docs/sweeps.md, "Measures"); each adds its columns to the table.
-enum class Measure {
-  frames_late,
-  frames_dropped,
-  frames_caught_up,
-  pop_max,
-  lag_max,
-  ring_occupancy,
-  survivable_stall
-};
+enum class Measure { FramesLate, FramesDropped, FramesCaughtUp, PopMax, LagMax, RingOccupancy, SurvivableStall };
 const char* toString(Measure m);
 
 // P(measure op threshold), estimated per group of cases that differ only in Monte Carlo axes.
@@ -76,7 +68,7 @@ struct SweepPlanSpec {
   std::vector<std::uint64_t> seeds;
   Tick duration = 0;
   std::vector<Measure> measures;  // in table order
-  Criterion stallCriterion = Criterion::late;
+  Criterion stallCriterion = Criterion::Late;
   StallSearch search;
   std::vector<Probability> probabilities;
 };

@@ -71,7 +71,7 @@ CaseResult runCase(const Case& c, bool keepSeries) {
 }
 
 const char* toString(Criterion c) {
-  return c == Criterion::late ? "no-late-frame" : "pop";
+  return c == Criterion::Late ? "no-late-frame" : "pop";
 }
 
 namespace {
@@ -81,14 +81,14 @@ bool survives(const Case& base, const StallSearch& s, Criterion criterion, Tick 
   c.reference = false;
   if (stall > 0) {
     iop::Fault f;
-    f.kind = iop::Fault::Kind::stall;
+    f.kind = iop::Fault::Kind::Stall;
     f.at = s.stallAt;
     f.duration = stall;
     c.faults.faults.push_back(f);
   }
   c.duration = s.stallAt + stall + s.settle;
   const CaseResult r = runCase(c, false);
-  if (criterion == Criterion::late) return r.lightmap.framesLate == 0 && r.lightmap.behindVsyncs == 0;
+  if (criterion == Criterion::Late) return r.lightmap.framesLate == 0 && r.lightmap.behindVsyncs == 0;
   return r.pop.value <= s.popThreshold;
 }
 
@@ -97,14 +97,14 @@ bool survives(const Case& base, const StallSearch& s, Criterion criterion, Tick 
 StallResult longestSurvivableStall(const Case& base, const StallSearch& search, Criterion criterion) {
   StallResult out;
   StallSearch s = search;
-  if (criterion == Criterion::pop && s.popThreshold < 0) {
+  if (criterion == Criterion::Pop && s.popThreshold < 0) {
     Case c = base;
     c.reference = false;
     c.duration = s.stallAt + s.maxStall + s.settle;
     ++out.runs;
     s.popThreshold = runCase(c, false).pop.value;
   }
-  out.popThreshold = criterion == Criterion::pop ? s.popThreshold : -1;
+  out.popThreshold = criterion == Criterion::Pop ? s.popThreshold : -1;
   ++out.runs;
   if (!survives(base, s, criterion, 0)) return out;
   ++out.runs;

@@ -79,7 +79,7 @@ struct CaseResult {
 // Runs one case (throws what the player throws: ee::StreamProbeError, ConfigError, gs::GsError).
 CaseResult runCase(const Case& c, bool keepSeries);
 
-enum class Criterion { late, pop };
+enum class Criterion { Late, Pop };
 const char* toString(Criterion c);
 
 struct StallSearch {

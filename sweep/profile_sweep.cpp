@@ -33,7 +33,7 @@ ProfileData runSweep(const SweepPlan& plan, const SweepObserver& observer) {
     if (!plan.searchStalls) continue;
     for (const std::string& policy : plan.policies) {
       for (const RingSize& ring : plan.rings) {
-        for (const Criterion crit : {Criterion::late, Criterion::pop}) {
+        for (const Criterion crit : {Criterion::Late, Criterion::Pop}) {
           const Case c = makeCase(*s, ring, policy);
           data.stalls.push_back(StallRow{s->label, ring, policy, crit, longestSurvivableStall(c, plan.search, crit)});
           if (observer.onStall) observer.onStall(data.stalls.back());

@@ -34,7 +34,7 @@ struct StallRow {
   std::string stream;
   RingSize ring;
   std::string policy;
-  Criterion criterion = Criterion::late;
+  Criterion criterion = Criterion::Late;
   StallResult result;
 };
 

@@ -22,11 +22,10 @@ CaseRecord runPlanCase(const SweepPlanSpec& plan, const PlanCase& pc, const Stre
   c.faults = plan.faults[pc.faults].draws[pc.draw].plan;
   c.seed = pc.runSeed(plan);
   c.duration = plan.duration;
-  c.reference = hasMeasure(plan, Measure::lag_max);  // the fault-free reference costs a second pipeline
+  c.reference = hasMeasure(plan, Measure::LagMax);  // the fault-free reference costs a second pipeline
   c.kernels = kernels;
   r.result = runCase(c, false);
-  if (hasMeasure(plan, Measure::survivable_stall))
-    r.stall = longestSurvivableStall(c, plan.search, plan.stallCriterion);
+  if (hasMeasure(plan, Measure::SurvivableStall)) r.stall = longestSurvivableStall(c, plan.search, plan.stallCriterion);
   return r;
 }
 

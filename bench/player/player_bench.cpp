@@ -42,7 +42,7 @@ double cpuSeconds() {
 
 const std::vector<std::uint8_t>& content() {
   static const std::vector<std::uint8_t> bytes =
-      streams::authorBenchStream(kFrames, streams::BenchContent::syntheticDay);
+      streams::authorBenchStream(kFrames, streams::BenchContent::SyntheticDay);
   return bytes;
 }
 

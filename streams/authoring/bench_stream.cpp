@@ -33,7 +33,7 @@ std::vector<std::uint8_t> authorBenchStream(int frames, BenchContent content, in
   Rng rng(7);
   const streams::ToneMapping tone;
   for (int f = 0; f < frames; ++f) {
-    if (content == BenchContent::noise) {
+    if (content == BenchContent::Noise) {
       const Rgba8Image lm = noiseImage(512, 512, rng), sky = noiseImage(256, 128, rng);
       w.addFrame(lm, &sky);
     } else {

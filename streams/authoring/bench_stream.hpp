@@ -11,7 +11,7 @@
 
 namespace vbim::streams {
 
-enum class BenchContent { syntheticDay, noise };
+enum class BenchContent { SyntheticDay, Noise };
 
 // A finished VBIM stream (2048-byte packs) of `frames` frames. stretchContainerTime = false makes a
 // stream whose lightmap and sky drift apart in the file when the frames are large (noise).

@@ -12,11 +12,11 @@ namespace vbim::streams {
 
 const char* extensionOf(FrameFileFormat format) {
   switch (format) {
-    case FrameFileFormat::kPng:
+    case FrameFileFormat::Png:
       return "png";
-    case FrameFileFormat::kExr:
+    case FrameFileFormat::Exr:
       return "exr";
-    case FrameFileFormat::kYuv:
+    case FrameFileFormat::Yuv:
       return "yuv";
   }
   return "";
@@ -33,7 +33,7 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
   const ipu::FrameStore& fs = decoder.displayFrame() ? *decoder.displayFrame() : decoder.frame();
   const int w = decoder.displayFrame() ? decoder.displayWidth() : decoder.width();
   const int h = decoder.displayFrame() ? decoder.displayHeight() : decoder.height();
-  if (format_ == FrameFileFormat::kYuv) {
+  if (format_ == FrameFileFormat::Yuv) {
     ipu::copyToYuv420(fs, w, h, yuv_);
     std::ofstream f(path, std::ios::binary);
     f.write(reinterpret_cast<const char*>(yuv_.y.data()), static_cast<std::streamsize>(yuv_.y.size()));
@@ -44,7 +44,7 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
   }
   ipu::convertToRgba32(fs, w, h, thresholds_, rgba_, decoder.kernels().cscRow);
   // GS alpha 0x80 = 1.0: PNG alpha 255 = 2 * a (clamped), EXR alpha = a / 128.
-  if (format_ == FrameFileFormat::kPng) {
+  if (format_ == FrameFileFormat::Png) {
     for (std::size_t i = 3; i < rgba_.pixels.size(); i += 4)
       rgba_.pixels[i] = static_cast<std::uint8_t>(rgba_.pixels[i] >= 0x80 ? 255 : rgba_.pixels[i] * 2);
     imageio::writePng(path, imageio::ImageView<std::uint8_t>{w, h, 4, rgba_.pixels.data()});

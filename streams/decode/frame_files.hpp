@@ -14,7 +14,7 @@
 
 namespace vbim::streams {
 
-enum class FrameFileFormat { kPng, kExr, kYuv };
+enum class FrameFileFormat { Png, Exr, Yuv };
 
 // "png", "exr", "yuv": the file name extension.
 const char* extensionOf(FrameFileFormat format);

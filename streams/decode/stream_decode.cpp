@@ -15,7 +15,7 @@ namespace {
 VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::string& name,
                               std::optional<std::uint8_t> streamId) {
   switch (detectStreamForm(file)) {
-    case StreamForm::kProgramStream: {
+    case StreamForm::ProgramStream: {
       VideoElementaryStream video = readVideoStream(file, streamId);
       if (!video.streamId) {
         throw DecodeError(
@@ -24,10 +24,10 @@ VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::str
       }
       return video;
     }
-    case StreamForm::kElementaryStream:
+    case StreamForm::ElementaryStream:
       // If it lacks a sequence header the decoder says so.
       return rawVideoStream(file);
-    case StreamForm::kNotMpeg:
+    case StreamForm::NotMpeg:
       break;
   }
   throw DecodeError(name +

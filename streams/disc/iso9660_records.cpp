@@ -55,10 +55,10 @@ std::int64_t DirectoryRecord::sectors() const {
 
 DescriptorKind descriptorKind(Sector sector) {
   // ECMA-119, 4th edition, section 8.1: type (byte 0), "CD001" (bytes 1-5), version 1 (byte 6).
-  if (std::memcmp(sector.data() + 1, "CD001", 5) != 0 || sector[6] != 1) return DescriptorKind::notDescriptor;
-  if (sector[0] == 1) return DescriptorKind::primary;
-  if (sector[0] == 255) return DescriptorKind::terminator;
-  return DescriptorKind::other;
+  if (std::memcmp(sector.data() + 1, "CD001", 5) != 0 || sector[6] != 1) return DescriptorKind::NotDescriptor;
+  if (sector[0] == 1) return DescriptorKind::Primary;
+  if (sector[0] == 255) return DescriptorKind::Terminator;
+  return DescriptorKind::Other;
 }
 
 PrimaryVolume parsePrimaryVolume(Sector sector, std::int64_t lba) {

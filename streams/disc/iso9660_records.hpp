@@ -41,10 +41,10 @@ struct DirectoryRecord {
 
 // What a sector of the volume descriptor set holds (ECMA-119, 4th edition, section 8.1).
 enum class DescriptorKind {
-  notDescriptor,  // no "CD001" standard identifier, or a version other than 1
-  primary,        // type 1 (section 8.4)
-  terminator,     // type 255 (section 8.3)
-  other,          // boot record, supplementary or partition descriptor: skipped
+  NotDescriptor,  // no "CD001" standard identifier, or a version other than 1
+  Primary,        // type 1 (section 8.4)
+  Terminator,     // type 255 (section 8.3)
+  Other,          // boot record, supplementary or partition descriptor: skipped
 };
 DescriptorKind descriptorKind(Sector sector);
 

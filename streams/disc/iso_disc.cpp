@@ -63,9 +63,9 @@ IsoDisc::IsoDisc(std::string path) : path_(std::move(path)) {
        !pvd && lba < imageSectors && lba < iso9660::kFirstDescriptorLba + kMaxDescriptors && readSector(lba, sector);
        ++lba) {
     const iso9660::DescriptorKind kind = iso9660::descriptorKind(sector);
-    if (kind == iso9660::DescriptorKind::primary) {
+    if (kind == iso9660::DescriptorKind::Primary) {
       pvd = naming(path_, [&] { return iso9660::parsePrimaryVolume(sector, lba); });
-    } else if (kind != iso9660::DescriptorKind::other) {
+    } else if (kind != iso9660::DescriptorKind::Other) {
       break;
     }
   }

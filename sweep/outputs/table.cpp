@@ -15,20 +15,20 @@ namespace {
 
 // One cell of the table: its text (as in the CSV) and how JSON writes it.
 struct Cell {
-  enum class Kind { number, string, null };
+  enum class Kind { Number, String, Null };
   std::string key;
   std::string text;
-  Kind kind = Kind::number;
+  Kind kind = Kind::Number;
 };
 
 Cell number(std::string key, std::int64_t v) {
-  return {std::move(key), std::to_string(v), Cell::Kind::number};
+  return {std::move(key), std::to_string(v), Cell::Kind::Number};
 }
 Cell real(std::string key, double v, int decimals) {
-  return {std::move(key), fixed(v, decimals), Cell::Kind::number};
+  return {std::move(key), fixed(v, decimals), Cell::Kind::Number};
 }
 Cell text(std::string key, std::string v) {
-  return {std::move(key), std::move(v), Cell::Kind::string};
+  return {std::move(key), std::move(v), Cell::Kind::String};
 }
 
 std::string ringLabel(const RingSize& r) {
@@ -65,28 +65,28 @@ std::vector<Cell> measureCells(const SweepPlanSpec& plan, const CaseRecord& r) {
   row.push_back(number("frames_shown", m.lightmap.framesShown));
   // ok, stuck or starved (player/report.hpp, runHealth): always shown, whatever the measures.
   row.push_back(r.ok ? text("health", player::runHealth(m.lightmap, m.totals).verdict)
-                     : Cell{"health", "", Cell::Kind::null});
+                     : Cell{"health", "", Cell::Kind::Null});
   for (const Measure ms : plan.measures) {
     switch (ms) {
-      case Measure::frames_late:
+      case Measure::FramesLate:
         row.push_back(number("frames_late", m.lightmap.framesLate));
         row.push_back(number("behind_vsyncs", m.lightmap.behindVsyncs));
         break;
-      case Measure::frames_dropped:
+      case Measure::FramesDropped:
         row.push_back(number("frames_dropped", m.lightmap.framesDropped));
         break;
-      case Measure::frames_caught_up:
+      case Measure::FramesCaughtUp:
         row.push_back(number("frames_caught_up", m.lightmap.framesCaughtUp));
         break;
-      case Measure::pop_max:
+      case Measure::PopMax:
         row.push_back(number("pop_max", m.pop.value));
         row.push_back(real("pop_max_at_s", toSeconds(m.pop.at), 6));
         break;
-      case Measure::lag_max:
+      case Measure::LagMax:
         row.push_back(number("lag_max", m.totals.lag.value));
         row.push_back(real("lag_max_at_s", toSeconds(m.totals.lag.at), 6));
         break;
-      case Measure::ring_occupancy: {
+      case Measure::RingOccupancy: {
         const double mean =
             m.totals.vsyncs > 0 ? static_cast<double>(m.totals.ringSum) / static_cast<double>(m.totals.vsyncs) : 0.0;
         row.push_back(number("ring_banks_min", m.totals.ringMin));
@@ -95,16 +95,16 @@ std::vector<Cell> measureCells(const SweepPlanSpec& plan, const CaseRecord& r) {
         row.push_back(number("ring_underruns", m.ringUnderruns));
         break;
       }
-      case Measure::survivable_stall:
+      case Measure::SurvivableStall:
         row.push_back(r.stall.longest ? real("longest_stall_s", toSeconds(*r.stall.longest), 6)
-                                      : Cell{"longest_stall_s", "", Cell::Kind::null});
+                                      : Cell{"longest_stall_s", "", Cell::Kind::Null});
         row.push_back(number("stall_saturated", r.stall.saturated ? 1 : 0));
         row.push_back(number("stall_runs", r.stall.runs));
         break;
     }
   }
   if (!r.ok) {  // a failed case measured nothing: empty cells (null in JSON), not zeros
-    for (std::size_t i = 1; i < row.size(); ++i) row[i] = Cell{row[i].key, "", Cell::Kind::null};
+    for (std::size_t i = 1; i < row.size(); ++i) row[i] = Cell{row[i].key, "", Cell::Kind::Null};
   }
   row.push_back(text("error", r.error));
   return row;
@@ -116,10 +116,10 @@ std::string jsonLine(const std::vector<Cell>& row) {
     const Cell& c = row[i];
     if (i > 0) o += ",";
     o += nlohmann::json(c.key).dump() + ":";
-    if (c.kind == Cell::Kind::string) {
+    if (c.kind == Cell::Kind::String) {
       o += nlohmann::json(c.text).dump();
     } else {
-      o += c.kind == Cell::Kind::null ? "null" : c.text;
+      o += c.kind == Cell::Kind::Null ? "null" : c.text;
     }
   }
   return o + "}";

@@ -194,7 +194,7 @@ TEST(FaultPlan, SeekAwayMakesTheStreamSeekBack) {
   r.s.runUntil(fromMs(1000));
   const auto& st = r.drive->stats();
   // Away: a full seek there; back: a full seek home. The ring's read was refused once (busy).
-  EXPECT_EQ(st.seeks[static_cast<int>(SeekClass::full)], 2);
+  EXPECT_EQ(st.seeks[static_cast<int>(SeekClass::Full)], 2);
   EXPECT_GE(r.ring->stats().issueFailures, 1);
   EXPECT_EQ(r.ring->visibleBanks(), 4);
 }

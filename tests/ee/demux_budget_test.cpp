@@ -24,7 +24,7 @@ class DemuxBudget : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     path_ = fs::temp_directory_path() / ("vbim_drift_" + std::to_string(::getpid()) + ".vbim");
-    const auto bytes = streams::authorBenchStream(24, streams::BenchContent::noise, 1, /*stretchContainerTime=*/false);
+    const auto bytes = streams::authorBenchStream(24, streams::BenchContent::Noise, 1, /*stretchContainerTime=*/false);
     std::ofstream(path_, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     // The premise: the pictures of one frame end far apart in the file.

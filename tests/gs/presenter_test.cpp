@@ -177,7 +177,7 @@ TEST(Presenter, TracesGsBusySpansAndCounters) {
 TEST(Presenter, StripSpansAreOneSpanPerVsyncUnlessFullDetail) {
   std::string text[2];
   Tick busy[2] = {0, 0};
-  const TraceDetail details[2] = {TraceDetail::kCoalesced, TraceDetail::kFull};
+  const TraceDetail details[2] = {TraceDetail::Coalesced, TraceDetail::Full};
   for (int i = 0; i < 2; ++i) {
     GsParams p;
     p.upload_mode = "strips";

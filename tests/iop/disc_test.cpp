@@ -206,9 +206,9 @@ TEST(IsoDisc, ReadingTwoFilesAlternatelyCostsSeeks) {
   const auto [alt, altStats] = run(alternate, tAlt);
   const auto [seq, seqStats] = run(sequential, tSeq);
   // Alternating: every switch after the first read is a seek (fast: the files are close).
-  EXPECT_EQ(altStats.seeks[static_cast<int>(SeekClass::fast)] + altStats.seeks[static_cast<int>(SeekClass::full)], 12);
+  EXPECT_EQ(altStats.seeks[static_cast<int>(SeekClass::Fast)] + altStats.seeks[static_cast<int>(SeekClass::Full)], 12);
   // Sequential: the first read and the jump from A to B.
-  EXPECT_EQ(seqStats.seeks[static_cast<int>(SeekClass::fast)] + seqStats.seeks[static_cast<int>(SeekClass::full)], 2);
+  EXPECT_EQ(seqStats.seeks[static_cast<int>(SeekClass::Fast)] + seqStats.seeks[static_cast<int>(SeekClass::Full)], 2);
   EXPECT_GT(tAlt, tSeq + 10 * fromUs(30'000));
   fs::remove_all(d);
 }

@@ -63,7 +63,7 @@ TEST(DriveRate, CavInnerAndOuterRadiusMatchTheModel) {
     // Prime the head at lsn, then a long contiguous read: no seek, no latency.
     auto done = run(r, {{0, lsn, 16}, {0, lsn + 16, 2000}});
     ASSERT_EQ(done.size(), 2u);
-    EXPECT_EQ(done[1].seek, SeekClass::contiguous);
+    EXPECT_EQ(done[1].seek, SeekClass::Contiguous);
     const Tick took = done[1].finished - done[1].issued;
     EXPECT_EQ(took, contiguousReadTicks(lsn + 16, 2000, cavSectorTicks));
     // And that is the CAV rate of docs/hardware.md#dvd-drive: 1080 sectors/s at the hub, 2700 at the
@@ -99,12 +99,12 @@ TEST(DriveSeek, EachClassCostsItsTimePlusSeededLatency) {
                       {0, base + 997 + 100'008 + 14'763, 8},             // just inside the fast window
                       {0, base + 997 + 100'008 + 14'771 + 14'764, 8}});  // just outside: full
   ASSERT_EQ(done.size(), 7u);
-  EXPECT_EQ(done[1].seek, SeekClass::contiguous);
-  EXPECT_EQ(done[2].seek, SeekClass::fast);
-  EXPECT_EQ(done[3].seek, SeekClass::fast);
-  EXPECT_EQ(done[4].seek, SeekClass::full);
-  EXPECT_EQ(done[5].seek, SeekClass::fast);
-  EXPECT_EQ(done[6].seek, SeekClass::full);
+  EXPECT_EQ(done[1].seek, SeekClass::Contiguous);
+  EXPECT_EQ(done[2].seek, SeekClass::Fast);
+  EXPECT_EQ(done[3].seek, SeekClass::Fast);
+  EXPECT_EQ(done[4].seek, SeekClass::Full);
+  EXPECT_EQ(done[5].seek, SeekClass::Fast);
+  EXPECT_EQ(done[6].seek, SeekClass::Full);
 
   // Latency draws: the drive's fork of the seed, one draw per seek, uniform in [0, 16 ms).
   Rng lat = Rng(r.seed).fork("drive.latency");
@@ -123,8 +123,8 @@ TEST(DriveSeek, EachClassCostsItsTimePlusSeededLatency) {
     EXPECT_EQ(done[static_cast<std::size_t>(i)].finished - done[static_cast<std::size_t>(i)].issued, expected)
         << "step " << i;
   }
-  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::fast)], 3);
-  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::full)], 3);
+  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::Fast)], 3);
+  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::Full)], 3);
 }
 
 TEST(DriveSeek, ReadAheadServesTheNextSectorsAfterIdle) {
@@ -133,7 +133,7 @@ TEST(DriveSeek, ReadAheadServesTheNextSectorsAfterIdle) {
   // Idle 50 ms after the first read: 16 sectors (2.2 ms of reading) are buffered.
   auto done = run(r, {{0, 5000, 32}, {fromMs(50), 5032, 32}});
   ASSERT_EQ(done.size(), 2u);
-  EXPECT_EQ(done[1].seek, SeekClass::buffered);
+  EXPECT_EQ(done[1].seek, SeekClass::Buffered);
   // 16 buffered sectors need only their DMA (16 x 24,576 ticks, chained); the other 16 are read
   // from t = 0 and the reads outpace the DMA from the 4th on, so the last DMA ends 16 reads + 1 DMA in.
   EXPECT_EQ(done[1].finished - done[1].issued, 16 * kClvSectorTicks + kDmaTicks);
@@ -146,7 +146,7 @@ TEST(DriveSeek, SpinUpFromStopped) {
   r.p.drive.spindle = "clv";
   auto done = run(r, {{0, 0, 1}});
   // Spin-up (333 ms), then LSN 0 is where the head rests: read it.
-  EXPECT_EQ(done[0].seek, SeekClass::contiguous);
+  EXPECT_EQ(done[0].seek, SeekClass::Contiguous);
   EXPECT_EQ(done[0].finished - done[0].issued, fromMs(333) + kClvSectorTicks + kDmaTicks);
   EXPECT_EQ(r.drive->stats().spinUps, 1);
 }

@@ -227,20 +227,20 @@ Bytes primaryDescriptor(std::uint32_t sectors, std::uint16_t blockSize) {
 
 TEST(Iso9660Descriptor, ReadsThePrimaryVolumeDescriptor) {
   Bytes s = primaryDescriptor(500, 2048);
-  EXPECT_EQ(descriptorKind(s), DescriptorKind::primary);
+  EXPECT_EQ(descriptorKind(s), DescriptorKind::Primary);
   const PrimaryVolume v = parsePrimaryVolume(s, 16);
   EXPECT_EQ(v.sectors, 500);
   EXPECT_EQ(v.root.extent, 20);
   EXPECT_TRUE(v.root.directory);
   s[0] = 255;
-  EXPECT_EQ(descriptorKind(s), DescriptorKind::terminator);
+  EXPECT_EQ(descriptorKind(s), DescriptorKind::Terminator);
   s[0] = 2;
-  EXPECT_EQ(descriptorKind(s), DescriptorKind::other);
+  EXPECT_EQ(descriptorKind(s), DescriptorKind::Other);
   s[6] = 2;  // version 2 is not this standard's
-  EXPECT_EQ(descriptorKind(s), DescriptorKind::notDescriptor);
+  EXPECT_EQ(descriptorKind(s), DescriptorKind::NotDescriptor);
   s[6] = 1;
   s[3] = 'X';
-  EXPECT_EQ(descriptorKind(s), DescriptorKind::notDescriptor);
+  EXPECT_EQ(descriptorKind(s), DescriptorKind::NotDescriptor);
 }
 
 TEST(Iso9660Descriptor, RefusesOtherBlockSizesDamagedSizesAndRoots) {

@@ -76,7 +76,7 @@ TEST(StreamRing, FillsWholeBanksThenIdlesAndRePollsEvery8ms) {
   EXPECT_GT(resumedAt, fromMs(1000));
   EXPECT_LE(resumedAt, fromMs(1008) + r.sif->transferTicks(32 * kSectorBytes));
   EXPECT_EQ((resumedAt - fullAt) % fromMs(8), 0);
-  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::buffered)], 1);
+  EXPECT_EQ(r.drive->stats().seeks[static_cast<int>(SeekClass::Buffered)], 1);
   EXPECT_EQ(r.ring->visibleBanks(), 4);
 }
 

@@ -69,7 +69,7 @@ struct Scenario {
   // Log every qword (the FIFO levels are compared); the player does not, and the model then skips
   // work whose only trace is that log, so both ways are drawn.
   bool recordQwords = true;
-  TraceDetail detail = TraceDetail::kFull;
+  TraceDetail detail = TraceDetail::Full;
   std::string describe() const {
     std::ostringstream s;
     s << "in " << p.in_fifo_qwords << "+" << p.in_buffer_qwords << " out " << p.out_fifo_qwords << " toipu "
@@ -78,7 +78,7 @@ struct Scenario {
       << " restart " << p.slice_restart_cycles << " pictures " << pictures.size() << " stalls";
     for (const Stall& st : stalls) s << " " << (st.input ? "in@" : "out@") << st.at << "+" << st.duration;
     s << (traced ? (streamed ? " streamed" : " in-memory") : " untraced")
-      << (detail == TraceDetail::kFull ? " full" : " coalesced") << (recordQwords ? " qwords logged" : "");
+      << (detail == TraceDetail::Full ? " full" : " coalesced") << (recordQwords ? " qwords logged" : "");
     return s.str();
   }
 };
@@ -253,7 +253,7 @@ Scenario randomScenario(std::mt19937_64& rng) {
   }
   sc.traced = pick(0, 4) != 0;
   sc.streamed = sc.traced && pick(0, 1) == 0;
-  sc.detail = sc.streamed && pick(0, 1) == 0 ? TraceDetail::kCoalesced : TraceDetail::kFull;
+  sc.detail = sc.streamed && pick(0, 1) == 0 ? TraceDetail::Coalesced : TraceDetail::Full;
   sc.recordQwords = pick(0, 2) != 0;
   return sc;
 }
@@ -329,7 +329,7 @@ TEST(IpuUnitEquivalence, SchedulerEventsPerPicture) {
   for (const bool traced : {false, true}) {
     sc.traced = traced;
     sc.streamed = traced;
-    sc.detail = TraceDetail::kCoalesced;
+    sc.detail = TraceDetail::Coalesced;
     const Outcome ref = run<reference::ReferenceIpuUnit>(sc);
     const Outcome now = run<IpuUnit>(sc);
     ASSERT_EQ(now.finished, ref.finished);

@@ -121,7 +121,7 @@ Task<void> ReferenceIpuUnit::coreLoop(ReferenceIpuUnit& u) {
       // Per macroblock (a few us) only in full detail; otherwise the same label throughout, so the
       // tracer joins a busy stretch into one span (at 290 macroblocks/s the two spans per macroblock
       // were 150 MB of trace.json per simulated hour).
-      const bool fine = u.tracer_ != nullptr && u.tracer_->detail() == TraceDetail::kFull;
+      const bool fine = u.tracer_ != nullptr && u.tracer_->detail() == TraceDetail::Full;
       if (u.tracer_) u.tracer_->span(u.track_, begin, decoded, fine ? "idec" : "decode");
       // CSC emits the macroblock row by row; each row's qwords wait for room in the output FIFO.
       for (int row = 0; row < 16; ++row) {

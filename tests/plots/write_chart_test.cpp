@@ -94,7 +94,7 @@ TEST(PlotFiles, SameFigureSameBytesPngAndSvg) {
 
 TEST(PlotFiles, PngDecodesToTheFigureSizeWithTheSeriesColour) {
   const Figure fig = sampleFigure();
-  const std::optional<Rgba> img = decodePng(renderChart(fig, Format::png, "sample.png"));
+  const std::optional<Rgba> img = decodePng(renderChart(fig, Format::Png, "sample.png"));
   ASSERT_TRUE(img.has_value());
   EXPECT_EQ(img->width, 1200);
   EXPECT_EQ(img->height, 40 + 2 * 320);
@@ -125,7 +125,7 @@ TEST(PlotFiles, UnwritableDirectoryIsAPlotErrorNamingTheFile) {
   // A "directory" that is a regular file (fails for root too).
   const fs::path dir = scratch("file");
   std::ofstream(dir / "not_a_dir") << "x";
-  EXPECT_THROW(writeChart(sampleFigure(), dir / "not_a_dir" / "chart.svg", Format::svg), PlotError);
+  EXPECT_THROW(writeChart(sampleFigure(), dir / "not_a_dir" / "chart.svg", Format::Svg), PlotError);
   EXPECT_FALSE(fs::exists(missing));
   fs::remove_all(dir);
 }
@@ -136,7 +136,7 @@ TEST(PlotFiles, MissingCairoDriverNamesThePackage) {
   const std::optional<std::string> saved = before ? std::optional<std::string>(before) : std::nullopt;
   setenv("PLPLOT_DRV_DIR", empty.c_str(), 1);
   try {
-    renderChart(sampleFigure(), Format::png, "chart.png");
+    renderChart(sampleFigure(), Format::Png, "chart.png");
     ADD_FAILURE() << "no error";
   } catch (const PlotError& e) {
     const std::string what = e.what();
@@ -149,7 +149,7 @@ TEST(PlotFiles, MissingCairoDriverNamesThePackage) {
     unsetenv("PLPLOT_DRV_DIR");
   }
   // Plotting works again afterwards.
-  EXPECT_FALSE(renderChart(sampleFigure(), Format::svg, "chart.svg").empty());
+  EXPECT_FALSE(renderChart(sampleFigure(), Format::Svg, "chart.svg").empty());
   fs::remove_all(empty);
 }
 

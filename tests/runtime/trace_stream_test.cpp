@@ -69,7 +69,7 @@ TEST(TraceStream, WritesTheEventsTheInMemoryWriterWrites) {
   record(memory, 200'000);
   std::ostringstream json;
   memory.writeChromeJson(json);
-  const Streamed s = stream(TraceDetail::kFull, 200'000, 20'000);
+  const Streamed s = stream(TraceDetail::Full, 200'000, 20'000);
   EXPECT_EQ(lines(s.json), lines(json.str()));
   EXPECT_EQ(s.kept, 0u);  // nothing held in memory but the last span of each track
   EXPECT_EQ(s.driveBusy, memory.busyTime(0, 0, kNever));
@@ -81,12 +81,12 @@ TEST(TraceStream, FullDetailVcdEqualsTheInMemoryOne) {
   record(memory, 200'000);
   std::ostringstream vcd;
   memory.writeVcd(vcd);
-  EXPECT_EQ(stream(TraceDetail::kFull, 200'000, 20'000).vcd, vcd.str());
+  EXPECT_EQ(stream(TraceDetail::Full, 200'000, 20'000).vcd, vcd.str());
 }
 
 TEST(TraceStream, CoalescedVcdDropsSameInstantToggles) {
-  const Streamed full = stream(TraceDetail::kFull, 100'000, 20'000);
-  const Streamed coalesced = stream(TraceDetail::kCoalesced, 100'000, 20'000);
+  const Streamed full = stream(TraceDetail::Full, 100'000, 20'000);
+  const Streamed coalesced = stream(TraceDetail::Coalesced, 100'000, 20'000);
   // ipu_busy (identifier '"') goes 1 -> 0 -> 1 at base + 3400 in full detail only.
   const auto count = [](const std::string& v, const std::string& what) {
     std::size_t n = 0;
@@ -131,8 +131,8 @@ TEST(TraceStream, SpansThatFollowEachOtherDoNotOverlapAfterRounding) {
 }
 
 TEST(TraceStream, RepeatedRunsAreByteIdentical) {
-  const Streamed a = stream(TraceDetail::kCoalesced, 100'000, 20'000);
-  const Streamed b = stream(TraceDetail::kCoalesced, 100'000, 20'000);
+  const Streamed a = stream(TraceDetail::Coalesced, 100'000, 20'000);
+  const Streamed b = stream(TraceDetail::Coalesced, 100'000, 20'000);
   EXPECT_EQ(a.json, b.json);
   EXPECT_EQ(a.vcd, b.vcd);
 }

@@ -225,11 +225,11 @@ TEST(StreamsProgramStream, RejectsAnMpeg1PesHeaderWithoutItsTimestampField) {
 }
 
 TEST(StreamsProgramStream, TellsTheFormOfAFile) {
-  EXPECT_EQ(detectStreamForm(testing::mpeg1PackHeader(0, 1)), StreamForm::kProgramStream);
-  EXPECT_EQ(detectStreamForm(Bytes{0, 0, 1, 0xB3, 1, 2}), StreamForm::kElementaryStream);
-  EXPECT_EQ(detectStreamForm(Bytes{7, 0, 0, 1, 0xB3}), StreamForm::kElementaryStream);
-  EXPECT_EQ(detectStreamForm(Bytes{1, 2, 3, 4, 5}), StreamForm::kNotMpeg);
-  EXPECT_EQ(detectStreamForm(Bytes{}), StreamForm::kNotMpeg);
+  EXPECT_EQ(detectStreamForm(testing::mpeg1PackHeader(0, 1)), StreamForm::ProgramStream);
+  EXPECT_EQ(detectStreamForm(Bytes{0, 0, 1, 0xB3, 1, 2}), StreamForm::ElementaryStream);
+  EXPECT_EQ(detectStreamForm(Bytes{7, 0, 0, 1, 0xB3}), StreamForm::ElementaryStream);
+  EXPECT_EQ(detectStreamForm(Bytes{1, 2, 3, 4, 5}), StreamForm::NotMpeg);
+  EXPECT_EQ(detectStreamForm(Bytes{}), StreamForm::NotMpeg);
   const VideoElementaryStream raw = rawVideoStream(Bytes{0, 0, 1, 0xB3});
   EXPECT_FALSE(raw.streamId);
   EXPECT_EQ(raw.fileOffsetOf(3), 3u);

@@ -151,7 +151,7 @@ TEST(StreamsRoundTrip, AuthoringIsDeterministic) {
 // sky pictures together: without that, the sky fell further behind every frame (330 sectors after
 // 16 frames, 1,400 after 64), and the EE demux had to hold everything in between.
 TEST(StreamsRoundTrip, LightmapAndSkyStayInStepWhenFramesExceedTheMuxRate) {
-  const auto bytes = vbim::streams::authorBenchStream(16, vbim::streams::BenchContent::noise, 1);
+  const auto bytes = vbim::streams::authorBenchStream(16, vbim::streams::BenchContent::Noise, 1);
   const StreamScan scan = scanStream(bytes);
   ASSERT_TRUE(scan.descriptor);
   const Descriptor& d = *scan.descriptor;

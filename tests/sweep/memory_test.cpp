@@ -89,8 +89,8 @@ TEST_F(PlayerMemory, PeakDoesNotGrowWithTheStreamsLength) {
 #endif
   // Noise frames: the largest pictures (about 200 KiB each), so a whole-file load would show.
   using vbim::streams::BenchContent;
-  writeFile(dir_ / "short.vbim", vbim::streams::authorBenchStream(3, BenchContent::noise, 1));
-  writeFile(dir_ / "long.vbim", vbim::streams::authorBenchStream(64, BenchContent::noise, 1));
+  writeFile(dir_ / "short.vbim", vbim::streams::authorBenchStream(3, BenchContent::Noise, 1));
+  writeFile(dir_ / "long.vbim", vbim::streams::authorBenchStream(64, BenchContent::Noise, 1));
   const auto longBytes = static_cast<long>(fs::file_size(dir_ / "long.vbim"));
   const auto shortBytes = static_cast<long>(fs::file_size(dir_ / "short.vbim"));
   ASSERT_GT(longBytes - shortBytes, 5L << 20) << "the long stream must be much longer for the test to mean anything";
@@ -110,7 +110,7 @@ TEST_F(PlayerMemory, BenchCaseStaysUnder64MB) {
 #ifdef VBIM_ASAN
   GTEST_SKIP() << "AddressSanitizer inflates the resident set";
 #endif
-  writeFile(dir_ / "bench.vbim", vbim::streams::authorBenchStream(24, vbim::streams::BenchContent::syntheticDay));
+  writeFile(dir_ / "bench.vbim", vbim::streams::authorBenchStream(24, vbim::streams::BenchContent::SyntheticDay));
   const long peak = play(dir_ / "bench.vbim", "60s", "out_bench");
   ASSERT_GT(peak, 0) << "vbim play failed";
   std::cout << "peak RSS of vbim play on the bench case, 60 s: " << peak << " KiB\n";

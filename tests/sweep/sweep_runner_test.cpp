@@ -23,7 +23,7 @@ SweepPlanSpec smallPlan() {
   FaultTemplate t{"stall", {}};
   for (int d = 0; d < 3; ++d) {
     iop::Fault f;
-    f.kind = iop::Fault::Kind::stall;
+    f.kind = iop::Fault::Kind::Stall;
     f.at = fromMs(1000 + 300 * d);
     f.duration = fromMs(600 + 900 * d);
     FaultDraw draw;
@@ -35,7 +35,7 @@ SweepPlanSpec smallPlan() {
   p.rings = {RingSize{4, 8}, RingSize{4, 32}};
   p.seeds = {5};
   p.duration = fromMs(4000);
-  p.measures = {Measure::frames_late, Measure::pop_max, Measure::lag_max, Measure::ring_occupancy};
+  p.measures = {Measure::FramesLate, Measure::PopMax, Measure::LagMax, Measure::RingOccupancy};
   return p;
 }
 

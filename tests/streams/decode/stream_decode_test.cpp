@@ -165,7 +165,7 @@ TEST(StreamsDecode, WritesFramesAsFiles) {
       std::filesystem::temp_directory_path() / ("vbim-stream-decode-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const Bytes es = encode(false, 2, 40, 24);
-  for (const FrameFileFormat f : {FrameFileFormat::kYuv, FrameFileFormat::kPng}) {
+  for (const FrameFileFormat f : {FrameFileFormat::Yuv, FrameFileFormat::Png}) {
     FrameFileWriter writer(dir, f);
     decodeStream(
         es, "a.m2v", {}, [&](int frame, const ipu::Decoder& d) { writer.write(frame, d); }, [](const std::string&) {});
