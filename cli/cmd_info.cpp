@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/info_json.hpp"
 #include "cli/option_checks.hpp"
 #include "iop/error.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -19,35 +20,6 @@ namespace {
 using namespace vbim::streams;
 
 constexpr std::size_t kTextBuckets = 24;  // rows of the bitrate table in text output
-
-nlohmann::json summaryJson(const Summary& s) {
-  return {{"min", s.min}, {"mean", s.mean}, {"max", s.max}};
-}
-
-nlohmann::json descriptorJson(const Descriptor& d) {
-  nlohmann::json j;
-  j["game_fps"] = {{"num", d.gameFps.num}, {"den", d.gameFps.den}};
-  j["frames_per_variant"] = d.framesPerVariant;
-  j["loop_frame"] = d.loopFrame;
-  j["first_pts"] = d.firstPts;
-  j["pts_per_frame"] = d.ptsPerFrame;
-  j["descriptor_sectors"] = d.descriptorSectors;
-  j["total_sectors"] = d.totalSectors;
-  for (const StreamEntry& s : d.streams) {
-    j["streams"].push_back({{"id", hexId(s.id)},
-                            {"role", s.role == StreamRole::Lightmap ? "lightmap" : "sky"},
-                            {"width", s.width},
-                            {"height", s.height}});
-  }
-  for (const Variant& v : d.variants)
-    j["variants"].push_back({{"name", v.name}, {"first_frame", v.firstFrame}, {"first_sector", v.firstSector}});
-  for (std::size_t s = 0; s < d.index.size(); ++s) {
-    nlohmann::json sectors = nlohmann::json::array();
-    for (const IndexEntry& e : d.index[s]) sectors.push_back(e.sector);
-    j["index_sectors"][hexId(d.streams[s].id)] = sectors;
-  }
-  return j;
-}
 
 void printText(const std::string& path, const StreamScan& scan, const std::vector<StreamReport>& reports, double fps,
                bool fpsGuessed) {
@@ -205,41 +177,7 @@ void addInfo(CLI::App& app) {
     const auto perRow = static_cast<std::uint32_t>((frames + kTextBuckets - 1) / kTextBuckets);
     const auto reports = summarise(scan, fps, *json ? 1 : std::max<std::uint32_t>(1, perRow));
     if (*json) {
-      nlohmann::json j;
-      j["file"] = *path;
-      if (onImage) j["disc_file"] = {{"path", onImage->path}, {"lba", onImage->lba}, {"bytes", onImage->bytes}};
-      j["bytes"] = scan.fileBytes;
-      j["sectors"] = scan.sectors;
-      j["every_pack_2048"] = scan.every2048;
-      j["mux_rate_bps"] = scan.muxRate * 400.0;
-      j["descriptor"] = scan.descriptor ? descriptorJson(*scan.descriptor) : nlohmann::json(nullptr);
-      if (record) j["authoring"] = nlohmann::json::parse(record->dump());
-      for (const StreamReport& r : reports) {
-        nlohmann::json pictures = nlohmann::json::array();
-        for (const PictureRecord& p : scan.pictures) {
-          if (p.streamId == r.id) {
-            pictures.push_back({{"first_sector", p.firstSector},
-                                {"last_sector", p.lastSector},
-                                {"bytes", p.bytes},
-                                {"frame", p.frame ? nlohmann::json(*p.frame) : nlohmann::json(nullptr)},
-                                {"damaged", p.damaged}});
-          }
-        }
-        j["streams"].push_back(
-            {{"id", hexId(r.id)},
-             {"pictures", r.pictures},
-             {"bytes_per_picture", summaryJson(r.bytes)},
-             {"sectors_per_picture", summaryJson(r.spanSectors)},
-             {"sectors_per_frame", summaryJson(r.stepSectors)},
-             {"worst_run", {{"frames", r.runFrames}, {"sectors", r.runSectors}, {"start_frame", r.runStart}}},
-             {"bits_per_second_per_frame", r.bitsPerSecond},
-             {"picture_list", pictures}});
-      }
-      for (const StreamError& e : scan.errors) {
-        j["errors"].push_back(
-            {{"kind", toString(e.kind)}, {"sector", e.sector}, {"byte_offset", e.byteOffset}, {"message", e.message}});
-      }
-      if (!j.contains("errors")) j["errors"] = nlohmann::json::array();
+      const nlohmann::json j = infoJson(*path, onImage, scan, reports, record);
       // Text read from a damaged stream (descriptor names, the authoring record) may not be UTF-8:
       // such bytes are written as U+FFFD, so the document is always valid JSON, and said so.
       std::string text;

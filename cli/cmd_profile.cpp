@@ -1,16 +1,11 @@
 // vbim profile: sweeps over ring size, stream (several discs, or one re-encoded at several
 // quantisers / bitrates), fault plans and catch-up policy; searches the longest drive stall each
 // ring size survives; writes sweep.csv, stall.csv, profile.json and plots/*.png and *.svg into --out
-// (complete or absent). docs/player.md, "Profiling". With --plan, a sweep plan instead
-// (cli/profile_plan.hpp, docs/sweeps.md).
+// (complete or absent). docs/player.md, "Profiling". --plan: a sweep plan (cli/profile_plan.hpp).
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
@@ -20,13 +15,10 @@
 #include "cli/profile_plan.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/platform_config.hpp"
-#include "gs/simd/blend_simd.hpp"
 #include "gs/error.hpp"
-#include "iop/params.hpp"
+#include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/report.hpp"
-#include "player/scenario.hpp"
-#include "runtime/params.hpp"
 #include "streams/authoring/transcode.hpp"
 #include "streams/disc/stream_disc.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
@@ -58,38 +50,6 @@ struct ProfileRequest {
   bool force = false;
   std::string out;
 };
-
-RingSize parseRing(const std::string& text) {
-  const auto colon = text.find(':');
-  RingSize r;
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
-    std::size_t used = 0;
-    r.bankmax = std::stoll(text.substr(0, colon), &used);
-    if (used != colon) throw std::invalid_argument("bankmax");
-    r.bufmax = std::stoll(text.substr(colon + 1), &used);
-    if (used != text.size() - colon - 1) throw std::invalid_argument("bufmax");
-  } catch (const std::exception&) {
-    throw Exit(2, "--ring '" + text + "': expected BANKS:SECTORS (ring.bankmax:ring.bufmax_sectors), e.g. 4:32");
-  }
-  // The ranges `vbim config --check` and `play` apply (iop/params.cpp): a ring they refuse (2 banks
-  // deadlock under SDK-ST's hold rule) is refused here too, before any case runs.
-  iop::RingParams ring;
-  ParamTable table;
-  iop::describeParams(table, ring);
-  for (const auto& [key, value] : {std::pair<const char*, std::int64_t>{"ring.bankmax", r.bankmax},
-                                   std::pair<const char*, std::int64_t>{"ring.bufmax_sectors", r.bufmax}}) {
-    const ParamTable::Param* p = table.find(key);
-    if (p != nullptr && (static_cast<double>(value) < p->min || static_cast<double>(value) > p->max)) {
-      throw Exit(2, "--ring '" + text + "': " + key + " = " + std::to_string(value) + " is outside [" +
-                        std::to_string(static_cast<std::int64_t>(p->min)) + ", " +
-                        std::to_string(static_cast<std::int64_t>(p->max)) + "] (" + p->source + ")");
-    }
-  }
-  if (r.bufmax < r.bankmax)
-    throw Exit(2, "--ring '" + text + "': ring.bufmax_sectors must be at least ring.bankmax (one sector per bank)");
-  return r;
-}
 
 std::string stem(const std::string& path) {
   return std::filesystem::path(path).stem().string();
@@ -135,7 +95,7 @@ void runProfile(const ProfileRequest& r) {
   player::PlatformConfig base;
   if (!r.config.empty()) base = config::loadPlatformFile(r.config);
   std::vector<RingSize> rings;
-  for (const std::string& s : r.rings) rings.push_back(parseRing(s));
+  for (const std::string& s : r.rings) rings.push_back(parseRingSize(s));
   std::sort(rings.begin(), rings.end(), [](const RingSize& a, const RingSize& b) {
     return a.bufmax != b.bufmax ? a.bufmax < b.bufmax : a.bankmax < b.bankmax;
   });

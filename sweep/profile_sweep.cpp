@@ -1,6 +1,44 @@
 #include "sweep/profile_sweep.hpp"
 
+#include <stdexcept>
+
+#include "iop/params.hpp"
+#include "runtime/error.hpp"
+#include "runtime/params.hpp"
+
 namespace vbim::sweep {
+
+RingSize parseRingSize(const std::string& text) {
+  const auto colon = text.find(':');
+  RingSize r;
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    std::size_t used = 0;
+    r.bankmax = std::stoll(text.substr(0, colon), &used);
+    if (used != colon) throw std::invalid_argument("bankmax");
+    r.bufmax = std::stoll(text.substr(colon + 1), &used);
+    if (used != text.size() - colon - 1) throw std::invalid_argument("bufmax");
+  } catch (const std::exception&) {
+    throw Error("--ring '" + text + "': expected BANKS:SECTORS (ring.bankmax:ring.bufmax_sectors), e.g. 4:32");
+  }
+  // The ranges `vbim config --check` and `play` apply (iop/params.cpp): a ring they refuse (2 banks
+  // deadlock under SDK-ST's hold rule) is refused here too, before any case runs.
+  iop::RingParams ring;
+  ParamTable table;
+  iop::describeParams(table, ring);
+  for (const auto& [key, value] : {std::pair<const char*, std::int64_t>{"ring.bankmax", r.bankmax},
+                                   std::pair<const char*, std::int64_t>{"ring.bufmax_sectors", r.bufmax}}) {
+    const ParamTable::Param* p = table.find(key);
+    if (p != nullptr && (static_cast<double>(value) < p->min || static_cast<double>(value) > p->max)) {
+      throw Error("--ring '" + text + "': " + key + " = " + std::to_string(value) + " is outside [" +
+                  std::to_string(static_cast<std::int64_t>(p->min)) + ", " +
+                  std::to_string(static_cast<std::int64_t>(p->max)) + "] (" + p->source + ")");
+    }
+  }
+  if (r.bufmax < r.bankmax)
+    throw Error("--ring '" + text + "': ring.bufmax_sectors must be at least ring.bankmax (one sector per bank)");
+  return r;
+}
 
 using namespace player;
 

@@ -22,6 +22,11 @@ struct RingSize {
   std::int64_t bufmax = 160;  // sectors
 };
 
+// "BANKS:SECTORS" (`vbim profile --ring 4:32`), in the ranges `vbim config --check` and `play` apply
+// (iop/params.cpp): a ring they refuse (2 banks deadlock under SDK-ST's hold rule) is refused here
+// too, before any case runs. Throws vbim::Error naming the text and what was expected.
+RingSize parseRingSize(const std::string& text);
+
 struct SweepRun {
   std::string stream;
   RingSize ring;
