@@ -51,7 +51,7 @@ void readTimeline(const std::filesystem::path& file, RunDir& run) {
       run.timeline[std::stoll(f[cVsync])] = r;
     } catch (const std::exception&) {
       throw Error(file.string() + ":" + std::to_string(lineNo) + ": expected " + std::to_string(header.size()) +
-                        " comma-separated fields as in the header (vsync,time_s,...)");
+                  " comma-separated fields as in the header (vsync,time_s,...)");
     }
   }
   run.vsyncs = static_cast<std::int64_t>(run.timeline.size());
@@ -83,8 +83,7 @@ RunDir readRunDir(const std::filesystem::path& dir) {
   std::sort(run.frames.begin(), run.frames.end(),
             [](const RunFrame& a, const RunFrame& b) { return a.vsync < b.vsync; });
   if (run.frames.empty()) {
-    throw Error(dir.string() +
-                      ": no frames/lightmap_NNNNNN.png in this run (play it with --every N or --at TIMES)");
+    throw Error(dir.string() + ": no frames/lightmap_NNNNNN.png in this run (play it with --every N or --at TIMES)");
   }
   readTimeline(dir / "timeline.csv", run);
   if (std::ifstream a(dir / "authoring.json", std::ios::binary); a) {

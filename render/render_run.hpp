@@ -20,9 +20,9 @@
 
 #include "lighting/authoring/technique_a_stream.hpp"
 #include "lighting/day_cycle.hpp"
+#include "player/run_dir_reader.hpp"
 #include "render/camera.hpp"
 #include "render/gl_context.hpp"
-#include "player/run_dir_reader.hpp"
 
 namespace vbim::render {
 
@@ -70,7 +70,7 @@ using RenderProgressFn = std::function<void(int done, int total)>;
 
 // Throws RenderError for any problem (no GL context, a missing or unreadable frame, a lightmap
 // that does not match the terrain, a camera outside the terrain).
-RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& request, const std::filesystem::path& outDir,
-                          const RenderProgressFn& progress = {});
+RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& request,
+                          const std::filesystem::path& outDir, const RenderProgressFn& progress = {});
 
 }  // namespace vbim::render
