@@ -1,11 +1,15 @@
 // vbim replay: the GS side of a run (blend and present at every vsync, with the GS's timing) fed by
-// an arrival schedule, a port's log or the arrivals.csv of `vbim play`; writes hashes.txt and
-// pictures like play (docs/porting.md, "Replay").
+// an arrival schedule, a port's log or the arrivals.csv of `vbim play`; writes hashes.txt,
+// timeline.csv and pictures like play, says which arrivals came late or were never shown, and with
+// --compare names the first vsync whose hash differs from a run's or a port's (docs/porting.md,
+// "Replay").
 #include <fstream>
 #include <iostream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include "cli/command.hpp"
@@ -19,7 +23,9 @@
 #include "iop/error.hpp"
 #include "iop/fault_plan.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "player/frame_hash.hpp"
 #include "player/replay.hpp"
+#include "player/replay_report.hpp"
 #include "player/report.hpp"
 #include "streams/disc/stream_disc.hpp"
 
@@ -31,6 +37,7 @@ struct ReplayRequest {
   std::string stream;
   std::string file;  // the stream file on an ISO 9660 image (--file), or empty: the default
   std::string arrivals;
+  std::string compare;  // a run directory or a hashes.txt to compare with, or empty
   std::string config;
   std::string duration = "60s";
   bool durationGiven = false;  // --duration given: it wins over the log's end row
@@ -46,6 +53,29 @@ std::string readAll(const std::string& path, const char* what) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw Exit(2, std::string(what) + " " + path + ": cannot open");
   return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+// Warnings and late arrivals printed before "... and N more".
+constexpr std::size_t kListed = 12;
+
+void printWarnings(const std::vector<std::string>& warnings) {
+  for (std::size_t i = 0; i < warnings.size() && i < kListed; ++i) std::cerr << "warning: " << warnings[i] << "\n";
+  if (warnings.size() > kListed) std::cerr << "warning: ... and " << warnings.size() - kListed << " more\n";
+}
+
+// Empty when the row's hash is the expected one; else the first difference, explained.
+std::string compareRow(const player::ExpectedHashes& e, const player::VsyncRow& row, const player::ReplayNotes& notes) {
+  const auto v = static_cast<std::size_t>(row.vsync);
+  if (v < e.hashes.size() && e.hashes[v] == row.hash) return "";
+  std::istringstream line(player::hashesLine(row));
+  std::string vsync, seconds;
+  line >> vsync >> seconds;
+  std::string s =
+      "first difference at vsync " + vsync + " (" + seconds + " s): replay " + player::hashHex(row.hash) + ", " +
+      e.origin +
+      (v < e.hashes.size() ? ":" + std::to_string(v + 1) + " " + player::hashHex(e.hashes[v]) : " has no line for it") +
+      "\n";
+  return s + notes.describe(row);
 }
 
 void run(const ReplayRequest& r) {
@@ -68,17 +98,26 @@ void run(const ReplayRequest& r) {
   std::vector<std::uint8_t> file;
   const streams::StreamDisc disc = streams::openStreamDisc(r.stream, r.file);
   file = streams::readDiscFile(*disc.disc, disc.file);
-  std::unique_ptr<Replay> replay;
   const ArrivalLog log = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
+  printWarnings(log.warnings);
+  std::optional<ExpectedHashes> expected;
+  if (!r.compare.empty()) expected = readExpectedHashes(r.compare);
   if (!r.durationGiven) o.vsyncs = log.vsyncs;  // the run's own length, when the log says it
-  replay = std::make_unique<Replay>(std::span<const std::uint8_t>(file), r.stream, log.arrivals, o);
+  const auto replay = std::make_unique<Replay>(std::span<const std::uint8_t>(file), r.stream, log.arrivals, o);
+  ReplayNotes notes(*replay, log, r.arrivals);
   OutputDir dir(r.out, r.force);
   std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
+  std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
+  timeline << replayTimelineHeader();
   std::filesystem::create_directories(dir.path("frames"));
   std::int64_t rows = 0;
+  std::string difference;  // the first vsync whose hash differs from --compare's, explained
   replay->setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
     hashes << hashesLine(row);
+    timeline << replayTimelineLine(row, *replay);
+    notes.add(row);
     ++rows;
+    if (expected && difference.empty()) difference = compareRow(*expected, row, notes);
     if (r.every <= 0 || row.vsync % r.every != 0) return;
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
@@ -90,15 +129,31 @@ void run(const ReplayRequest& r) {
   });
   replay->run();
   hashes.close();
+  timeline.close();
   if (!hashes) throw Exit(1, dir.path("hashes.txt").string() + ": cannot write");
+  if (!timeline) throw Exit(1, dir.path("timeline.csv").string() + ": cannot write");
   dir.commit();
   std::cout << "replayed " << rows << " vsyncs of " << r.stream << " from " << r.arrivals << " into " << r.out;
   if (replay->missingPictures() > 0) {
     std::cout << " (" << replay->missingPictures() << " arrivals named pictures the stream lacks: shown black)";
   }
   std::cout << "\n";
+  const std::vector<std::string> late = notes.lateOrUnshown();
+  std::cout << late.size() << " arrival(s) late or never shown" << (late.empty() ? "" : ":") << "\n";
+  for (std::size_t i = 0; i < late.size() && i < kListed; ++i) std::cout << "  " << late[i] << "\n";
+  if (late.size() > kListed) std::cout << "  ... and " << late.size() - kListed << " more (timeline.csv)\n";
+  if (!expected) return;
+  if (difference.empty() && static_cast<std::int64_t>(expected->hashes.size()) > rows) {
+    std::cout << "note: " << expected->origin << " has " << expected->hashes.size() - static_cast<std::size_t>(rows)
+              << " vsyncs more than the replay; compared the first " << rows << "\n";
+  }
+  if (difference.empty()) {
+    std::cout << "every hash equals " << expected->origin << " (" << rows << " vsyncs)\n";
+    return;
+  }
+  std::cout << difference;
+  throw Exit(1, "the replay differs from " + expected->origin + " (the first difference is above)");
 }
-
 }  // namespace
 
 void addReplay(CLI::App& app) {
@@ -114,6 +169,9 @@ void addReplay(CLI::App& app) {
                   "Arrival log: CSV vsync,stream,frame, and an end row N,end, (play writes arrivals.csv)")
       ->required()
       ->check(inputFile());
+  cmd->add_option("--compare", r->compare,
+                  "A run directory or a port's hashes.txt: print the first vsync whose hash differs, with the "
+                  "frame due, the target and its lateness there, and exit 1 on a difference");
   cmd->add_option("--config", r->config, "Platform config (TOML), as given to play")->check(inputFile());
   cmd->add_option("--duration", r->duration,
                   "Simulated time to present (e.g. 60s); without it, the vsyncs the log's end row gives (play "
@@ -133,7 +191,9 @@ void addReplay(CLI::App& app) {
       "Examples:\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --out replayed/\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --duration 10s --out replayed/\n"
-      "  vbim replay disc.iso --file '\\DATA\\DAY.VBI;1' --arrivals run-iso/arrivals.csv --out replayed-iso/\n");
+      "  vbim replay disc.iso --file '\\DATA\\DAY.VBI;1' --arrivals run-iso/arrivals.csv --out replayed-iso/\n"
+      "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --compare port-hashes.txt --out "
+      "replayed/\n");
   cmd->callback([r] { run(*r); });
 }
 

@@ -38,9 +38,7 @@ std::optional<ReadyFrame> ArrivalSource::newestReady(std::int64_t maxSeq, Tick n
     const std::int64_t seq = it->first;
     const int variant = last->second;
     if (!cached_ || cache_.seq != seq || cache_.variant != variant) {
-      const StreamInfo& info = streams_[static_cast<std::size_t>(variant)];
-      cache_ = ReadyFrame{variant, seq, last->first,
-                          std::make_shared<const Rgba8Image>(image_(variant, streamFrameOf(info, seq)))};
+      cache_ = ReadyFrame{variant, seq, last->first, std::make_shared<const Rgba8Image>(image_(variant, seq))};
       cached_ = true;
     }
     return cache_;

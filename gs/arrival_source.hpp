@@ -26,7 +26,9 @@ struct Arrival {
 
 class ArrivalSource : public FrameSource {
  public:
-  using ImageFn = std::function<Rgba8Image(int variant, std::int64_t streamFrame)>;
+  // The picture of timeline frame `seq` of a variant: the caller maps seq to its stream frame (a
+  // stream may loop to a frame other than 0, which StreamInfo does not know).
+  using ImageFn = std::function<Rgba8Image(int variant, std::int64_t seq)>;
   // Throws GsError for a variant the streams do not have or a negative seq or vsync.
   ArrivalSource(std::vector<StreamInfo> streams, ImageFn image, VsyncClock clock, const std::vector<Arrival>& arrivals);
 

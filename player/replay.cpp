@@ -1,9 +1,9 @@
 #include "player/replay.hpp"
 
-#include <charconv>
 #include <map>
-#include <sstream>
+#include <tuple>
 
+#include "ee/timeline.hpp"
 #include "gs/arrival_source.hpp"
 #include "gs/presenter.hpp"
 #include "iop/sector_source.hpp"
@@ -15,25 +15,7 @@
 
 namespace vbim::player {
 
-std::string arrivalsHeader() {
-  return "vsync,stream,frame\n";
-}
-
-std::string arrivalLine(const ReplayArrival& a) {
-  return std::to_string(a.vsync) + "," + (a.sky ? "sky:" : "lightmap:") + std::to_string(a.variant) + "," +
-         std::to_string(a.seq) + "\n";
-}
-
-std::string arrivalsEndLine(std::int64_t vsyncs) {
-  return std::to_string(vsyncs) + ",end,\n";
-}
-
 namespace {
-
-bool parseInt(std::string_view s, std::int64_t& v) {
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  return ec == std::errc() && end == s.data() + s.size() && v >= 0;
-}
 
 std::vector<gs::StreamInfo> infos(const streams::Descriptor& d, int index) {
   const streams::StreamEntry& e = d.streams[static_cast<std::size_t>(index)];
@@ -46,50 +28,6 @@ std::vector<gs::StreamInfo> infos(const streams::Descriptor& d, int index) {
 
 }  // namespace
 
-ArrivalLog parseArrivals(const std::string& text, const std::string& origin) {
-  ArrivalLog log;
-  std::istringstream in(text);
-  std::string line;
-  int n = 0;
-  const auto bad = [&](const std::string& what) {
-    return ConfigError(origin + ":" + std::to_string(n) + ": " + what +
-                       " (expected vsync,stream,frame: e.g. 12,lightmap:0,6; stream lightmap:V or sky:V; "
-                       "last, the end row N,end,)");
-  };
-  while (std::getline(in, line)) {
-    ++n;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    if (n == 1 && line == "vsync,stream,frame") continue;
-    const auto c1 = line.find(',');
-    const auto c2 = c1 == std::string::npos ? c1 : line.find(',', c1 + 1);
-    if (c2 == std::string::npos || line.find(',', c2 + 1) != std::string::npos) throw bad("'" + line + "'");
-    const std::string stream = line.substr(c1 + 1, c2 - c1 - 1);
-    if (log.vsyncs) throw bad("'" + line + "' after the end row");
-    if (stream == "end") {
-      std::int64_t vsyncs = 0;
-      if (!parseInt(std::string_view(line).substr(0, c1), vsyncs)) throw bad("end vsync '" + line.substr(0, c1) + "'");
-      if (c2 + 1 != line.size()) throw bad("end row '" + line + "' with a frame");
-      log.vsyncs = vsyncs;
-      continue;
-    }
-    ReplayArrival a;
-    std::int64_t variant = 0;
-    const auto colon = stream.find(':');
-    const std::string kind = stream.substr(0, colon);
-    if (colon == std::string::npos || (kind != "lightmap" && kind != "sky") ||
-        !parseInt(std::string_view(stream).substr(colon + 1), variant) || variant > 255) {
-      throw bad("stream '" + stream + "'");
-    }
-    if (!parseInt(std::string_view(line).substr(0, c1), a.vsync)) throw bad("vsync '" + line.substr(0, c1) + "'");
-    if (!parseInt(std::string_view(line).substr(c2 + 1), a.seq)) throw bad("frame '" + line.substr(c2 + 1) + "'");
-    a.sky = kind == "sky";
-    a.variant = static_cast<int>(variant);
-    log.arrivals.push_back(a);
-  }
-  return log;
-}
-
 struct Replay::Impl {
   ReplayOptions options;
   streams::Descriptor descriptor;
@@ -98,6 +36,8 @@ struct Replay::Impl {
   SerialUnit gs{sched};
   std::unique_ptr<gs::ArrivalSource> lmSource, skySource;
   std::unique_ptr<gs::Presenter> lightmap, sky;
+  std::map<std::tuple<bool, int, std::int64_t>, ReplayArrival> arrivals;  // (sky, variant, frame)
+  Tick t0 = 0;
 };
 
 Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, const std::vector<ReplayArrival>& arrivals,
@@ -122,16 +62,15 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
   const auto variants = static_cast<int>(m.descriptor.variants.size());
   std::vector<gs::Arrival> lm, sky;
   for (const ReplayArrival& a : arrivals) {
+    const std::string where =
+        "an arrival at vsync " + std::to_string(a.vsync) + (a.line > 0 ? " (line " + std::to_string(a.line) + ")" : "");
     if (a.variant >= variants) {
-      throw ConfigError(name + ": an arrival at vsync " + std::to_string(a.vsync) + " names variant " +
-                        std::to_string(a.variant) + ", but the stream has " + std::to_string(variants));
+      throw ConfigError(name + ": " + where + " names variant " + std::to_string(a.variant) + ", but the stream has " +
+                        std::to_string(variants));
     }
-    if (a.sky && skyIndex < 0) {
-      throw ConfigError(name + ": an arrival at vsync " + std::to_string(a.vsync) +
-                        " names the sky, but the "
-                        "stream has none");
-    }
+    if (a.sky && skyIndex < 0) throw ConfigError(name + ": " + where + " names the sky, but the stream has none");
     (a.sky ? sky : lm).push_back(gs::Arrival{a.vsync, a.variant, a.seq});
+    m.arrivals[{a.sky, a.variant, a.seq}] = a;
   }
   const VsyncClock clock = [&] {
     VsyncRate rate{};
@@ -139,8 +78,10 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
     return VsyncClock(rate);
   }();
   const auto imageFn = [this](int id) {
-    return [this, id](int variant, std::int64_t streamFrame) {
+    // seq -> the stream frame as play's timeline maps it: after a wrap, from the descriptor's loop frame.
+    return [this, id](int variant, std::int64_t seq) {
       Impl& im = *impl_;
+      const std::int64_t streamFrame = ee::Timeline(im.descriptor).frameInVariant(seq);
       const auto global =
           static_cast<std::uint32_t>(variant * static_cast<std::int64_t>(im.descriptor.framesPerVariant) + streamFrame);
       const streams::StreamEntry& e =
@@ -160,6 +101,7 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
     };
   };
   const Tick t0 = fromMs(m.options.config.ee.start_lead_ms);
+  m.t0 = t0;
   const auto presenterOptions = [&](const char* track) {
     gs::PresenterOptions o;
     o.t0 = t0;
@@ -188,6 +130,16 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
 }
 
 Replay::~Replay() = default;
+
+std::int64_t Replay::dueVsync(std::int64_t seq) const {
+  const Impl& m = *impl_;
+  return gs::firstVsyncAtOrAfter(m.lightmap->clock(), gs::dueTime(m.lmSource->streams().front(), m.t0, seq));
+}
+
+const ReplayArrival* Replay::arrivalOf(bool sky, int variant, std::int64_t seq) const {
+  const auto it = impl_->arrivals.find({sky, variant, seq});
+  return it == impl_->arrivals.end() ? nullptr : &it->second;
+}
 
 Task<void> Replay::record(Replay& r) {
   Impl& m = *r.impl_;

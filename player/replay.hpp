@@ -4,13 +4,7 @@
 // their hashes.txt lines) a correct port must show; given the arrivals `vbim play` wrote
 // (arrivals.csv), it reproduces that run's hashes.txt exactly (docs/porting.md, "Replay").
 //
-// arrivals.csv: a header `vsync,stream,frame`, then one line per frame a presenter received:
-//   vsync   the first vsync at which the frame could be shown (it was ready after vsync - 1)
-//   stream  lightmap:V or sky:V, V the variant number (0 first; `vbim info` lists them)
-//   frame   the timeline frame number, counting on across loop wraps (stream frame = frame mod
-//           frames per variant)
-// and last, once, the end row `N,end,` (frame left empty): the run presented vsyncs 0 to N - 1, so
-// a replay of the log presents as many (play writes it; a port's log may leave it out).
+// The arrival log's format and what a malformed one gets: player/arrival_log.hpp.
 #pragma once
 
 #include <cstdint>
@@ -20,29 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "player/arrival_log.hpp"
 #include "player/pipeline.hpp"
 #include "player/player.hpp"
 #include "streams/descriptor.hpp"
 
 namespace vbim::player {
-
-struct ReplayArrival {
-  std::int64_t vsync = 0;
-  bool sky = false;
-  int variant = 0;
-  std::int64_t seq = 0;
-};
-
-struct ArrivalLog {
-  std::vector<ReplayArrival> arrivals;
-  std::optional<std::int64_t> vsyncs;  // the end row's N: vsyncs the run presented; none without one
-};
-
-std::string arrivalsHeader();
-std::string arrivalLine(const ReplayArrival& a);
-std::string arrivalsEndLine(std::int64_t vsyncs);
-// Throws ConfigError "ORIGIN:LINE: what is wrong (expected ...)".
-ArrivalLog parseArrivals(const std::string& text, const std::string& origin);
 
 struct ReplayOptions {
   PlatformConfig config;
@@ -66,6 +43,12 @@ class Replay {
   void run();
   // Pictures the arrivals named that the stream could not give (missing or damaged): shown as black.
   std::int64_t missingPictures() const { return missing_; }
+  // The first vsync at which timeline frame `seq` is due, on the schedule without play-late's slip:
+  // the first n with time(n) >= t0 + seq / fps (docs/porting.md, "Vsyncs, due times and arrivals").
+  // An arrival at vsync v is late by v - dueVsync(seq) vsyncs when that is positive.
+  std::int64_t dueVsync(std::int64_t seq) const;
+  // The arrival of frame `seq` of a stream and variant (the one the presenter took), or null.
+  const ReplayArrival* arrivalOf(bool sky, int variant, std::int64_t seq) const;
 
  private:
   struct Impl;
