@@ -1,0 +1,175 @@
+// vbim replay explains a schedule (docs/porting.md, "Replay"): with frames 5-8 of play's arrivals
+// delayed by 250 vsyncs it lists the late and unshown arrivals, writes timeline.csv, and --compare
+// names the first vsync that differs from play's run with the frame due, the target and lateness.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/run_command.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const vbim::testing::CommandResult r =
+      vbim::testing::runCommand("cd " VBIM_SOURCE_DIR " && " + std::string(VBIM_BINARY) + " " + args);
+  return {r.status, r.output};
+}
+
+const std::string kStream = "streams/samples/day_clear.vbim";
+
+class Replay : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("vbim_replay_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    const Result p = run("play " + kStream + " --duration 20s --no-trace --out " + (dir_ / "play").string());
+    ASSERT_EQ(p.code, 0) << p.output;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  // play's arrivals.csv with the vsync of frames `from`..`to` (both streams) moved by `by`.
+  fs::path delayed(std::int64_t from, std::int64_t to, std::int64_t by) {
+    std::ifstream in(dir_ / "play/arrivals.csv");
+    std::ofstream out(dir_ / "delayed.csv");
+    std::string line;
+    while (std::getline(in, line)) {
+      const auto c1 = line.find(',');
+      const auto c2 = line.find(',', c1 + 1);
+      const std::string frame = line.substr(c2 + 1);
+      if (line.find(":0,") != std::string::npos && !frame.empty()) {
+        const std::int64_t f = std::stoll(frame);
+        if (f >= from && f <= to) line = std::to_string(std::stoll(line.substr(0, c1)) + by) + line.substr(c1);
+      }
+      out << line << "\n";
+    }
+    return dir_ / "delayed.csv";
+  }
+  fs::path dir_;
+};
+
+std::vector<std::string> lines(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST_F(Replay, FramesDelayedBy250VsyncsAreShownLateAndTheFirstDifferenceIsNamed) {
+  const fs::path log = delayed(5, 8, 250);
+  const Result r = run("replay " + kStream + " --arrivals " + log.string() + " --compare " + (dir_ / "play").string() +
+                       " --out " + (dir_ / "replay").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  // Frame 5 of day_clear (1 frame a game second, frame 0 due at 0.5 s) is due at vsync 330: there
+  // play starts blending toward it, the delayed replay still shows frame 4.
+  EXPECT_NE(r.output.find("first difference at vsync 330 (5.505500 s)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("lightmap: frame 5 due, target frame 4"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("behind: frame 5 arrives at vsync 521"), std::string::npos) << r.output;
+  // Every delayed arrival is listed with its line and lateness; 6-8 come after frame 9 was due.
+  for (int f = 5; f <= 8; ++f) {
+    const std::string due = std::to_string(330 + 60 * (f - 5));
+    EXPECT_NE(r.output.find("lightmap:0 frame " + std::to_string(f) + " arrived at vsync " +
+                            std::to_string(521 + 60 * (f - 5)) + ", due at vsync " + due + ": 191 vsyncs late"),
+              std::string::npos)
+        << f << r.output;
+  }
+  EXPECT_NE(r.output.find("frame 6 arrived at vsync 581, due at vsync 390: 191 vsyncs late; never shown"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("8 arrival(s) late or never shown"), std::string::npos) << r.output;
+  // Output is complete even though it differs: hashes.txt and timeline.csv, a row per vsync.
+  const std::vector<std::string> hashes = lines(dir_ / "replay/hashes.txt");
+  const std::vector<std::string> timeline = lines(dir_ / "replay/timeline.csv");
+  ASSERT_EQ(timeline.size(), hashes.size() + 1);
+  EXPECT_EQ(timeline.front().rfind("vsync,time_s,hash,due_seq,target_seq,variant,fix,pop,behind,catch_up,snapped", 0),
+            0u);
+  // At vsync 521 frame 5 arrives and becomes the target, late by 191 vsyncs (catch_up = 1).
+  EXPECT_EQ(timeline[522].rfind("521,", 0), 0u);
+  std::istringstream row(timeline[522]);
+  std::vector<std::string> f;
+  for (std::string c; std::getline(row, c, ',');) f.push_back(c);
+  ASSERT_EQ(f.size(), 19u) << timeline[522];
+  EXPECT_EQ(f[3], "8");     // due_seq
+  EXPECT_EQ(f[4], "5");     // target_seq
+  EXPECT_EQ(f[9], "1");     // catch_up
+  EXPECT_EQ(f[14], "521");  // target_arrived_vsync
+  EXPECT_EQ(f[15], "330");  // target_due_vsync
+  EXPECT_EQ(f[16], "191");  // target_late_vsyncs
+  EXPECT_EQ(hashes[521].substr(0, 4), "521 ");
+}
+
+TEST_F(Replay, CompareAcceptsARunDirectoryOrAHashesFileAndExitsZeroWhenEqual) {
+  const std::string log = (dir_ / "play/arrivals.csv").string();
+  const Result dir = run("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "play").string() +
+                         " --out " + (dir_ / "a").string());
+  EXPECT_EQ(dir.code, 0) << dir.output;
+  EXPECT_NE(dir.output.find("every hash equals"), std::string::npos) << dir.output;
+  EXPECT_NE(dir.output.find("0 arrival(s) late or never shown"), std::string::npos) << dir.output;
+  // A port's hashes.txt: its own times are not compared; one wrong hash is named with its line.
+  std::vector<std::string> h = lines(dir_ / "play/hashes.txt");
+  {
+    std::ofstream port(dir_ / "port.txt");
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      std::string l = h[i];
+      l = l.substr(0, l.find(' ')) + " 9.9 " + l.substr(l.rfind(' ') + 1);
+      if (i == 700) l.back() = l.back() == '0' ? '1' : '0';
+      port << l << "\n";
+    }
+  }
+  const Result port = run("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "port.txt").string() +
+                          " --out " + (dir_ / "b").string());
+  EXPECT_EQ(port.code, 1) << port.output;
+  EXPECT_NE(port.output.find("first difference at vsync 700"), std::string::npos) << port.output;
+  EXPECT_NE(port.output.find("port.txt:701 "), std::string::npos) << port.output;
+  EXPECT_NE(port.output.find("lightmap: frame 11 due, target frame 11"), std::string::npos) << port.output;
+  // A malformed compare file is refused before anything is written.
+  std::ofstream(dir_ / "bad.txt") << "0 0.0 0123456789abcdef\n2 0.1 0123456789abcdef\n";
+  const Result bad = run("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "bad.txt").string() +
+                         " --out " + (dir_ / "c").string());
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("bad.txt:2: vsync '2' where vsync 1 belongs"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir_ / "c"));
+}
+
+TEST_F(Replay, MalformedLogsAreRefusedOrWarnedWithTheirLine) {
+  const std::vector<std::string> a = lines(dir_ / "play/arrivals.csv");
+  std::string text;
+  for (std::size_t i = 0; i + 1 < a.size(); ++i) text += a[i] + "\n";
+  text += a[5] + "\n" + a.back() + "\n";  // line 6's frame again, before the end row
+  std::ofstream(dir_ / "twice.csv") << text;
+  const Result twice =
+      run("replay " + kStream + " --arrivals " + (dir_ / "twice.csv").string() + " --out " + (dir_ / "t").string());
+  EXPECT_EQ(twice.code, 2) << twice.output;
+  EXPECT_NE(twice.output.find("twice.csv:" + std::to_string(a.size()) + ": " + a[5].substr(a[5].find(',') + 1, 10)),
+            std::string::npos)
+      << twice.output;
+  EXPECT_NE(twice.output.find("arrives twice (first at line 6"), std::string::npos) << twice.output;
+  EXPECT_FALSE(fs::exists(dir_ / "t"));
+  // A gap is replayed, with a warning naming the line where the log goes on.
+  text.clear();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] != "271,lightmap:0,5") text += a[i] + "\n";
+  }
+  std::ofstream(dir_ / "gap.csv") << text;
+  const Result gap =
+      run("replay " + kStream + " --arrivals " + (dir_ / "gap.csv").string() + " --out " + (dir_ / "g").string());
+  EXPECT_EQ(gap.code, 0) << gap.output;
+  EXPECT_NE(gap.output.find("warning: "), std::string::npos) << gap.output;
+  EXPECT_NE(gap.output.find("lightmap frame 5 never arrives (the log goes on at frame 6)"), std::string::npos)
+      << gap.output;
+}
+
+}  // namespace
