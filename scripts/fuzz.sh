@@ -3,7 +3,8 @@
 # and runs each for a bounded time from its committed seed corpus (new inputs go to a scratch
 # directory; the corpora are only read). Prints executions per second per target.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
-#     default 45 s for each of the 9 targets (about 6 min in CI with the build cached);
+#     default 45 s for each of the 9 targets, FUZZ_JOBS of them side by side (default: one per core;
+#     about 4 min of fuzzing in CI on 2 cores);
 #     FUZZ_BUILD_DIR overrides build-fuzz/ (and build-fuzz-model/);
 #     FUZZ_MAX_RUNS=N also stops a target after N executions (the long campaign of
 #     docs/reliability.md: FUZZ_MAX_RUNS=10000000 scripts/fuzz.sh 1800);
@@ -55,8 +56,11 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # (PNGInput::PngReadCallback); the suppression needs full stacks through the uninstrumented library.
 declare -A extraAsan=([image_fuzzer]=":fast_unwind_on_malloc=0")
 declare -A lsanOptions=([image_fuzzer]="suppressions=$PWD/tests/fuzz/lsan.supp")
-summary=""
-for t in "${targets[@]}"; do
+# One target: its log, exit status and summary line go to files in $work, so that targets can run
+# side by side (each libFuzzer process is single-threaded: one per core halves a CI run's fuzzing
+# wall time at the same time and executions per target).
+fuzzOne() {
+  local t=$1 exe corpus maxLen dir
   if [ "$t" = ipu_picture_fuzzer ]; then
     exe="$build/tests/ipu/$t" corpus=tests/ipu/fuzz/corpus maxLen=65536
   else
@@ -67,24 +71,33 @@ for t in "${targets[@]}"; do
     case "$t" in image_fuzzer | dem_fuzzer) maxLen=65536 ;; esac
   fi
   mkdir -p "$work/$t"
+  local start rc runs elapsed
   start=$(date +%s)
-  # The fuzzer's own exit status decides (a finding exits non-zero); under pipefail an `|| true`
-  # would replace it with true's.
-  set +e
-  ASAN_OPTIONS="$asanOptions${extraAsan[$t]:-}" LSAN_OPTIONS="${lsanOptions[$t]:-}" "$exe" "${maxRuns[@]}" -max_total_time="$seconds" -max_len="$maxLen" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
-    "$work/$t" "$corpus" 2>&1 | tee "$work/$t.log" | grep -E "^#[0-9]+ +DONE|ERROR|SUMMARY|Test unit"
-  status=("${PIPESTATUS[@]}")
-  set -e
-  rc=${status[0]}
+  rc=0
+  ASAN_OPTIONS="$asanOptions${extraAsan[$t]:-}" LSAN_OPTIONS="${lsanOptions[$t]:-}" "$exe" "${maxRuns[@]}" \
+    -max_total_time="$seconds" -max_len="$maxLen" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
+    "$work/$t" "$corpus" >"$work/$t.log" 2>&1 || rc=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$t.log")
-  elapsed=$(( $(date +%s) - start ))
+  elapsed=$(($(date +%s) - start))
   [ "$elapsed" -gt 0 ] || elapsed=1
-  summary+=$(printf '%-24s %10s executions in %4s s (%s/s)%s' "$t" "${runs:-0}" "$elapsed" \
-    "$(( ${runs:-0} / elapsed ))" "$([ "$rc" = 0 ] || echo "  FAILED (exit $rc)")")$'\n'
-  if [ "$rc" != 0 ]; then
+  printf '%-24s %10s executions in %4s s (%s/s)%s\n' "$t" "${runs:-0}" "$elapsed" \
+    "$((${runs:-0} / elapsed))" "$([ "$rc" = 0 ] || echo "  FAILED (exit $rc)")" >"$work/$t.summary"
+  echo "$rc" >"$work/$t.rc"
+}
+parallel=${FUZZ_JOBS:-$(nproc)}
+for t in "${targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$parallel" ]; do wait -n || true; done
+  fuzzOne "$t" &
+done
+wait
+failed=0
+for t in "${targets[@]}"; do
+  grep -E "^#[0-9]+ +DONE|ERROR|SUMMARY|Test unit" "$work/$t.log" | sed "s/^/$t: /" || true
+  if [ "$(cat "$work/$t.rc" 2>/dev/null || echo 1)" != 0 ]; then
+    echo "== $t: last 40 lines of its log"
     tail -40 "$work/$t.log"
-    printf '%s' "$summary"
-    exit 1
+    failed=1
   fi
 done
-printf '%s' "$summary"
+for t in "${targets[@]}"; do cat "$work/$t.summary"; done
+exit "$failed"
