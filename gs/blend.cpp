@@ -71,7 +71,8 @@ bool spanAtFixedPoint(const std::uint8_t* dst, const std::uint8_t* src, std::siz
 }
 
 const BlendKernels& scalarKernels() {
-  static const BlendKernels k{"scalar", &blendSpanScalar, &blendSpanDeltaScalar, &blendRectDeltaScalar};
+  static const BlendKernels k{"scalar", &blendSpanScalar, &blendSpanDeltaScalar, &blendRectDeltaScalar,
+                              &compareRectScalar};
   return k;
 }
 

@@ -15,6 +15,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "gs/image_compare.hpp"
+
 namespace vbim::gs {
 
 enum class ColClamp : std::uint8_t { Clamp, Wrap };
@@ -76,6 +78,7 @@ struct BlendKernels {
   BlendSpanFn blend;
   BlendSpanDeltaFn blendDelta;
   BlendRectDeltaFn blendRectDelta;
+  CompareRectFn compareRect;  // the lag's per-byte difference (gs/image_compare.hpp), same SIMD target
 };
 
 void blendSpanScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);

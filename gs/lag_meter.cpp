@@ -1,27 +1,60 @@
 #include "gs/lag_meter.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 
 #include "gs/error.hpp"
 
 namespace vbim::gs {
 
-LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b) {
+LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b, const BlendKernels& kernels) {
   if (!a.sameSize(b)) throw GsError("lag between lightmaps of different sizes");
+  // One row of all the bytes: the rows of an image follow each other without padding.
+  const ByteDifference d = kernels.compareRect(a.pixels.data(), 0, b.pixels.data(), 0, a.pixels.size(), 1);
   LagSample s;
-  const std::uint8_t* pa = a.pixels.data();
-  const std::uint8_t* pb = b.pixels.data();
-  int mx = 0;
-  std::int64_t sum = 0;
-  for (std::size_t i = 0, n = a.pixels.size(); i < n; ++i) {
-    const int d = std::abs(static_cast<int>(pa[i]) - static_cast<int>(pb[i]));
-    mx = std::max(mx, d);
-    sum += d;
-  }
-  s.maxDiff = mx;
-  s.sumDiff = sum;
+  s.maxDiff = d.max;
+  s.sumDiff = d.sum;
   return s;
+}
+
+TiledDifference::TiledDifference(const Presenter& run, const Presenter& reference, CompareRectFn compare)
+    : run_(run),
+      ref_(reference),
+      compare_(compare),
+      tilesX_(run.blender().tilesX()),
+      tilesY_(run.blender().tilesY()),
+      tiles_(static_cast<std::size_t>(tilesX_) * tilesY_) {
+  if (!run.lightmap().sameSize(reference.lightmap())) {
+    throw GsError("lag between lightmaps of different sizes: " + std::to_string(run.lightmap().width) + "x" +
+                  std::to_string(run.lightmap().height) + " and " + std::to_string(reference.lightmap().width) + "x" +
+                  std::to_string(reference.lightmap().height));
+  }
+}
+
+ByteDifference TiledDifference::update() {
+  const Rgba8Image& a = run_.lightmap();
+  const Rgba8Image& b = ref_.lightmap();
+  const std::vector<std::uint64_t>& runChanges = run_.blender().tileChanges();
+  const std::vector<std::uint64_t>& refChanges = ref_.blender().tileChanges();
+  const std::size_t stride = static_cast<std::size_t>(a.width) * 4;
+  ByteDifference total;
+  for (int ty = 0; ty < tilesY_; ++ty) {
+    const int y0 = ty * kTileHeight;
+    const auto rows = static_cast<std::size_t>(std::min(kTileHeight, a.height - y0));
+    for (int tx = 0; tx < tilesX_; ++tx) {
+      const std::size_t i = static_cast<std::size_t>(ty) * tilesX_ + tx;
+      if (first_ || runChanges[i] != runSeen_[i] || refChanges[i] != refSeen_[i]) {
+        const std::size_t left = static_cast<std::size_t>(tx) * kTileWidth * 4;  // bytes into the row
+        const std::size_t bytes = static_cast<std::size_t>(std::min(kTileWidth, a.width - tx * kTileWidth)) * 4;
+        tiles_[i] = compare_(a.row(y0) + left, stride, b.row(y0) + left, stride, bytes, rows);
+      }
+      total.max = std::max(total.max, tiles_[i].max);
+      total.sum += tiles_[i].sum;
+    }
+  }
+  runSeen_ = runChanges;
+  refSeen_ = refChanges;
+  first_ = false;
+  return total;
 }
 
 LagMeter::LagMeter(Presenter& run, Presenter& reference, Tracer* tracer, const std::string& name)

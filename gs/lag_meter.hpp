@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "gs/image_compare.hpp"
 #include "gs/presenter.hpp"
 
 namespace vbim::gs {
@@ -17,8 +18,33 @@ struct LagSample {
   std::int64_t sumDiff = 0;  // sum over every byte
 };
 
-// Largest and summed per-byte difference of two same-sized images.
-LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b);
+// Largest and summed per-byte difference of two same-sized images (throws GsError otherwise), with
+// the kernels' compareRect (the scalar reference by default; any kernels give the same numbers).
+LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b, const BlendKernels& kernels = scalarKernels());
+
+// The difference of two presenters' lightmaps, kept per 64x32 tile and brought up to date by
+// comparing again only the tiles that either presenter's blender changed since the last update
+// (TiledBlender::tileChanges: the blender is the only writer of a lightmap). The totals are those
+// of compareImages on the whole images, at a cost proportional to the tiles that moved: none on a
+// vsync where neither lightmap changed, few once they converge.
+class TiledDifference {
+ public:
+  // Throws GsError for lightmaps of different sizes.
+  TiledDifference(const Presenter& run, const Presenter& reference, CompareRectFn compare);
+  // The difference of the two lightmaps as they are now.
+  ByteDifference update();
+
+ private:
+  const Presenter& run_;
+  const Presenter& ref_;
+  CompareRectFn compare_;
+  int tilesX_;
+  int tilesY_;
+  std::vector<std::uint64_t> runSeen_;  // each blender's tileChanges() at the last update
+  std::vector<std::uint64_t> refSeen_;
+  std::vector<ByteDifference> tiles_;  // each tile's difference at the last update
+  bool first_ = true;                  // no tile compared yet
+};
 
 class LagMeter {
  public:

@@ -118,6 +118,8 @@ class Presenter {
   Task<void> run(Tick end);
 
   const Rgba8Image& lightmap() const { return lightmap_; }
+  // The blender that writes the lightmap (nothing else does): its tileChanges() say which tiles moved.
+  const TiledBlender& blender() const { return blender_; }
   // The console's VRAM plan: this presenter's own (the lightmap's), or the one it was given (the sky's).
   const VramLayout& vram() const { return vram_; }
   // The register values of the draw that blends rows [y0, y1) of the picture (gs/draw_setup.hpp):

@@ -13,7 +13,8 @@ TiledBlender::TiledBlender(int width, int height, const BlendKernels& kernels, b
       tilesY_((height + kTileHeight - 1) / kTileHeight),
       kernels_(&kernels),
       aware_(convergenceAware),
-      settled_(static_cast<std::size_t>(tilesX_) * tilesY_, 0) {}
+      settled_(static_cast<std::size_t>(tilesX_) * tilesY_, 0),
+      changes_(settled_.size(), 0) {}
 
 TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec,
                                          std::uint64_t sourceId, int rowBegin, int rowEnd) {
@@ -37,7 +38,11 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
     if (!aware_) {
       // Whole rows at once: the kernels run longest without a call boundary.
       const std::size_t pixels = static_cast<std::size_t>(width_) * (y1 - y0);
-      r.pop = std::max(r.pop, kernels_->blendDelta(dst.row(y0), src.row(y0), pixels, spec));
+      const int pop = kernels_->blendDelta(dst.row(y0), src.row(y0), pixels, spec);
+      if (pop > 0) {  // some byte of the tile row moved: count a change for each of its tiles
+        for (int tx = 0; tx < tilesX_; ++tx) ++changes_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      }
+      r.pop = std::max(r.pop, pop);
       r.tilesBlended += tilesX_;
       continue;
     }
@@ -55,7 +60,12 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
                                                static_cast<std::size_t>(y1 - y0), spec, &settled);
       // Rows that changed nothing are at their fixed point even where the per-row test cannot tell
       // (a Wrap-mode step of exactly 256).
-      if (pop == 0) settled = allRows;
+      // pop is the largest change of any byte: zero when the tile's bytes are as they were.
+      if (pop == 0) {
+        settled = allRows;
+      } else {
+        ++changes_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      }
       r.pop = std::max(r.pop, pop);
       ++r.tilesBlended;
     }

@@ -4,7 +4,9 @@
 // so is a tile whose rows all are, until the source or the spec changes. A blend that changes a
 // tile's last moving rows marks them at once, so a converged tile costs no extra pass to be found.
 // The result is bit-identical to blending everything (the tests check it); only host time is saved,
-// never simulated time (the GS still draws every pixel).
+// never simulated time (the GS still draws every pixel). It counts, per tile, the blends that
+// changed a byte of it, so that a reader of the lightmap can tell which tiles moved since it last
+// looked (the player's lag compares only those: gs/lag_meter.hpp, TiledDifference).
 #pragma once
 
 #include <algorithm>
@@ -41,6 +43,12 @@ class TiledBlender {
   // Forget every convergence mark (call when the lightmap is written by anything else).
   void invalidate() { std::fill(settled_.begin(), settled_.end(), 0u); }
 
+  int tilesX() const { return tilesX_; }
+  int tilesY() const { return tilesY_; }
+  // Per tile (row-major, tilesX() per row): how many blends changed at least one of its bytes. A
+  // tile whose count did not move holds the same bytes as before.
+  const std::vector<std::uint64_t>& tileChanges() const { return changes_; }
+
  private:
   int width_;
   int height_;
@@ -51,6 +59,7 @@ class TiledBlender {
   std::uint64_t lastSourceId_ = ~std::uint64_t{0};
   BlendSpec lastSpec_{};
   std::vector<std::uint32_t> settled_;  // per tile: its rows at their fixed point (BlendRectDeltaFn)
+  std::vector<std::uint64_t> changes_;  // per tile: blends that changed it (tileChanges())
 };
 
 }  // namespace vbim::gs

@@ -21,6 +21,11 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
   if (options_.reference && !options_.faults.faults.empty()) {
     ref_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, nullptr, options_.seed, options_.kernels,
                                       nullptr, "ref.");
+    const gs::BlendKernels& k = options_.kernels.blend != nullptr ? *options_.kernels.blend : gs::scalarKernels();
+    lagDiff_ = std::make_unique<gs::TiledDifference>(main_->lightmap(), ref_->lightmap(), k.compareRect);
+    if (main_->sky() != nullptr) {
+      skyLagDiff_ = std::make_unique<gs::TiledDifference>(*main_->sky(), *ref_->sky(), k.compareRect);
+    }
   }
   for (const Branch& b : options_.branches) {
     main_->scheduleBranch(b.at, b.variant);
@@ -48,7 +53,7 @@ void Player::onVsync(std::int64_t n) {
   row.lightmap = lm.last();
   row.at = row.lightmap.at;
   if (sky != nullptr) row.sky = sky->last();
-  // An unchanged lightmap and sky (no byte moved: pop 0) keep the previous hash and lag.
+  // An unchanged lightmap and sky (no byte moved: pop 0) keep the previous hash.
   const bool lightmapChanged = !last_ || row.lightmap.pop != 0;
   const bool changed = lightmapChanged || (row.sky && row.sky->pop != 0);
   if (changed) {
@@ -63,15 +68,9 @@ void Player::onVsync(std::int64_t n) {
     row.hash = last_->hash;
   }
   if (ref_) {
-    const bool refChanged =
-        !last_ || ref_->lightmap().last().pop != 0 || (ref_->sky() != nullptr && ref_->sky()->last().pop != 0);
-    if (changed || refChanged) {
-      row.lag = gs::compareImages(lm.lightmap(), ref_->lightmap().lightmap()).maxDiff;
-      if (sky != nullptr) row.skyLag = gs::compareImages(sky->lightmap(), ref_->sky()->lightmap()).maxDiff;
-    } else {
-      row.lag = last_->lag;
-      row.skyLag = last_->skyLag;
-    }
+    // Only the tiles that either lightmap changed since the last vsync are compared again.
+    row.lag = lagDiff_->update().max;
+    if (skyLagDiff_) row.skyLag = skyLagDiff_->update().max;
   }
   row.ringBanks = main_->ring().visibleBanks();
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ee/stream_probe.hpp"
+#include "gs/lag_meter.hpp"
 #include "iop/fault_plan.hpp"
 #include "iop/sector_source.hpp"
 #include "player/frame_hash.hpp"
@@ -121,6 +122,9 @@ class Player {
   Tracer tracer_;
   std::unique_ptr<Pipeline> main_;
   std::unique_ptr<Pipeline> ref_;
+  // The lag of the lightmap and of the sky against the reference (with ref_ only).
+  std::unique_ptr<gs::TiledDifference> lagDiff_;
+  std::unique_ptr<gs::TiledDifference> skyLagDiff_;
   Tracer::CounterId lagCounter_ = 0;
   Sink sink_;
   RunTotals totals_;

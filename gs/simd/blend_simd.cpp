@@ -210,6 +210,7 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 #include "gs/simd/blend_simd.hpp"
+#include "gs/simd/compare_simd.hpp"
 
 namespace vbim::gs::simd {
 
@@ -234,7 +235,7 @@ int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::
 const BlendKernels& kernels() {
   // The name is read once; dispatch itself stays dynamic so forEachTarget can force a target.
   static const BlendKernels k{HWY_DYNAMIC_DISPATCH(targetNameHere)(), &dispatchBlend, &dispatchBlendDelta,
-                              &dispatchBlendRectDelta};
+                              &dispatchBlendRectDelta, &compareRect};
   return k;
 }
 
