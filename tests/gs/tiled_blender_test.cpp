@@ -64,6 +64,61 @@ TEST(TiledBlender, PartialTilesAndStrips) {
   runSequence(scalarKernels(), 130, 33, 64);
 }
 
+// tileChanges() is what the player's lag relies on to compare only the tiles that moved: a tile
+// whose count did not move must hold the same bytes. The convergence-aware blender counts exactly
+// the tiles that changed; the plain one may count a whole tile row.
+void checkTileChanges(const BlendKernels& kernels, bool aware, int w, int h, int stripRows) {
+  Rng rng(9);
+  TiledBlender blender(w, h, kernels, aware);
+  Rgba8Image lm = randomImage(rng, w, h, 0, 256);
+  Rgba8Image target = randomImage(rng, w, h, 0, 256);
+  std::uint64_t id = 1;
+  int moved = 0, still = 0;
+  for (int step = 0; step < 200; ++step) {
+    if (rng.chance(1, 20)) {  // a new frame differing in a band of rows
+      const int y0 = static_cast<int>(rng.below(static_cast<std::uint64_t>(h)));
+      for (int y = y0; y < std::min(h, y0 + 9); ++y) {
+        for (int x = 0; x < w * 4; ++x) target.row(y)[x] = static_cast<std::uint8_t>(rng.below(256));
+      }
+      ++id;
+    }
+    const BlendSpec spec = makeBlendSpec(rng.chance(1, 8) ? 128 : 64);
+    for (int y0 = 0; y0 < h; y0 += stripRows) {
+      const Rgba8Image before = lm;
+      const std::vector<std::uint64_t> countsBefore = blender.tileChanges();
+      blender.blend(lm, target, spec, id, y0, std::min(h, y0 + stripRows));
+      for (int ty = 0; ty < blender.tilesY(); ++ty) {
+        for (int tx = 0; tx < blender.tilesX(); ++tx) {
+          bool same = true;
+          for (int y = ty * kTileHeight; y < std::min(h, (ty + 1) * kTileHeight); ++y) {
+            for (int x = tx * kTileWidth * 4; x < std::min(w, (tx + 1) * kTileWidth) * 4; ++x)
+              same = same && before.row(y)[x] == lm.row(y)[x];
+          }
+          const std::size_t i = static_cast<std::size_t>(ty) * blender.tilesX() + tx;
+          const bool counted = blender.tileChanges()[i] != countsBefore[i];
+          ASSERT_LE(blender.tileChanges()[i], countsBefore[i] + 1) << "one count per blend";
+          if (!counted) {
+            ASSERT_TRUE(same) << "tile " << tx << "," << ty << " changed uncounted at step " << step;
+          }
+          if (aware) {
+            ASSERT_EQ(counted, !same) << "tile " << tx << "," << ty << " at step " << step;
+          }
+          (counted ? moved : still) += 1;
+        }
+      }
+    }
+  }
+  EXPECT_GT(moved, 0);
+  EXPECT_GT(still, 0);
+}
+
+TEST(TiledBlender, TileChangesCountEveryTileThatMoved) {
+  checkTileChanges(scalarKernels(), true, 256, 128, 128);
+  checkTileChanges(simd::kernels(), true, 100, 70, 32);
+  checkTileChanges(simd::kernels(), false, 130, 65, 64);
+  checkTileChanges(scalarKernels(), false, 64, 32, 32);
+}
+
 TEST(TiledBlender, SteadyTargetCostsNothingOnceConverged) {
   Rng rng(7);
   const int w = 256, h = 256;

@@ -47,6 +47,10 @@ const LagCase kCases[] = {
      fromMs(10'000), "blend-through", true, 0, -1},
 };
 
+void PrintTo(const LagCase& c, std::ostream* os) {
+  *os << c.name;
+}
+
 std::string goldenPath(const LagCase& c) {
   return testing::sourceDir() + "/tests/player/golden/lag/" + c.name + ".txt";
 }
