@@ -48,6 +48,8 @@ Task<void> IpuFeeder::decodeOne(int stream) {
   dc_.perStream[static_cast<std::size_t>(stream)] += took;
   dc_.maxPerPicture = std::max(dc_.maxPerPicture, took);
   dc_.idecCommands += tp.idecCommands;
+  dc_.commands += tp.commands;
+  dc_.eeBusy += tp.eeBusy;
   dc_.concealedMacroblocks += tp.report.macroblocksConcealed;
   if (!tp.report.clean()) ++dc_.picturesWithIssues;
   const gs::StreamInfo& info = out.streams()[0];

@@ -38,6 +38,8 @@ struct DecodeCounters {
   Tick maxPerPicture = 0;
   std::array<Tick, 2> perStream{0, 0};  // summed per stream
   std::array<std::int64_t, 2> picturesPerStream{0, 0};
+  ipu::IpuCommandCounts commands;  // every IPU command, by kind (IDEC path: idec only)
+  Tick eeBusy = 0;                 // the EE's work in the BDEC flow of P and B pictures (ipu/bdec_flow_timing.hpp)
 };
 
 class IpuFeeder {

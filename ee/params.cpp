@@ -33,6 +33,39 @@ void describeParams(ParamTable& t, EeParams& p) {
            "assumption: building the toIPU/fromIPU DMA chains and issuing IDEC, about 2,000 cycles");
   t.addInt("ee.start_lead_ms", &p.start_lead_ms, 0, 3'600'000, "ms",
            "assumption: the game starts the stream 500 ms before frame 0 is due (spin-up 333 ms + a seek + a bank)");
+  ipu::EeFlowCosts& m = p.mc;
+  t.addInt("ee.vdec_cycles", &m.vdec_cycles, 0, 1'000'000, "EE cycles",
+           "assumption [A]: libmpeg's _MPEG_GetMBAI/GetMBType/GetMotionCode: write IPU_CMD, poll IPU_CTRL and "
+           "IPU_CMD until not busy, read IPU_TOP: 4 uncached accesses of ~60 EE cycles (the figure of "
+           "ipu.slice_restart_cycles), 240 (docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.fdec_cycles", &m.fdec_cycles, 0, 1'000'000, "EE cycles",
+           "assumption [A]: libmpeg's _MPEG_GetBits: a sync poll and an FDEC write, 2 uncached accesses, 120 "
+           "(docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.bdec_issue_cycles", &m.bdec_issue_cycles, 0, 1'000'000, "EE cycles",
+           "assumption [A]: libmpeg's _MPEG_BDEC: D3_MADR, D3_QWC, D3_CHCR, a sync poll and IPU_CMD, 5 uncached "
+           "accesses, 300 (docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.mb_cycles", &m.mb_cycles, 0, 1'000'000, "EE cycles",
+           "assumption [A]: per macroblock, libmpeg's _mpeg12_dec_mb/_mpeg2_mc bookkeeping, vector arithmetic and "
+           "the toSPR DMA tags that fetch the reference area (_MPEG_dma_ref_image), ~400 "
+           "(docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.mc_cycles_per_mb", &m.mc_cycles_per_mb, 0, 1'000'000, "EE cycles",
+           "assumption [A]: per macroblock, the block op that stores its 384 samples into the frame through "
+           "uncached writes (24 qwords, ~16 cycles each with the write-back buffer), 400 "
+           "(docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.mc_cycles_per_prediction", &m.mc_cycles_per_prediction, 0, 1'000'000, "EE cycles",
+           "assumption [A]: one block prediction from scratchpad with MMI (16x16 luma and two 8x8 chroma, "
+           "half-sample interpolation of up to 4 neighbours in 8 16-bit lanes), ~500 "
+           "(docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.mc_average_cycles", &m.mc_average_cycles, 0, 1'000'000, "EE cycles",
+           "assumption [A]: averaging a second prediction into the first (bidirectional, dual prime), 384 samples "
+           "with PAVGB-style MMI ops, ~200 (docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.residual_add_cycles", &m.residual_add_cycles, 0, 1'000'000, "EE cycles",
+           "assumption [A]: adding BDEC's 16-bit residual (48 qwords) to the prediction with the clip, MMI, ~300 "
+           "(docs/timing/ee.md#p-and-b-pictures)");
+  t.addInt("ee.csc_setup_cycles", &m.csc_setup_cycles, 0, 1'000'000, "EE cycles",
+           "assumption [A]: libmpeg's _MPEG_CSCImage: suspend the IPU (stop toIPU, drain, stop fromIPU), BCLR, "
+           "set up both DMA channels, CSC, then resume (BCLR with the saved bit pointer), ~10 uncached accesses, "
+           "600 (docs/timing/ee.md#p-and-b-pictures)");
 }
 
 }  // namespace vbim::ee

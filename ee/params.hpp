@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "ipu/bdec_flow_timing.hpp"
 #include "runtime/params.hpp"
 
 namespace vbim::ee {
@@ -22,6 +23,8 @@ struct EeParams {
   std::int64_t decoded_frames = 2;             // decoded frame buffers per stream in EE RAM
   std::int64_t decode_setup_cycles = 2'000;    // EE cycles to set up one IPU command (DMA tags, IPU_CMD)
   std::int64_t start_lead_ms = 500;            // the stream starts this long before frame 0 is due
+  // The EE's share of P and B pictures (the BDEC flow of ps2sdk's libmpeg), EE cycles.
+  ipu::EeFlowCosts mc;
 };
 
 void describeParams(ParamTable& t, EeParams& p);

@@ -34,6 +34,8 @@ const char* issueName(IssueKind k) {
       return "motion vector points outside the reference frame";
     case IssueKind::kMissingReference:
       return "reference frame missing (predicted from mid-grey)";
+    case IssueKind::kPredictedPictureOnIdec:
+      return "P or B picture on the IDEC path (IDEC decodes intra pictures only; decode the stream on the BDEC path)";
   }
   return "unknown";
 }

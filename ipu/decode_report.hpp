@@ -25,6 +25,7 @@ enum class IssueKind : std::uint8_t {
   kUnsupportedPictureType,   // a D picture (MPEG-1 DC-only pictures are not decoded)
   kBadMotionVector,          // a motion vector pointing outside the reference frame (clamped to its edge)
   kMissingReference,         // a P or B picture without its reference frame(s): predicted from mid-grey
+  kPredictedPictureOnIdec,   // a P or B picture given to the IPU's IDEC path (ipu/ipu_unit.hpp): not decoded
 };
 
 const char* issueName(IssueKind k);

@@ -1,5 +1,6 @@
 #include "ipu/inter_slice_decoder.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "ipu/bit_reader.hpp"
@@ -79,6 +80,10 @@ class InterSliceDecoder {
   int pmv_[2][2][2] = {};      // PMV[r][s][t] (§7.6.3.1)
   std::uint8_t prevType_ = 0;  // macroblock_type of the last coded macroblock (B skips repeat it)
   Macroblock mb_;
+  // The EE's reads of the macroblock being parsed, for the timed BDEC flow (MacroblockBits).
+  int vdec_ = 0;
+  int fdec_ = 0;
+  std::uint8_t skippedPredictions_ = 0;  // predictions of each skipped macroblock before this one
 };
 
 // One motion_vector(r, s) (§6.2.5.3) and its reconstruction (§7.6.3.1); a field-format vector of a
@@ -100,6 +105,10 @@ bool InterSliceDecoder::vector(int s, int r, bool fieldFormat, int& mvx, int& mv
     dmv[1] = dmvectorOf(br_.peek(2), len);
     br_.skip(len);
   }
+  // libmpeg: a VDEC per motion_code and per dmvector, an FDEC per motion_residual (r_size > 0 and
+  // motion_code != 0, which is a delta != 0).
+  vdec_ += dmv ? 4 : 2;
+  fdec_ += (fx > 1 && dx != 0 ? 1 : 0) + (fy > 1 && dy != 0 ? 1 : 0);
   const bool halfVertical = fieldFormat && frame_;
   mvx = wrapVector(pmv_[r][s][0], dx, fx);
   mvy = wrapVector(halfVertical ? pmv_[r][s][1] >> 1 : pmv_[r][s][1], dy, fy);
@@ -129,6 +138,7 @@ bool InterSliceDecoder::motionVectors(int s, int motionType) {
     } else if (motionType == kMotionField) {
       for (int r = 0; r < 2; ++r) {
         const int sel = static_cast<int>(br_.read(1));
+        ++fdec_;
         if (!vector(s, r, true, mvx, mvy, nullptr)) return false;
         addOp(refOf(s, sel), sel, r, 0, 8, average, mvx, mvy);
       }
@@ -154,6 +164,7 @@ bool InterSliceDecoder::motionVectors(int s, int motionType) {
   // Field pictures.
   if (motionType == kMotionField) {
     const int sel = static_cast<int>(br_.read(1));
+    ++fdec_;
     if (!vector(s, 0, true, mvx, mvy, nullptr)) return false;
     pmv_[1][s][0] = mvx;
     pmv_[1][s][1] = mvy;
@@ -161,6 +172,7 @@ bool InterSliceDecoder::motionVectors(int s, int motionType) {
   } else if (motionType == kMotion16x8) {
     for (int r = 0; r < 2; ++r) {
       const int sel = static_cast<int>(br_.read(1));
+      ++fdec_;
       if (!vector(s, r, true, mvx, mvy, nullptr)) return false;
       addOp(refOf(s, sel), sel, -1, 8 * r, 8, average, mvx, mvy);
     }
@@ -182,6 +194,7 @@ bool InterSliceDecoder::motionVectors(int s, int motionType) {
 // only set the vector predictors (§7.6.3.4); a decoder may use them to conceal lost data.
 bool InterSliceDecoder::concealmentVectors() {
   if (!frame_) br_.skip(1);  // motion_vertical_field_select[0][0]
+  fdec_ += frame_ ? 1 : 2;   // the field select and the marker bit
   int mvx = 0;
   int mvy = 0;
   if (!vector(0, 0, false, mvx, mvy, nullptr)) return false;
@@ -319,6 +332,7 @@ void InterSliceDecoder::skipped(int address) {
             pmv_[0][s][0] * (1 << shift), pmv_[0][s][1] * (1 << shift));
     }
   }
+  skippedPredictions_ = static_cast<std::uint8_t>(mb_.opCount);
   predictAndStore(false);
 }
 
@@ -347,6 +361,10 @@ void InterSliceDecoder::run(int code) {
       issue(br_.overrun() ? IssueKind::kTruncatedSlice : IssueKind::kBadVlc, curX, curY);
       return;
     }
+    // libmpeg: one VDEC per address increment code (escapes included) and one for macroblock_type.
+    vdec_ = 2 + (inc - 1) / 33;
+    fdec_ = 0;
+    const int skippedBefore = first ? 0 : inc - 1;
     if (!first && inc > 1) {
       resetDc();
       for (int k = 1; k < inc; ++k) {
@@ -380,17 +398,24 @@ void InterSliceDecoder::run(int code) {
     const bool intra = (type.value & kMbIntra) != 0;
     int motionType = kMotionFrame;
     if (!pp_.mpeg1 && (type.value & (kMbForward | kMbBackward))) {
-      if (!frame_ || !ip_.framePredFrameDct) motionType = static_cast<int>(br_.read(2));
+      if (!frame_ || !ip_.framePredFrameDct) {
+        motionType = static_cast<int>(br_.read(2));
+        ++fdec_;
+      }
       if (motionType == 0) {
         issue(IssueKind::kBadVlc, mbX, mbY);  // reserved motion type
         return;
       }
     }
     mb_.fieldDct = false;
-    if (pp_.fieldDctAllowed && (intra || (type.value & kMbPattern))) mb_.fieldDct = br_.readBit();
+    if (pp_.fieldDctAllowed && (intra || (type.value & kMbPattern))) {
+      mb_.fieldDct = br_.readBit();
+      ++fdec_;
+    }
     if (mb_.fieldDct) ++out_.report->fieldDctMacroblocks;
     if (type.value & kMbQuant) {
       qsc = static_cast<int>(br_.read(5));
+      ++fdec_;
       if (qsc == 0) {
         issue(IssueKind::kBadHeader, mbX, mbY);
         return;
@@ -398,6 +423,7 @@ void InterSliceDecoder::run(int code) {
       setQuantiserScale(qsc);
     }
     bool ok = true;
+    std::size_t blockStart = 0;
     if (intra) {
       if (pp_.concealmentMotionVectors) {
         ok = concealmentVectors();
@@ -405,6 +431,7 @@ void InterSliceDecoder::run(int code) {
         std::memset(pmv_, 0, sizeof pmv_);
       }
       mb_.pattern = 0x3F;
+      blockStart = br_.position();
     } else {
       resetDc();
       if (ip_.codingType == 2 && !(type.value & kMbForward)) {
@@ -414,6 +441,7 @@ void InterSliceDecoder::run(int code) {
       if (type.value & kMbForward) ok = motionVectors(0, motionType);
       if (ok && (type.value & kMbBackward)) ok = motionVectors(1, motionType);
       mb_.pattern = 0;
+      blockStart = br_.position();
       if (ok && (type.value & kMbPattern)) {
         const InterVlcEntry cbp = it_.codedBlockPattern[br_.peek(9)];
         ok = cbp.len != 0;
@@ -443,7 +471,20 @@ void InterSliceDecoder::run(int code) {
     }
     prevType_ = mb_.type;
     predictAndStore(true);
-    recordMacroblock(out_.trace, address, br_.position(), mbStart, offset_);
+    const std::size_t end = br_.position();
+    recordMacroblock(out_.trace, address, end, mbStart, offset_);
+    if (out_.trace) {
+      MacroblockBits& r = out_.trace->back();
+      r.vdec = static_cast<std::uint8_t>(std::min(vdec_, 255));
+      r.fdec = static_cast<std::uint8_t>(std::min(fdec_, 255));
+      r.bdec = intra || mb_.pattern != 0;
+      r.blockBits = r.bdec ? static_cast<std::uint32_t>(end - blockStart) : 0;
+      r.predictions = static_cast<std::uint8_t>(mb_.opCount);
+      r.averaged = static_cast<std::uint8_t>(
+          std::count_if(mb_.ops, mb_.ops + mb_.opCount, [](const PredictionOp& op) { return op.average; }));
+      r.skippedBefore = static_cast<std::uint16_t>(std::min(skippedBefore, 65535));
+      r.skippedPredictions = skippedPredictions_;
+    }
     if (br_.peek(23) == 0) return;
   }
 }

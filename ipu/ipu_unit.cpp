@@ -4,144 +4,329 @@
 #include <cstring>
 #include <utility>
 
+#include "ipu/start_code.hpp"
+
 namespace vbim::ipu {
 namespace {
 
-// The timing needs the macroblock trace. One IPU decodes the lightmap's and the sky's pictures in
-// turn: a macroblock it conceals is mid-grey, never the picture decoded before (maybe the other
-// stream's), and the same whatever came before, as in replay, which decodes each picture alone.
-DecoderOptions unitOptions(DecoderOptions o, const IpuParams& p) {
+// The timing needs the macroblock trace. On an IDEC stream a macroblock the IPU conceals is
+// mid-grey, never the picture decoded before (the shared stream decodes the lightmap's and the
+// sky's pictures in turn), and the same whatever came before, as in replay, which decodes each
+// picture alone. A BDEC stream keeps its frames: P and B pictures predict from them.
+DecoderOptions streamOptions(DecoderOptions o, const IpuParams& p, DecodePath path) {
   o.recordMacroblocks = true;
   o.idct = idctKindOf(p);  // the platform's IDCT
-  o.freshStorePerDecode = true;
+  o.freshStorePerDecode = path == DecodePath::kIdec;
   return o;
 }
 
+// A P or B picture among `bytes` (picture_coding_type, ISO/IEC 13818-2 §6.2.3).
+bool hasPredictedPicture(std::span<const std::uint8_t> bytes) {
+  const std::uint8_t* d = bytes.data();
+  const std::size_t n = bytes.size();
+  for (std::size_t pos = findStartCode(d, n, 0); pos + 5 < n; pos = findStartCode(d, n, pos + 4)) {
+    if (d[pos + 3] != 0x00) continue;
+    const int type = (d[pos + 5] >> 3) & 7;  // after 10 bits of temporal_reference
+    if (type == 2 || type == 3) return true;
+  }
+  return false;
+}
+
+// libmpeg's CSC command converts at most 0x3FF macroblocks (MBC is 11 bits; _MPEG_CSCImage
+// splits larger pictures).
+constexpr std::int64_t kCscMaxMacroblocks = 0x3FF;
+constexpr std::uint32_t kCscInQwordsPerMacroblock = 24;  // 384 bytes of 8-bit YCbCr 4:2:0
+
 }  // namespace
 
-IpuUnit::IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer, DecoderOptions options)
+IpuUnit::IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer, DecoderOptions options, EeFlowCosts ee)
     : s_(s),
       p_(p),
       tracer_(tracer && tracer->enabled() ? tracer : nullptr),
-      decoder_(unitOptions(options, p)),
+      options_(options),
+      ee_(ee),
       timeline_(p),
       commands_(s, 1, "ipu.commands") {
   if (tracer_) track_ = tracer_->track("ipu");
+  openStream(DecodePath::kIdec);
   s_.spawn("ipu", run(*this));
 }
 
-Task<TimedPicture> IpuUnit::decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th) {
+StreamId IpuUnit::openStream(DecodePath path) {
+  if (path == DecodePath::kBdec && tracer_ && !eeTrackOpen_) {
+    eeTrack_ = tracer_->track("ee");
+    eeTrackOpen_ = true;
+  }
+  streams_.push_back(Stream{path, std::make_unique<Decoder>(streamOptions(options_, p_, path))});
+  return streams_.size() - 1;
+}
+
+Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
+                                   CscThresholds th) {
+  Stream& st = streams_.at(stream);
+  Decoder& dec = *st.decoder;
   TimedPicture result;
   result.started = s_.now();
-  const CommandRef shared = std::make_shared<Command>(s_);
+  const auto shared = std::make_shared<Command>(s_);
   Command& cmd = *shared;
-  // Decode into out's buffer: when it already has the picture's size (a recycled image), nothing is
-  // allocated or cleared; every byte is written either way.
-  cmd.staged = std::move(out);
-  out = Rgba8Image{};
-  result.report = decoder_.decode(bytes, runner_, RgbaOutput{&cmd.staged, th, true});
+  cmd.arrival = s_.now();
+  if (st.path == DecodePath::kIdec) {
+    if (hasPredictedPicture(bytes)) {
+      // IDEC decodes intra macroblocks only: nothing is decoded, the stream's frames stay as they were.
+      result.report.undecodable = true;
+      result.report.add(IssueKind::kPredictedPictureOnIdec, 0);
+      result.finished = s_.now();
+      co_return result;
+    }
+    // Decode into out's buffer: when it already has the picture's size (a recycled image), nothing
+    // is allocated or cleared; every byte is written either way.
+    cmd.staged = std::move(out);
+    out = Rgba8Image{};
+    result.report = dec.decode(bytes, runner_, RgbaOutput{&cmd.staged, th, true});
+    if (!result.report.produced) {
+      result.finished = s_.now();
+      co_return result;
+    }
+    const FrameStore& fs = dec.frame();
+    const std::size_t mbs = static_cast<std::size_t>(fs.mbWidth) * fs.mbHeight;
+    CommandTiming& tm = cmd.timing;
+    tm.arrival = s_.now();
+    tm.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
+    // Per macroblock (raster order): the qwords holding its last bit, and its bit count. Concealed
+    // macroblocks cost the base only and need no further input.
+    std::vector<std::uint32_t> endByte(mbs, 0);
+    tm.bits.assign(mbs, 0);
+    for (const MacroblockBits& m : dec.macroblockTrace()) {
+      if (m.address < mbs) {
+        endByte[m.address] = m.endByte;
+        tm.bits[m.address] = m.bits;
+      }
+    }
+    tm.restart = idecRestarts(dec.macroblockTrace(), mbs);
+    result.idecCommands = 1 + std::count(tm.restart.begin(), tm.restart.end(), std::uint8_t{1});
+    result.commands.idec = result.idecCommands;
+    result.outputQwords = static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
+    result.displayed = true;
+    tm.needQwords.resize(mbs);
+    std::uint32_t need = 0;
+    for (std::size_t i = 0; i < mbs; ++i) {
+      need = std::max(need, std::min(tm.inQwords, (endByte[i] + 15) / 16));
+      tm.needQwords[i] = need;
+    }
+    co_return co_await submit(shared, std::move(result), out, dec.width(), dec.height());
+  }
+  // The BDEC flow.
+  result.report = dec.decode(bytes, runner_);
   if (!result.report.produced) {
     result.finished = s_.now();
     co_return result;
   }
-  const FrameStore& fs = decoder_.frame();
-  const std::size_t mbs = static_cast<std::size_t>(fs.mbWidth) * fs.mbHeight;
-  CommandTiming& tm = cmd.timing;
-  tm.arrival = s_.now();
-  tm.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
-  // Per macroblock (raster order): the qwords holding its last bit, and its bit count. Concealed
-  // macroblocks cost the base only and need no further input.
-  std::vector<std::uint32_t> endByte(mbs, 0);
-  tm.bits.assign(mbs, 0);
-  for (const MacroblockBits& m : decoder_.macroblockTrace()) {
-    if (m.address < mbs) {
-      endByte[m.address] = m.endByte;
-      tm.bits[m.address] = m.bits;
-    }
+  const PictureHeader& pic = dec.picture();
+  const bool fieldDct = dec.sequence().mpeg2 && pic.pictureStructure == 3 && !pic.framePredFrameDct;
+  cmd.flow = true;
+  cmd.flowWork = buildFlow(bytes, dec.macroblockTrace(), result.report.pictureCodingType == 1, fieldDct);
+  const FrameStore* shown = dec.displayFrame();
+  int width = 0;
+  int height = 0;
+  if (shown != nullptr) {
+    width = dec.displayWidth();
+    height = dec.displayHeight();
+    cmd.staged = std::move(out);
+    out = Rgba8Image{};
+    convertToRgba32(*shown, shown->mbWidth * 16, shown->mbHeight * 16, th, cmd.staged, dec.kernels().cscRow);
+    cmd.hasCsc = true;
+    const std::size_t mbs = static_cast<std::size_t>(shown->mbWidth) * shown->mbHeight;
+    cmd.timing.csc = true;
+    cmd.timing.inQwords = static_cast<std::uint32_t>(mbs) * kCscInQwordsPerMacroblock;
+    cmd.timing.bits.assign(mbs, 0);
+    cmd.timing.restart.assign(mbs, 0);
+    cmd.timing.needQwords.resize(mbs);
+    for (std::size_t i = 0; i < mbs; ++i)
+      cmd.timing.needQwords[i] = static_cast<std::uint32_t>(i + 1) * kCscInQwordsPerMacroblock;
+    result.outputQwords = static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
   }
-  tm.restart = idecRestarts(decoder_.macroblockTrace(), mbs);
-  result.idecCommands = 1 + std::count(tm.restart.begin(), tm.restart.end(), std::uint8_t{1});
+  co_return co_await submit(shared, std::move(result), out, width, height);
+}
+
+Task<TimedPicture> IpuUnit::flush(StreamId stream, Rgba8Image& out, CscThresholds th) {
+  Stream& st = streams_.at(stream);
+  TimedPicture result;
+  result.started = s_.now();
+  result.finished = s_.now();
+  if (st.path != DecodePath::kBdec || !st.decoder->flushDisplay()) co_return result;
+  const Decoder& dec = *st.decoder;
+  const FrameStore& shown = *dec.displayFrame();
+  const auto shared = std::make_shared<Command>(s_);
+  Command& cmd = *shared;
+  cmd.arrival = s_.now();
+  cmd.flow = true;  // no picture: only the CSC
+  cmd.staged = std::move(out);
+  out = Rgba8Image{};
+  convertToRgba32(shown, shown.mbWidth * 16, shown.mbHeight * 16, th, cmd.staged, dec.kernels().cscRow);
+  cmd.hasCsc = true;
+  const std::size_t mbs = static_cast<std::size_t>(shown.mbWidth) * shown.mbHeight;
+  cmd.timing.csc = true;
+  cmd.timing.inQwords = static_cast<std::uint32_t>(mbs) * kCscInQwordsPerMacroblock;
+  cmd.timing.bits.assign(mbs, 0);
+  cmd.timing.restart.assign(mbs, 0);
+  cmd.timing.needQwords.resize(mbs);
+  for (std::size_t i = 0; i < mbs; ++i)
+    cmd.timing.needQwords[i] = static_cast<std::uint32_t>(i + 1) * kCscInQwordsPerMacroblock;
+  result.report.produced = true;
   result.outputQwords = static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
-  tm.needQwords.resize(mbs);
-  std::uint32_t need = 0;
-  for (std::size_t i = 0; i < mbs; ++i) {
-    need = std::max(need, std::min(tm.inQwords, (endByte[i] + 15) / 16));
-    tm.needQwords[i] = need;
-  }
+  co_return co_await submit(shared, std::move(result), out, dec.displayWidth(), dec.displayHeight());
+}
+
+// Plans the command, hands it to the "ipu" process and waits for its last event; then `out` gets
+// the staged output cropped to width x height (if the command has output).
+Task<TimedPicture> IpuUnit::submit(std::shared_ptr<Command> shared, TimedPicture result, Rgba8Image& out, int width,
+                                   int height) {
+  Command& cmd = *shared;
   retire();
-  cmd.before = timeline_.state();
-  timeline_.plan(tm, inStalls_, outStalls_, recordQwords_);
+  plan(cmd);
   inFlight_.push_back(shared);
-  if (recordQwords_) recorded_.push_back(shared);
+  if (recordQwords_ && !cmd.flow) recorded_.push_back(shared);
   co_await commands_.push(shared);
   while (!cmd.done) co_await cmd.finishedEvent.wait();
-  // The picture is in memory: the caller sees it whole (no one reads it while the DMA runs).
-  if (cmd.staged.width == decoder_.width() && cmd.staged.height == decoder_.height()) {
-    out = std::move(cmd.staged);  // whole macroblocks are the picture: hand the buffer over
-  } else {
-    if (out.width != decoder_.width() || out.height != decoder_.height())
-      out = Rgba8Image(decoder_.width(), decoder_.height());
-    for (int y = 0; y < out.height; ++y)
-      std::memcpy(out.row(y), cmd.staged.row(y), static_cast<std::size_t>(out.width) * 4);
+  if (!cmd.flow || cmd.hasCsc) {
+    // The picture is in memory: the caller sees it whole (no one reads it while the DMA runs).
+    if (cmd.staged.width == width && cmd.staged.height == height) {
+      out = std::move(cmd.staged);  // whole macroblocks are the picture: hand the buffer over
+    } else {
+      if (out.width != width || out.height != height) out = Rgba8Image(width, height);
+      for (int y = 0; y < out.height; ++y)
+        std::memcpy(out.row(y), cmd.staged.row(y), static_cast<std::size_t>(out.width) * 4);
+    }
+    result.displayed = true;
   }
   result.finished = s_.now();
-  result.outputStalls = tm.stalls;
+  result.outputStalls = cmd.timing.stalls;
+  if (cmd.flow) {
+    const FlowTiming& ft = cmd.flowTiming;
+    result.commands = ft.counts;
+    result.decodeEnd = ft.decodeEnd;
+    result.eeBusy = ft.eeBusy;
+    result.eeWait = ft.eeWait;
+    result.outputStalls += ft.outputStalls;
+    if (cmd.hasCsc) {
+      const auto mbs = static_cast<std::int64_t>(cmd.timing.needQwords.size());
+      result.commands.csc += (mbs + kCscMaxMacroblocks - 1) / kCscMaxMacroblocks;
+      result.commands.bclr += 2;  // _ipu_suspend's BCLR before the CSC, _ipu_resume's after it
+      result.eeBusy += fromEeCycles(ee_.csc_setup_cycles);
+    }
+  }
   co_return result;
 }
 
-// Sleeps from one observable event of the command to the next: the end of each trace span (as the
-// qword-stepping model recorded them, at the tick they ended) and the last qword's write. Each time
-// is read again on waking: a DMA stall may have moved it later.
+void IpuUnit::plan(Command& c) {
+  c.before = timeline_.state();
+  if (!c.flow) {
+    timeline_.plan(c.timing, inStalls_, outStalls_, recordQwords_);
+    return;
+  }
+  // The EE starts the picture when the IPU is done with the previous command.
+  const IpuTimeline::State& st = timeline_.state();
+  FlowTiming& ft = c.flowTiming;
+  ft.arrival = std::max({c.arrival, st.coreFree, st.toIpuFree, st.fromIpuFree});
+  planFlow(c.flowWork, p_, ee_, inStalls_, outStalls_, ft);
+  timeline_.advanceTo(std::max({ft.decodeEnd, ft.inFree, ft.ipuFree, ft.fromFree}));
+  if (c.hasCsc) {
+    c.timing.arrival = ft.decodeEnd + fromEeCycles(ee_.csc_setup_cycles);
+    timeline_.plan(c.timing, inStalls_, outStalls_, false);
+  }
+}
+
+Tick IpuUnit::quietAfter(const Command& c) {
+  if (!c.flow || c.hasCsc) return c.timing.quietAfter;
+  const FlowTiming& ft = c.flowTiming;
+  return std::max({ft.decodeEnd, ft.inFree, ft.ipuFree, ft.fromFree});
+}
+
+// The spans of an IDEC command, or of a CSC command of the BDEC flow (no decode spans), as the
+// qword-stepping model recorded them, at the tick they ended. Each time is read again on waking: a
+// DMA stall may have moved it later.
+Task<void> IpuUnit::traceCommand(const Command& cmd, bool cscOnly) {
+  Scheduler& s = s_;
+  const CommandTiming& tm = cmd.timing;
+  // Per macroblock (a few us) only in full detail; otherwise the same label throughout, so the
+  // tracer joins a busy stretch into one span (at 290 macroblocks/s the two spans per macroblock
+  // were 150 MB of trace.json per simulated hour).
+  const bool fine = tracer_->detail() == TraceDetail::Full;
+  std::size_t stall = 0;
+  const Tick restartCycles = p_.slice_restart_cycles + p_.idec_start_cycles;
+  for (std::size_t i = 0; i < tm.mbEnd.size(); ++i) {
+    // The EE's restart of IDEC at a slice start code: the IPU core idles.
+    if (tm.restart[i] != 0 && restartCycles > 0) {
+      while (s.now() < tm.mbBegin[i]) co_await s.until(tm.mbBegin[i]);
+      tracer_->span(track_, tm.mbBegin[i] - restartCycles, tm.mbBegin[i], "idec restart");
+    }
+    while (s.now() < tm.mbDecoded[i]) co_await s.until(tm.mbDecoded[i]);
+    if (!cscOnly) tracer_->span(track_, tm.mbBegin[i], tm.mbDecoded[i], fine ? "idec" : "decode");
+    // CSC rows that waited for room (full detail), then the macroblock's end. A stall that starts
+    // while this sleeps can add a row stall ending before the tick it wakes at: that span is
+    // recorded then, in order, with its own times.
+    for (;;) {
+      if (fine && stall < tm.rowStalls.size() && tm.rowStalls[stall].mb == i) {
+        if (s.now() < tm.rowStalls[stall].end) {
+          co_await s.until(tm.rowStalls[stall].end);
+          continue;
+        }
+        tracer_->span(track_, tm.rowStalls[stall].ready, tm.rowStalls[stall].end, "out stall");
+        ++stall;
+        continue;
+      }
+      if (s.now() >= tm.mbEnd[i]) break;
+      co_await s.until(tm.mbEnd[i]);
+    }
+    tracer_->span(track_, tm.mbDecoded[i], tm.mbEnd[i], fine || cscOnly ? "csc" : "decode");
+  }
+}
+
+// Sleeps from one observable event of the command to the next: the end of each trace span and the
+// last qword's write.
 Task<void> IpuUnit::run(IpuUnit& u) {
   Scheduler& s = u.s_;
   for (;;) {
     const CommandRef ref = co_await u.commands_.pop();
-    const CommandTiming& tm = ref->timing;
-    if (u.tracer_) {
-      // Per macroblock (a few us) only in full detail; otherwise the same label throughout, so the
-      // tracer joins a busy stretch into one span (at 290 macroblocks/s the two spans per macroblock
-      // were 150 MB of trace.json per simulated hour).
-      const bool fine = u.tracer_->detail() == TraceDetail::Full;
-      std::size_t stall = 0;
-      const Tick restartCycles = u.p_.slice_restart_cycles + u.p_.idec_start_cycles;
-      for (std::size_t i = 0; i < tm.mbEnd.size(); ++i) {
-        // The EE's restart of IDEC at a slice start code: the IPU core idles.
-        if (tm.restart[i] != 0 && restartCycles > 0) {
-          while (s.now() < tm.mbBegin[i]) co_await s.until(tm.mbBegin[i]);
-          u.tracer_->span(u.track_, tm.mbBegin[i] - restartCycles, tm.mbBegin[i], "idec restart");
+    if (ref->flow) {
+      if (u.tracer_) {
+        const bool fine = u.tracer_->detail() == TraceDetail::Full;
+        // Spans ending before a stall keep their place in the order; later ones are re-read.
+        for (std::size_t i = 0; i < ref->flowTiming.spans.size(); ++i) {
+          while (s.now() < ref->flowTiming.spans[i].end) co_await s.until(ref->flowTiming.spans[i].end);
+          const FlowSpan& sp = ref->flowTiming.spans[i];
+          u.tracer_->span(sp.track == 0 ? u.eeTrack_ : u.track_, sp.begin, sp.end, fine ? sp.label : "decode");
         }
-        while (s.now() < tm.mbDecoded[i]) co_await s.until(tm.mbDecoded[i]);
-        u.tracer_->span(u.track_, tm.mbBegin[i], tm.mbDecoded[i], fine ? "idec" : "decode");
-        // CSC rows that waited for room (full detail), then the macroblock's end. A stall that
-        // starts while this sleeps can add a row stall ending before the tick it wakes at: that
-        // span is recorded then, in order, with its own times.
-        for (;;) {
-          if (fine && stall < tm.rowStalls.size() && tm.rowStalls[stall].mb == i) {
-            if (s.now() < tm.rowStalls[stall].end) {
-              co_await s.until(tm.rowStalls[stall].end);
-              continue;
-            }
-            u.tracer_->span(u.track_, tm.rowStalls[stall].ready, tm.rowStalls[stall].end, "out stall");
-            ++stall;
-            continue;
-          }
-          if (s.now() >= tm.mbEnd[i]) break;
-          co_await s.until(tm.mbEnd[i]);
-        }
-        u.tracer_->span(u.track_, tm.mbDecoded[i], tm.mbEnd[i], fine ? "csc" : "decode");
       }
+      while (s.now() < ref->flowTiming.decodeEnd) co_await s.until(ref->flowTiming.decodeEnd);
+      if (ref->hasCsc) {
+        if (u.tracer_) {
+          const Tick setup = ref->timing.arrival;
+          if (setup > ref->flowTiming.decodeEnd) {
+            while (s.now() < setup) co_await s.until(setup);
+            u.tracer_->span(u.eeTrack_, ref->flowTiming.decodeEnd, setup,
+                            u.tracer_->detail() == TraceDetail::Full ? "csc setup" : "decode");
+          }
+          co_await u.traceCommand(*ref, true);
+        }
+      }
+    } else if (u.tracer_) {
+      co_await u.traceCommand(*ref, false);
     }
-    // The last qword's DMA period starts where the stepping model started it, so the caller
-    // resumes in the same order among the events of that tick.
-    while (s.now() < tm.lastResume) co_await s.until(tm.lastResume);
-    while (s.now() < tm.finished) co_await s.until(tm.finished);
+    if (!ref->flow || ref->hasCsc) {
+      // The last qword's DMA period starts where the stepping model started it, so the caller
+      // resumes in the same order among the events of that tick.
+      const CommandTiming& tm = ref->timing;
+      while (s.now() < tm.lastResume) co_await s.until(tm.lastResume);
+      while (s.now() < tm.finished) co_await s.until(tm.finished);
+    }
     ref->done = true;
     ref->finishedEvent.notify();
   }
 }
 
 void IpuUnit::retire() {
-  while (!inFlight_.empty() && inFlight_.front()->timing.quietAfter < s_.now()) inFlight_.pop_front();
+  while (!inFlight_.empty() && quietAfter(*inFlight_.front()) < s_.now()) inFlight_.pop_front();
 }
 
 // A stall moves nothing before now: plan again from the oldest command with an event still ahead.
@@ -149,10 +334,7 @@ void IpuUnit::replan() {
   retire();
   if (inFlight_.empty()) return;
   timeline_.restore(inFlight_.front()->before);
-  for (const CommandRef& c : inFlight_) {
-    c->before = timeline_.state();
-    timeline_.plan(c->timing, inStalls_, outStalls_, recordQwords_);
-  }
+  for (const CommandRef& c : inFlight_) plan(*c);
 }
 
 void IpuUnit::stallInputDma(Tick duration) {

@@ -11,6 +11,17 @@
 // (ipu/ipu_unit_timing.hpp); one process, "ipu", sleeps from one observable event to the next (a
 // trace span ends, the command completes) instead of stepping every qword. The player (issue #7)
 // calls `co_await unit.decode(bytes, image)`.
+//
+// Streams (issue #29): each stream the caller opens has its own functional decoder, so the
+// lightmap's and the sky's reference frames never mix. A stream is decoded one of two ways, as a
+// console player would choose:
+//   DecodePath::kIdec  intra pictures by IDEC (+CSC); a P or B picture is refused (IDEC decodes
+//                      intra macroblocks only, and its RGB output leaves no YCbCr reference).
+//   DecodePath::kBdec  every picture by the flow of ps2sdk's libmpeg: VDEC/FDEC/BDEC per
+//                      macroblock, the EE's prediction and residual add, CSC of the frame due for
+//                      display (ipu/bdec_flow.hpp, ipu/bdec_flow_timing.hpp). The EE's time is a
+//                      track "ee" of the tracer.
+// Stream 0 (kSharedIdecStream) is the IDEC stream decode(bytes, image) uses.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +30,8 @@
 #include <span>
 #include <vector>
 
+#include "ipu/bdec_flow.hpp"
+#include "ipu/bdec_flow_timing.hpp"
 #include "ipu/csc.hpp"
 #include "ipu/ipu_unit_timing.hpp"
 #include "ipu/params.hpp"
@@ -39,19 +52,41 @@ struct TimedPicture {
   std::int64_t outputStalls = 0;  // CSC rows that waited for room in the output FIFO
   std::int64_t idecCommands = 0;  // IDEC issued: one per slice (the EE restarts it at each slice start code)
   std::int64_t outputQwords = 0;  // written by fromIPU DMA: 64 per macroblock, in macroblock order
+  // `out` holds a new frame: every produced picture on the IDEC path; on the BDEC path when a frame
+  // became due for display (display order: an I or P frame when the next one is decoded).
+  bool displayed = false;
+  IpuCommandCounts commands;  // IDEC path: idec only
+  Tick decodeEnd = 0;         // BDEC path: the last macroblock stored (the CSC follows)
+  Tick eeBusy = 0;            // BDEC path: the EE's work (parse, command issue, MC, CSC set-up)
+  Tick eeWait = 0;            // BDEC path: the EE waiting for BDEC
 };
+
+enum class DecodePath : std::uint8_t { kIdec, kBdec };
+using StreamId = std::size_t;
+inline constexpr StreamId kSharedIdecStream = 0;
 
 class IpuUnit {
  public:
   // The inverse DCT is the platform's (p.idct), whatever options.idct says.
-  IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer = nullptr, DecoderOptions options = {});
+  // `ee`: the EE's costs in the BDEC flow (ee.* parameters).
+  IpuUnit(Scheduler& s, const IpuParams& p, Tracer* tracer = nullptr, DecoderOptions options = {}, EeFlowCosts ee = {});
   IpuUnit(const IpuUnit&) = delete;
   IpuUnit& operator=(const IpuUnit&) = delete;
 
   // Decodes one picture (see Decoder::decode for what `bytes` holds) to RGB32 with the SETTH
   // thresholds; `out` is written while the fromIPU DMA runs and complete when this returns.
   // One command at a time: callers serialise (as the EE does with IPU_CMD).
-  Task<TimedPicture> decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th = {});
+  Task<TimedPicture> decode(std::span<const std::uint8_t> bytes, Rgba8Image& out, CscThresholds th = {}) {
+    return decode(kSharedIdecStream, bytes, out, th);
+  }
+  // A stream of its own (before the tracer streams its output: a kBdec stream adds the track "ee").
+  StreamId openStream(DecodePath path);
+  // The picture(s) in `bytes` of `stream`, in stream order. On a kBdec stream `out` is written only
+  // when a frame became due for display (TimedPicture::displayed).
+  Task<TimedPicture> decode(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
+                            CscThresholds th = {});
+  // End of a kBdec stream: the last frame not yet displayed, through CSC into `out` (displayed).
+  Task<TimedPicture> flush(StreamId stream, Rgba8Image& out, CscThresholds th = {});
 
   // Fault injection: the DMA channel moves nothing from now for `duration` ticks (a D_CTRL stall,
   // or an EE that does not service the channel). A stalled fromIPU lets the output FIFO fill and
@@ -60,7 +95,7 @@ class IpuUnit {
   // IPU's events of that tick (as a fault process scheduled in advance does).
   void stallInputDma(Tick duration);
   void stallOutputDma(Tick duration);
-  const Decoder& decoder() const { return decoder_; }
+  const Decoder& decoder(StreamId stream = kSharedIdecStream) const { return *streams_.at(stream).decoder; }
   // Slice-parallel decode on host threads (null: on the calling thread). Same bytes and ticks
   // either way: only the host's wall time changes.
   void setSliceRunner(SliceRunner* runner) { runner_ = runner; }
@@ -73,14 +108,28 @@ class IpuUnit {
   // One command: what the timing needs, its schedule, and the output waiting for its time.
   struct Command {
     explicit Command(Scheduler& s) : finishedEvent(s) {}
-    CommandTiming timing;
+    Tick arrival = 0;
+    CommandTiming timing;  // IDEC, or the BDEC flow's CSC (timing.csc)
+    bool flow = false;     // a BDEC flow picture (then `timing` only if hasCsc)
+    bool hasCsc = false;
+    FlowPicture flowWork;
+    FlowTiming flowTiming;
     IpuTimeline::State before;  // the timeline before this command, to plan it again after a stall
     Rgba8Image staged;          // the IPU's output, whole macroblocks
     bool done = false;
     Event finishedEvent;
   };
   using CommandRef = std::shared_ptr<Command>;
+  struct Stream {
+    DecodePath path;
+    std::unique_ptr<Decoder> decoder;
+  };
   static Task<void> run(IpuUnit& u);
+  Task<void> traceCommand(const Command& cmd, bool cscOnly);
+  Task<TimedPicture> submit(std::shared_ptr<Command> shared, TimedPicture result, Rgba8Image& out, int width,
+                            int height);
+  void plan(Command& c);
+  static Tick quietAfter(const Command& c);
   void retire();
   void replan();
 
@@ -88,7 +137,11 @@ class IpuUnit {
   IpuParams p_;
   Tracer* tracer_;
   Tracer::TrackId track_ = 0;
-  Decoder decoder_;
+  Tracer::TrackId eeTrack_ = 0;
+  bool eeTrackOpen_ = false;
+  DecoderOptions options_;
+  EeFlowCosts ee_;
+  std::vector<Stream> streams_;
   SliceRunner* runner_ = nullptr;
   IpuTimeline timeline_;
   DmaStalls inStalls_;

@@ -53,6 +53,12 @@ IpuTimeline::IpuTimeline(const IpuParams& p)
   outPushes_.assign(dout_ + 1, 0);
 }
 
+void IpuTimeline::advanceTo(Tick t) {
+  st_.toIpuFree = std::max(st_.toIpuFree, t);
+  st_.coreFree = std::max(st_.coreFree, t);
+  st_.fromIpuFree = std::max(st_.fromIpuFree, t);
+}
+
 void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& out, bool recordQwords) {
   const Tick arrival = c.arrival;
   const Tick inPeriod = p_.toipu_cycles_per_qword;
@@ -134,13 +140,13 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
                             kQwordsPerRow * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
 
   // The core: per macroblock its cost spread over the input qwords it pops, then CSC row by row.
-  Tick t = std::max(st_.coreFree, arrival) + p_.idec_start_cycles;
+  Tick t = std::max(st_.coreFree, arrival) + (c.csc ? 0 : p_.idec_start_cycles);
   std::uint32_t pulled = 0;
   const Tick restartCycles = p_.slice_restart_cycles + p_.idec_start_cycles;
   for (std::size_t i = 0; i < mbs; ++i) {
     if (c.restart[i] != 0) t += restartCycles;
     c.mbBegin[i] = t;
-    const Tick cost = p_.mb_base_cycles + p_.mb_cycles_per_bit * c.bits[i];
+    const Tick cost = c.csc ? 0 : p_.mb_base_cycles + p_.mb_cycles_per_bit * c.bits[i];
     const std::uint32_t k = c.needQwords[i] - pulled;
     if (k == 0) t += cost;
     // Qword j of k is popped floor(cost * j / k) after the start: steps of cost / k, one more

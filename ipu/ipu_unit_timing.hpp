@@ -66,6 +66,9 @@ struct CommandTiming {
   // Per macroblock: 1 when IDEC stopped at a slice start code before it and the EE issued it again
   // (slice_restart_cycles + idec_start_cycles before it begins). The command's first IDEC is not one.
   std::vector<std::uint8_t> restart;
+  // CSC of YCbCr macroblocks from EE memory (the BDEC flow's display frame, 24 input qwords per
+  // macroblock in needQwords): no start delay and no decode cost, only csc_cycles_per_mb.
+  bool csc = false;
 
   // Out, per macroblock: started, last input qword popped, last output qword pushed.
   std::vector<Tick> mbBegin;
@@ -110,6 +113,9 @@ class IpuTimeline {
     std::vector<Tick> outTakes;  // Take of the last Dout + 1 output qwords, by index mod (Dout + 1)
   };
   const State& state() const { return st_; }
+  // Nothing of the channels before `t`: a BDEC flow (ipu/bdec_flow_timing.hpp) used them until then
+  // and left both FIFOs empty.
+  void advanceTo(Tick t);
   void restore(const State& s) { st_ = s; }
 
  private:

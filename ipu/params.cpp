@@ -32,6 +32,22 @@ void describeParams(ParamTable& t, IpuParams& p) {
               "the inverse DCT, not known from a hardware capture [A]: pcsx2 = PCSX2's IPU (libmpeg2 0.4's "
               "integer IDCT), libmpeg2 = libmpeg2 0.5.1's C IDCT (mpeg2dec -c), exact = exact-rounded "
               "(docs/timing/ipu.md#idct)");
+  t.addInt("ipu.vdec_cycles", &p.vdec_cycles, 0, 100'000, "bus cycles",
+           "assumption [A]: VDEC decodes one variable-length symbol (address increment, macroblock type, motion "
+           "code, dmvector) with the VLD that IDEC and BDEC use; no published figure, PCSX2 answers at once [E]; "
+           "8 cycles; the EE's round trip (ee.vdec_cycles) dominates (docs/timing/ipu.md#the-bdec-flow)");
+  t.addInt("ipu.fdec_cycles", &p.fdec_cycles, 0, 100'000, "bus cycles",
+           "assumption [A]: FDEC shifts out up to 32 bits; PCSX2 answers at once [E]; 4 cycles "
+           "(docs/timing/ipu.md#the-bdec-flow)");
+  t.addInt("ipu.setiq_cycles", &p.setiq_cycles, 0, 100'000, "bus cycles",
+           "assumption [A]: SETIQ reads a 64-byte quantiser matrix from the input FIFO (T-IPU), one byte per cycle "
+           "(docs/timing/ipu.md#the-bdec-flow)");
+  t.addInt("ipu.setvq_cycles", &p.setvq_cycles, 0, 100'000, "bus cycles",
+           "assumption [A]: SETVQ reads a 16-entry RGB16 CLUT, 32 bytes, one byte per cycle; only for PACK to "
+           "4-bit indices, which an RGB32 player (libmpeg, vbim) never issues (docs/timing/ipu.md#the-bdec-flow)");
+  t.addInt("ipu.bclr_cycles", &p.bclr_cycles, 0, 100'000, "bus cycles",
+           "PCSX2 IPU.cpp: BCLR completes at once [E]; T-IPU: clears the input FIFO and sets the bit pointer "
+           "(docs/timing/ipu.md#the-bdec-flow)");
 }
 
 IdctKind idctKindOf(const IpuParams& p) {

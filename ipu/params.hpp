@@ -23,6 +23,13 @@ struct IpuParams {
   std::int64_t toipu_cycles_per_qword = 1;        // DMAC ch4 (toIPU) rate
   std::int64_t fromipu_cycles_per_qword = 1;      // DMAC ch3 (fromIPU) rate
   std::string idct = idctKindName(kDefaultIdct);  // the inverse DCT: "pcsx2", "libmpeg2" or "exact"
+  // The commands of the BDEC flow (P and B pictures, ipu/bdec_flow_timing.hpp); BDEC itself costs
+  // idec_start_cycles + mb_base_cycles + mb_cycles_per_bit x its bits, like IDEC without CSC.
+  std::int64_t vdec_cycles = 8;    // one variable-length symbol (assumption)
+  std::int64_t fdec_cycles = 4;    // a fixed-length read (assumption)
+  std::int64_t setiq_cycles = 64;  // a 64-byte quantiser matrix from the FIFO (assumption)
+  std::int64_t setvq_cycles = 32;  // a 16-colour CLUT, 32 bytes (assumption; not issued by an RGB32 player)
+  std::int64_t bclr_cycles = 0;    // PCSX2: immediate
 };
 
 // The IdctKind named by p.idct (a choice parameter, so always one of the three).

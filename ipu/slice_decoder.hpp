@@ -47,6 +47,20 @@ struct MacroblockBits {
   std::uint32_t bits;       // bits of this macroblock (the first of a slice includes the slice header)
   std::uint32_t endByte;    // offset in the decoded bytes just past its last bit (rounded up)
   bool sliceStart = false;  // the first macroblock its slice decoded: IDEC was (re)issued for it
+  // P and B pictures only (ipu/inter_slice_decoder.cpp), for the timed BDEC flow (ipu/mc_flow.hpp):
+  // what the EE reads of this macroblock with VDEC (address increment and its escapes, macroblock
+  // type, motion codes, dmvectors) and FDEC (motion type, DCT type, quantiser scale, field selects,
+  // motion residuals, marker bit), what BDEC reads (blockBits: coded block pattern and blocks, 0
+  // without BDEC), its block predictions and how many of them average, and the skipped
+  // macroblocks just before it (each predicted like the macroblock before it, skippedPredictions).
+  std::uint8_t vdec = 0;
+  std::uint8_t fdec = 0;
+  std::uint8_t predictions = 0;
+  std::uint8_t averaged = 0;
+  bool bdec = false;
+  std::uint8_t skippedPredictions = 0;
+  std::uint16_t skippedBefore = 0;
+  std::uint32_t blockBits = 0;
 };
 
 struct SliceOutput {

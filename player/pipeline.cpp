@@ -56,7 +56,7 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
       lmCompressed_(s, static_cast<std::size_t>(config.ee.compressed_frames)),
       skyCompressed_(s, static_cast<std::size_t>(config.ee.compressed_frames)),
       demux_(s, ring_, stream, timeline_, config.ee, {&lmCompressed_, &skyCompressed_}, work_, tracer_),
-      ipu_(s, config.ipu, tracer_, decoderOptions(kernels)),
+      ipu_(s, config.ipu, tracer_, decoderOptions(kernels), config.ee.mc),
       gs_(s) {
   ipu_.setSliceRunner(kernels.sliceRunner);
   const auto depth = static_cast<std::size_t>(config.ee.decoded_frames);

@@ -249,6 +249,19 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
       elapsed > 0 ? static_cast<std::int64_t>((static_cast<__int128>(dm.bytes) * kBusHz) / elapsed) : std::int64_t{0};
   j["decoded_pictures"] = dc.pictures;
   j["idec_commands"] = dc.idecCommands;  // one per slice: the EE restarts IDEC at each slice start code
+  if (dc.commands.bdec > 0) {
+    // P and B pictures (the BDEC flow): the EE's busy share and every IPU command by kind.
+    j["busy_share"]["ee"] = share(dc.eeBusy, elapsed);
+    const ipu::IpuCommandCounts& c = dc.commands;
+    j["ipu_commands"] = json::object({{"bclr", c.bclr},
+                                      {"idec", c.idec},
+                                      {"bdec", c.bdec},
+                                      {"vdec", c.vdec},
+                                      {"fdec", c.fdec},
+                                      {"setiq", c.setiq},
+                                      {"setvq", c.setvq},
+                                      {"csc", c.csc}});
+  }
   // Zero unless gs.upload_strategy = ee-reorder.
   j["ee_reorder"] = json::object({{"qwords", dc.reorderedQwords}, {"busy_ticks", dc.reorderBusy}});
   j["vsyncs_recorded"] = t.vsyncs;

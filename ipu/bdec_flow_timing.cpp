@@ -1,0 +1,164 @@
+#include "ipu/bdec_flow_timing.hpp"
+
+#include <algorithm>
+
+namespace vbim::ipu {
+namespace {
+
+// BDEC's output: 384 signed 16-bit samples (Y 16x16, Cb 8x8, Cr 8x8) = 48 qwords (T-IPU BDEC).
+constexpr int kBdecQwords = 48;
+
+// The toIPU DMA feeding one picture's bytes through the input FIFO (the recurrence of
+// ipu/ipu_unit_timing.hpp): qword x goes in one DMA period after the previous one once qword x - D
+// has been read, and is read when a command asks for it and it is there.
+class InputFeed {
+ public:
+  InputFeed(const IpuParams& p, const DmaStalls& stalls, Tick start)
+      : stalls_(stalls),
+        period_(p.toipu_cycles_per_qword),
+        depth_(static_cast<std::size_t>(p.in_fifo_qwords + p.in_buffer_qwords)),
+        pops_(depth_, start),
+        free_(stalls.defer(start)) {}
+
+  // Reads qwords up to `count` (those not read yet) from `request` on; returns when the last is read.
+  Tick readThrough(std::uint32_t count, Tick request) {
+    Tick t = request;
+    while (read_ < count) {
+      const Tick arrive = stalls_.defer(free_ + period_);
+      Tick& slot = pops_[read_ % depth_];
+      Tick enter = arrive;
+      if (slot > arrive) {
+        enter = slot;
+        free_ = stalls_.defer(slot);
+      } else {
+        free_ = arrive;
+      }
+      t = std::max(request, enter);
+      slot = t;
+      ++read_;
+    }
+    return t;
+  }
+  Tick free() const { return free_; }
+
+ private:
+  const DmaStalls& stalls_;
+  Tick period_;
+  std::size_t depth_;
+  std::vector<Tick> pops_;  // when the qword a FIFO depth back was read, by index mod depth
+  Tick free_;
+  std::uint32_t read_ = 0;
+};
+
+}  // namespace
+
+Tick mcCost(const FlowMacroblock& m, const EeFlowCosts& ee) {
+  std::int64_t c =
+      ee.mc_cycles_per_mb + m.predictions * ee.mc_cycles_per_prediction + m.averaged * ee.mc_average_cycles;
+  if (m.bdec && !m.intra) c += ee.residual_add_cycles;
+  return fromEeCycles(c);
+}
+
+void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, const DmaStalls& in,
+              const DmaStalls& out, FlowTiming& t) {
+  t.spans.clear();
+  t.counts = f.header;
+  t.eeBusy = 0;
+  t.eeWait = 0;
+  t.ipuBusy = 0;
+  t.outputStalls = 0;
+  const Tick vdec = fromEeCycles(ee.vdec_cycles) + p.vdec_cycles;
+  const Tick fdec = fromEeCycles(ee.fdec_cycles) + p.fdec_cycles;
+  const Tick outPeriod = p.fromipu_cycles_per_qword;
+  const auto dout = static_cast<std::size_t>(p.out_fifo_qwords);
+  auto eeSpan = [&](Tick begin, Tick end, const char* label) {
+    if (end <= begin) return;
+    t.spans.push_back({begin, end, 0, label});
+    t.eeBusy += end - begin;
+  };
+
+  InputFeed feed(p, in, t.arrival);
+  Tick e = t.arrival;
+  // BCLR of the picture's start (immediate: PCSX2 IPU.cpp [E]), then the headers: FDEC per field,
+  // SETIQ per matrix (64 bytes), the default matrices' BCLRs.
+  ++t.counts.bclr;
+  const Tick header = fromEeCycles(ee.fdec_cycles) * (1 + f.header.bclr + f.header.setiq) + fdec * f.header.fdec +
+                      p.bclr_cycles * (1 + f.header.bclr) + p.setiq_cycles * f.header.setiq;
+  eeSpan(e, e + header, "parse");
+  e = std::max(e + header, feed.readThrough(f.headerQwords, e));
+  Tick ipuFree = e;
+  Tick bdecDone = e;
+  Tick fromFree = out.defer(t.arrival);
+  std::vector<Tick> takes(dout + 1, t.arrival);  // when output qword y - Dout left, by index mod (Dout + 1)
+  std::uint64_t outCount = 0;
+  std::uint32_t readBefore = f.headerQwords;
+  const FlowMacroblock* previous = nullptr;
+  for (const FlowMacroblock& m : f.macroblocks) {
+    if (bdecDone > e) {  // _MPEG_WaitBDEC: the previous BDEC's output is in scratchpad
+      t.eeWait += bdecDone - e;
+      e = bdecDone;
+    }
+    if (!m.skipped) {
+      const Tick begin = e;
+      e += vdec * m.vdec + fdec * m.fdec + fromEeCycles(ee.mb_cycles);
+      // VDEC and FDEC read the macroblock's first bits: they wait for them to be in the FIFO.
+      e = std::max(e, feed.readThrough(std::min(m.needQwords, readBefore + 1), begin));
+      if (m.bdec) e += fromEeCycles(ee.bdec_issue_cycles);
+      eeSpan(begin, e, "parse");
+      t.counts.vdec += m.vdec;
+      t.counts.fdec += m.fdec;
+      if (m.bdec) {
+        ++t.counts.bdec;
+        const Tick start = std::max(e, ipuFree) + p.idec_start_cycles;
+        const Tick decoded = std::max(start + p.mb_base_cycles + p.mb_cycles_per_bit * m.blockBits,
+                                      feed.readThrough(m.needQwords, start));
+        // The IPU pushes a qword a cycle once there is room; fromIPU writes each to scratchpad.
+        Tick q = decoded;
+        for (int y = 0; y < kBdecQwords; ++y, ++outCount) {
+          const Tick room = takes[(outCount + 1) % (dout + 1)];  // qword y - Dout has left
+          if (room > q) {
+            q = room;
+            ++t.outputStalls;
+          }
+          const Tick resumed = q <= fromFree ? fromFree : out.defer(q);
+          takes[outCount % (dout + 1)] = std::max(q, fromFree);
+          fromFree = out.defer(resumed + outPeriod);
+          q += 1;
+        }
+        ipuFree = q;
+        bdecDone = fromFree;
+        t.spans.push_back({start - p.idec_start_cycles, bdecDone, 1, "bdec"});
+        t.ipuBusy += bdecDone - (start - p.idec_start_cycles);
+      } else {
+        e = std::max(e, feed.readThrough(m.needQwords, e));
+      }
+      readBefore = m.needQwords;
+    }
+    if (previous != nullptr) {  // DoMC: the macroblock before, while BDEC of this one runs
+      const Tick begin = e;
+      e += mcCost(*previous, ee);
+      eeSpan(begin, e, "mc");
+    }
+    previous = &m;
+  }
+  if (bdecDone > e) {
+    t.eeWait += bdecDone - e;
+    e = bdecDone;
+  }
+  if (previous != nullptr) {
+    const Tick begin = e;
+    e += mcCost(*previous, ee);
+    eeSpan(begin, e, "mc");
+  }
+  // What follows the last macroblock (the next start code) is read and dropped.
+  feed.readThrough(f.inQwords, e);
+  t.decodeEnd = e;
+  t.inFree = feed.free();
+  t.ipuFree = ipuFree;
+  t.fromFree = fromFree;
+  std::stable_sort(t.spans.begin(), t.spans.end(), [](const FlowSpan& a, const FlowSpan& b) {
+    return a.end != b.end ? a.end < b.end : a.begin < b.begin;
+  });
+}
+
+}  // namespace vbim::ipu
