@@ -68,14 +68,13 @@ IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32
       const bool intra = br.readBit();
       if (intra) skipBits(br, 64 * 8);
       const bool nonIntra = br.readBit();
-      if (intra)
-        ++c.setiq;
-      else
-        defaultMatrices(c);
-      if (nonIntra)
-        ++c.setiq;
-      else
-        defaultMatrices(c);
+      for (const bool loaded : {intra, nonIntra}) {
+        if (loaded) {
+          ++c.setiq;
+        } else {
+          defaultMatrices(c);
+        }
+      }
     } else if (code == 0xB8) {
       c.fdec += kGopFdec;
     } else if (code == 0x00) {
