@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -26,6 +27,7 @@
 #include "gs/error.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "imageio/error.hpp"
+#include "imageio/png_encoder.hpp"
 #include "imageio/texel_files.hpp"
 #include "ipu/pool_runner.hpp"
 #include "ipu/simd/simd_kernels.hpp"
@@ -38,9 +40,9 @@
 
 namespace vbim::cli {
 
-void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha) {
+void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const imageio::TexelFileFormat& format) {
   try {
-    imageio::writeTexelImage(path, texels, exr, gsAlpha);
+    imageio::writeTexelImage(path, texels, format);
   } catch (const imageio::ImageIoError& e) {
     throw Exit(1, e.what());
   }
@@ -80,6 +82,16 @@ int variantIndex(const std::string& branch, const std::string& text) {
                       "' is not a variant number (0, 1, ...; `vbim info` lists the variants)");
   }
   return v;
+}
+
+// The CPU the pictures took on their thread (bench/player/image_share.sh reads it; issue #31's goal
+// is at most 10 % of the play's).
+std::string picturesLine(double pictureCpu, double cpu, const PlayRequest& r) {
+  char line[160];
+  std::snprintf(line, sizeof line, "  pictures: %.1f ms of CPU time on their own thread (%.1f %% of the play's), %s\n",
+                pictureCpu * 1e3, 100.0 * pictureCpu / std::max(cpu, 1e-9),
+                r.format == "exr" ? "EXR" : ("PNG level " + std::to_string(r.pngLevel)).c_str());
+  return line;
 }
 
 std::string policyName(const std::string& p) {
@@ -138,6 +150,10 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     atTimes.insert(t);
   }
   if (r.format != "png" && r.format != "exr") throw Exit(2, "--format '" + r.format + "': expected png or exr");
+  if (r.pngLevel < 0 || r.pngLevel > imageio::kMaxPngLevel) {
+    throw Exit(2, "--png-level " + std::to_string(r.pngLevel) + ": expected 0 (stored) to " +
+                      std::to_string(imageio::kMaxPngLevel));
+  }
 
   std::unique_ptr<Player> player;
   try {
@@ -162,9 +178,10 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   files.every = r.every;
   files.at = atTimes;
   files.imageExtension = r.format;
-  files.writeImage = [exr = r.format == "exr", gsAlpha = r.alpha == "gs"](const std::filesystem::path& path,
-                                                                          const Rgba8Image& texels) {
-    writeRunImage(path, texels, exr, gsAlpha);
+  // Written on a thread of their own (player/picture_queue.hpp), flushed before the times are taken.
+  files.writeImage = [format = imageio::TexelFileFormat{r.format == "exr", r.alpha == "gs", r.pngLevel}](
+                         const std::filesystem::path& path, Rgba8Image& texels) {
+    writeRunImage(path, texels, format);
   };
   files.trace = r.trace;
   files.traceDetail = r.traceDetail == "full" ? TraceDetail::Full : TraceDetail::Coalesced;
@@ -182,6 +199,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     if (t >= o.duration) break;
   }
   bar.finish();
+  writer.flushPictures();  // the summary's times include every picture
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   try {
@@ -194,6 +212,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   dir.commit();
 
   std::string s = playSummary(*player, r.discLabel.empty() ? shown : r.discLabel, wall, cpu, writer.images());
+  if (writer.images() > 0) s += picturesLine(writer.pictureCpuSeconds(), cpu, r);
   // A run that completed but stopped showing frames says so loudly (stderr) as well as in the summary.
   if (const std::string warning = healthWarning(runHealth(player->pipeline().lightmap().counters(), player->totals()));
       !warning.empty()) {
@@ -222,6 +241,10 @@ void addPlay(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--at", r->at, "Write the images at these times (12.5s,30s,...)")->delimiter(',');
   cmd->add_option("--format", r->format, "Image format: png or exr")->capture_default_str();
+  cmd->add_option("--png-level", r->pngLevel,
+                  "PNG compression: 0 stores the pixels (fastest, ~2.5x the bytes), 1 to 12 compress (1: about "
+                  "libpng's default size, ~10x the CPU of 0; docs/player.md, \"Saving frames\")")
+      ->capture_default_str();
   cmd->add_option("--alpha", r->alpha,
                   "Alpha of the pictures: opaque (255, for viewers) or gs (the texels as in VRAM: 0x80 is 1.0, "
                   "the bytes hashes.txt hashes)")

@@ -121,10 +121,12 @@ void run(const ReplayRequest& r) {
     if (r.every <= 0 || row.vsync % r.every != 0) return;
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
-    const bool exr = r.format == "exr";
-    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, exr, r.alpha == "gs");
+    const imageio::TexelFileFormat format{r.format == "exr", r.alpha == "gs", imageio::kDefaultTexelPngLevel};
+    Rgba8Image copy = lm;  // the writer sets its alpha in place
+    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), copy, format);
     if (sky != nullptr) {
-      writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, exr, r.alpha == "gs");
+      copy = *sky;
+      writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), copy, format);
     }
   });
   replay->run();

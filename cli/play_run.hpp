@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/output_dir.hpp"
+#include "imageio/texel_files.hpp"
 #include "iop/fault_plan.hpp"
 #include "player/player.hpp"
 
@@ -27,8 +28,9 @@ struct PlayRequest {
   std::int64_t every = 0;
   std::vector<std::string> at;
   std::string format = "png";
-  std::string alpha = "opaque";       // pictures' alpha: opaque (255) or gs (the texels as in VRAM)
-  std::vector<std::string> branches;  // "12.5s=1": switch to variant 1 at 12.5 s
+  int pngLevel = imageio::kDefaultTexelPngLevel;  // --png-level: 0 stored, 1 to 12 compressed
+  std::string alpha = "opaque";                   // pictures' alpha: opaque (255) or gs (the texels as in VRAM)
+  std::vector<std::string> branches;              // "12.5s=1": switch to variant 1 at 12.5 s
   bool force = false;
   bool trace = true;
   std::string traceDetail = "coalesced";  // or "full": every same-instant toggle in signals.vcd
@@ -43,8 +45,9 @@ struct PlayRequest {
 // Returns a one-paragraph summary; throws cli::Exit on bad input.
 std::string runPlay(const PlayRequest& r, bool progress);
 
-// A lightmap or sky picture of a run: PNG or EXR (`exr`), alpha 255 unless `gsAlpha` (the texels as
-// in VRAM). Throws cli::Exit(1) when it cannot be written.
-void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha);
+// A lightmap or sky picture of a run: PNG (at format.pngLevel) or EXR, alpha 255 unless
+// format.gsAlpha (the texels as in VRAM; set in place in `texels`, the caller's copy). Throws
+// cli::Exit(1) when it cannot be written.
+void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const imageio::TexelFileFormat& format);
 
 }  // namespace vbim::cli

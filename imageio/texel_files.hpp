@@ -10,7 +10,18 @@
 
 namespace vbim::imageio {
 
-// Throws ImageIoError when the file cannot be written.
-void writeTexelImage(const std::filesystem::path& path, const Rgba8Image& texels, bool exr, bool gsAlpha);
+// vbim play's default PNG level: stored, no compression (png_encoder.hpp): images then cost under
+// 10 % of a play's CPU (issue #31; docs/player.md, "Saving frames").
+inline constexpr int kDefaultTexelPngLevel = 0;
+
+struct TexelFileFormat {
+  bool exr = false;
+  bool gsAlpha = false;
+  int pngLevel = kDefaultTexelPngLevel;  // 0 to kMaxPngLevel (png_encoder.hpp)
+};
+
+// `texels` is the caller's copy: unless format.gsAlpha its alpha is set to 255 in place (no second
+// copy). Throws ImageIoError when the file cannot be written.
+void writeTexelImage(const std::filesystem::path& path, Rgba8Image& texels, const TexelFileFormat& format);
 
 }  // namespace vbim::imageio

@@ -39,6 +39,7 @@ RunDirWriter::RunDirWriter(Player& player, const std::filesystem::path& dir, Run
     if (before) before(row, lm, sky);
     onVsync(row, lm, sky);
   });
+  if (options_.writeImage && options_.pictureQueue > 0) pictures_.emplace(options_.writeImage, options_.pictureQueue);
   // The trace streams to its files as the run goes (memory independent of the run's length).
   if (options_.trace) {
     traceJson_ = openIn(dir_, "trace.json");
@@ -61,12 +62,28 @@ void RunDirWriter::onVsync(const VsyncRow& row, const Rgba8Image& lightmap, cons
   char name[64];
   std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
   const std::string suffix = std::string(name) + "." + options_.imageExtension;
-  options_.writeImage(dir_ / "frames" / ("lightmap_" + suffix), lightmap);
-  if (sky != nullptr) options_.writeImage(dir_ / "frames" / ("sky_" + suffix), *sky);
+  writePicture(dir_ / "frames" / ("lightmap_" + suffix), lightmap);
+  if (sky != nullptr) writePicture(dir_ / "frames" / ("sky_" + suffix), *sky);
   ++images_;
 }
 
+void RunDirWriter::writePicture(std::filesystem::path path, const Rgba8Image& picture) {
+  if (pictures_) {
+    pictures_->push(std::move(path), picture);
+  } else {
+    copy_.width = picture.width;
+    copy_.height = picture.height;
+    copy_.pixels.assign(picture.pixels.begin(), picture.pixels.end());
+    options_.writeImage(path, copy_);
+  }
+}
+
+void RunDirWriter::flushPictures() {
+  if (pictures_) pictures_->drain();
+}
+
 void RunDirWriter::finish(const json::Value* run) {
+  flushPictures();
   hashes_.close();
   timeline_.close();
   arrivals_ << arrivalsEndLine(presented_);

@@ -7,17 +7,22 @@
 //   stats.json     at the end (player/report.hpp)
 // `vbim play` and `vbim demo` write through it, and a test can too (docs/test-api.md): attach a
 // RunDirWriter to the run's Player before it runs, finish() it after. Picture files are written by
-// a function the caller gives (the model writes no image format: `vbim play` gives PNG or EXR); the
-// rest is the model's own text. `vbim render` reads what it wrote (player/run_dir_reader.hpp).
+// a function the caller gives (the model writes no image format: `vbim play` gives PNG or EXR), on a
+// host thread of their own by default (player/picture_queue.hpp: same files, off the simulation's
+// path); the rest is the model's own text. `vbim render` reads what it wrote
+// (player/run_dir_reader.hpp).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <set>
 #include <string>
 
+#include "player/picture_queue.hpp"
 #include "player/player.hpp"
 #include "runtime/json.hpp"
 #include "runtime/trace.hpp"
@@ -27,10 +32,13 @@ namespace vbim::player {
 struct RunDirOptions {
   std::int64_t every = 0;  // pictures every N vsyncs (0: never)
   std::set<Tick> at;       // and at the first vsync at or after each of these times
-  // Writes one picture (the lightmap or the sky, as the GS holds it) to a path ending in
-  // "." + imageExtension. Null: no pictures.
-  std::function<void(const std::filesystem::path&, const Rgba8Image&)> writeImage;
+  // Writes one picture (the lightmap or the sky, as the GS holds it: a copy the function may change)
+  // to a path ending in "." + imageExtension. Null: no pictures.
+  std::function<void(const std::filesystem::path&, Rgba8Image&)> writeImage;
   std::string imageExtension = "png";
+  // How many pictures may wait for the thread that writes them (PictureQueue); 0: no thread, each
+  // is written on the simulation's thread as it comes.
+  std::size_t pictureQueue = 8;
   bool trace = true;  // trace.json and signals.vcd (the Player must trace: PlayerOptions::trace)
   TraceDetail traceDetail = TraceDetail::Coalesced;
   std::function<void(const VsyncRow&)> onRow;  // every vsync, after its lines are written
@@ -45,6 +53,12 @@ class RunDirWriter {
   RunDirWriter(const RunDirWriter&) = delete;
   RunDirWriter& operator=(const RunDirWriter&) = delete;
 
+  // Returns once every picture of the vsyncs so far is written; throws the first picture that
+  // failed (what writeImage threw). finish() calls it first.
+  void flushPictures();
+  // CPU time of the thread that writes the pictures so far (0 without one), for summaries.
+  double pictureCpuSeconds() const { return pictures_ ? pictures_->cpuSeconds() : 0.0; }
+
   // After the run: closes hashes.txt, timeline.csv and arrivals.csv (its end line), writes
   // stats.json (with `run` first, when given: where the run came from) and finishes the trace.
   // Throws vbim::Error when a file cannot be written.
@@ -55,6 +69,7 @@ class RunDirWriter {
 
  private:
   void onVsync(const VsyncRow& row, const Rgba8Image& lightmap, const Rgba8Image* sky);
+  void writePicture(std::filesystem::path path, const Rgba8Image& picture);  // a copy, queued or written
 
   Player& player_;
   std::filesystem::path dir_;
@@ -67,6 +82,8 @@ class RunDirWriter {
   std::set<Tick>::const_iterator nextAt_;
   std::int64_t presented_ = 0;  // the vsyncs of hashes.txt: arrivals.csv's end row, for replay
   std::int64_t images_ = 0;
+  Rgba8Image copy_;                       // without a PictureQueue: the copy handed to writeImage
+  std::optional<PictureQueue> pictures_;  // last: its thread stops before options_ goes
 };
 
 }  // namespace vbim::player

@@ -166,6 +166,36 @@ TEST(PlayCli, ThreadsSplitTheDecodeAndChangeNoByte) {
   fs::remove_all(b);
 }
 
+// The pictures are written on a thread of their own (issue #31): the same files at any --threads,
+// run after run; --png-level compresses them and keeps the texels; the summary says what they cost.
+TEST(PlayCli, PicturesAreTheSameBytesAtAnyThreadCountAndLevelKeepsTheTexels) {
+  const fs::path a = scratch("pa"), b = scratch("pb"), c = scratch("pc");
+  const std::string args = kSample + " --duration 4s --every 30 --at 1.6s ";
+  const auto first = play(args + "--out " + a.string());
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_NE(first.output.find("of CPU time on their own thread"), std::string::npos) << first.output;
+  EXPECT_NE(first.output.find("PNG level 0"), std::string::npos) << first.output;
+  ASSERT_EQ(play(args + "--threads 2 --out " + b.string()).status, 0);
+  const auto level = play(args + "--png-level 1 --out " + c.string());
+  ASSERT_EQ(level.status, 0) << level.output;
+  EXPECT_NE(level.output.find("PNG level 1"), std::string::npos) << level.output;
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(a / "frames")) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(vbim::testing::readFileBytes(e.path()), vbim::testing::readFileBytes(b / "frames" / name)) << name;
+    const vbim::Rgba8Image stored = readPng(e.path());
+    const vbim::Rgba8Image compressed = readPng(c / "frames" / name);
+    ASSERT_GT(stored.width, 0) << name;
+    EXPECT_EQ(stored.pixels, compressed.pixels) << name;
+    if (name.starts_with("lightmap_")) {
+      EXPECT_LT(fs::file_size(c / "frames" / name), fs::file_size(e.path())) << name;
+    }
+    ++files;
+  }
+  EXPECT_EQ(files, 2 * 9);  // vsyncs 0, 30, ..., 210 and 96 (1.6 s)
+  for (const fs::path& d : {a, b, c}) fs::remove_all(d);
+}
+
 TEST(PlayCli, ExrFramesAreWritten) {
   const fs::path out = scratch("exr");
   const auto r = play(kSample + " --duration 2s --at 1s --format exr --out " + out.string());
@@ -214,6 +244,8 @@ TEST(PlayCli, BadInputIsRefusedClearlyAndLeavesNoOutput) {
       {kSample + " --policy bogus --duration 2s" + out, "--policy 'bogus'"},
       {kSample + " --duration 2s --out " + full.string(), "exists and is not empty (use --force"},
       {(dir / "missing.vbim").string() + " --duration 2s" + out, "missing.vbim"},
+      {kSample + " --duration 2s --png-level 13" + out, "--png-level 13: expected 0 (stored) to 12"},
+      {kSample + " --duration 2s --png-level -1" + out, "--png-level -1: expected 0 (stored) to 12"},
   };
   for (const Refusal& c : cases) {
     const auto r = play(c.args);
