@@ -28,7 +28,7 @@ struct PlayRequest {
   std::int64_t every = 0;
   std::vector<std::string> at;
   std::string format = "png";
-  int pngLevel = imageio::kDefaultTexelPngLevel;  // --png-level: 0 stored, 1 to 12 compressed
+  int pngLevel = imageio::kDefaultTexelPngLevel;  // --png-level: 0 stored, 1 to 9 compressed (zlib)
   std::string alpha = "opaque";                   // pictures' alpha: opaque (255) or gs (the texels as in VRAM)
   std::vector<std::string> branches;              // "12.5s=1": switch to variant 1 at 12.5 s
   bool force = false;

@@ -42,8 +42,6 @@ if(NOT VBIM_MODEL_ONLY)
   vbim_require_config(glm libglm-dev)
   # Image output of the lean `vbim` tool (imageio/, its lean part): small libraries, not OpenImageIO.
   vbim_require_pkgconfig(PNG libpng-dev libpng)
-  # A run's frames: PNG compressed by libdeflate at the level asked (imageio/png_encoder.cpp).
-  vbim_require_pkgconfig(LIBDEFLATE libdeflate-dev libdeflate)
   vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
 
   # Plots (plots/): PLplot and its cairo driver (PNG and SVG devices). PLplot loads the driver at run

@@ -1,11 +1,11 @@
-// PNG files encoded by the project itself, at a chosen compression level, for pictures written in
-// bulk while a play runs (`vbim play`'s and `vbim replay`'s frames, issue #31). libpng's default
-// (zlib level 6, every row filter tried) took ~18 ms for a 256x256 lightmap and its 128x64 sky,
-// ten times the whole fault-free play of a minute; this writer's level 0 stores the rows
-// uncompressed in ~0.2 ms (2.5x the bytes), and levels 1 to 12 compress with libdeflate (level 1:
-// about libpng's size in a tenth of its time). docs/player.md, "Saving frames", has the table
-// (bench/player/image_share.sh).
-// The container is what libpng's simplified API writes: IHDR, sRGB, one IDAT, IEND.
+// PNG files at a chosen zlib level, for pictures written in bulk while a play runs (`vbim play`'s
+// and `vbim replay`'s frames, issue #31), by libpng's full API: the simplified API of
+// png_writer.hpp offers no level. libpng's default (zlib level 6, every row filter tried) took
+// ~18 ms for a 256x256 lightmap and its 128x64 sky, ten times the whole fault-free play of a
+// minute; level 0 stores the rows uncompressed (2.5x the bytes) in a small fraction of that, and
+// levels 1 to 9 compress (level 1: about libpng's default size in a third of its time).
+// docs/player.md, "Saving frames", has the table (bench/player/image_share.sh).
+// The file has what libpng's simplified API writes: IHDR, sRGB, one IDAT, IEND.
 #pragma once
 
 #include <cstdint>
@@ -16,16 +16,17 @@
 
 namespace vbim::imageio {
 
-inline constexpr int kMaxPngLevel = 12;  // libdeflate's highest
+inline constexpr int kMaxPngLevel = 9;  // zlib's highest
 
 // The PNG bytes of 8-bit grey (1 channel), grey + alpha (2), RGB (3) or RGBA (4) samples, tagged
-// sRGB. `level` 0: stored deflate blocks, every row unfiltered; 1 to 12: libdeflate's level of that
-// number, every row filtered Up (the filter that gave the smallest files on the lightmaps at level
-// 1). Throws ImageIoError naming `name` for a bad shape or level.
+// sRGB. `level` 0: stored deflate blocks, every row unfiltered; 1 to 9: zlib's level of that
+// number, every row filtered Up. Throws ImageIoError naming `name` for a bad shape or level, or
+// what libpng reported.
 std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, const std::filesystem::path& name);
 
 // encodePng's bytes written to `path` under a temporary name and renamed into place
-// (replace_file.hpp). Throws ImageIoError naming the file.
+// (replace_file.hpp); libpng's and zlib's memory is kept per thread for the next picture. Throws
+// ImageIoError naming the file.
 void writePngAtLevel(const std::filesystem::path& path, ImageView<std::uint8_t> image, int level);
 
 }  // namespace vbim::imageio

@@ -15,7 +15,7 @@ PACKAGES=(
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # media around the model: images, encoding, the comparison decoders, ffprobe
-  libopenimageio-dev libpng-dev libopenexr-dev libdeflate-dev
+  libopenimageio-dev libpng-dev libopenexr-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libmpeg2-4-dev
   # libmpeg2 as a program: `vbim decode` is checked against `mpeg2dec -c` (tests/ipu/cli_decode_test.cpp)

@@ -80,7 +80,7 @@ for b in $(seq "$batches"); do
 done
 
 echo "PNG level: bytes of the 34 files, picture thread's CPU per lightmap + sky pair (median of $runs, no faults)"
-for level in 0 1 2 4 6 9 12; do
+for level in 0 1 2 3 4 6 9; do
   # shellcheck disable=SC2086
   play level $shots --png-level "$level"
   bytes=$(cat "$work"/run/frames/*.png | wc -c)

@@ -244,8 +244,8 @@ TEST(PlayCli, BadInputIsRefusedClearlyAndLeavesNoOutput) {
       {kSample + " --policy bogus --duration 2s" + out, "--policy 'bogus'"},
       {kSample + " --duration 2s --out " + full.string(), "exists and is not empty (use --force"},
       {(dir / "missing.vbim").string() + " --duration 2s" + out, "missing.vbim"},
-      {kSample + " --duration 2s --png-level 13" + out, "--png-level 13: expected 0 (stored) to 12"},
-      {kSample + " --duration 2s --png-level -1" + out, "--png-level -1: expected 0 (stored) to 12"},
+      {kSample + " --duration 2s --png-level 10" + out, "--png-level 10: expected 0 (stored) to 9"},
+      {kSample + " --duration 2s --png-level -1" + out, "--png-level -1: expected 0 (stored) to 9"},
   };
   for (const Refusal& c : cases) {
     const auto r = play(c.args);

@@ -1,6 +1,6 @@
 // The frames' PNG encoder (imageio/png_encoder.hpp, issue #31) against independent readers (libpng,
 // OpenImageIO): every level and channel count gives back the samples exactly, the container is
-// libpng's (IHDR, sRGB, IDAT, IEND), level 0 is the stored size, the bytes do not depend on the
+// libpng's simplified API's (IHDR, sRGB, one IDAT, IEND), level 0 stores every row, the bytes do not depend on the
 // thread or on what was encoded before, and failures name the file and leave nothing behind.
 #include <gtest/gtest.h>
 #include <png.h>
@@ -8,6 +8,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -92,16 +93,51 @@ TEST(PngEncoder, EveryLevelAndChannelCountGivesTheSamplesBack) {
   }
 }
 
+// The data of the one IDAT chunk (chunkTypes checks there is one).
+std::vector<std::uint8_t> idatData(const std::vector<std::uint8_t>& png) {
+  for (std::size_t i = 8; i + 8 <= png.size();) {
+    const std::size_t length = (std::size_t{png[i]} << 24) | (std::size_t{png[i + 1]} << 16) |
+                               (std::size_t{png[i + 2]} << 8) | std::size_t{png[i + 3]};
+    if (std::string(png.begin() + static_cast<std::ptrdiff_t>(i + 4),
+                    png.begin() + static_cast<std::ptrdiff_t>(i + 8)) == "IDAT") {
+      return {png.begin() + static_cast<std::ptrdiff_t>(i + 8),
+              png.begin() + static_cast<std::ptrdiff_t>(i + 8 + std::min(length, png.size() - i - 8))};
+    }
+    i += 12 + length;
+  }
+  return {};
+}
+
+// The bytes a zlib stream of stored blocks only (RFC 1950 header and Adler-32, RFC 1951 3.2.4
+// blocks: a header byte, LEN, its complement, LEN bytes) carries; -1 if any block is compressed or
+// the stream is malformed.
+long storedBytes(const std::vector<std::uint8_t>& z) {
+  long total = 0;
+  std::size_t i = 2;
+  for (bool last = false; !last;) {
+    if (i + 5 > z.size() || ((z[i] >> 1) & 3) != 0) return -1;
+    last = (z[i] & 1) != 0;
+    const std::size_t len = z[i + 1] | (std::size_t{z[i + 2]} << 8);
+    const std::size_t nlen = z[i + 3] | (std::size_t{z[i + 4]} << 8);
+    if ((len ^ nlen) != 0xffff) return -1;
+    total += static_cast<long>(len);
+    i += 5 + len;
+  }
+  return i + 4 == z.size() ? total : -1;
+}
+
 TEST(PngEncoder, LevelZeroStoresAndHigherLevelsCompress) {
   const Image<std::uint8_t> img = picture(256, 256, 4);
-  const std::size_t rows = 256 * (256 * 4 + 1);
-  // Stored deflate: zlib's 2-byte header and 4-byte Adler-32, 5 bytes per block of up to 65535.
-  const std::size_t stored = 2 + rows + 5 * ((rows + 65534) / 65535) + 4;
+  const long rows = 256 * (256 * 4 + 1);
   const std::size_t container = 8 + 25 + 13 + 12 + 12;
   const std::vector<std::uint8_t> level0 = encodePng(img.view(), 0, "x.png");
-  EXPECT_EQ(level0.size(), container + stored);
+  // Every row stored unfiltered in deflate's uncompressed blocks (of at least 16 KiB: zlib's are
+  // 32 KiB at libpng's settings).
+  EXPECT_EQ(storedBytes(idatData(level0)), rows);
+  EXPECT_LE(level0.size(), container + 2 + static_cast<std::size_t>(rows) + 5 * (rows / 16384 + 1) + 4);
   const std::vector<std::uint8_t> level1 = encodePng(img.view(), 1, "x.png");
   const std::vector<std::uint8_t> level6 = encodePng(img.view(), 6, "x.png");
+  EXPECT_EQ(storedBytes(idatData(level1)), -1);
   EXPECT_LT(level1.size(), level0.size() * 2 / 3);  // the test picture has 3 bits of noise a sample
   EXPECT_LE(level6.size(), level1.size());
 }
@@ -151,7 +187,7 @@ TEST(PngEncoder, FailuresNameTheFileAndLeaveNothing) {
   const fs::path missing = dir / "no_such_dir" / "f.png";
   EXPECT_NE(message([&] { writePngAtLevel(missing, img.view(), 0); }).find(missing.string() + ": cannot create"),
             std::string::npos);
-  EXPECT_NE(message([&] { writePngAtLevel(dir / "l.png", img.view(), 13); }).find("l.png: PNG compression level 13"),
+  EXPECT_NE(message([&] { writePngAtLevel(dir / "l.png", img.view(), 10); }).find("l.png: PNG compression level 10"),
             std::string::npos);
   EXPECT_NE(message([&] {
               writePngAtLevel(dir / "c.png", ImageView<std::uint8_t>{8, 8, 5, img.samples.data()}, 0);
@@ -161,6 +197,16 @@ TEST(PngEncoder, FailuresNameTheFileAndLeaveNothing) {
               writePngAtLevel(dir / "e.png", ImageView<std::uint8_t>{0, 8, 4, img.samples.data()}, 0);
             }).find("e.png: cannot write a 0x8 image"),
             std::string::npos);
+  // An error inside libpng (a width past its limit of a million): its message, the file's name,
+  // and the thread's next picture is still right.
+  const std::vector<std::uint8_t> wide(1'000'001);
+  EXPECT_NE(message([&] {
+              writePngAtLevel(dir / "w.png", ImageView<std::uint8_t>{1'000'001, 1, 1, wide.data()}, 1);
+            }).find("w.png: cannot encode the PNG: "),
+            std::string::npos);
+  writePngAtLevel(dir / "after.png", img.view(), 1);
+  EXPECT_EQ(slurp(dir / "after.png"), encodePng(img.view(), 1, "after.png"));
+  fs::remove(dir / "after.png");
   if (fs::exists("/dev/full")) {
     // A full disk: the write fails, the temporary goes, and the message names the final file.
     const fs::path full = dir / "full.png";
