@@ -244,7 +244,7 @@ void addPlay(CLI::App& app) {
   cmd->add_option(
          "--png-level", r->pngLevel,
          "PNG compression (zlib's level): 0 stores the pixels (fastest, ~2.5x the bytes), 1 to 9 compress (1: about "
-         "libpng's default size, ~10x the CPU of 0; docs/player.md, \"Saving frames\")")
+         "libpng's default size, ~3x the CPU of 0; docs/player.md, \"Saving frames\")")
       ->capture_default_str();
   cmd->add_option("--alpha", r->alpha,
                   "Alpha of the pictures: opaque (255, for viewers) or gs (the texels as in VRAM: 0x80 is 1.0, "
