@@ -60,6 +60,18 @@ int blendRectDeltaScalar(std::uint8_t* dst, std::size_t dstStride, const std::ui
   return delta;
 }
 
+void blendHashRowsScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
+                         std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
+                         HashChain* chain) {
+  const std::size_t stride = pixels * 4;
+  for (std::size_t x0 = 0, t = 0; x0 < pixels; x0 += tilePixels, ++t) {
+    const std::size_t w = std::min(tilePixels, pixels - x0);
+    delta[t] = std::max(delta[t],
+                        blendRectDeltaScalar(dst + 4 * x0, stride, src + 4 * x0, stride, w, rows, spec, settled + t));
+  }
+  if (chain != nullptr) chain->addBytes(dst, stride * rows);
+}
+
 bool spanAtFixedPoint(const std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
   const bool keepAlpha = spec.alpha == AlphaWrite::Keep;
   for (std::size_t i = 0; i < 4 * pixels; i += 4) {
@@ -71,8 +83,8 @@ bool spanAtFixedPoint(const std::uint8_t* dst, const std::uint8_t* src, std::siz
 }
 
 const BlendKernels& scalarKernels() {
-  static const BlendKernels k{"scalar", &blendSpanScalar, &blendSpanDeltaScalar, &blendRectDeltaScalar,
-                              &compareRectScalar};
+  static const BlendKernels k{"scalar",           &blendSpanScalar,    &blendSpanDeltaScalar, &blendRectDeltaScalar,
+                              &compareRectScalar, &blendHashRowsScalar};
   return k;
 }
 

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "gs/hash_chain.hpp"
 #include "gs/image_compare.hpp"
 
 namespace vbim::gs {
@@ -73,18 +74,35 @@ using BlendRectDeltaFn = int (*)(std::uint8_t* dst, std::size_t dstStride, const
                                  std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
                                  std::uint32_t* settled);
 
+// A tile row of an image blended and folded into the frame hash's chain in one pass (gs/hash_chain.hpp):
+// `rows` whole image rows of `pixels` (dst and src rows follow each other, 4 * pixels bytes apart),
+// cut into tiles of `tilePixels` columns (the last may be narrower). For tile t, exactly what
+// blendRectDelta(tile t, settled + t) does: rows marked in settled[t] are skipped, blended rows left
+// at their fixed point are marked, and the largest change it made is maxed into delta[t]. Then, if
+// chain is not null, the rows' bytes after the blend are folded into *chain in order (4 * pixels *
+// rows bytes: a whole number of words when pixels is even, which the caller ensures, or this is the
+// image's end). The SIMD kernels interleave the two row by row, which the result cannot tell.
+using BlendHashRowsFn = void (*)(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
+                                 std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
+                                 HashChain* chain);
+
 struct BlendKernels {
   const char* name;
   BlendSpanFn blend;
   BlendSpanDeltaFn blendDelta;
   BlendRectDeltaFn blendRectDelta;
   CompareRectFn compareRect;  // the lag's per-byte difference (gs/image_compare.hpp), same SIMD target
+  BlendHashRowsFn blendHashRows;
 };
 
 void blendSpanScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
 int blendSpanDeltaScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec);
 int blendRectDeltaScalar(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
                          std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled);
+// The reference: each tile with blendRectDeltaScalar, then the rows into the chain.
+void blendHashRowsScalar(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
+                         std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
+                         HashChain* chain);
 
 // True when blending the span toward src once more would change no byte: every colour channel is
 // at its fixed point (isFixedPoint), and alpha equals As (AlphaWrite::Source; Ad kept never moves).

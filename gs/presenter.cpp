@@ -61,7 +61,7 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
       vram_(checkedVram(params, stream_, opt_)),
       lightmap_(stream_.width, stream_.height),
       blender_(stream_.width, stream_.height, opt_.kernels != nullptr ? *opt_.kernels : scalarKernels(),
-               params.convergence_aware),
+               params.convergence_aware, opt_.hashChain),
       presentedEvent_(sched) {
   if (opt_.tracer != nullptr && opt_.tracer->enabled()) {
     track_ = opt_.tracer->track(opt_.name);

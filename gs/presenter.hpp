@@ -101,6 +101,9 @@ struct PresenterOptions {
   // plans nothing: it draws into the plan's "sky" texture from its "sky staging" area.
   SkyTexture sky{};                     // the lightmap presenter only
   const VramLayout* console = nullptr;  // the sky presenter only
+  // Keep the frame hash's chain of the lightmap up to date as it is blended (TiledBlender, hash
+  // mode): hashChain() then costs only the tile rows the blend did not fold.
+  bool hashChain = false;
 };
 
 class Presenter {
@@ -120,6 +123,8 @@ class Presenter {
   const Rgba8Image& lightmap() const { return lightmap_; }
   // The blender that writes the lightmap (nothing else does): its tileChanges() say which tiles moved.
   const TiledBlender& blender() const { return blender_; }
+  // With PresenterOptions::hashChain: the frame hash's chain after the lightmap's header and bytes.
+  const HashChain& hashChain() { return blender_.hashChain(lightmap_); }
   // The console's VRAM plan: this presenter's own (the lightmap's), or the one it was given (the sky's).
   const VramLayout& vram() const { return vram_; }
   // The register values of the draw that blends rows [y0, y1) of the picture (gs/draw_setup.hpp):

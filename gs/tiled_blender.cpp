@@ -6,7 +6,7 @@
 
 namespace vbim::gs {
 
-TiledBlender::TiledBlender(int width, int height, const BlendKernels& kernels, bool convergenceAware)
+TiledBlender::TiledBlender(int width, int height, const BlendKernels& kernels, bool convergenceAware, bool hashChain)
     : width_(width),
       height_(height),
       tilesX_((width + kTileWidth - 1) / kTileWidth),
@@ -14,7 +14,29 @@ TiledBlender::TiledBlender(int width, int height, const BlendKernels& kernels, b
       kernels_(&kernels),
       aware_(convergenceAware),
       settled_(static_cast<std::size_t>(tilesX_) * tilesY_, 0),
-      changes_(settled_.size(), 0) {}
+      changes_(settled_.size(), 0),
+      hash_(hashChain) {
+  if (hash_) {
+    rowChain_.resize(static_cast<std::size_t>(tilesY_) + 1);
+    rowChain_[0].addHeader(width_, height_);
+    rowDelta_.resize(static_cast<std::size_t>(tilesX_));
+  }
+}
+
+void TiledBlender::hashRow(const Rgba8Image& dst, int ty) {
+  const int y0 = ty * kTileHeight;
+  const int y1 = std::min(y0 + kTileHeight, height_);
+  HashChain c = rowChain_[static_cast<std::size_t>(ty)];
+  c.addBytes(dst.row(y0), static_cast<std::size_t>(width_) * 4 * (y1 - y0));
+  rowChain_[static_cast<std::size_t>(ty) + 1] = c;
+  hashedRows_ = ty + 1;
+}
+
+const HashChain& TiledBlender::hashChain(const Rgba8Image& dst) {
+  if (!hash_) throw GsError("the frame hash chain of a blender not in hash mode");
+  while (hashedRows_ < tilesY_) hashRow(dst, hashedRows_);
+  return rowChain_.back();
+}
 
 TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec,
                                          std::uint64_t sourceId, int rowBegin, int rowEnd) {
@@ -24,7 +46,7 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
                   std::to_string(width_) + "x" + std::to_string(height_));
   }
   if (sourceId != lastSourceId_ || !(spec == lastSpec_)) {
-    invalidate();
+    forgetSettled();  // the bytes stay: the hash chain holds
     lastSourceId_ = sourceId;
     lastSpec_ = spec;
   }
@@ -41,12 +63,17 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
       const int pop = kernels_->blendDelta(dst.row(y0), src.row(y0), pixels, spec);
       if (pop > 0) {  // some byte of the tile row moved: count a change for each of its tiles
         for (int tx = 0; tx < tilesX_; ++tx) ++changes_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+        hashedRows_ = std::min(hashedRows_, ty);
       }
       r.pop = std::max(r.pop, pop);
       r.tilesBlended += tilesX_;
       continue;
     }
     const std::uint32_t allRows = y1 - y0 == 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << (y1 - y0)) - 1;
+    if (hash_) {
+      blendHashed(dst, src, spec, ty, allRows, r);
+      continue;
+    }
     for (int tx = 0; tx < tilesX_; ++tx) {
       std::uint32_t& settled = settled_[static_cast<std::size_t>(ty) * tilesX_ + tx];
       if (settled == allRows) {
@@ -71,6 +98,50 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
     }
   }
   return r;
+}
+
+// One tile row in hash mode: its unsettled tiles blended and, when the rows above are folded into
+// the chain, folded too in the same pass. Same bytes, marks and counts as the loop in blend().
+void TiledBlender::blendHashed(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, int ty,
+                               std::uint32_t allRows, Result& r) {
+  const std::size_t first = static_cast<std::size_t>(ty) * tilesX_;
+  std::uint32_t* settled = settled_.data() + first;
+  const bool allSettled = std::all_of(settled, settled + tilesX_, [allRows](std::uint32_t m) { return m == allRows; });
+  if (allSettled) {
+    r.tilesSkipped += tilesX_;
+    // Nothing moves; the rows above were just folded (an earlier tile row changed): fold this one
+    // too while the chain is at hand, since the vsync's hash will need it.
+    if (hashedRows_ == ty) hashRow(dst, ty);
+    return;
+  }
+  const int y0 = ty * kTileHeight;
+  const int y1 = std::min(y0 + kTileHeight, height_);
+  std::fill(rowDelta_.begin(), rowDelta_.end(), 0);
+  // Settled tiles are skipped by their masks inside the kernel; count them as the loop does.
+  for (int tx = 0; tx < tilesX_; ++tx) (settled[tx] == allRows ? r.tilesSkipped : r.tilesBlended) += 1;
+  const bool fold = hashedRows_ >= ty;
+  HashChain chain = rowChain_[static_cast<std::size_t>(ty)];
+  kernels_->blendHashRows(dst.row(y0), src.row(y0), static_cast<std::size_t>(width_), static_cast<std::size_t>(y1 - y0),
+                          static_cast<std::size_t>(kTileWidth), spec, settled, rowDelta_.data(),
+                          fold ? &chain : nullptr);
+  bool changed = false;
+  for (int tx = 0; tx < tilesX_; ++tx) {
+    const int pop = rowDelta_[static_cast<std::size_t>(tx)];
+    if (pop == 0) {
+      settled[tx] = allRows;  // as in blend(): a tile that did not change is at its fixed point
+    } else {
+      ++changes_[first + static_cast<std::size_t>(tx)];
+      changed = true;
+    }
+    r.pop = std::max(r.pop, pop);
+  }
+  if (fold) {
+    rowChain_[static_cast<std::size_t>(ty) + 1] = chain;
+    // The chain past this row holds if its bytes did not move.
+    hashedRows_ = changed ? ty + 1 : std::max(hashedRows_, ty + 1);
+  } else if (changed) {
+    hashedRows_ = std::min(hashedRows_, ty);
+  }
 }
 
 }  // namespace vbim::gs

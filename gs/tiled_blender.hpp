@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gs/blend.hpp"
+#include "gs/hash_chain.hpp"
 #include "runtime/image.hpp"
 
 namespace vbim::gs {
@@ -22,9 +23,14 @@ inline constexpr int kTileWidth = 64;
 inline constexpr int kTileHeight = 32;
 static_assert(kTileHeight <= 32, "a tile's settled rows are one 32-bit mask");
 
+// Hash mode (hashChain = true) keeps the frame hash's chain (gs/hash_chain.hpp) of the lightmap's
+// bytes, header word first, as it would be at the start of every tile row: a tile row that is
+// blended is folded into the chain in the same pass (BlendKernels::blendHashRows) when the rows
+// above it are already folded, and hashChain() folds whatever is left. A vsync that changes only the
+// lower tiles hashes from the first tile row that moved; one that changes nothing hashes nothing.
 class TiledBlender {
  public:
-  TiledBlender(int width, int height, const BlendKernels& kernels, bool convergenceAware);
+  TiledBlender(int width, int height, const BlendKernels& kernels, bool convergenceAware, bool hashChain = false);
 
   struct Result {
     int pop = 0;  // largest per-byte change made
@@ -40,8 +46,14 @@ class TiledBlender {
   Result blend(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, std::uint64_t sourceId) {
     return blend(dst, src, spec, sourceId, 0, height_);
   }
-  // Forget every convergence mark (call when the lightmap is written by anything else).
-  void invalidate() { std::fill(settled_.begin(), settled_.end(), 0u); }
+  // Forget every convergence mark and the hash chain (call when the lightmap is written by anything else).
+  void invalidate() {
+    forgetSettled();
+    hashedRows_ = 0;
+  }
+  // Hash mode: the chain after the header word and every byte of `dst` (the image this blender
+  // writes, as it is now). Throws GsError without hash mode.
+  const HashChain& hashChain(const Rgba8Image& dst);
 
   int tilesX() const { return tilesX_; }
   int tilesY() const { return tilesY_; }
@@ -60,6 +72,17 @@ class TiledBlender {
   BlendSpec lastSpec_{};
   std::vector<std::uint32_t> settled_;  // per tile: its rows at their fixed point (BlendRectDeltaFn)
   std::vector<std::uint64_t> changes_;  // per tile: blends that changed it (tileChanges())
+  // Hash mode: rowChain_[k] is the chain before tile row k (after the header word and the rows above
+  // it), rowChain_[tilesY] after the image; entries 0..hashedRows_ hold the lightmap's bytes as they are.
+  bool hash_;
+  std::vector<HashChain> rowChain_;
+  int hashedRows_ = 0;
+  std::vector<int> rowDelta_;  // scratch: per tile of a tile row, its change (blendHashRows)
+
+  void forgetSettled() { std::fill(settled_.begin(), settled_.end(), 0u); }
+  void hashRow(const Rgba8Image& dst, int ty);
+  void blendHashed(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, int ty, std::uint32_t allRows,
+                   Result& r);
 };
 
 }  // namespace vbim::gs

@@ -8,9 +8,11 @@
 // splitmix64 finaliser. Integer only; identical on every machine.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "gs/hash_chain.hpp"
 #include "runtime/image.hpp"
 
 namespace vbim::player {
@@ -18,13 +20,17 @@ namespace vbim::player {
 class FrameHasher {
  public:
   void add(const Rgba8Image& image);
+  // add() in pieces: the image's header word, then its bytes in order. Every piece but the image's
+  // last must be a whole number of words (n a multiple of 8); the last is zero-padded.
+  void addHeader(int width, int height);
+  void addBytes(const std::uint8_t* p, std::size_t n);
   std::uint64_t digest() const;
+  // The chain itself (the blender folds lightmap rows into it: gs/tiled_blender.hpp, hash mode).
+  explicit FrameHasher(const gs::HashChain& chain = {}) : chain_(chain) {}
+  const gs::HashChain& chain() const { return chain_; }
 
  private:
-  void word(std::uint64_t w);
-  std::uint64_t lanes_[4] = {0xcbf29ce484222325ull, 0xcbf29ce484222326ull, 0xcbf29ce484222327ull,
-                             0xcbf29ce484222328ull};
-  std::uint64_t count_ = 0;
+  gs::HashChain chain_;
 };
 
 // Hash of a lightmap and (optionally) a sky image; sky may be null.

@@ -41,7 +41,8 @@ gs::PresenterOptions presenterOptions(Tick t0, const Kernels& k, Tracer* tracer,
 }  // namespace
 
 Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream& stream, const PlatformConfig& config,
-                   const iop::FaultPlan* faults, std::uint64_t seed, Kernels kernels, Tracer* tracer, std::string name)
+                   const iop::FaultPlan* faults, std::uint64_t seed, Kernels kernels, Tracer* tracer, std::string name,
+                   bool hashChain)
     : s_(s),
       config_(config),
       tracer_(enabled(tracer)),
@@ -68,6 +69,7 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
   };
   lmSource_ = std::make_unique<gs::RecordingSource>(*lmFrames_, recorder(false));
   gs::PresenterOptions lightmapOptions = presenterOptions(t0_, kernels, tracer_, "gs", gs_);
+  lightmapOptions.hashChain = hashChain;
   if (stream.skyIndex >= 0) {
     // One VRAM budget for the console: the lightmap presenter's plan holds the sky's staging too.
     const streams::StreamEntry& sky = stream.descriptor.streams[static_cast<std::size_t>(stream.skyIndex)];

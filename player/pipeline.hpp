@@ -47,7 +47,8 @@ struct Kernels {
 class Pipeline : public ee::DecodedFrames::BranchSink {
  public:
   Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream& stream, const PlatformConfig& config,
-           const iop::FaultPlan* faults, std::uint64_t seed, Kernels kernels, Tracer* tracer, std::string name);
+           const iop::FaultPlan* faults, std::uint64_t seed, Kernels kernels, Tracer* tracer, std::string name,
+           bool hashChain = false);
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
 
@@ -59,6 +60,7 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   using ArrivalHook = std::function<void(bool sky, int variant, std::int64_t seq, Tick readyAt)>;
   void setArrivalHook(ArrivalHook hook) { arrivalHook_ = std::move(hook); }
 
+  // hashChain: the lightmap presenter keeps the frame hash's chain (gs::PresenterOptions::hashChain).
   gs::Presenter& lightmap() { return *lightmap_; }
   const gs::Presenter& lightmap() const { return *lightmap_; }
   gs::Presenter* sky() { return sky_.get(); }

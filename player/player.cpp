@@ -17,7 +17,7 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
     }
   }
   main_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, &options_.faults, options_.seed,
-                                     options_.kernels, &tracer_, "");
+                                     options_.kernels, &tracer_, "", /*hashChain=*/true);
   if (options_.reference && !options_.faults.faults.empty()) {
     ref_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, nullptr, options_.seed, options_.kernels,
                                       nullptr, "ref.");
@@ -54,14 +54,10 @@ void Player::onVsync(std::int64_t n) {
   row.at = row.lightmap.at;
   if (sky != nullptr) row.sky = sky->last();
   // An unchanged lightmap and sky (no byte moved: pop 0) keep the previous hash.
-  const bool lightmapChanged = !last_ || row.lightmap.pop != 0;
-  const bool changed = lightmapChanged || (row.sky && row.sky->pop != 0);
+  const bool changed = !last_ || row.lightmap.pop != 0 || (row.sky && row.sky->pop != 0);
   if (changed) {
-    if (lightmapChanged) {  // always at the first vsync (no row before it)
-      afterLightmap_ = FrameHasher{};
-      afterLightmap_.add(lm.lightmap());
-    }
-    FrameHasher h = afterLightmap_;
+    // The lightmap's chain is folded as it is blended (gs::TiledBlender, hash mode); the sky follows.
+    FrameHasher h(lm.hashChain());
     if (sky != nullptr) h.add(sky->lightmap());
     row.hash = h.digest();
   } else {

@@ -129,9 +129,6 @@ class Player {
   Sink sink_;
   RunTotals totals_;
   std::optional<VsyncRow> last_;
-  // The frame hash's state after the lightmap's bytes, kept while the lightmap does not change: a
-  // vsync where only the sky moved hashes the sky alone (the digest is the same).
-  FrameHasher afterLightmap_;
   bool started_ = false;
 };
 

@@ -94,23 +94,31 @@ HWY_INLINE int blendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstS
 }
 
 // Any FIX, COLCLAMP and alpha mode (the arithmetic in the comment at the top of the file).
-template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
-int blendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
-               std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
-               std::uint32_t* settled) {
-  const hn::ScalableTag<std::uint8_t> d8;
-  const hn::Repartition<std::uint16_t, decltype(d8)> d16;
-  const hn::Repartition<std::int16_t, decltype(d8)> di16;
-  const hn::Repartition<std::uint32_t, decltype(d8)> d32;
-  const auto low = hn::Set(d16, 0x00FF);
-  // Even channels (R, B) use FIX. Odd channels are G and A: G uses FIX, A uses 128 (a copy: As is
-  // written) or 0 (Ad is kept), so alpha needs no separate select.
-  const auto f4 = hn::Set(di16, static_cast<std::int16_t>(spec.fix * 4));
-  const std::uint32_t alphaMul = kKeepAlpha ? 0u : 128u * 4u;
-  const auto f4odd = hn::BitCast(di16, hn::Set(d32, (alphaMul << 16) | (static_cast<std::uint32_t>(spec.fix) * 4u)));
-  const auto zero = hn::Zero(di16);
-  const auto max8 = hn::Set(di16, 255);
-  const auto blend = [&](hn::Vec<decltype(d8)> s8, hn::Vec<decltype(d8)> d8v) HWY_ATTR {
+template <bool kWide, bool kWrap, bool kKeepAlpha>
+struct GeneralBlend {
+  using D8 = hn::ScalableTag<std::uint8_t>;
+  using D16 = hn::Repartition<std::uint16_t, D8>;
+  using DI16 = hn::Repartition<std::int16_t, D8>;
+  using D32 = hn::Repartition<std::uint32_t, D8>;
+  hn::Vec<D16> low;
+  hn::Vec<DI16> f4, f4odd, zero, max8;
+  explicit GeneralBlend(const BlendSpec& spec) {
+    const D16 d16;
+    const DI16 di16;
+    const D32 d32;
+    low = hn::Set(d16, 0x00FF);
+    // Even channels (R, B) use FIX. Odd channels are G and A: G uses FIX, A uses 128 (a copy: As is
+    // written) or 0 (Ad is kept), so alpha needs no separate select.
+    f4 = hn::Set(di16, static_cast<std::int16_t>(spec.fix * 4));
+    const std::uint32_t alphaMul = kKeepAlpha ? 0u : 128u * 4u;
+    f4odd = hn::BitCast(di16, hn::Set(d32, (alphaMul << 16) | (static_cast<std::uint32_t>(spec.fix) * 4u)));
+    zero = hn::Zero(di16);
+    max8 = hn::Set(di16, 255);
+  }
+  HWY_INLINE hn::Vec<D8> operator()(hn::Vec<D8> s8, hn::Vec<D8> d8v) const {
+    const D8 d8;
+    const D16 d16;
+    const DI16 di16;
     const auto s = hn::BitCast(d16, s8);
     const auto d = hn::BitCast(d16, d8v);
     const auto se = hn::BitCast(di16, hn::And(s, low));
@@ -134,8 +142,16 @@ int blendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
       }
       return hn::BitCast(d8, hn::Or(hn::BitCast(d16, te), hn::ShiftLeft<8>(hn::BitCast(d16, to))));
     }
-  };
-  return blendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
+  }
+};
+
+template <bool kWide, bool kWrap, bool kKeepAlpha, bool kTrack, bool kSettle>
+int blendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
+               std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
+               std::uint32_t* settled) {
+  const hn::ScalableTag<std::uint8_t> d8;
+  return blendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled,
+                                    GeneralBlend<kWide, kWrap, kKeepAlpha>(spec));
 }
 
 // FIX = 64, the default smoothing step (half way per vsync), needs no widening:
@@ -144,19 +160,136 @@ int blendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
 // The result lies between Cd and Cs, so COLCLAMP never acts. Alpha is As or Ad, chosen by a byte
 // mask. About 8 vector operations per vector against the general kernel's 20, which matters because
 // most blends of a play are this one (docs/player.md, "Sixth round").
+template <bool kKeepAlpha>
+struct HalfBlend {
+  using D8 = hn::ScalableTag<std::uint8_t>;
+  hn::Vec<D8> one, alpha;
+  HalfBlend() {
+    const D8 d8;
+    const hn::Repartition<std::uint32_t, D8> d32;
+    one = hn::Set(d8, 1);
+    alpha = hn::BitCast(d8, hn::Set(d32, 0xFF000000u));  // byte 3 of each little-endian pixel
+  }
+  HWY_INLINE hn::Vec<D8> operator()(hn::Vec<D8> s, hn::Vec<D8> d) const {
+    const auto half = hn::Sub(hn::AverageRound(s, d), hn::And(hn::Xor(s, d), one));
+    return hn::Or(hn::AndNot(alpha, half), hn::And(alpha, kKeepAlpha ? d : s));
+  }
+};
+
 template <bool kKeepAlpha, bool kTrack, bool kSettle>
 int blendHalfRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std::uint8_t* HWY_RESTRICT src,
                    std::size_t srcStride, std::size_t pixels, std::size_t rows, const BlendSpec& spec,
                    std::uint32_t* settled) {
   const hn::ScalableTag<std::uint8_t> d8;
-  const hn::Repartition<std::uint32_t, decltype(d8)> d32;
-  const auto one = hn::Set(d8, 1);
-  const auto alpha = hn::BitCast(d8, hn::Set(d32, 0xFF000000u));  // byte 3 of each little-endian pixel
-  const auto blend = [&](hn::Vec<decltype(d8)> s, hn::Vec<decltype(d8)> d) HWY_ATTR {
-    const auto half = hn::Sub(hn::AverageRound(s, d), hn::And(hn::Xor(s, d), one));
-    return hn::Or(hn::AndNot(alpha, half), hn::And(alpha, kKeepAlpha ? d : s));
-  };
-  return blendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled, blend);
+  return blendRows<kTrack, kSettle>(d8, dst, dstStride, src, srcStride, pixels, rows, spec, settled,
+                                    HalfBlend<kKeepAlpha>());
+}
+
+// The words of one image row folded into the hash chain with its lanes in registers, rotated so
+// that r0 is the lane of the row's first word: then each 32-byte block is r0..r3 whatever the row's
+// phase, and the blend of the next tile overlaps the multiply chains (which the CPU would otherwise
+// wait on: they are latency-bound, the blend throughput-bound).
+struct RowHash {
+  std::uint64_t r0, r1, r2, r3;
+  unsigned phase;
+  explicit RowHash(const HashChain& c) : phase(static_cast<unsigned>(c.count & 3)) {
+    r0 = c.lanes[phase];
+    r1 = c.lanes[(phase + 1) & 3];
+    r2 = c.lanes[(phase + 2) & 3];
+    r3 = c.lanes[(phase + 3) & 3];
+  }
+  // n bytes, a multiple of 32 (every tile but a row's last).
+  HWY_INLINE void blocks(const std::uint8_t* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; i += 32) {
+      r0 = (r0 ^ HashChain::loadLe(p + i)) * HashChain::kPrime;
+      r1 = (r1 ^ HashChain::loadLe(p + i + 8)) * HashChain::kPrime;
+      r2 = (r2 ^ HashChain::loadLe(p + i + 16)) * HashChain::kPrime;
+      r3 = (r3 ^ HashChain::loadLe(p + i + 24)) * HashChain::kPrime;
+    }
+  }
+  // The row's last bytes (a whole number of words), then the lanes back into the chain, which has
+  // then taken rowWords words.
+  HWY_INLINE void finish(const std::uint8_t* p, std::size_t n, std::size_t rowWords, HashChain& c) {
+    const std::size_t whole = n / 32 * 32;
+    blocks(p, whole);
+    // At most three words are left (n - whole < 32): r0, r1, r2 in turn.
+    const std::size_t left = (n - whole) / 8;
+    if (left > 0) r0 = (r0 ^ HashChain::loadLe(p + whole)) * HashChain::kPrime;
+    if (left > 1) r1 = (r1 ^ HashChain::loadLe(p + whole + 8)) * HashChain::kPrime;
+    if (left > 2) r2 = (r2 ^ HashChain::loadLe(p + whole + 16)) * HashChain::kPrime;
+    c.lanes[phase] = r0;
+    c.lanes[(phase + 1) & 3] = r1;
+    c.lanes[(phase + 2) & 3] = r2;
+    c.lanes[(phase + 3) & 3] = r3;
+    c.count += rowWords;
+  }
+};
+
+// BlendHashRowsFn (gs/blend.hpp): row by row, each tile's part of the row blended (skipped where its
+// settled bit is set) and folded into the chain right after, while it is in L1. Each tile's change
+// is kept as a vector (a byte maximum) and reduced once per call.
+template <class Blend>
+void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT src, std::size_t pixels,
+                       std::size_t rows, std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled,
+                       int* delta, HashChain* chain, const Blend& blend) {
+  using D8 = hn::ScalableTag<std::uint8_t>;
+  const D8 d8;
+  const std::size_t step = hn::Lanes(d8);
+  const std::size_t tiles = (pixels + tilePixels - 1) / tilePixels;
+  constexpr std::size_t kMaxTiles = 64;
+  constexpr std::size_t kMaxLanes = 64;
+  // Rows fold in registers when they are whole words and every tile but the last whole blocks.
+  const bool rowWise = chain != nullptr && pixels % 2 == 0 && tilePixels % 8 == 0;
+  if (tiles > kMaxTiles || step > kMaxLanes) {
+    blendHashRowsScalar(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+    return;
+  }
+  HWY_ALIGN std::uint8_t acc[kMaxTiles * kMaxLanes];
+  for (std::size_t t = 0; t < tiles; ++t) hn::Store(hn::Zero(d8), d8, acc + t * step);
+  const FixedPointTest<D8> fixed(d8, spec);
+  const std::size_t stride = pixels * 4;
+  for (std::size_t y = 0; y < rows; ++y) {
+    std::uint8_t* drow = dst + y * stride;
+    const std::uint8_t* srow = src + y * stride;
+    RowHash h(rowWise ? *chain : HashChain{});
+    for (std::size_t t = 0, x0 = 0; t < tiles; ++t, x0 += tilePixels) {
+      const std::size_t bytes = std::min(tilePixels, pixels - x0) * 4;
+      std::uint8_t* d = drow + 4 * x0;
+      const std::uint8_t* s = srow + 4 * x0;
+      if (((settled[t] >> y) & 1u) == 0) {
+        auto off = hn::Zero(d8);
+        auto change = hn::Load(d8, acc + t * step);
+        std::size_t i = 0;
+        for (; i + step <= bytes; i += step) {
+          const auto sv = hn::LoadU(d8, s + i);
+          const auto dv = hn::LoadU(d8, d + i);
+          const auto r = blend(sv, dv);
+          change = hn::Max(change, hn::Or(hn::SaturatedSub(r, dv), hn::SaturatedSub(dv, r)));
+          off = hn::Or(off, fixed.off(sv, r));
+          hn::StoreU(r, d8, d + i);
+        }
+        hn::Store(change, d8, acc + t * step);
+        bool tailFixed = true;
+        if (i < bytes) {
+          const std::size_t rest = (bytes - i) / 4;
+          delta[t] = std::max(delta[t], blendSpanDeltaScalar(d + i, s + i, rest, spec));
+          tailFixed = spanAtFixedPoint(d + i, s + i, rest, spec);
+        }
+        if (tailFixed && hn::AllTrue(d8, hn::Eq(off, hn::Zero(d8)))) settled[t] |= 1u << y;
+      }
+      if (rowWise) {
+        if (t + 1 < tiles) {
+          h.blocks(d, bytes);
+        } else {
+          h.finish(d, bytes, stride / 8, *chain);
+        }
+      }
+    }
+  }
+  for (std::size_t t = 0; t < tiles; ++t) {
+    for (std::size_t k = 0; k < step; ++k) delta[t] = std::max<int>(delta[t], acc[t * step + k]);
+  }
+  if (chain != nullptr && !rowWise) chain->addBytes(dst, stride * rows);
 }
 #endif
 
@@ -201,6 +334,29 @@ int blendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t*
   return settled != nullptr ? dispatchT<true, true>(dst, dstStride, src, srcStride, pixels, rows, spec, settled)
                             : dispatchT<true, false>(dst, dstStride, src, srcStride, pixels, rows, spec, nullptr);
 }
+void blendHashRows(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
+                   std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
+                   HashChain* chain) {
+#if HWY_TARGET == HWY_SCALAR
+  blendHashRowsScalar(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+#else
+  const bool keep = spec.alpha == AlphaWrite::Keep;
+  const auto run = [&](const auto& blend) {
+    blendHashRowsImpl(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain, blend);
+  };
+  if (spec.fix == 64) {
+    return keep ? run(HalfBlend<true>()) : run(HalfBlend<false>());
+  }
+  if (spec.fix <= 128) {
+    return keep ? run(GeneralBlend<false, false, true>(spec)) : run(GeneralBlend<false, false, false>(spec));
+  }
+  if (spec.colclamp == ColClamp::Wrap) {
+    return keep ? run(GeneralBlend<true, true, true>(spec)) : run(GeneralBlend<true, true, false>(spec));
+  }
+  return keep ? run(GeneralBlend<true, false, true>(spec)) : run(GeneralBlend<true, false, false>(spec));
+#endif
+}
+
 const char* targetNameHere() {
   return hwy::TargetName(HWY_TARGET);
 }
@@ -217,6 +373,7 @@ namespace vbim::gs::simd {
 HWY_EXPORT(blendSpan);
 HWY_EXPORT(blendSpanDelta);
 HWY_EXPORT(blendRectDelta);
+HWY_EXPORT(blendHashRows);
 HWY_EXPORT(targetNameHere);
 
 namespace {
@@ -230,12 +387,21 @@ int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::
                            std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
   return HWY_DYNAMIC_DISPATCH(blendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
 }
+void dispatchBlendHashRows(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
+                           std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
+                           HashChain* chain) {
+  HWY_DYNAMIC_DISPATCH(blendHashRows)(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+}
 }  // namespace
 
 const BlendKernels& kernels() {
   // The name is read once; dispatch itself stays dynamic so forEachTarget can force a target.
-  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(targetNameHere)(), &dispatchBlend, &dispatchBlendDelta,
-                              &dispatchBlendRectDelta, &compareRect};
+  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(targetNameHere)(),
+                              &dispatchBlend,
+                              &dispatchBlendDelta,
+                              &dispatchBlendRectDelta,
+                              &compareRect,
+                              &dispatchBlendHashRows};
   return k;
 }
 

@@ -168,6 +168,80 @@ TEST(BlendSimd, EveryTargetMatchesScalarOnRectangles) {
   });
 }
 
+// The blend and the frame hash's chain in one pass (BlendHashRowsFn): every target against the
+// scalar reference (each tile's blendRectDelta, then the rows into the chain), on image widths that
+// are odd, even, a multiple of the tile or not, tile widths of 64 and others, random settled masks,
+// chains starting at every phase (words before the rows mod 4), and without a chain.
+TEST(BlendSimd, BlendHashRowsMatchesScalarOnEveryTarget) {
+  Rng rng(31);
+  simd::forEachTarget([&](const std::string& target) {
+    for (int round = 0; round < 120; ++round) {
+      const std::size_t pixels = 1 + rng.below(round % 2 == 0 ? 300 : 70);
+      const std::size_t rows = 1 + rng.below(32);
+      const std::size_t tilePixels = round % 3 == 0 ? 1 + rng.below(40) : 64;
+      const std::size_t tiles = (pixels + tilePixels - 1) / tilePixels;
+      std::vector<std::uint8_t> src(4 * pixels * rows), dst(4 * pixels * rows);
+      for (auto& b : src) b = static_cast<std::uint8_t>(rng.below(256));
+      for (std::size_t i = 0; i < dst.size(); ++i) {
+        // Half the rounds close to the target, so that rows settle.
+        dst[i] = round % 2 == 0 ? static_cast<std::uint8_t>(rng.below(256))
+                                : static_cast<std::uint8_t>(src[i] - (rng.chance(1, 8) ? 1 : 0));
+      }
+      const std::int64_t fix = round % 4 == 1 ? 64 : static_cast<std::int64_t>(rng.below(256));
+      const BlendSpec spec = makeBlendSpec(fix, rng.chance(1, 2) ? ColClamp::Clamp : ColClamp::Wrap,
+                                           rng.chance(1, 2) ? AlphaWrite::Source : AlphaWrite::Keep);
+      HashChain start;
+      for (std::uint64_t k = rng.below(7); k > 0; --k) start.word(rng.below(1u << 30));
+      std::vector<std::uint32_t> wantMask(tiles), gotMask(tiles);
+      for (std::size_t t = 0; t < tiles; ++t) {
+        wantMask[t] = gotMask[t] =
+            static_cast<std::uint32_t>(rng.below(1u << 16)) & static_cast<std::uint32_t>(rng.below(1u << 16));
+      }
+      std::vector<int> wantDelta(tiles, 0), gotDelta(tiles, 0);
+      std::vector<std::uint8_t> want = dst, got = dst;
+      const bool withChain = round % 5 != 4;
+      HashChain wantChain = start, gotChain = start;
+      for (int pass = 0; pass < 2; ++pass) {
+        blendHashRowsScalar(want.data(), src.data(), pixels, rows, tilePixels, spec, wantMask.data(), wantDelta.data(),
+                            withChain ? &wantChain : nullptr);
+        simd::kernels().blendHashRows(got.data(), src.data(), pixels, rows, tilePixels, spec, gotMask.data(),
+                                      gotDelta.data(), withChain ? &gotChain : nullptr);
+        const auto where = [&] {
+          return target + " " + std::to_string(pixels) + "x" + std::to_string(rows) + " tile " +
+                 std::to_string(tilePixels) + " fix " + std::to_string(spec.fix) + " pass " + std::to_string(pass);
+        };
+        ASSERT_EQ(got, want) << where();
+        ASSERT_EQ(gotMask, wantMask) << where();
+        ASSERT_EQ(gotDelta, wantDelta) << where();
+        ASSERT_EQ(gotChain.count, wantChain.count) << where();
+        for (int l = 0; l < 4; ++l) ASSERT_EQ(gotChain.lanes[l], wantChain.lanes[l]) << where() << " lane " << l;
+      }
+      // The reference is what it says: each tile's rectangle, then the rows' bytes into the chain.
+      std::vector<std::uint8_t> byTile = dst;
+      std::vector<std::uint32_t> tileMask(tiles);
+      for (std::size_t t = 0; t < tiles; ++t) tileMask[t] = 0;
+      HashChain byTileChain = start;
+      std::vector<std::uint8_t> viaKernel = dst;
+      std::vector<std::uint32_t> kernelMask(tiles, 0);
+      std::vector<int> kernelDelta(tiles, 0);
+      HashChain kernelChain = start;
+      blendHashRowsScalar(viaKernel.data(), src.data(), pixels, rows, tilePixels, spec, kernelMask.data(),
+                          kernelDelta.data(), &kernelChain);
+      for (std::size_t t = 0; t < tiles; ++t) {
+        const std::size_t x0 = t * tilePixels;
+        const int d = blendRectDeltaScalar(byTile.data() + 4 * x0, 4 * pixels, src.data() + 4 * x0, 4 * pixels,
+                                           std::min(tilePixels, pixels - x0), rows, spec, &tileMask[t]);
+        ASSERT_EQ(kernelDelta[t], d);
+      }
+      byTileChain.addBytes(byTile.data(), byTile.size());
+      ASSERT_EQ(viaKernel, byTile);
+      ASSERT_EQ(kernelMask, tileMask);
+      ASSERT_EQ(kernelChain.count, byTileChain.count);
+      for (int l = 0; l < 4; ++l) ASSERT_EQ(kernelChain.lanes[l], byTileChain.lanes[l]);
+    }
+  });
+}
+
 TEST(BlendSimd, DispatchNamesATarget) {
   const std::string name = simd::kernels().name;
   EXPECT_FALSE(name.empty());

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "gs/error.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "runtime/rng.hpp"
 
@@ -51,6 +52,66 @@ void runSequence(const BlendKernels& kernels, int w, int h, int stripRows) {
     ASSERT_EQ(popA, popB) << "step " << step;
   }
   EXPECT_GT(skipped, 0) << "a steady target should leave converged tiles to skip";
+}
+
+// Hash mode: through new frames, FIX changes, strips and partial tiles, the blender's chain is the
+// chain of the image's header and bytes as they are, whenever it is asked (not at every blend: the
+// tile rows it did not fold are folded when asked), and bytes and tile counts are those of a
+// blender without it.
+void runHashed(const BlendKernels& kernels, int w, int h, int stripRows, bool aware) {
+  Rng rng(1234);
+  TiledBlender hashed(w, h, kernels, aware, true);
+  TiledBlender plain(w, h, scalarKernels(), aware);
+  Rgba8Image a = randomImage(rng, w, h, 0, 256);
+  Rgba8Image b = a;
+  Rgba8Image target = randomImage(rng, w, h, 0, 256);
+  std::uint64_t id = 1;
+  int checks = 0;
+  for (int step = 0; step < 200; ++step) {
+    if (rng.chance(1, 20)) {  // a new frame that differs in a band of rows only
+      const int y0 = static_cast<int>(rng.below(static_cast<std::uint64_t>(h)));
+      for (int y = y0; y < std::min(h, y0 + 9); ++y) {
+        for (int x = 0; x < w * 4; ++x) target.row(y)[x] = static_cast<std::uint8_t>(rng.below(256));
+      }
+      ++id;
+    }
+    const BlendSpec spec = makeBlendSpec(rng.chance(1, 10) ? 100 : 64);
+    for (int y0 = 0; y0 < h; y0 += stripRows) {
+      const int y1 = std::min(h, y0 + stripRows);
+      const auto ra = hashed.blend(a, target, spec, id, y0, y1);
+      const auto rb = plain.blend(b, target, spec, id, y0, y1);
+      ASSERT_EQ(ra.pop, rb.pop) << "step " << step;
+      ASSERT_EQ(ra.tilesBlended, rb.tilesBlended) << "step " << step;
+      ASSERT_EQ(ra.tilesSkipped, rb.tilesSkipped) << "step " << step;
+    }
+    ASSERT_EQ(a.pixels, b.pixels) << "step " << step;
+    ASSERT_EQ(hashed.tileChanges(), plain.tileChanges()) << "step " << step;
+    if (rng.chance(1, 3)) {
+      HashChain want;
+      want.addHeader(w, h);
+      want.addBytes(a.pixels.data(), a.pixels.size());
+      const HashChain& got = hashed.hashChain(a);
+      ASSERT_EQ(got.count, want.count) << "step " << step;
+      for (int l = 0; l < 4; ++l) ASSERT_EQ(got.lanes[l], want.lanes[l]) << "step " << step << " lane " << l;
+      ++checks;
+    }
+  }
+  EXPECT_GT(checks, 40);
+}
+
+TEST(TiledBlender, HashModeChainIsTheImagesChain) {
+  for (const BlendKernels* k : {&scalarKernels(), &simd::kernels()}) {
+    runHashed(*k, 256, 128, 32, true);  // whole tiles, strips of one tile row
+    runHashed(*k, 200, 100, 64, true);  // partial tiles, rows of an even width
+    runHashed(*k, 77, 70, 100, true);   // an odd width: rows are not whole words
+    runHashed(*k, 130, 96, 96, false);  // without convergence marks
+  }
+}
+
+TEST(TiledBlender, HashModeNeedsItsMode) {
+  TiledBlender b(64, 32, scalarKernels(), true);
+  Rgba8Image img(64, 32);
+  EXPECT_THROW((void)b.hashChain(img), GsError);
 }
 
 TEST(TiledBlender, ConvergenceAwareIsBitIdenticalScalar) {
