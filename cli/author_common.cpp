@@ -17,6 +17,13 @@ void addEncodeOptions(CLI::App* cmd, EncodeOptions& o) {
   cmd->add_option("--loop", o.loop, "Frame playback returns to after the last one")->capture_default_str();
   auto* q = cmd->add_option("--q", o.q, "Fixed quantiser_scale 1..31 (lower is better)")->capture_default_str();
   cmd->add_option("--bitrate", o.bitrate, "Target bit/s instead of a fixed quantiser (VBV sized for DVD)")->excludes(q);
+  cmd->add_option("--gop", o.gop,
+                  "Pictures per GOP, from one I picture to the next (1: every picture I; more: P pictures)")
+      ->capture_default_str();
+  cmd->add_option("--b-frames", o.bFrames, "B pictures between references (below --gop)")->capture_default_str();
+  cmd->add_flag("--open-gop", o.openGop,
+                "Let B pictures refer across GOP headers (default: closed GOPs); each variant's first frame and "
+                "the loop frame still start a GOP no B picture reaches back from");
   cmd->add_option("--exposure", o.exposure, "Linear inputs: multiply by 2^EV before the curve")->capture_default_str();
   cmd->add_option("--tone", o.tone, "Tone curve for linear inputs: clamp, reinhard, filmic")->capture_default_str();
   cmd->add_option("--transfer", o.transfer, "Encoding after the curve: srgb, linear, gamma:G")->capture_default_str();
@@ -31,6 +38,10 @@ AuthorSettings streamSettings(const EncodeOptions& o) {
   settings.encoder.qscale = o.q;
   settings.encoder.bitrate = o.bitrate;
   settings.loopFrame = o.loop;
+  settings.encoder.gop = o.gop;
+  settings.encoder.bFrames = o.bFrames;
+  settings.encoder.openGop = o.openGop;
+  if (const std::string why = gopProblem(settings.encoder); !why.empty()) throw Exit(2, why);
   return settings;
 }
 

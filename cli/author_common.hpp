@@ -21,9 +21,12 @@ struct EncodeOptions {
   double exposure = 0;
   std::string tone = "clamp", transfer = "srgb";
   double white = 255;
+  int gop = 1, bFrames = 0;
+  bool openGop = false;
 };
 
-// Registers --fps, --container-fps, --loop, --q, --bitrate, --exposure, --tone, --transfer, --white.
+// Registers --fps, --container-fps, --loop, --q, --bitrate, --gop, --b-frames, --open-gop, --exposure,
+// --tone, --transfer, --white.
 void addEncodeOptions(CLI::App* cmd, EncodeOptions& o);
 // Throw Exit(2, ...) naming the option on a bad value.
 streams::AuthorSettings streamSettings(const EncodeOptions& o);

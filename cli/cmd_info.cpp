@@ -21,6 +21,28 @@ using namespace vbim::streams;
 
 constexpr std::size_t kTextBuckets = 24;  // rows of the bitrate table in text output
 
+// Bytes per picture type and the GOP structure (stream order, split at GOP headers).
+void printTypesAndGops(const StreamReport& r) {
+  for (std::size_t t = 0; t < r.types.size(); ++t) {
+    const TypeReport& tr = r.types[t];
+    if (tr.pictures == 0) continue;
+    std::printf("  %s pictures %9zu  bytes min %.0f  mean %.1f  max %.0f  (mean %.0f bits)\n",
+                pictureTypeName(static_cast<PictureType>(t + 1)), tr.pictures, tr.bytes.min, tr.bytes.mean,
+                tr.bytes.max, tr.bytes.mean * 8);
+  }
+  if (r.unknownType) std::printf("  unreadable picture headers %zu\n", r.unknownType);
+  if (r.gops == 0) return;
+  std::printf("  GOPs %zu (%zu closed, %zu open), %.0f..%.0f pictures (mean %.2f)\n", r.gops, r.closedGops,
+              r.gops - r.closedGops, r.gopPictures.min, r.gopPictures.max, r.gopPictures.mean);
+  constexpr std::size_t kShown = 4;  // distinct shapes listed; --json lists them all
+  for (std::size_t i = 0; i < r.shapes.size() && i < kShown; ++i) {
+    const GopShape& g = r.shapes[i];
+    const bool longShape = g.pattern.size() > 48;
+    std::printf("    %s%s x %zu\n", g.pattern.substr(0, 48).c_str(), longShape ? "..." : "", g.count);
+  }
+  if (r.shapes.size() > kShown) std::printf("    ... %zu more shapes\n", r.shapes.size() - kShown);
+}
+
 void printText(const std::string& path, const StreamScan& scan, const std::vector<StreamReport>& reports, double fps,
                bool fpsGuessed) {
   std::printf("%s: %llu bytes, %u sectors\n", path.c_str(), static_cast<unsigned long long>(scan.fileBytes),
@@ -34,8 +56,10 @@ void printText(const std::string& path, const StreamScan& scan, const std::vecto
               static_cast<unsigned long long>(st.skippedPackets));
   if (scan.descriptor) {
     const Descriptor& d = *scan.descriptor;
-    std::printf("descriptor: %u sectors; game rate %u/%u frames/s; %u frames per variant; loop to frame %u\n",
-                d.descriptorSectors, d.gameFps.num, d.gameFps.den, d.framesPerVariant, d.loopFrame);
+    std::printf(
+        "descriptor: version %u, %u sectors; game rate %u/%u frames/s; %u frames per variant; loop to frame %u\n",
+        d.intraOnly() ? Descriptor::kVersionIntra : Descriptor::kVersion, d.descriptorSectors, d.gameFps.num,
+        d.gameFps.den, d.framesPerVariant, d.loopFrame);
     std::printf("  container: first PTS %lld, %u ticks (90 kHz) per frame; %u sectors in all\n",
                 static_cast<long long>(d.firstPts), d.ptsPerFrame, d.totalSectors);
     for (const StreamEntry& s : d.streams) {
@@ -52,6 +76,7 @@ void printText(const std::string& path, const StreamScan& scan, const std::vecto
   for (const StreamReport& r : reports) {
     std::printf("\nstream %s: %zu pictures\n", hexId(r.id).c_str(), r.pictures);
     std::printf("  bytes per picture    min %.0f  mean %.1f  max %.0f\n", r.bytes.min, r.bytes.mean, r.bytes.max);
+    printTypesAndGops(r);
     std::printf("  sectors per picture  min %.0f  mean %.2f  max %.0f   (sectors its bytes touch)\n", r.spanSectors.min,
                 r.spanSectors.mean, r.spanSectors.max);
     std::printf("  sectors per frame    min %.0f  mean %.2f  max %.0f   (read to advance one frame, all streams)\n",

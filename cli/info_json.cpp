@@ -29,12 +29,39 @@ nlohmann::json descriptorJson(const Descriptor& d) {
   }
   for (const Variant& v : d.variants)
     j["variants"].push_back({{"name", v.name}, {"first_frame", v.firstFrame}, {"first_sector", v.firstSector}});
+  j["version"] = d.intraOnly() ? Descriptor::kVersionIntra : Descriptor::kVersion;
   for (std::size_t s = 0; s < d.index.size(); ++s) {
     nlohmann::json sectors = nlohmann::json::array();
-    for (const IndexEntry& e : d.index[s]) sectors.push_back(e.sector);
+    std::string types;  // frame order; lower case where a GOP starts
+    for (const IndexEntry& e : d.index[s]) {
+      sectors.push_back(e.sector);
+      types += e.gopStart ? "i" : pictureTypeName(e.type);
+    }
     j["index_sectors"][hexId(d.streams[s].id)] = sectors;
+    j["index_types"][hexId(d.streams[s].id)] = types;
   }
   return j;
+}
+
+nlohmann::json typesJson(const StreamReport& r) {
+  nlohmann::json j;
+  for (std::size_t t = 0; t < r.types.size(); ++t) {
+    const TypeReport& tr = r.types[t];
+    j[pictureTypeName(static_cast<PictureType>(t + 1))] = {
+        {"pictures", tr.pictures}, {"bytes", summaryJson(tr.bytes)}, {"mean_bits", tr.bytes.mean * 8}};
+  }
+  j["unknown"] = r.unknownType;
+  return j;
+}
+
+nlohmann::json gopJson(const StreamReport& r) {
+  nlohmann::json shapes = nlohmann::json::array();
+  for (const GopShape& g : r.shapes) shapes.push_back({{"pattern", g.pattern}, {"count", g.count}});
+  return {{"count", r.gops},
+          {"closed", r.closedGops},
+          {"open", r.gops - r.closedGops},
+          {"pictures", summaryJson(r.gopPictures)},
+          {"shapes", shapes}};
 }
 
 }  // namespace
@@ -58,6 +85,8 @@ nlohmann::json infoJson(const std::string& path, const std::optional<iop::DiscFi
                             {"last_sector", p.lastSector},
                             {"bytes", p.bytes},
                             {"frame", p.frame ? nlohmann::json(*p.frame) : nlohmann::json(nullptr)},
+                            {"type", p.header ? nlohmann::json(pictureTypeName(p.header->type)) : nlohmann::json()},
+                            {"gop_start", p.header && p.header->gopHeader},
                             {"damaged", p.damaged}});
       }
     }
@@ -65,6 +94,8 @@ nlohmann::json infoJson(const std::string& path, const std::optional<iop::DiscFi
         {{"id", hexId(r.id)},
          {"pictures", r.pictures},
          {"bytes_per_picture", summaryJson(r.bytes)},
+         {"picture_types", typesJson(r)},
+         {"gops", gopJson(r)},
          {"sectors_per_picture", summaryJson(r.spanSectors)},
          {"sectors_per_frame", summaryJson(r.stepSectors)},
          {"worst_run", {{"frames", r.runFrames}, {"sectors", r.runSectors}, {"start_frame", r.runStart}}},

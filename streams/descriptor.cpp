@@ -10,7 +10,16 @@ namespace vbim::streams {
 
 namespace {
 constexpr std::size_t kCrcOffset = 44;
+
+// Version 2's u16 after an index entry's offset: bits 0-1 picture_coding_type (1 I, 2 P, 3 B), bit 2
+// GOP start, bit 3 closed GOP, the rest 0 (docs/stream-format.md).
+constexpr std::uint16_t kTypeMask = 3, kGopStartBit = 4, kClosedGopBit = 8;
+
+std::uint16_t pictureFlags(const IndexEntry& e) {
+  return static_cast<std::uint16_t>(static_cast<unsigned>(e.type) | (e.gopStart ? kGopStartBit : 0) |
+                                    (e.closedGop ? kClosedGopBit : 0));
 }
+}  // namespace
 
 int Descriptor::streamIndex(std::uint8_t id) const {
   for (std::size_t i = 0; i < streams.size(); ++i)
@@ -25,6 +34,19 @@ std::optional<std::uint32_t> Descriptor::frameOfPts(std::int64_t pts) const {
   const std::int64_t f = d / ptsPerFrame;
   if (f >= totalFrames()) return std::nullopt;
   return static_cast<std::uint32_t>(f);
+}
+
+bool Descriptor::intraOnly() const {
+  for (const auto& table : index)
+    for (const IndexEntry& e : table)
+      if (e.type != PictureType::I) return false;
+  return true;
+}
+
+std::uint32_t Descriptor::resumeFrame(std::size_t s, std::uint32_t g) const {
+  const std::uint32_t first = g - g % framesPerVariant;
+  while (g > first && !index[s][g].gopStart) --g;
+  return g;
 }
 
 std::string Descriptor::validate() const {
@@ -49,6 +71,23 @@ std::string Descriptor::validate() const {
   if (index.size() != streams.size()) return "index must have one table per stream";
   for (const auto& table : index)
     if (table.size() != totalFrames()) return "index table must have one entry per frame";
+  // A loop, seek or branch resumes at an I picture: every variant's first frame and loop frame start a
+  // GOP (the writer forces them, StreamWriter::addFrame).
+  for (std::size_t s = 0; s < index.size(); ++s) {
+    for (std::uint32_t v = 0; v < variants.size(); ++v) {
+      for (const std::uint32_t f : {std::uint32_t{0}, loopFrame}) {
+        const IndexEntry& e = index[s][v * framesPerVariant + f];
+        if (!e.gopStart || e.type != PictureType::I) {
+          return "frame " + std::to_string(f) + " of variant '" + variants[v].name + "' (stream " + std::to_string(s) +
+                 ") is not an I picture that starts a GOP (a loop or branch must resume at one)";
+        }
+      }
+      for (std::uint32_t f = 0; f < framesPerVariant; ++f) {
+        const IndexEntry& e = index[s][v * framesPerVariant + f];
+        if (e.gopStart && e.type != PictureType::I) return "a GOP starts at a picture that is not an I picture";
+      }
+    }
+  }
   return {};
 }
 
@@ -59,8 +98,9 @@ std::size_t serializedSize(std::size_t streams, std::size_t variants, std::size_
 
 std::vector<std::uint8_t> serialize(const Descriptor& d) {
   if (std::string why = d.validate(); !why.empty()) throw std::invalid_argument("descriptor: " + why);
+  const bool v1 = d.intraOnly();
   ByteWriter w;
-  w.u16(Descriptor::kVersion);
+  w.u16(v1 ? Descriptor::kVersionIntra : Descriptor::kVersion);
   w.u16(Descriptor::kHeaderBytes);
   w.u32(d.gameFps.num);
   w.u32(d.gameFps.den);
@@ -91,7 +131,7 @@ std::vector<std::uint8_t> serialize(const Descriptor& d) {
     for (const IndexEntry& e : table) {
       w.u32(e.sector);
       w.u16(e.offset);
-      w.u16(0);
+      w.u16(v1 ? 0 : pictureFlags(e));
       w.u32(e.bytes);
       w.u32(e.crc);
     }
@@ -114,8 +154,9 @@ DescriptorParse parseDescriptor(std::span<const std::uint8_t> body) {
   ByteReader in(body);
   Descriptor d;
   const std::uint16_t version = in.u16();
-  if (version != Descriptor::kVersion)
-    return fail(0, "descriptor version " + std::to_string(version) + "; this reader knows version 1");
+  if (version != Descriptor::kVersionIntra && version != Descriptor::kVersion) {
+    return fail(0, "descriptor version " + std::to_string(version) + "; this reader knows versions 1 and 2");
+  }
   if (in.u16() != Descriptor::kHeaderBytes) return fail(2, "descriptor header size is not 48");
   d.gameFps.num = in.u32();
   d.gameFps.den = in.u32();
@@ -164,8 +205,16 @@ DescriptorParse parseDescriptor(std::span<const std::uint8_t> body) {
     for (IndexEntry& e : table) {
       e.sector = in.u32();
       e.offset = in.u16();
-      in.u16();
+      const std::uint16_t flags = in.u16();
       if (e.offset >= kSectorBytes) return fail(in.pos() - 4, "index entry offset is not inside a 2048-byte pack");
+      if (version == Descriptor::kVersion) {
+        const unsigned type = flags & kTypeMask;
+        if (type == 0 || (flags & ~(kTypeMask | kGopStartBit | kClosedGopBit)) != 0)
+          return fail(in.pos() - 2, "index entry flags " + std::to_string(flags) + " (expected a type 1..3, bits 2-3)");
+        e.type = static_cast<PictureType>(type);
+        e.gopStart = (flags & kGopStartBit) != 0;
+        e.closedGop = (flags & kClosedGopBit) != 0;
+      }
       e.bytes = in.u32();
       e.crc = in.u32();
     }

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "streams/picture_header.hpp"
+
 namespace vbim::streams {
 
 struct Rational {
@@ -37,15 +39,23 @@ struct Variant {
 };
 
 struct IndexEntry {
-  std::uint32_t sector = 0;  // sector holding the picture's first byte (its sequence header)
+  std::uint32_t sector = 0;  // sector holding the picture's first byte (its first header)
   std::uint16_t offset = 0;  // position of that byte in the 2048-byte pack
   std::uint32_t bytes = 0;   // elementary-stream bytes of the picture
   std::uint32_t crc = 0;     // CRC-32 of those bytes
+  // Version 2 (streams with P or B pictures); a version 1 stream's pictures are all GOP-starting I
+  // pictures of closed GOPs.
+  PictureType type = PictureType::I;
+  bool gopStart = true;   // a sequence and GOP header precede it: decoding can start here
+  bool closedGop = true;  // that GOP header's closed_gop flag (gopStart only)
   bool operator==(const IndexEntry&) const = default;
 };
 
 struct Descriptor {
-  static constexpr std::uint16_t kVersion = 1;
+  // Version 1: every picture intra (written for intra-only streams, byte for byte as before).
+  // Version 2: P and B pictures; index entries carry the picture type and GOP flags.
+  static constexpr std::uint16_t kVersionIntra = 1;
+  static constexpr std::uint16_t kVersion = 2;
   static constexpr std::size_t kHeaderBytes = 48;
   static constexpr std::size_t kStreamBytes = 8;
   static constexpr std::size_t kVariantBytes = 32;
@@ -68,6 +78,13 @@ struct Descriptor {
   int streamIndex(std::uint8_t id) const;
   // The global frame a PTS belongs to, if it is one of this stream's frame times.
   std::optional<std::uint32_t> frameOfPts(std::int64_t pts) const;
+  // True when every indexed picture is an I picture (written as version 1).
+  bool intraOnly() const;
+  // Where decoding must start to show global frame g of stream `s` (its index position) from a cold
+  // start (seek, loop, branch, damage): the nearest frame at or before g, in g's variant, whose
+  // picture starts a GOP. Decoding every picture of the stream in stream order from that picture's
+  // sector gives frame g once the pictures shown before it are output.
+  std::uint32_t resumeFrame(std::size_t s, std::uint32_t g) const;
   // Variant index of a global frame.
   std::size_t variantOf(std::uint32_t globalFrame) const { return globalFrame / framesPerVariant; }
   // Checks the fields against each other; returns what is wrong, or empty.

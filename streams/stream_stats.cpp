@@ -43,7 +43,7 @@ class Scanner {
     for (const Picture& p : demux_.pictures()) {
       scan_.pictures.push_back(PictureRecord{p.streamId, p.firstSector, p.lastSector, p.byteOffset,
                                              static_cast<std::uint32_t>(p.data.size()), crc32(p.data), p.pts, p.frame,
-                                             p.damaged});
+                                             p.damaged, readPictureHeader(p.data)});
     }
     demux_.pictures().clear();
   }
@@ -60,6 +60,47 @@ Summary summarise(const std::vector<double>& v) {
   for (double x : v) sum += x;
   s.mean = sum / static_cast<double>(v.size());
   return s;
+}
+
+// Picture types and GOP shapes of one stream's pictures (in stream order).
+void typesAndGops(const std::vector<const PictureRecord*>& pics, StreamReport& r) {
+  std::array<std::vector<double>, 3> bytes;
+  std::vector<double> gopLengths;
+  std::vector<std::pair<std::uint16_t, char>> gop;  // temporal_reference, type of the GOP so far
+  const auto closeGop = [&] {
+    if (gop.empty()) return;
+    std::stable_sort(gop.begin(), gop.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::string pattern;
+    for (const auto& [tr, type] : gop) pattern += type;
+    gopLengths.push_back(static_cast<double>(gop.size()));
+    auto it = std::find_if(r.shapes.begin(), r.shapes.end(), [&](const GopShape& s) { return s.pattern == pattern; });
+    if (it == r.shapes.end()) {
+      r.shapes.push_back(GopShape{pattern, 1});
+    } else {
+      ++it->count;
+    }
+    gop.clear();
+  };
+  bool inGop = false;
+  for (const PictureRecord* p : pics) {
+    if (!p->header) {
+      ++r.unknownType;
+      continue;
+    }
+    const PictureHeaderInfo& h = *p->header;
+    const auto t = static_cast<std::size_t>(h.type) - 1;
+    bytes[t].push_back(p->bytes);
+    if (h.gopHeader) {
+      closeGop();
+      inGop = true;
+      ++r.gops;
+      if (h.closedGop) ++r.closedGops;
+    }
+    if (inGop) gop.emplace_back(h.temporalReference, pictureTypeName(h.type)[0]);
+  }
+  closeGop();
+  for (std::size_t t = 0; t < 3; ++t) r.types[t] = TypeReport{bytes[t].size(), summarise(bytes[t])};
+  r.gopPictures = summarise(gopLengths);
 }
 
 }  // namespace
@@ -125,6 +166,7 @@ std::vector<StreamReport> summarise(const StreamScan& scan, double gameFps, std:
       const double seconds = static_cast<double>(e - k) / gameFps;
       r.bitsPerSecond.push_back((start[e] - start[k]) * double(kSectorBytes) * 8.0 / seconds);
     }
+    typesAndGops(pics, r);
     out.push_back(std::move(r));
   }
   return out;

@@ -2,13 +2,16 @@
 // prints and what the author uses to build the index.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "streams/demuxer.hpp"
+#include "streams/picture_header.hpp"
 
 namespace vbim::streams {
 
@@ -22,6 +25,7 @@ struct PictureRecord {
   std::optional<std::int64_t> pts;
   std::optional<std::uint32_t> frame;
   bool damaged = false;
+  std::optional<PictureHeaderInfo> header;  // type and GOP flags, when the picture header is readable
 };
 
 struct StreamScan {
@@ -43,6 +47,18 @@ struct Summary {
   double min = 0, mean = 0, max = 0;
 };
 
+// Pictures of one picture_coding_type.
+struct TypeReport {
+  std::size_t pictures = 0;
+  Summary bytes;
+};
+
+// One GOP shape: the picture types of a GOP in display order (temporal_reference), how many GOPs have it.
+struct GopShape {
+  std::string pattern;  // e.g. "IBBPBBPBBPBP"
+  std::size_t count = 0;
+};
+
 struct StreamReport {
   std::uint8_t id = 0;
   std::size_t pictures = 0;
@@ -57,6 +73,13 @@ struct StreamReport {
   // Read rate needed over time: bits per second of game time for each group of `bucketFrames` frames.
   std::uint32_t bucketFrames = 0;
   std::vector<double> bitsPerSecond;
+  // Picture types (index 0 I, 1 P, 2 B) and pictures whose header could not be read.
+  std::array<TypeReport, 3> types;
+  std::size_t unknownType = 0;
+  // GOPs in stream order, split at GOP headers (pictures before the first one are not counted).
+  std::size_t gops = 0, closedGops = 0;
+  Summary gopPictures;           // pictures per GOP
+  std::vector<GopShape> shapes;  // distinct shapes, in order of first appearance
 };
 
 // One report per video stream found. `gameFps` (from the descriptor, else the caller's guess) sets

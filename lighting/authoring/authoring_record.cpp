@@ -113,6 +113,11 @@ std::string authoringRecordJson(const TechniqueAStreamSettings& s, const std::ve
                  {"frames_per_variant", day.frames},
                  {"qscale", s.stream.encoder.qscale},
                  {"bitrate", s.stream.encoder.bitrate}};
+  if (s.stream.encoder.gop > 1) {  // intra-only records keep their bytes
+    j["stream"]["gop"] = s.stream.encoder.gop;
+    j["stream"]["b_frames"] = s.stream.encoder.bFrames;
+    j["stream"]["closed_gop"] = !s.stream.encoder.openGop;
+  }
   j["tone"] = {{"exposure_ev", s.tone.exposure},
                {"curve", curveName(s.tone.curve)},
                {"transfer", transferName(s.tone)},

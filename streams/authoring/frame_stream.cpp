@@ -55,6 +55,11 @@ std::string frameStreamRecord(const std::string& source, const AuthorSettings& s
                  {"frame_period_s", static_cast<double>(s.gameFps.den) / static_cast<double>(s.gameFps.num)},
                  {"qscale", s.encoder.qscale},
                  {"bitrate", s.encoder.bitrate}};
+  if (s.encoder.gop > 1) {  // intra-only records keep their bytes
+    j["stream"]["gop"] = s.encoder.gop;
+    j["stream"]["b_frames"] = s.encoder.bFrames;
+    j["stream"]["closed_gop"] = !s.encoder.openGop;
+  }
   j["frames"] = {{"lightmap", {lightmap.first, lightmap.second}}};
   j["frames"]["sky"] = sky ? nlohmann::ordered_json{sky->first, sky->second} : nlohmann::ordered_json();
   j["variants"] = std::move(variants);

@@ -18,6 +18,19 @@ SwsContext* makeRgbaToYuv(int width, int height) {
 
 }  // namespace
 
+std::string gopProblem(const EncoderSettings& s) {
+  if (s.gop < 1 || s.gop > kMaxGop)
+    return "--gop " + std::to_string(s.gop) + " is outside 1.." + std::to_string(kMaxGop) + " (pictures per GOP)";
+  if (s.bFrames < 0 || s.bFrames > kMaxBFrames)
+    return "--b-frames " + std::to_string(s.bFrames) + " is outside 0.." + std::to_string(kMaxBFrames);
+  if (s.bFrames > 0 && s.bFrames >= s.gop) {
+    return "--b-frames " + std::to_string(s.bFrames) + " needs --gop above it (a GOP of " + std::to_string(s.gop) +
+           " has room for at most " + std::to_string(s.gop - 1) + " B pictures after its I picture)";
+  }
+  if (s.openGop && s.bFrames == 0) return "--open-gop needs --b-frames: only B pictures can refer across a GOP header";
+  return {};
+}
+
 Yuv420Image rgbaToYuv420(const Rgba8Image& img) {
   SwsContext* sws = makeRgbaToYuv(img.width, img.height);
   Yuv420Image out(img.width, img.height);
@@ -30,7 +43,8 @@ Yuv420Image rgbaToYuv420(const Rgba8Image& img) {
   return out;
 }
 
-Mpeg2Encoder::Mpeg2Encoder(int width, int height, const EncoderSettings& s) {
+Mpeg2Encoder::Mpeg2Encoder(int width, int height, const EncoderSettings& s) : intraOnly_(s.gop == 1) {
+  if (const std::string why = gopProblem(s); !why.empty()) throw AuthoringError(why);
   const AVCodec* codec = avcodec_find_encoder(AV_CODEC_ID_MPEG2VIDEO);
   if (!codec) throw AuthoringError("libavcodec has no MPEG-2 video encoder");
   ctx_ = avcodec_alloc_context3(codec);
@@ -39,8 +53,18 @@ Mpeg2Encoder::Mpeg2Encoder(int width, int height, const EncoderSettings& s) {
   ctx_->pix_fmt = AV_PIX_FMT_YUV420P;
   ctx_->time_base = AVRational{static_cast<int>(s.containerFps.den), static_cast<int>(s.containerFps.num)};
   ctx_->framerate = AVRational{static_cast<int>(s.containerFps.num), static_cast<int>(s.containerFps.den)};
-  ctx_->gop_size = 1;  // every picture intra: the IPU decodes I pictures only
-  ctx_->max_b_frames = 0;
+  // gop_size 1: every picture intra, the IPU's IDEC path (the default, and the samples' bytes).
+  ctx_->gop_size = s.gop;
+  ctx_->max_b_frames = s.bFrames;
+  if (s.gop > 1) {
+    // A fixed pattern: no I pictures at scene changes (sc_threshold), B pictures exactly as asked
+    // (b_strategy 0), GOPs of exactly gop pictures (mpv_flags strict_gop): the private options of
+    // libavcodec's MPEG video encoders (mpegvideoenc.h, FF_MPV_COMMON_OPTS).
+    av_opt_set_int(ctx_->priv_data, "sc_threshold", 1'000'000'000, 0);
+    av_opt_set_int(ctx_->priv_data, "b_strategy", 0, 0);
+    av_opt_set(ctx_->priv_data, "mpv_flags", "+strict_gop", 0);
+    if (!s.openGop) ctx_->flags |= AV_CODEC_FLAG_CLOSED_GOP;
+  }
   ctx_->flags |= AV_CODEC_FLAG_BITEXACT;
   ctx_->color_range = AVCOL_RANGE_MPEG;
   ctx_->colorspace = AVCOL_SPC_BT470BG;  // BT.601, the IPU's CSC matrix (docs/hardware.md)
@@ -78,13 +102,17 @@ Mpeg2Encoder::~Mpeg2Encoder() {
   avcodec_free_context(&ctx_);
 }
 
-void Mpeg2Encoder::encode(const Rgba8Image& img, std::int64_t pts, std::vector<AVPacket*>& out) {
+void Mpeg2Encoder::encode(const Rgba8Image& img, std::int64_t pts, std::vector<AVPacket*>& out, Force force) {
   if (av_frame_make_writable(frame_) < 0) throw AuthoringError("cannot write the encoder's frame");
   const std::uint8_t* src[1] = {img.pixels.data()};
   const int stride[1] = {img.width * 4};
   sws_scale(sws_, src, stride, 0, img.height, frame_->data, frame_->linesize);
   frame_->pts = pts;
-  frame_->pict_type = AV_PICTURE_TYPE_I;
+  // A forced type: libavcodec codes a frame given as I as a new GOP, and one given as P as the
+  // reference that ends the run of B pictures before it (mpegvideo_enc.c, select_input_picture).
+  frame_->pict_type = intraOnly_ || force == Force::Intra ? AV_PICTURE_TYPE_I
+                      : force == Force::Reference         ? AV_PICTURE_TYPE_P
+                                                          : AV_PICTURE_TYPE_NONE;
   frame_->quality = quality_;
   if (int r = avcodec_send_frame(ctx_, frame_); r < 0) throw AuthoringError("MPEG-2 encoder: " + avError(r));
   drain(out);

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -25,7 +26,7 @@ struct StreamWriter::Encoders {
   // the frames must be in container time (containerStretch).
   struct Pending {
     AVPacket* packet;
-    int stream;
+    int stream;  // the muxer's: lightmapStream or skyStream
   };
   std::vector<Pending> pending;
   Encoders() = default;
@@ -97,6 +98,7 @@ void StreamWriter::beginVariant(const std::string& name) {
 }
 
 void StreamWriter::closeVariant() {
+  sendHeld(true);  // the variant's last frame: the next variant starts with an I picture
   const Variant& v = descriptor_.variants.back();
   if (framesInVariant_ == 0) throw AuthoringError("variant '" + v.name + "' has no frames");
   if (descriptor_.variants.size() == 1) {
@@ -156,16 +158,38 @@ void StreamWriter::addFrame(const Rgba8Image& lightmap, const Rgba8Image* sky) {
   checkSize(lightmap, "lightmap", lmW_, lmH_);
   if (sky) checkSize(*sky, "sky", skyW_, skyH_);
   if (!enc_) open();
-  std::vector<AVPacket*> packets;
-  enc_->lightmap->encode(lightmap, framesTotal_, packets);
-  for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->lightmapStream});
-  packets.clear();
-  if (sky) {
-    enc_->sky->encode(*sky, framesTotal_, packets);
-    for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->skyStream});
+  using Force = Mpeg2Encoder::Force;
+  // A loop or branch resumes at an I picture: the variant's first frame and its loop frame start GOPs.
+  const bool intra = framesInVariant_ == 0 || framesInVariant_ == settings_.loopFrame;
+  const Force force = settings_.encoder.gop > 1 && intra ? Force::Intra : Force::None;
+  if (settings_.encoder.bFrames == 0) {
+    send(lightmap, sky, framesTotal_, force);
+  } else {
+    sendHeld(force == Force::Intra);
+    held_ = Held{lightmap, sky ? std::optional<Rgba8Image>(*sky) : std::nullopt, framesTotal_, force};
   }
   ++framesInVariant_;
   ++framesTotal_;
+}
+
+void StreamWriter::sendHeld(bool beforeIntra) {
+  if (!held_) return;
+  Held h = std::move(*held_);
+  held_.reset();
+  if (beforeIntra && h.force == Mpeg2Encoder::Force::None) h.force = Mpeg2Encoder::Force::Reference;
+  send(h.lightmap, h.sky ? &*h.sky : nullptr, h.pts, h.force);
+}
+
+void StreamWriter::send(const Rgba8Image& lightmap, const Rgba8Image* sky, std::int64_t pts,
+                        Mpeg2Encoder::Force force) {
+  std::vector<AVPacket*> packets;
+  enc_->lightmap->encode(lightmap, pts, packets, force);
+  for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->lightmapStream});
+  packets.clear();
+  if (sky) {
+    enc_->sky->encode(*sky, pts, packets, force);
+    for (AVPacket* p : packets) enc_->pending.push_back({p, enc_->skyStream});
+  }
 }
 
 std::vector<std::uint8_t> StreamWriter::finish() {
@@ -187,6 +211,11 @@ std::vector<std::uint8_t> StreamWriter::finish() {
   for (const auto& p : enc_->pending) frameBytes[p.packet->pts] += p.packet->size;
   std::int64_t largest = 0;
   for (const auto& [pts, bytes] : frameBytes) largest = std::max(largest, bytes);
+  // Each stream's pictures in stream (decode) order: the frame each one shows. With B pictures this
+  // is not the frame order; the muxer keeps it.
+  std::array<std::vector<std::uint32_t>, 2> shows;
+  for (const auto& p : enc_->pending)
+    shows[p.stream == enc_->lightmapStream ? 0 : 1].push_back(static_cast<std::uint32_t>(p.packet->pts));
   stretch_ = settings_.stretchContainerTime ? stretchFor(largest, descriptor_.ptsPerFrame) : 1;
   descriptor_.ptsPerFrame *= stretch_;
   for (auto& p : enc_->pending) {
@@ -208,8 +237,8 @@ std::vector<std::uint8_t> StreamWriter::finish() {
   }
   Descriptor& d = descriptor_;
   d.index.assign(d.streams.size(), std::vector<IndexEntry>(d.totalFrames()));
-  // Each stream's pictures come out of the muxer in frame order. Where a picture carries a PTS it
-  // must be its frame's time: a cross-check of that order.
+  // Each stream's pictures come out of the muxer in the encoder's order (`shows`). Where a picture
+  // carries a PTS it must be its frame's time: a cross-check of that order.
   // The time origin is the lightmap stream's first picture. It is looked up first: pictures are
   // listed in completion order, and small sky pictures (a dark night sky) can complete before the
   // first lightmap picture does.
@@ -218,20 +247,33 @@ std::vector<std::uint8_t> StreamWriter::finish() {
   for (const PictureRecord& p : scan.pictures) {
     if (d.streamIndex(p.streamId) == 0) {
       firstPts = p.pts;
+      if (firstPts && !shows[0].empty()) *firstPts -= std::int64_t{shows[0][0]} * d.ptsPerFrame;
       break;
     }
   }
   for (const PictureRecord& p : scan.pictures) {
     const auto s = static_cast<std::size_t>(d.streamIndex(p.streamId));
-    const std::uint32_t frame = next[s]++;
-    if (frame >= d.totalFrames() || !firstPts || (p.pts && *p.pts != *firstPts + std::int64_t{frame} * d.ptsPerFrame)) {
-      throw AuthoringError("internal: stream " + std::to_string(s) + " picture " + std::to_string(frame) + " has PTS " +
+    const std::uint32_t k = next[s]++;
+    const std::uint32_t frame = k < shows[s].size() ? shows[s][k] : d.totalFrames();
+    if (frame >= d.totalFrames() || !firstPts || !p.header ||
+        (p.pts && *p.pts != *firstPts + std::int64_t{frame} * d.ptsPerFrame)) {
+      throw AuthoringError("internal: stream " + std::to_string(s) + " picture " + std::to_string(k) + " has PTS " +
                            (p.pts ? std::to_string(*p.pts) : "none") + ", expected frame " + std::to_string(frame) +
-                           "'s time");
+                           "'s time and a picture header");
     }
-    d.index[s][frame] =
-        IndexEntry{p.firstSector, static_cast<std::uint16_t>(p.byteOffset % kSectorBytes), p.bytes, p.crc};
+    IndexEntry e{p.firstSector, static_cast<std::uint16_t>(p.byteOffset % kSectorBytes), p.bytes, p.crc};
+    e.type = p.header->type;
+    e.gopStart = p.header->gopHeader;
+    e.closedGop = p.header->gopHeader && p.header->closedGop;
+    d.index[s][frame] = e;
   }
+  if (d.intraOnly()) {
+    // Every picture stands alone: version 1, whose entries say so (libavcodec marks its GOPs of one
+    // picture open).
+    for (auto& table : d.index)
+      for (IndexEntry& e : table) e.gopStart = e.closedGop = true;
+  }
+  if (std::string why = d.validate(); !why.empty()) throw AuthoringError("internal: " + why);
   for (std::size_t s = 0; s < d.streams.size(); ++s) {
     if (next[s] != d.totalFrames()) {
       throw AuthoringError("internal: stream " + std::to_string(s) + " has " + std::to_string(next[s]) +

@@ -7,17 +7,18 @@
 //   w.beginVariant("overcast");  ...
 //   writeStreamFile("day.vbim", w.finish());
 //
-// Each frame is converted to YCbCr 4:2:0, encoded as an intra MPEG-2 picture (stream 0xE0 lightmap,
-// 0xE1 sky); finish() muxes them into 2048-byte packs, frames spaced in container time so the two
-// streams stay in step (containerStretch()). Variants follow one another on one timeline. finish()
-// reads the muxed stream back with the Demuxer to build the descriptor index and puts the descriptor
-// packs in front. The whole stream is held in memory until then (about 40 KiB per frame pair at
-// 720x576).
+// Each frame is converted to YCbCr 4:2:0, encoded as an MPEG-2 picture (stream 0xE0 lightmap, 0xE1
+// sky): intra by default, or in GOPs with P and B pictures (EncoderSettings::gop, bFrames), where every
+// variant's first frame and its loop frame are I pictures that start a GOP; finish() muxes them into 2048-byte packs,
+// frames spaced in container time so the two streams stay in step (containerStretch()). Variants follow one another on
+// one timeline. finish() reads the muxed stream back with the Demuxer to build the descriptor index and puts the
+// descriptor packs in front. The whole stream is held in memory until then (about 40 KiB per frame pair at 720x576).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -71,6 +72,8 @@ class StreamWriter {
   void checkSize(const Rgba8Image& img, const char* what, int& w, int& h) const;
   void open();
   void closeVariant();
+  void send(const Rgba8Image& lightmap, const Rgba8Image* sky, std::int64_t pts, Mpeg2Encoder::Force force);
+  void sendHeld(bool beforeIntra);
 
   AuthorSettings settings_;
   std::unique_ptr<Encoders> enc_;
@@ -80,6 +83,16 @@ class StreamWriter {
   int lmW_ = 0, lmH_ = 0, skyW_ = 0, skyH_ = 0;
   bool finished_ = false;
   std::uint32_t stretch_ = 1;
+  // With B pictures the frame before a forced I picture (the next variant's first, the loop frame)
+  // must be forced to a reference, which is known only when the next frame comes: each frame waits here
+  // for the next one.
+  struct Held {
+    Rgba8Image lightmap;
+    std::optional<Rgba8Image> sky;
+    std::int64_t pts = 0;
+    Mpeg2Encoder::Force force = Mpeg2Encoder::Force::None;
+  };
+  std::optional<Held> held_;
 };
 
 // Drops libav's own messages below errors for the rest of the process (the authoring functions call
