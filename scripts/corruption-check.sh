@@ -11,7 +11,7 @@
 #
 # BUILD_DIR holds vbim and vbim_corrupt (CI: the ASan+UBSan build). With VALGRIND_SEEDS > 0, that many
 # seeds per kind are also played under valgrind (memcheck) with the Release build in build/.
-# Cost in CI (2 samples x 12 kinds x 10 seeds = 240 streams, 720 runs, 2 cores): about 90 s with
+# Cost in CI (2 samples + a GOP stream x 13 kinds x 10 seeds = 390 streams, 720 runs, 2 cores): about 90 s with
 # the Release build, a few minutes under ASan; 12 plays under valgrind take a few minutes more.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,9 +31,13 @@ export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 
+# A stream with P and B pictures (issue #29) beside the intra-only samples: closed GOPs of 12 with two
+# B pictures, two variants (play refuses it for now, with a message: a clear exit 2).
+"$vbim" author --synthetic clear,overcast --synthetic-frames 30 --gop 12 --b-frames 2 --loop 6 \
+  --out "$work/gop12.vbim" >/dev/null
 # Generate the damaged streams.
 n=0
-for sample in streams/samples/*.vbim; do
+for sample in streams/samples/*.vbim "$work/gop12.vbim"; do
   for kind in "${kinds[@]}"; do
     for ((seed = 1; seed <= seeds; ++seed)); do
       out="$work/$(basename "$sample" .vbim).$kind.$seed.vbim"
@@ -43,6 +47,7 @@ for sample in streams/samples/*.vbim; do
     done
   done
 done
+rm "$work/gop12.vbim"
 echo "corruption-check: $n damaged streams in $work"
 
 # One stream through the three commands; prints a line per failure.

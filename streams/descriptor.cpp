@@ -37,9 +37,11 @@ std::optional<std::uint32_t> Descriptor::frameOfPts(std::int64_t pts) const {
 }
 
 bool Descriptor::intraOnly() const {
-  for (const auto& table : index)
-    for (const IndexEntry& e : table)
+  for (const auto& table : index) {
+    for (const IndexEntry& e : table) {
       if (e.type != PictureType::I) return false;
+    }
+  }
   return true;
 }
 
