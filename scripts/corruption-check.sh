@@ -11,8 +11,10 @@
 #
 # BUILD_DIR holds vbim and vbim_corrupt (CI: the ASan+UBSan build). With VALGRIND_SEEDS > 0, that many
 # seeds per kind are also played under valgrind (memcheck) with the Release build in build/.
-# Cost in CI (2 samples + a GOP stream x 13 kinds x 10 seeds = 390 streams, 720 runs, 2 cores): about 90 s with
-# the Release build, a few minutes under ASan; 12 plays under valgrind take a few minutes more.
+# Cost in CI (2 samples x 12 kinds x 10 seeds = 240 streams, 720 runs, 2 cores): about 90 s with
+# the Release build, a few minutes under ASan; 12 plays under valgrind take a few minutes more. The
+# GOP stream (issue #29) adds half as many streams again (one seed per kind, all three: 16 s in
+# ctest on a loaded 2-core machine, 2026-12-03).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:?usage: scripts/corruption-check.sh BUILD_DIR [SEEDS_PER_KIND] [VALGRIND_SEEDS]}"
