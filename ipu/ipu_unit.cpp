@@ -131,19 +131,7 @@ Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t
   if (shown != nullptr) {
     width = dec.displayWidth();
     height = dec.displayHeight();
-    cmd.staged = std::move(out);
-    out = Rgba8Image{};
-    convertToRgba32(*shown, shown->mbWidth * 16, shown->mbHeight * 16, th, cmd.staged, dec.kernels().cscRow);
-    cmd.hasCsc = true;
-    const std::size_t mbs = static_cast<std::size_t>(shown->mbWidth) * shown->mbHeight;
-    cmd.timing.csc = true;
-    cmd.timing.inQwords = static_cast<std::uint32_t>(mbs) * kCscInQwordsPerMacroblock;
-    cmd.timing.bits.assign(mbs, 0);
-    cmd.timing.restart.assign(mbs, 0);
-    cmd.timing.needQwords.resize(mbs);
-    for (std::size_t i = 0; i < mbs; ++i)
-      cmd.timing.needQwords[i] = static_cast<std::uint32_t>(i + 1) * kCscInQwordsPerMacroblock;
-    result.outputQwords = static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
+    result.outputQwords = stageDisplayCsc(cmd, dec, *shown, th, out);
   }
   co_return co_await submit(shared, std::move(result), out, width, height);
 }
@@ -160,6 +148,13 @@ Task<TimedPicture> IpuUnit::flush(StreamId stream, Rgba8Image& out, CscThreshold
   Command& cmd = *shared;
   cmd.arrival = s_.now();
   cmd.flow = true;  // no picture: only the CSC
+  result.report.produced = true;
+  result.outputQwords = stageDisplayCsc(cmd, dec, shown, th, out);
+  co_return co_await submit(shared, std::move(result), out, dec.displayWidth(), dec.displayHeight());
+}
+
+std::int64_t IpuUnit::stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
+                                      Rgba8Image& out) {
   cmd.staged = std::move(out);
   out = Rgba8Image{};
   convertToRgba32(shown, shown.mbWidth * 16, shown.mbHeight * 16, th, cmd.staged, dec.kernels().cscRow);
@@ -172,9 +167,7 @@ Task<TimedPicture> IpuUnit::flush(StreamId stream, Rgba8Image& out, CscThreshold
   cmd.timing.needQwords.resize(mbs);
   for (std::size_t i = 0; i < mbs; ++i)
     cmd.timing.needQwords[i] = static_cast<std::uint32_t>(i + 1) * kCscInQwordsPerMacroblock;
-  result.report.produced = true;
-  result.outputQwords = static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
-  co_return co_await submit(shared, std::move(result), out, dec.displayWidth(), dec.displayHeight());
+  return static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
 }
 
 // Plans the command, hands it to the "ipu" process and waits for its last event; then `out` gets

@@ -129,6 +129,10 @@ class IpuUnit {
   Task<TimedPicture> submit(std::shared_ptr<Command> shared, TimedPicture result, Rgba8Image& out, int width,
                             int height);
   void plan(Command& c);
+  // The display CSC of a BDEC flow: `shown` converted into cmd.staged (taking `out`'s buffer) and
+  // its timing (24 qwords in per macroblock from EE memory); returns the output qwords.
+  static std::int64_t stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
+                                      Rgba8Image& out);
   static Tick quietAfter(const Command& c);
   void retire();
   void replan();

@@ -13,6 +13,7 @@
 #include "player/frame_hash.hpp"
 #include "player/scenario.hpp"
 #include "tests/player/sample_path.hpp"
+#include "tests/support/golden_file.hpp"
 
 namespace vbim::player {
 namespace {
@@ -70,16 +71,7 @@ class Golden : public ::testing::TestWithParam<Case> {};
 TEST_P(Golden, HashListMatchesTheCommittedOne) {
   const Case& c = GetParam();
   const std::string got = hashList(c);
-  if (const char* u = std::getenv("VBIM_UPDATE_GOLDEN"); u != nullptr && std::string(u) == "1") {
-    std::ofstream(goldenPath(c), std::ios::binary) << got;
-    GTEST_SKIP() << "wrote " << goldenPath(c);
-  }
-  std::ifstream in(goldenPath(c), std::ios::binary);
-  ASSERT_TRUE(in) << goldenPath(c) << " is missing: run scripts/update-golden.sh";
-  std::stringstream want;
-  want << in.rdbuf();
-  EXPECT_EQ(got, want.str()) << c.name << ": the output differs from the committed hash list "
-                             << "(after a deliberate change: scripts/update-golden.sh, review, commit)";
+  vbim::testing::expectMatchesGolden(got, goldenPath(c), std::string(c.name) + ": the hash list");
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, Golden, ::testing::ValuesIn(kCases),

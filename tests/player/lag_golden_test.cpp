@@ -13,6 +13,7 @@
 #include "config/fault_plan_toml.hpp"
 #include "player/scenario.hpp"
 #include "tests/player/sample_path.hpp"
+#include "tests/support/golden_file.hpp"
 
 namespace vbim::player {
 namespace {
@@ -80,16 +81,7 @@ class LagGolden : public ::testing::TestWithParam<LagCase> {};
 TEST_P(LagGolden, LagListMatchesTheCommittedOne) {
   const LagCase& c = GetParam();
   const std::string got = lagList(c);
-  if (const char* u = std::getenv("VBIM_UPDATE_GOLDEN"); u != nullptr && std::string(u) == "1") {
-    std::ofstream(goldenPath(c), std::ios::binary) << got;
-    GTEST_SKIP() << "wrote " << goldenPath(c);
-  }
-  std::ifstream in(goldenPath(c), std::ios::binary);
-  ASSERT_TRUE(in) << goldenPath(c) << " is missing: run scripts/update-golden.sh";
-  std::stringstream want;
-  want << in.rdbuf();
-  EXPECT_EQ(got, want.str()) << c.name << ": the lag differs from the committed list "
-                             << "(after a deliberate change: scripts/update-golden.sh, review, commit)";
+  vbim::testing::expectMatchesGolden(got, goldenPath(c), std::string(c.name) + ": the lag list");
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, LagGolden, ::testing::ValuesIn(kCases),
