@@ -15,7 +15,6 @@
 
 #include "cli/command.hpp"
 #include "cli/host_threads.hpp"
-#include "cli/inter_picture_guard.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
@@ -109,7 +108,6 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   const iop::DiscFile& file = opened.file;
   std::string shown = r.disc;  // the disc as the summary names it
   if (opened.image) shown += " " + file.path + " (LBA " + std::to_string(file.lba) + ")";
-  refuseInterPictures(*disc, file, shown);  // until the player's P/B path lands (issue #29)
   PlayerOptions o;
   if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
   if (!r.faults.empty()) {

@@ -8,7 +8,6 @@
 #include <memory>
 
 #include "cli/command.hpp"
-#include "cli/inter_picture_guard.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
@@ -59,7 +58,6 @@ std::string stem(const std::string& path) {
 // A disc as given: a bare stream file or the stream on an ISO 9660 image, labelled by its name.
 std::shared_ptr<Stream> discStream(const std::string& path, const std::string& file) {
   streams::StreamDisc opened = streams::openStreamDisc(path, file);
-  refuseInterPictures(*opened.disc, opened.file, path);  // until the player's P/B path lands (issue #29)
   auto s = std::make_shared<Stream>();
   s->label = stem(path);
   s->disc = std::move(opened.disc);

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "cli/command.hpp"
-#include "cli/inter_picture_guard.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
@@ -98,7 +97,6 @@ void run(const ReplayRequest& r) {
   // A bare stream file or the stream on an ISO 9660 image, as play takes it.
   std::vector<std::uint8_t> file;
   const streams::StreamDisc disc = streams::openStreamDisc(r.stream, r.file);
-  refuseInterPictures(*disc.disc, disc.file, r.stream);  // until the player's P/B path lands (issue #29)
   file = streams::readDiscFile(*disc.disc, disc.file);
   const ArrivalLog log = parseArrivals(readAll(r.arrivals, "--arrivals"), r.arrivals);
   printWarnings(log.warnings);

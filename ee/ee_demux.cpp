@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "runtime/clock.hpp"
 
@@ -21,6 +22,58 @@ EeDemux::EeDemux(Scheduler& s, iop::StreamRing& ring, const ProbedStream& stream
       buf_(static_cast<std::size_t>(p.read_sectors) * iop::kSectorBytes) {
   if (tracer_ != nullptr) track_ = tracer_->track("ee.demux");
   demux_.setDescriptor(stream.descriptor);
+  for (int s = 0; s < 2; ++s) {
+    if (active(s)) order_[static_cast<std::size_t>(s)] = DecodeOrder(stream.descriptor, streamIndex_[s]);
+  }
+}
+
+// A key's run: the newest branch whose run the key is in (its lap, at or after its first key), or
+// else the lap it is in. In an intra-only stream every key is its seq, so this is the timeline.
+EeDemux::Run EeDemux::runOf(int s, std::int64_t key) const {
+  const std::int64_t lapStart = timeline_.lapStart(key);
+  for (auto it = branchRuns_.rbegin(); it != branchRuns_.rend(); ++it) {
+    const std::int64_t from = it->first;
+    const std::int64_t startKey = it->second[static_cast<std::size_t>(s)];
+    if (key < startKey || key > timeline_.lapEnd(from)) continue;
+    const std::int64_t showFrom = timeline_.frameInVariant(from);
+    const int v = timeline_.variantOf(from);
+    const std::int64_t base = from - showFrom;
+    return Run{v, base, startKey - base, showFrom, startKey};
+  }
+  const std::int64_t startFrame = timeline_.frameInVariant(lapStart);
+  return Run{timeline_.variantOf(key), lapStart - startFrame, startFrame, startFrame, lapStart};
+}
+
+EeDemux::Want EeDemux::want(int s, std::int64_t key) const {
+  const Run r = runOf(s, key);
+  const DecodeOrder& o = order(s);
+  const std::int64_t f = o.frameAtRank(r.variant, key - r.base, r.start);
+  Want w;
+  w.seq = r.base + f;
+  w.frame = r.variant * timeline_.framesPerVariant() + f;
+  w.shown = f >= r.showFrom;
+  w.skip = !w.shown && o.type(w.frame) == streams::PictureType::B;
+  return w;
+}
+
+std::int64_t EeDemux::wanted(int s, std::int64_t key) const {
+  while (want(s, key).skip) ++key;
+  return key;
+}
+
+std::optional<std::int64_t> EeDemux::keyOfFrame(int s, std::int64_t key, std::int64_t g) const {
+  const Run r = runOf(s, key);
+  const std::int64_t frames = timeline_.framesPerVariant();
+  if (g / frames != r.variant) return std::nullopt;
+  const std::int64_t f = g % frames;
+  if (f < r.start || r.base + f > timeline_.lapEnd(key)) return std::nullopt;
+  return r.base + order(s).rank(r.variant, f, r.start);
+}
+
+bool EeDemux::followsInFile(int s, std::int64_t key) const {
+  if (key == 0) return timeline_.variantOf(0) == 0;
+  if (key != runOf(s, key).startKey) return true;
+  return order(s).nextInFile(want(s, key - 1).frame) == want(s, key).frame;
 }
 
 std::int64_t EeDemux::indexSector(int s, std::int64_t globalFrame) const {
@@ -40,14 +93,25 @@ std::int64_t EeDemux::variantEndSector(int s, int variant) const {
   return d.totalSectors;
 }
 
+// The new variant shows seq `from` on; each stream's run starts at the GOP-opening I picture at or
+// before that frame (the frame itself in an intra-only stream), so its first key may be before `from`.
 void EeDemux::branch(std::int64_t from) {
   ++generation_;
-  lastBranchFrom_ = from;
+  branchRuns_.erase(branchRuns_.lower_bound(from), branchRuns_.end());
+  const std::int64_t f = timeline_.frameInVariant(from);
+  const int v = timeline_.variantOf(from);
+  std::array<std::int64_t, 2> startKeys{from, from};
+  for (int s = 0; s < 2; ++s) {
+    if (active(s)) startKeys[static_cast<std::size_t>(s)] = from - f + order(s).resumeFrame(v, f);
+  }
+  branchRuns_[from] = startKeys;
   for (int s = 0; s < 2; ++s) {
     if (!active(s)) continue;
-    buffers_[static_cast<std::size_t>(s)]->dropFrom(from);
-    if (next_[s] >= from) {
-      next_[s] = from;
+    const std::int64_t k0 = startKeys[static_cast<std::size_t>(s)];
+    lastBranchKey_[static_cast<std::size_t>(s)] = k0;
+    buffers_[static_cast<std::size_t>(s)]->dropFrom(k0);
+    if (next_[s] >= k0) {
+      next_[s] = k0;
       positioned_[s] = false;
     }
   }
@@ -62,21 +126,23 @@ void EeDemux::checkReposition() {
   for (int s = 0; s < 2; ++s) {
     if (!active(s)) continue;
     const std::int64_t k = next_[s];
-    const bool waitingHere = positioned_[s] || timeline_.followsInFile(k);
-    if (waitingHere && pos_ >= variantEndSector(s, timeline_.variantOf(k)) &&
-        indexSector(s, timeline_.globalFrame(k)) < pos_) {
+    const Want w = want(s, k);
+    const bool waitingHere = positioned_[s] || followsInFile(s, k);
+    if (waitingHere && pos_ >= variantEndSector(s, static_cast<int>(w.frame / timeline_.framesPerVariant())) &&
+        indexSector(s, w.frame) < pos_) {
       const std::int64_t end = timeline_.lapEnd(k);
       c_.framesLost += end + 1 - k;
       next_[s] = end + 1;
       positioned_[s] = false;
+      lost_[static_cast<std::size_t>(s)] = true;
     }
   }
   bool allJump = true;
   std::int64_t target = std::numeric_limits<std::int64_t>::max();
   for (int s = 0; s < 2; ++s) {
     if (!active(s)) continue;
-    if (positioned_[s] || timeline_.followsInFile(next_[s])) allJump = false;
-    target = std::min(target, indexSector(s, timeline_.globalFrame(next_[s])));
+    if (positioned_[s] || followsInFile(s, next_[s])) allJump = false;
+    target = std::min(target, indexSector(s, want(s, next_[s]).frame));
   }
   if (!allJump) return;
   seekTo_ = target;
@@ -96,18 +162,20 @@ Task<void> EeDemux::route(streams::Picture& pic) {
   }
   const std::int64_t f = *pic.frame;
   std::int64_t k = next_[s];
-  const std::int64_t want = timeline_.globalFrame(k);
-  if (f != want) {
-    // The wanted picture never came (damage) but a later one of the same lap did: skip to it.
-    const std::int64_t ahead = f - want;
-    if (ahead <= 0 || k + ahead > timeline_.lapEnd(k) || timeline_.globalFrame(k + ahead) != f) {
+  Want w = want(s, k);
+  if (f != w.frame) {
+    // The wanted picture never came (damage) but a later one of the same run did: skip to it.
+    const std::optional<std::int64_t> at = keyOfFrame(s, k, f);
+    if (!at || *at <= k || *at > timeline_.lapEnd(k) || want(s, *at).frame != f || want(s, *at).skip) {
       ++c_.picturesIgnored;
       co_return;
     }
-    c_.framesLost += ahead;
-    k += ahead;
+    c_.framesLost += *at - k;
+    lost_[static_cast<std::size_t>(s)] = true;
+    k = *at;
+    w = want(s, k);
   }
-  next_[s] = k + 1;
+  next_[s] = wanted(s, k + 1);
   positioned_[s] = false;
   // Copy into the compressed frame buffer (waiting for room: back-pressure from the IPU).
   const std::uint64_t gen = generation_;
@@ -120,7 +188,7 @@ Task<void> EeDemux::route(streams::Picture& pic) {
     // The feeder decodes in seq order, lightmap first at equal seqs: it can take our oldest picture only
     // after the other stream's picture at its next wanted seq, if that one comes first.
     const int o = 1 - s;
-    const std::int64_t ours = out.front().seq;
+    const std::int64_t ours = out.front().key;
     const std::int64_t theirs = next_[static_cast<std::size_t>(o)];
     const bool otherStarved = active(o) && buffers_[static_cast<std::size_t>(o)]->empty() &&
                               (theirs < ours || (theirs == ours && o == kLightmap));
@@ -137,16 +205,20 @@ Task<void> EeDemux::route(streams::Picture& pic) {
     }
     co_await out.room().wait();
   }
-  if (gen != generation_ && k >= lastBranchFrom_) co_return;  // a branch dropped this frame meanwhile
+  const std::int64_t branchKey = lastBranchKey_[static_cast<std::size_t>(s)];
+  if (gen != generation_ && k >= branchKey) co_return;  // a branch dropped this frame meanwhile
   const Tick t0 = s_.now();
   const std::int64_t qwords = (static_cast<std::int64_t>(pic.data.size()) + 15) / 16;
   co_await s_.delay(fromEeCycles(qwords * p_.copy_cycles_per_qword));
   c_.busy += s_.now() - t0;
   if (tracer_ != nullptr) tracer_->span(track_, t0, s_.now(), "copy");
-  if (gen != generation_ && k >= lastBranchFrom_) co_return;
+  if (gen != generation_ && k >= lastBranchKey_[static_cast<std::size_t>(s)]) co_return;
   if (pic.damaged) ++c_.picturesDamaged;
   ++c_.picturesLoaded;
-  out.push(CompressedPicture{k, f, pic.damaged, std::move(pic.data)});
+  if (!w.shown) ++c_.picturesForReference;
+  const streams::PictureType type = order(s).type(f);
+  out.push(CompressedPicture{w.seq, f, pic.damaged, std::move(pic.data), k, w.shown, type,
+                             std::exchange(lost_[static_cast<std::size_t>(s)], false)});
   work_.notify();
 }
 

@@ -16,8 +16,11 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <vector>
 
+#include "ee/decode_order.hpp"
 #include "ee/frame_buffers.hpp"
 #include "ee/params.hpp"
 #include "ee/stream_probe.hpp"
@@ -46,6 +49,7 @@ struct DemuxCounters {
   std::int64_t picturesDamaged = 0;       // loaded although they disagree with the index
   std::int64_t picturesUnidentified = 0;  // assembled but not at an indexed position
   std::int64_t framesLost = 0;            // needed frames that never arrived (damage)
+  std::int64_t picturesForReference = 0;  // loaded only as references of a frame shown later (a branch into a GOP)
   std::int64_t streamErrors = 0;          // defects the reader reported
   std::int64_t overDepth = 0;   // pictures stored beyond ee.compressed_frames (one stream ran ahead in the mux)
   std::int64_t overBudget = 0;  // pictures dropped: ee.compressed_budget_kib was full (their frames lost)
@@ -64,9 +68,36 @@ class EeDemux {
 
   const DemuxCounters& counters() const { return c_; }
   const streams::Demuxer& reader() const { return demux_; }
-  std::int64_t nextSeq(int stream) const { return next_[stream]; }
+  // The decode-order key of the next picture stream `stream` must load (ee/decode_order.hpp).
+  std::int64_t nextKey(int stream) const { return next_[stream]; }
+  const DecodeOrder& order(int stream) const { return order_[static_cast<std::size_t>(stream)]; }
 
  private:
+  // The picture stream s needs at decode-order key `key`: the seq it is shown at, its global frame,
+  // whether it is shown, and whether it can be skipped (a B picture before a branch's first frame).
+  struct Want {
+    std::int64_t seq = 0;
+    std::int64_t frame = 0;
+    bool shown = true;
+    bool skip = false;
+  };
+  // The run a key belongs to: decoding starts at frame `start` of `variant` (a GOP-opening I) and
+  // shows frames from `showFrom`; key = base + rank, seq = base + frame.
+  struct Run {
+    int variant = 0;
+    std::int64_t base = 0;
+    std::int64_t start = 0;
+    std::int64_t showFrom = 0;
+    std::int64_t startKey = 0;
+  };
+  Run runOf(int s, std::int64_t key) const;
+  Want want(int s, std::int64_t key) const;
+  // The first key >= key that is not skipped.
+  std::int64_t wanted(int s, std::int64_t key) const;
+  // The key of global frame g in the run of `key`, if it lies in that run.
+  std::optional<std::int64_t> keyOfFrame(int s, std::int64_t key, std::int64_t g) const;
+  // True when key's picture comes after key - 1's in the file with no seek (within one run).
+  bool followsInFile(int s, std::int64_t key) const;
   Task<void> route(streams::Picture& pic);
   void checkReposition();
   bool active(int s) const { return streamIndex_[s] >= 0; }
@@ -86,12 +117,16 @@ class EeDemux {
   Event& work_;  // notified when a picture was loaded or the wanted frames changed (wakes the IPU feeder)
   streams::Demuxer demux_;
   std::vector<std::uint8_t> buf_;
-  std::array<std::int64_t, 2> next_{0, 0};      // next seq each stream must load
+  std::array<DecodeOrder, 2> order_;
+  // Branches in force, by seq they take effect from: the first key of the run each one starts, per stream.
+  std::map<std::int64_t, std::array<std::int64_t, 2>> branchRuns_;
+  std::array<bool, 2> lost_{false, false};      // a picture was lost since the last one loaded
+  std::array<std::int64_t, 2> next_{0, 0};      // next key each stream must load
   std::array<bool, 2> positioned_{true, true};  // the read position was set for next_[s] (start, seek)
   std::int64_t pos_ = 0;                        // next sector of the file the ring delivers
   std::int64_t seekTo_ = -1;                    // pending reposition (file sector)
   std::uint64_t generation_ = 0;                // bumped by a branch: pictures in flight are stale
-  std::int64_t lastBranchFrom_ = 0;
+  std::array<std::int64_t, 2> lastBranchKey_{0, 0};
   DemuxCounters c_;
 };
 

@@ -14,14 +14,23 @@
 #include "gs/frame_source.hpp"
 #include "runtime/event.hpp"
 #include "runtime/image.hpp"
+#include "streams/picture_header.hpp"
 
 namespace vbim::ee {
 
 struct CompressedPicture {
-  std::int64_t seq = 0;
+  std::int64_t seq = 0;  // the seq it is shown at (a picture decoded only as a reference: its run's seq for it)
   std::int64_t globalFrame = 0;
   bool damaged = false;  // disagreed with the descriptor index: the IPU conceals what it cannot decode
   std::vector<std::uint8_t> data;
+  // Decode order (ee/decode_order.hpp): the key the demux and the IPU feeder order pictures by
+  // (the seq itself in an intra-only stream), whether the picture is shown (a branch into the middle
+  // of a GOP decodes its references from the GOP's I picture without showing them), its type, and
+  // whether a picture of this stream before it in decode order was lost (its references may be).
+  std::int64_t key = 0;
+  bool shown = true;
+  streams::PictureType type = streams::PictureType::I;
+  bool afterLoss = false;
 };
 
 class CompressedBuffer {
@@ -43,9 +52,9 @@ class CompressedBuffer {
     room_.notify();
     return p;
   }
-  // Drops every picture with seq >= from.
+  // Drops every picture with key >= from (in key order: the last ones).
   void dropFrom(std::int64_t from) {
-    while (!q_.empty() && q_.back().seq >= from) {
+    while (!q_.empty() && q_.back().key >= from) {
       bytes_ -= q_.back().data.size();
       q_.pop_back();
     }

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "ee/ee_demux.hpp"
 #include "ee/frame_buffers.hpp"
@@ -40,6 +41,10 @@ struct DecodeCounters {
   std::array<std::int64_t, 2> picturesPerStream{0, 0};
   ipu::IpuCommandCounts commands;  // every IPU command, by kind (IDEC path: idec only)
   Tick eeBusy = 0;                 // the EE's work in the BDEC flow of P and B pictures (ipu/bdec_flow_timing.hpp)
+  // Streams with P and B pictures (the BDEC flow):
+  std::int64_t bdecPictures = 0;             // pictures decoded by it
+  std::int64_t picturesForReference = 0;     // decoded only as references of later frames (not shown)
+  std::int64_t brokenReferencePictures = 0;  // P or B pictures decoded while a reference was lost or damaged
 };
 
 class IpuFeeder {
@@ -48,9 +53,11 @@ class IpuFeeder {
   // null decoded-frame buffer. `work` is the demux's "a picture was loaded" event. `tracer` is null
   // or enabled; `track` is the feeder's busy-span track in it. `reorder`: the EE reorders each
   // decoded picture from macroblock to raster order before it is ready.
+  // `ipuStreams`: each stream's IPU stream (ipu::IpuUnit::openStream); a kBdec stream's decoded
+  // frames come out in display order, each when the IPU has it due (ipu/ipu_unit.hpp).
   IpuFeeder(Scheduler& s, std::array<CompressedBuffer*, 2> in, std::array<DecodedFrames*, 2> out, const EeDemux& demux,
             const Timeline& timeline, ipu::IpuUnit& ipu, const EeParams& p, bool reorder, Event& work, Tracer* tracer,
-            Tracer::TrackId track);
+            Tracer::TrackId track, std::array<ipu::StreamId, 2> ipuStreams = {});
   IpuFeeder(const IpuFeeder&) = delete;
   IpuFeeder& operator=(const IpuFeeder&) = delete;
 
@@ -63,7 +70,16 @@ class IpuFeeder {
   const DecodeCounters& counters() const { return dc_; }
 
  private:
+  // A picture the IPU has decoded, waiting to be shown (BDEC flow: the last I or P picture).
+  struct Held {
+    std::int64_t seq = 0;
+    bool shown = false;
+    std::uint64_t generation = 0;
+  };
   Task<void> decodeOne(int stream);
+  // After a decode: the frame now in `image` (the picture decoded, or the reference it displaced).
+  std::optional<Held> displayed(int stream, const CompressedPicture& pic, std::uint64_t gen, bool produced);
+  void countReferences(int stream, const CompressedPicture& pic, const ipu::PictureReport& report);
   bool active(int s) const { return out_[static_cast<std::size_t>(s)] != nullptr; }
 
   Scheduler& s_;
@@ -81,6 +97,10 @@ class IpuFeeder {
   std::int64_t lastBranchFrom_ = 0;
   DecodeCounters dc_;
   std::array<ImagePool, 2> images_;  // per stream, so a recycled buffer already has the size
+  std::array<ipu::StreamId, 2> ipuStreams_;
+  std::array<bool, 2> bdec_{false, false};
+  std::array<std::optional<Held>, 2> held_;
+  std::array<bool, 2> brokenChain_{false, false};  // since the last clean I picture, a reference was lost or damaged
 };
 
 }  // namespace vbim::ee

@@ -37,6 +37,11 @@ class Timeline {
     const std::int64_t m = (k - frames_) % (frames_ - loop_);
     return k + (frames_ - loop_ - 1 - m);
   }
+  // The first seq of the lap k is in (0, or the seq that shows the loop frame after a wrap).
+  std::int64_t lapStart(std::int64_t k) const {
+    if (k < frames_) return 0;
+    return k - (k - frames_) % (frames_ - loop_);
+  }
   // From seq `from` on, play `variant` (drops later branches: the newest decision wins).
   void branch(std::int64_t from, int variant) {
     branches_.erase(branches_.lower_bound(from), branches_.end());

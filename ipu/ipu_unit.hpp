@@ -95,6 +95,7 @@ class IpuUnit {
   // IPU's events of that tick (as a fault process scheduled in advance does).
   void stallInputDma(Tick duration);
   void stallOutputDma(Tick duration);
+  DecodePath decodePath(StreamId stream) const { return streams_.at(stream).path; }
   const Decoder& decoder(StreamId stream = kSharedIdecStream) const { return *streams_.at(stream).decoder; }
   // Slice-parallel decode on host threads (null: on the calling thread). Same bytes and ticks
   // either way: only the host's wall time changes.

@@ -1,13 +1,17 @@
-// The IPU vectors: each chosen picture of the streams decoded (IDEC) and converted (CSC) the ways a
-// port can ask the IPU for, hashed in raster order and in the IPU's own macroblock order.
+// The IPU vectors: each chosen picture of the streams decoded (IDEC; a P or B picture's frame through
+// its GOP, player/stream_frame_decoder.hpp) and converted (CSC) the ways a port can ask the IPU for,
+// hashed in raster order and in the IPU's own macroblock order.
 #include <cstdint>
 #include <map>
+#include <optional>
+#include <span>
 
 #include "iop/sector_source.hpp"
 #include "ipu/csc.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "player/frame_hash.hpp"
 #include "player/known_answers.hpp"
+#include "player/stream_frame_decoder.hpp"
 #include "runtime/error.hpp"
 #include "streams/demuxer.hpp"
 
@@ -47,8 +51,13 @@ std::vector<std::uint8_t> rgb16Bytes(const std::vector<std::uint16_t>& px) {
   return out;
 }
 
-// Every picture of a stream file by (stream id, global frame).
-std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> picturesOf(const VectorStream& s) {
+// Every picture of a stream file by (stream id, global frame), and its descriptor.
+struct StreamPictures {
+  streams::Descriptor descriptor;
+  std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> pictures;
+};
+
+StreamPictures picturesOf(const VectorStream& s) {
   streams::Demuxer demux;
   const std::size_t sectors = s.bytes.size() / iop::kSectorBytes;
   for (std::size_t i = 0; i < sectors; ++i) {
@@ -62,16 +71,14 @@ std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> picturesOf(co
   if (!demux.descriptor() || out.empty()) {
     throw ConfigError("stream '" + s.label + "': no playback descriptor or no picture to make IPU vectors from");
   }
-  return out;
+  return StreamPictures{*demux.descriptor(), std::move(out)};
 }
 
-void addPicture(std::string& t, const std::string& prefix, const std::vector<std::uint8_t>& data, ipu::IdctKind idct) {
-  ipu::DecoderOptions options;
-  options.idct = idct;
-  ipu::Decoder decoder(options);
-  decoder.decode(data);
-  const int w = decoder.width();
-  const int h = decoder.height();
+// `frame`: the frame as the IPU holds it for display (a P or B picture's with its references).
+void addPicture(std::string& t, const std::string& prefix, const std::vector<std::uint8_t>& data,
+                const std::optional<StreamFrameDecoder::Frame>& frame) {
+  const int w = frame ? frame->width : 0;
+  const int h = frame ? frame->height : 0;
   t += prefix + "/picture bytes=" + std::to_string(data.size()) + ",size=" + std::to_string(w) + "x" +
        std::to_string(h) + "\n";
   if (w <= 0 || h <= 0 || w % 16 != 0 || h % 16 != 0) return;
@@ -85,11 +92,11 @@ void addPicture(std::string& t, const std::string& prefix, const std::vector<std
     const ipu::CscThresholds thresholds = th ? kThresholds : ipu::CscThresholds{};
     const std::string suffix = th ? "_th" : "";
     Rgba8Image rgba;
-    ipu::convertToRgba32(decoder.frame(), w, h, thresholds, rgba);
+    ipu::convertToRgba32(frame->store, w, h, thresholds, rgba);
     both("rgb32" + suffix, rgba.pixels, 4);
     for (const bool dither : {false, true}) {
       std::vector<std::uint16_t> px;
-      ipu::convertToRgb16(decoder.frame(), w, h, thresholds, dither, px);
+      ipu::convertToRgb16(frame->store, w, h, thresholds, dither, px);
       both(std::string(dither ? "rgb16_dither" : "rgb16") + suffix, rgb16Bytes(px), 2);
     }
   }
@@ -109,9 +116,27 @@ VectorFile ipuVectors(const std::vector<VectorStream>& streams, ipu::IdctKind id
       "#   The bytes are hashed as an RGBA8 image W x H (RGB32) or W/2 x H (RGB16, little-endian pixels).\n"
       "# IDCT: " +
       std::string(ipu::idctKindName(idct)) + " (platform parameter ipu.idct, docs/timing/ipu.md#idct)\n";
+  bool noted = false;
   for (const VectorStream& s : streams) {
-    const auto pictures = picturesOf(s);
+    const StreamPictures sp = picturesOf(s);
+    const auto& pictures = sp.pictures;
+    if (!sp.descriptor.intraOnly() && !noted) {
+      t += "# " + s.label +
+           " has P and B pictures: frame F's outputs are that frame as shown, decoded in decode order\n"
+           "#   from the I picture opening its GOP (ee/decode_order.hpp); `picture` is frame F's own picture\n";
+      noted = true;
+    }
     for (const auto& [id, name] : {std::pair<int, const char*>{0xE0, "lightmap"}, {0xE1, "sky"}}) {
+      const int index = sp.descriptor.streamIndex(static_cast<std::uint8_t>(id));
+      if (index < 0) continue;
+      ipu::DecoderOptions options;
+      options.idct = idct;
+      const int streamId = id;  // a structured binding cannot be captured before C++20's P1091 in clang 14
+      StreamFrameDecoder decoded(sp.descriptor, index, options, [&](std::uint32_t g) -> std::span<const std::uint8_t> {
+        const auto it = pictures.find({streamId, g});
+        if (it == pictures.end()) return {};
+        return it->second;
+      });
       std::vector<std::uint32_t> frames;
       for (const auto& [key, data] : pictures) {
         if (key.first == id) frames.push_back(key.second);
@@ -122,7 +147,8 @@ VectorFile ipuVectors(const std::vector<VectorStream>& streams, ipu::IdctKind id
       if (frames.size() > 1) chosen.push_back(frames[1]);
       if (frames.size() > 2) chosen.push_back(frames.back());
       for (const std::uint32_t f : chosen) {
-        addPicture(t, "ipu/" + s.label + "/" + name + "/frame=" + std::to_string(f), pictures.at({id, f}), idct);
+        addPicture(t, "ipu/" + s.label + "/" + name + "/frame=" + std::to_string(f), pictures.at({id, f}),
+                   decoded.frame(f));
       }
     }
   }

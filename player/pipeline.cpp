@@ -84,10 +84,18 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
     skyOptions.console = &lightmap_->vram();
     sky_ = std::make_unique<gs::Presenter>(s, *skySource_, config.gs, std::move(skyOptions));
   }
-  feeder_ = std::make_unique<ee::IpuFeeder>(s, std::array<ee::CompressedBuffer*, 2>{&lmCompressed_, &skyCompressed_},
-                                            std::array<ee::DecodedFrames*, 2>{lmFrames_.get(), skyFrames_.get()},
-                                            demux_, timeline_, ipu_, config_.ee,
-                                            config_.gs.upload_strategy == "ee-reorder", work_, tracer_, feederTrack_);
+  // An intra-only stream goes through IDEC, on the one decoder both such streams share (as before
+  // issue #29: its bytes and timing unchanged); a stream with P or B pictures through the BDEC flow,
+  // with its own reference frames.
+  std::array<ipu::StreamId, 2> ipuStreams{ipu::kSharedIdecStream, ipu::kSharedIdecStream};
+  for (const int s : {ee::kLightmap, ee::kSky}) {
+    if (demux_.order(s).intraOnly()) continue;
+    ipuStreams[static_cast<std::size_t>(s)] = ipu_.openStream(ipu::DecodePath::kBdec);
+  }
+  feeder_ = std::make_unique<ee::IpuFeeder>(
+      s, std::array<ee::CompressedBuffer*, 2>{&lmCompressed_, &skyCompressed_},
+      std::array<ee::DecodedFrames*, 2>{lmFrames_.get(), skyFrames_.get()}, demux_, timeline_, ipu_, config_.ee,
+      config_.gs.upload_strategy == "ee-reorder", work_, tracer_, feederTrack_, ipuStreams);
   if (faults != nullptr) iop::applyFaults(s, drive_, *faults, Rng(seed).fork("faults"));
 }
 

@@ -9,6 +9,7 @@
 #include "iop/sector_source.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "player/frame_hash.hpp"
+#include "player/stream_frame_decoder.hpp"
 #include "runtime/error.hpp"
 #include "runtime/serial_unit.hpp"
 #include "streams/demuxer.hpp"
@@ -37,6 +38,7 @@ struct Replay::Impl {
   std::unique_ptr<gs::ArrivalSource> lmSource, skySource;
   std::unique_ptr<gs::Presenter> lightmap, sky;
   std::map<std::tuple<bool, int, std::int64_t>, ReplayArrival> arrivals;  // (sky, variant, frame)
+  std::map<int, std::unique_ptr<StreamFrameDecoder>> frameDecoders;       // by stream id
   Tick t0 = 0;
 };
 
@@ -77,6 +79,19 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
     if (!vsyncRateByName(m.options.config.gs.video, rate)) throw ConfigError("unknown gs.video mode");
     return VsyncClock(rate);
   }();
+  for (const int id : {0xE0, 0xE1}) {
+    const int index = m.descriptor.streamIndex(static_cast<std::uint8_t>(id));
+    if (index < 0) continue;
+    ipu::DecoderOptions o;
+    o.kernels = m.options.kernels.ipu;
+    o.idct = ipu::idctKindOf(m.options.config.ipu);
+    m.frameDecoders[id] = std::make_unique<StreamFrameDecoder>(
+        m.descriptor, index, o, [this, id](std::uint32_t global) -> std::span<const std::uint8_t> {
+          const auto it = impl_->pictures.find({id, global});
+          if (it == impl_->pictures.end()) return {};
+          return it->second;
+        });
+  }
   const auto imageFn = [this](int id) {
     // seq -> the stream frame as play's timeline maps it: after a wrap, from the descriptor's loop frame.
     return [this, id](int variant, std::int64_t seq) {
@@ -87,16 +102,7 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
       const streams::StreamEntry& e =
           im.descriptor.streams[static_cast<std::size_t>(im.descriptor.streamIndex(static_cast<std::uint8_t>(id)))];
       Rgba8Image out(e.width, e.height);
-      const auto it = im.pictures.find({id, global});
-      if (it == im.pictures.end()) {
-        ++missing_;
-        return out;
-      }
-      ipu::DecoderOptions o;
-      o.kernels = im.options.kernels.ipu;
-      o.idct = ipu::idctKindOf(im.options.config.ipu);
-      ipu::Decoder decoder(o);
-      ipu::decodeToRgba(decoder, it->second, out);
+      if (!im.frameDecoders.at(id)->decode(global, out)) ++missing_;
       return out;
     };
   };

@@ -262,6 +262,13 @@ void writeStatsJson(const Player& player, std::ostream& out, const json::Value* 
                                       {"setvq", c.setvq},
                                       {"csc", c.csc}});
   }
+  if (dc.bdecPictures > 0) {
+    // Streams with P and B pictures: what decode order and damage cost beyond the frames shown.
+    j["damage"]["pictures_with_broken_reference"] = dc.brokenReferencePictures;
+    j["gop"] = json::object({{"pictures_bdec", dc.bdecPictures},
+                             {"pictures_for_reference_only", dc.picturesForReference},
+                             {"pictures_loaded_for_reference_only", dm.picturesForReference}});
+  }
   // Zero unless gs.upload_strategy = ee-reorder.
   j["ee_reorder"] = json::object({{"qwords", dc.reorderedQwords}, {"busy_ticks", dc.reorderBusy}});
   j["vsyncs_recorded"] = t.vsyncs;
