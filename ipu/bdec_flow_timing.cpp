@@ -25,7 +25,8 @@ class InputFeed {
     Tick t = request;
     while (read_ < count) {
       const Tick arrive = stalls_.defer(free_ + period_);
-      Tick& slot = pops_[read_ % depth_];
+      Tick& slot = pops_[slot_];
+      if (++slot_ == depth_) slot_ = 0;  // read_ % depth_, without a division per qword
       Tick enter = arrive;
       if (slot > arrive) {
         enter = slot;
@@ -48,6 +49,7 @@ class InputFeed {
   std::vector<Tick> pops_;  // when the qword a FIFO depth back was read, by index mod depth
   Tick free_;
   std::uint32_t read_ = 0;
+  std::size_t slot_ = 0;
 };
 
 }  // namespace
@@ -62,6 +64,7 @@ Tick mcCost(const FlowMacroblock& m, const EeFlowCosts& ee) {
 void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, const DmaStalls& in,
               const DmaStalls& out, FlowTiming& t) {
   t.spans.clear();
+  t.spans.reserve(f.macroblocks.size() * 3 + 1);
   t.counts = f.header;
   t.eeBusy = 0;
   t.eeWait = 0;
@@ -90,7 +93,9 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
   Tick bdecDone = e;
   Tick fromFree = out.defer(t.arrival);
   std::vector<Tick> takes(dout + 1, t.arrival);  // when output qword y - Dout left, by index mod (Dout + 1)
-  std::uint64_t outCount = 0;
+  // outCount mod (Dout + 1) and (outCount + 1) mod (Dout + 1), stepped instead of divided per qword.
+  std::size_t slot = 0;
+  std::size_t nextSlot = 1 % (dout + 1);
   std::uint32_t readBefore = f.headerQwords;
   const FlowMacroblock* previous = nullptr;
   for (const FlowMacroblock& m : f.macroblocks) {
@@ -114,16 +119,18 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
                                       feed.readThrough(m.needQwords, start));
         // The IPU pushes a qword a cycle once there is room; fromIPU writes each to scratchpad.
         Tick q = decoded;
-        for (int y = 0; y < kBdecQwords; ++y, ++outCount) {
-          const Tick room = takes[(outCount + 1) % (dout + 1)];  // qword y - Dout has left
+        for (int y = 0; y < kBdecQwords; ++y) {
+          const Tick room = takes[nextSlot];  // qword y - Dout has left
           if (room > q) {
             q = room;
             ++t.outputStalls;
           }
           const Tick resumed = q <= fromFree ? fromFree : out.defer(q);
-          takes[outCount % (dout + 1)] = std::max(q, fromFree);
+          takes[slot] = std::max(q, fromFree);
           fromFree = out.defer(resumed + outPeriod);
           q += 1;
+          slot = nextSlot;
+          if (++nextSlot == dout + 1) nextSlot = 0;
         }
         ipuFree = q;
         bdecDone = fromFree;

@@ -127,6 +127,7 @@ class IpuUnit {
   };
   static Task<void> run(IpuUnit& u);
   Task<void> traceCommand(const Command& cmd, bool cscOnly);
+  Task<void> traceFlowCoalesced(const Command& cmd);
   Task<TimedPicture> submit(std::shared_ptr<Command> shared, TimedPicture result, Rgba8Image& out, int width,
                             int height);
   void plan(Command& c);

@@ -11,6 +11,8 @@
 # CPU); a temporary directory otherwise.
 # PLAY_SPEED_SECONDS (default 600) shortens the streams and the plays: the test suite runs the script
 # with 5 (Docs.PlaySpeedScriptRunsShortened). A WORKDIR holds streams of one length only.
+# A third line plays the 512x512 stream authored with GOPs of 12 and two B pictures (issue #29: P and
+# B pictures through the BDEC flow; the goal is 500x real time in CPU time).
 set -eu
 vbim=${1:?usage: play_speed.sh VBIM [RUNS] [WORKDIR] [THREADS]}
 runs=${2:-5}
@@ -28,32 +30,43 @@ seconds=${PLAY_SPEED_SECONDS:-600}
 printf '[gs]\nupload_mode = "strips"\nsky_height = 128\n' >"$work/512.toml"
 : >"$work/256.toml"
 
-author() {  # SIZE SKY_WIDTH
+author() {  # NAME SIZE SKY_WIDTH [AUTHOR OPTIONS]
   out="$work/ta$1.vbim"
-  [ -f "$out" ] || "$vbim" author --procedural --size "$1" --sky-width "$2" --frame-count "$seconds" --fps 1 \
-    --out "$out" >/dev/null
+  size=$2
+  sky=$3
+  shift 3
+  [ -f "$out" ] || "$vbim" author --procedural --size "$size" --sky-width "$sky" --frame-count "$seconds" --fps 1 \
+    "$@" --out "$out" >/dev/null
 }
 
 median() { sort -n | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo "?")
 echo "vbim play, ${seconds} s simulated, default options, --threads $threads, $runs runs each; load average $load before"
-for size in 512 256; do
-  author "$size" $((size / 2))
-  : >"$work/cpu$size"
-  : >"$work/wall$size"
+cp "$work/512.toml" "$work/512gop.toml"
+for name in 512 256 512gop; do
+  size=${name%gop}
+  if [ "$name" = 512gop ]; then
+    author "$name" "$size" $((size / 2)) --gop 12 --b-frames 2
+  else
+    author "$name" "$size" $((size / 2))
+  fi
+  : >"$work/cpu$name"
+  : >"$work/wall$name"
   i=0
   while [ "$i" -lt "$runs" ]; do
-    line=$("$vbim" play "$work/ta$size.vbim" --config "$work/$size.toml" --duration "${seconds}s" --force \
-      --threads "$threads" --out "$work/run$size" | head -n 1)
+    line=$("$vbim" play "$work/ta$name.vbim" --config "$work/$name.toml" --duration "${seconds}s" --force \
+      --threads "$threads" --out "$work/run$name" | head -n 1)
     # "played 600.0 s of X (N vsyncs) in W s of host time (..x real time), C s of CPU time (..x real time)"
     # The x-real-time figures, not the times: those are printed to 10 ms, too coarse for short plays.
-    echo "$line" | sed -n 's/.* of host time (\([0-9.]*\)x real time).*/\1/p' >>"$work/wall$size"
-    echo "$line" | sed -n 's/.* of CPU time (\([0-9.]*\)x real time).*/\1/p' >>"$work/cpu$size"
+    echo "$line" | sed -n 's/.* of host time (\([0-9.]*\)x real time).*/\1/p' >>"$work/wall$name"
+    echo "$line" | sed -n 's/.* of CPU time (\([0-9.]*\)x real time).*/\1/p' >>"$work/cpu$name"
     i=$((i + 1))
   done
-  cpu=$(median <"$work/cpu$size")
-  wall=$(median <"$work/wall$size")
-  awk -v s="$size" -v t="$seconds" -v c="$cpu" -v w="$wall" 'BEGIN {
-    printf "%dx%d + %dx%d: CPU %.3f s (%.0fx real time), wall %.3f s (%.0fx real time)\n", s, s, s / 2, s / 4, t / c, c, t / w, w }'
+  cpu=$(median <"$work/cpu$name")
+  wall=$(median <"$work/wall$name")
+  gop=""
+  [ "$name" = 512gop ] && gop=", GOP 12 with 2 B pictures"
+  awk -v s="$size" -v g="$gop" -v t="$seconds" -v c="$cpu" -v w="$wall" 'BEGIN {
+    printf "%dx%d + %dx%d%s: CPU %.3f s (%.0fx real time), wall %.3f s (%.0fx real time)\n", s, s, s / 2, s / 4, g, t / c, c, t / w, w }'
 done
