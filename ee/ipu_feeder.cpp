@@ -51,13 +51,16 @@ void IpuFeeder::countReferences(int stream, const CompressedPicture& pic, const 
   const bool missing = std::any_of(report.issues.begin(), report.issues.end(), [](const ipu::DecodeIssue& i) {
     return i.kind == ipu::IssueKind::kMissingReference;
   });
+  // A picture that disagrees with the index (pic.damaged) may decode without an issue and still be
+  // wrong: as a reference it breaks the chain too.
+  const bool bad = pic.damaged || !report.clean();
   if (pic.type == streams::PictureType::I) {
-    broken = !report.clean();
+    broken = bad;
     return;
   }
   if (pic.afterLoss) broken = true;
   if (broken || missing) ++dc_.brokenReferencePictures;
-  if (pic.type == streams::PictureType::P && !report.clean()) broken = true;
+  if (pic.type == streams::PictureType::P && bad) broken = true;
 }
 
 Task<void> IpuFeeder::decodeOne(int stream) {

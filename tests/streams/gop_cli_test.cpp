@@ -249,5 +249,35 @@ TEST(GopCli, VectorsHashEachFrameAsShown) {
   }
 }
 
+// A damaged P picture (bytes flipped in its slice data: it disagrees with the index) is decoded
+// with concealment, and every P or B picture that predicts from it, up to the next I picture, is
+// counted as decoded from a broken reference; the play completes.
+TEST(GopCli, ADamagedReferenceIsConcealedAndCountedUntilTheNextI) {
+  TempDir dir;
+  const fs::path s = authorGop(dir);
+  std::vector<std::uint8_t> bytes = test::readFile(s);
+  std::size_t at = 2048;  // after the descriptor's sector: the first P picture's start code
+  for (; at + 6 < bytes.size(); ++at) {
+    if (bytes[at] == 0 && bytes[at + 1] == 0 && bytes[at + 2] == 1 && bytes[at + 3] == 0 &&
+        ((bytes[at + 5] >> 3) & 7) == 2) {
+      break;
+    }
+  }
+  ASSERT_LT(at + 62, bytes.size());
+  bytes[at + 60] ^= 0xFF;
+  bytes[at + 61] ^= 0x55;
+  const fs::path damaged = dir / "damaged.vbim";
+  test::writeFile(damaged, bytes);
+  const auto play = vbim("play " + damaged.string() + " --duration 20s --no-trace --out " + (dir / "run").string());
+  ASSERT_EQ(play.status, 0) << play.output;
+  const auto json = nlohmann::json::parse(std::ifstream(dir / "run" / "stats.json"));
+  EXPECT_GE(json["damage"]["pictures_damaged"], 1);
+  EXPECT_GE(json["damage"]["pictures_with_broken_reference"], 2);
+  const auto clean = vbim("play " + s.string() + " --duration 20s --no-trace --out " + (dir / "clean").string());
+  ASSERT_EQ(clean.status, 0) << clean.output;
+  const auto ok = nlohmann::json::parse(std::ifstream(dir / "clean" / "stats.json"));
+  EXPECT_EQ(ok["damage"]["pictures_with_broken_reference"], 0);
+}
+
 }  // namespace
 }  // namespace vbim::streams
