@@ -177,11 +177,11 @@ void Tracer::writeChromeJson(std::ostream& out) const {
 void Tracer::writeVcd(std::ostream& out) const {
   out << "$comment vbim simulated bus clock, 147.456 MHz; times in ps $end\n";
   out << "$timescale 1ps $end\n$scope module vbim $end\n";
-  // One 1-bit "busy" wire per track, one 64-bit integer per counter.
+  // One 1-bit "busy" wire per track, one signed value per counter.
   for (std::size_t i = 0; i < tracks_.size(); ++i)
     out << "$var wire 1 " << vcdId(i) << ' ' << vcdName(tracks_[i]) << "_busy $end\n";
   for (std::size_t i = 0; i < counters_.size(); ++i)
-    out << "$var integer 64 " << vcdId(tracks_.size() + i) << ' ' << vcdName(counters_[i]) << " $end\n";
+    out << kCounterVar << vcdId(tracks_.size() + i) << ' ' << vcdName(counters_[i]) << " $end\n";
   out << "$upscope $end\n$enddefinitions $end\n";
 
   struct Change {
@@ -205,7 +205,7 @@ void Tracer::writeVcd(std::ostream& out) const {
                    [](const Change& a, const Change& b) { return a.t != b.t ? a.t < b.t : a.order < b.order; });
   out << "#0\n$dumpvars\n";
   for (std::size_t i = 0; i < tracks_.size(); ++i) out << "0" << vcdId(i) << "\n";
-  for (std::size_t i = 0; i < counters_.size(); ++i) out << "b0 " << vcdId(tracks_.size() + i) << "\n";
+  for (std::size_t i = 0; i < counters_.size(); ++i) out << counterValue(0) << ' ' << vcdId(tracks_.size() + i) << "\n";
   out << "$end\n";
   long long lastPs = 0;
   for (const Change& c : changes) {
@@ -217,7 +217,7 @@ void Tracer::writeVcd(std::ostream& out) const {
     if (c.var < tracks_.size()) {
       out << (c.v ? '1' : '0') << vcdId(c.var) << '\n';
     } else {
-      out << 'b' << binary(c.v) << ' ' << vcdId(c.var) << '\n';
+      out << counterValue(c.v) << ' ' << vcdId(c.var) << '\n';
     }
   }
 }

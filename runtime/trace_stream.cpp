@@ -61,15 +61,8 @@ std::string vcdName(std::string s) {
   return s;
 }
 
-std::string binary(std::int64_t v) {
-  auto u = static_cast<std::uint64_t>(v);
-  std::string s;
-  do {
-    s.push_back(static_cast<char>('0' + (u & 1)));
-    u >>= 1;
-  } while (u != 0);
-  std::reverse(s.begin(), s.end());
-  return s;
+std::string counterValue(std::int64_t v) {
+  return "r" + std::to_string(v);
 }
 
 }  // namespace trace_format
@@ -110,15 +103,15 @@ void TraceStream::header(const std::vector<std::string>& tracks, const std::vect
 
   vcd_ << "$comment vbim simulated bus clock, 147.456 MHz; times in ps $end\n";
   vcd_ << "$timescale 1ps $end\n$scope module vbim $end\n";
-  // One 1-bit "busy" wire per track, one 64-bit integer per counter.
+  // One 1-bit "busy" wire per track, one signed value per counter.
   for (std::size_t i = 0; i < tracks_; ++i)
     vcd_ << "$var wire 1 " << ids_[i] << ' ' << vcdName(tracks[i]) << "_busy $end\n";
   for (std::size_t i = 0; i < counters.size(); ++i)
-    vcd_ << "$var integer 64 " << ids_[tracks_ + i] << ' ' << vcdName(counters[i]) << " $end\n";
+    vcd_ << kCounterVar << ids_[tracks_ + i] << ' ' << vcdName(counters[i]) << " $end\n";
   vcd_ << "$upscope $end\n$enddefinitions $end\n";
   vcd_ << "#0\n$dumpvars\n";
   for (std::size_t i = 0; i < tracks_; ++i) vcd_ << "0" << ids_[i] << "\n";
-  for (std::size_t i = 0; i < counters.size(); ++i) vcd_ << "b0 " << ids_[tracks_ + i] << "\n";
+  for (std::size_t i = 0; i < counters.size(); ++i) vcd_ << counterValue(0) << ' ' << ids_[tracks_ + i] << "\n";
   vcd_ << "$end\n";
 }
 
@@ -249,7 +242,7 @@ void TraceStream::writeGroup(Tick t) {
     if (c.var < tracks_) {
       vcd_ << (c.v ? '1' : '0') << ids_[c.var] << '\n';
     } else {
-      vcd_ << 'b' << binary(c.v) << ' ' << ids_[c.var] << '\n';
+      vcd_ << counterValue(c.v) << ' ' << ids_[c.var] << '\n';
     }
     shown_[c.var] = c.v;
   }

@@ -150,7 +150,10 @@ std::string micros(long long ns);    // "12.345"
 long long vcdPicoseconds(Tick t);    // nearest picosecond
 std::string vcdId(std::size_t n);    // printable identifier code
 std::string vcdName(std::string s);  // blanks to underscores
-std::string binary(std::int64_t v);  // VCD integer value
+// A counter's value change in VCD: counters are declared `real` so a viewer shows a negative value
+// (target_seq = -1 before the first frame) as -1, not as 2^64 - 1 (issue #33).
+std::string counterValue(std::int64_t v);  // "r-1"
+inline constexpr const char* kCounterVar = "$var real 64 ";
 }  // namespace trace_format
 
 }  // namespace vbim

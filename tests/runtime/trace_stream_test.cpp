@@ -130,6 +130,30 @@ TEST(TraceStream, SpansThatFollowEachOtherDoNotOverlapAfterRounding) {
   }
 }
 
+// A counter that goes negative (target_seq = -1 before the first frame) is a signed value in the
+// VCD, in both writers: declared `real`, written "r-1", not 64 ones (issue #33).
+TEST(TraceStream, NegativeCounterValuesAreSignedInTheVcd) {
+  for (bool streamed : {false, true}) {
+    std::ostringstream json;
+    std::ostringstream vcd;
+    Tracer t;
+    if (streamed) t.streamTo(json, vcd);
+    const auto c = t.counter("target_seq");
+    t.value(c, 2, -1);
+    t.value(c, 4, 7);
+    if (streamed) {
+      t.finish();
+    } else {
+      t.writeVcd(vcd);
+    }
+    const std::string v = vcd.str();
+    EXPECT_NE(v.find("$var real 64 "), std::string::npos) << v;
+    EXPECT_NE(v.find("\nr-1 "), std::string::npos) << v;
+    EXPECT_NE(v.find("\nr7 "), std::string::npos) << v;
+    EXPECT_EQ(v.find("1111111111111111"), std::string::npos) << v;
+  }
+}
+
 TEST(TraceStream, RepeatedRunsAreByteIdentical) {
   const Streamed a = stream(TraceDetail::Coalesced, 100'000, 20'000);
   const Streamed b = stream(TraceDetail::Coalesced, 100'000, 20'000);
