@@ -1,7 +1,10 @@
 #include "player/known_answers.hpp"
 
+#include <algorithm>
 #include <map>
+#include <set>
 #include <sstream>
+#include <string_view>
 
 #include "gs/blend.hpp"
 #include "player/frame_hash.hpp"
@@ -126,26 +129,75 @@ std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& stre
   return {frameHashVectors(), blendVectors(), streamReadVectors(), ipuVectors(streams, idct)};
 }
 
-std::optional<VectorDifference> compareVectors(const VectorFile& expected, const std::string* found) {
-  const std::vector<Entry> want = parseEntries(expected.text);
+bool vectorKeySelected(const std::string& key, const std::vector<std::string>& only) {
+  if (only.empty()) return true;
+  // Glob with `*` only, by the classic two-pointer walk with backtracking to the last star.
+  const auto matches = [](std::string_view p, std::string_view k) {
+    std::size_t pi = 0, ki = 0, star = std::string_view::npos, mark = 0;
+    while (ki < k.size()) {
+      if (pi < p.size() && p[pi] == '*') {
+        star = pi++;
+        mark = ki;
+      } else if (pi < p.size() && p[pi] == k[ki]) {
+        ++pi;
+        ++ki;
+      } else if (star != std::string_view::npos) {
+        pi = star + 1;
+        ki = ++mark;
+      } else {
+        return false;
+      }
+    }
+    while (pi < p.size() && p[pi] == '*') ++pi;
+    return pi == p.size();
+  };
+  return std::any_of(only.begin(), only.end(), [&](const std::string& p) { return matches(p, key); });
+}
+
+VectorScore scoreVectors(const VectorFile& expected, const std::string* found, const std::vector<std::string>& only) {
+  VectorScore score;
+  score.file = expected.name;
+  std::vector<Entry> want = parseEntries(expected.text);
+  std::erase_if(want, [&](const Entry& e) { return !vectorKeySelected(e.key, only); });
+  score.checked = want.size();
   if (found == nullptr) {
-    return VectorDifference{expected.name, want.empty() ? "" : want.front().key, want.empty() ? "" : want.front().value,
-                            "(no such file)"};
+    score.found = false;
+    score.missing = want.size();
+    if (!want.empty()) {
+      score.differences.push_back(
+          VectorDifference{expected.name, want.front().key, want.front().value, "(no such file)"});
+    }
+    return score;
   }
   const std::vector<Entry> got = parseEntries(*found);
   std::map<std::string, std::string> byKey;
   for (const Entry& e : got) byKey.emplace(e.key, e.value);
   for (const Entry& e : want) {
     const auto it = byKey.find(e.key);
-    if (it == byKey.end()) return VectorDifference{expected.name, e.key, e.value, "(missing)"};
-    if (it->second != e.value) return VectorDifference{expected.name, e.key, e.value, it->second};
+    if (it == byKey.end()) {
+      ++score.missing;
+      score.differences.push_back(VectorDifference{expected.name, e.key, e.value, "(missing)"});
+    } else if (it->second != e.value) {
+      ++score.differ;
+      score.differences.push_back(VectorDifference{expected.name, e.key, e.value, it->second});
+    } else {
+      ++score.matched;
+    }
   }
-  std::map<std::string, bool> known;
-  for (const Entry& e : want) known.emplace(e.key, true);
+  std::set<std::string> known;
+  for (const Entry& e : parseEntries(expected.text)) known.insert(e.key);
   for (const Entry& e : got) {
-    if (!known.contains(e.key)) return VectorDifference{expected.name, e.key, "(no such entry)", e.value};
+    if (known.contains(e.key) || !vectorKeySelected(e.key, only)) continue;
+    ++score.extra;
+    score.differences.push_back(VectorDifference{expected.name, e.key, "(no such entry)", e.value});
   }
-  return std::nullopt;
+  return score;
+}
+
+std::optional<VectorDifference> compareVectors(const VectorFile& expected, const std::string* found) {
+  VectorScore score = scoreVectors(expected, found);
+  if (score.differences.empty()) return std::nullopt;
+  return std::move(score.differences.front());
 }
 
 }  // namespace vbim::player

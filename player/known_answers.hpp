@@ -60,4 +60,24 @@ struct VectorDifference {
 // expected file does not have is a difference too.
 std::optional<VectorDifference> compareVectors(const VectorFile& expected, const std::string* found);
 
+// How much of one vector file a port reproduces, for a partial bring-up (docs/porting.md): every
+// selected entry compared, not only the first.
+struct VectorScore {
+  std::string file;
+  bool found = true;                          // the port's directory has the file
+  std::size_t checked = 0;                    // expected entries selected
+  std::size_t matched = 0;                    // ... equal in the port's file
+  std::size_t differ = 0;                     // ... with another value
+  std::size_t missing = 0;                    // ... absent (all of them when the file is)
+  std::size_t extra = 0;                      // selected keys the expected file does not have
+  std::vector<VectorDifference> differences;  // in the expected file's order, then the extra keys
+  bool passed() const { return matched == checked && extra == 0; }
+};
+// `only`: patterns a key must match to be selected (`*` stands for any run of characters, `/`
+// included); empty selects every entry.
+VectorScore scoreVectors(const VectorFile& expected, const std::string* found,
+                         const std::vector<std::string>& only = {});
+// True when `key` matches one of `only` (or `only` is empty).
+bool vectorKeySelected(const std::string& key, const std::vector<std::string>& only);
+
 }  // namespace vbim::player

@@ -115,6 +115,37 @@ TEST(PortReference, CheckNamesTheFirstDifference) {
   fs::remove_all(dir);
 }
 
+// A partial bring-up: cdstread.txt not captured yet and one RGB32-with-thresholds hash wrong. The
+// check scores every file (not only the first difference), and --only scores what the port has
+// done: RGB32 without thresholds and the blend pass.
+TEST(PortReference, CheckScoresAPartialBringUpAndOnlySelectsWhatItHas) {
+  const fs::path dir = scratch("partial");
+  fs::create_directories(dir);
+  for (const char* f : kVectorFiles) fs::copy_file(fs::path(VBIM_SOURCE_DIR) / "tests/vectors" / f, dir / f);
+  fs::remove(dir / "cdstread.txt");
+  std::string ipu = readAll(dir / "ipu.txt");
+  const std::string key = "ipu/day_clear/lightmap/frame=1/rgb32_th/raster ";
+  const auto at = ipu.find(key);
+  ASSERT_NE(at, std::string::npos);
+  ipu[at + key.size()] = ipu[at + key.size()] == '0' ? '1' : '0';
+  std::ofstream(dir / "ipu.txt", std::ios::binary) << ipu;
+  const Result all = run("vectors --check " + dir.string());
+  EXPECT_EQ(all.code, 1) << all.output;
+  EXPECT_NE(all.output.find("frame_hash.txt: 10 of 10 match"), std::string::npos) << all.output;
+  EXPECT_NE(all.output.find("blend.txt: 707 of 707 match"), std::string::npos) << all.output;
+  EXPECT_NE(all.output.find("cdstread.txt: no such file"), std::string::npos) << all.output;
+  EXPECT_NE(all.output.find("1 differ"), std::string::npos) << all.output;
+  EXPECT_NE(all.output.find("entry 'ipu/day_clear/lightmap/frame=1/rgb32_th/raster'"), std::string::npos) << all.output;
+  const Result some = run("vectors --check " + dir.string() + " --only 'ipu/*/rgb32/*' --only 'blend/*'");
+  EXPECT_EQ(some.code, 0) << some.output;
+  EXPECT_NE(some.output.find("blend.txt: 686 of 686 match"), std::string::npos) << some.output;
+  EXPECT_NE(some.output.find("cdstread.txt: no entry selected"), std::string::npos) << some.output;
+  const Result wrong = run("vectors --check " + dir.string() + " --only 'ipu/*/rgb32_th/*'");
+  EXPECT_EQ(wrong.code, 1) << wrong.output;
+  EXPECT_EQ(run("vectors --check " + dir.string() + " --only 'no/such/*'").code, 2);
+  fs::remove_all(dir);
+}
+
 // play, then replay of its arrivals: the same hashes.txt, byte for byte.
 void expectReplayMatchesPlay(const std::string& stream, const std::string& extra) {
   const fs::path dir = scratch("replay");
