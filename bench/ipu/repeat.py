@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""Runs bench_ipu_decode several times and summarises its counters over the runs.
+"""Runs bench_ipu_decode (or bench_ipu_gop_decode, with --bench) several times and summarises its counters over the runs.
 
 One run of the bench already interleaves the decoders it compares and reports medians of
 per-round ratios; the spread that is left comes from the host (a virtual machine whose neighbours
 come and go), so a figure worth quoting is the median over several runs with its range.
 
     bench/ipu/repeat.py [--runs N] [--bench build/bench/ipu/bench_ipu_decode] [--filter REGEX]
+    bench/ipu/repeat.py --runs N --bench build/bench/ipu/bench_ipu_gop_decode
 
 Prints one Markdown table per benchmark family: median (min-max) over the runs of each counter.
 """
@@ -19,6 +20,8 @@ COUNTERS = {
     "BM_DecodeToRgba": ["ours_fps", "libavcodec_fps", "libmpeg2_fps", "x_libavcodec", "x_libmpeg2", "x_faster",
                         "ours_exact_fps", "x_exact"],
     "BM_SliceParallel": ["speedup_wall", "ceiling", "efficiency", "speedup_cpu", "speedup_wall_nospin", "identical"],
+    "BM_GopDecode": ["ours_yuv_fps", "libmpeg2_fps", "x_libmpeg2_yuv", "ours_rgba_fps", "libavcodec_fps", "x_libav_rgba",
+                     "l2idct_cost", "all_frames"],
 }
 
 
