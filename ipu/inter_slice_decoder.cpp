@@ -22,7 +22,14 @@ class InterSliceDecoder {
  public:
   InterSliceDecoder(const PictureParams& pp, const InterParams& ip, const std::uint8_t* begin, const std::uint8_t* end,
                     std::size_t offset, const SliceOutput& out)
-      : pp_(pp), ip_(ip), t_(vlcTables()), it_(interVlcTables()), br_(begin, end), offset_(offset), out_(out) {
+      : pp_(pp),
+        ip_(ip),
+        t_(vlcTables()),
+        it_(interVlcTables()),
+        mc_(ip.mc ? *ip.mc : scalarMcKernels()),
+        br_(begin, end),
+        offset_(offset),
+        out_(out) {
     frame_ = ip.pictureStructure == 3;
     parity_ = ip.pictureStructure == 2 ? 1 : 0;
   }
@@ -70,6 +77,7 @@ class InterSliceDecoder {
   const InterParams& ip_;
   const VlcTables& t_;
   const InterVlcTables& it_;
+  const McKernels& mc_;
   BitReader br_;
   std::size_t offset_;
   const SliceOutput& out_;
@@ -295,7 +303,7 @@ bool InterSliceDecoder::parseBlock(int b, bool intra, IssueKind& why) {
 }
 
 void InterSliceDecoder::predictAndStore(bool parsed) {
-  const PredictionResult r = predictMacroblock(mb_, ip_.refs, pp_);
+  const PredictionResult r = predictMacroblock(mb_, ip_.refs, pp_, mc_);
   if (r.clamped) issue(IssueKind::kBadMotionVector, mb_.mbX, mb_.mbY);
   if (r.missingReference) ++out_.report->macroblocksConcealed;
   if (parsed) reconstructBlocks(mb_, pp_);

@@ -26,6 +26,7 @@ struct InterParams {
   bool fullPel[2] = {false, false};               // MPEG-1 full_pel_forward_vector / full_pel_backward_vector
   std::array<std::uint8_t, 64> nonIntraMatrix{};  // raster order
   ReferenceSet refs;
+  const McKernels* mc = nullptr;  // null: scalarMcKernels()
 };
 
 // Decodes one slice of a P or B picture; the contract of decodeSlice() (ipu/slice_decoder.hpp).

@@ -78,6 +78,7 @@ const Kernels& scalarKernels() {
                           {copyKernel<IdctKind::Libmpeg2>, addKernel<IdctKind::Libmpeg2>},
                           {copyKernel<IdctKind::Exact>, addKernel<IdctKind::Exact>}},
                          cscRowsRgba32Scalar,
+                         &scalarMcKernels(),
                          "scalar"};
   return k;
 }

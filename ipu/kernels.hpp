@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "ipu/csc.hpp"
+#include "ipu/mc_kernels.hpp"
 
 namespace vbim::ipu {
 
@@ -49,6 +50,7 @@ struct IdctKernels {
 struct Kernels {
   IdctKernels idct[kIdctKinds];  // by IdctKind
   CscRowFn cscRow;
+  const McKernels* mc;  // motion compensation (ipu/mc_kernels.hpp)
   const char* name;
   const IdctKernels& idctOf(IdctKind k) const { return idct[static_cast<int>(k)]; }
 };

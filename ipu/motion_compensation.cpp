@@ -18,31 +18,12 @@ struct SourcePlane {
   int rows;
 };
 
-// Predicts a w x h block whose top-left sample is (x, y) in the source's coordinates, displaced by
-// (hx2, hy2) half samples (already inside the plane).
-void predictBlock(const SourcePlane& s, int px, int py, std::uint8_t* dst, std::ptrdiff_t dstStride, int w, int h,
-                  bool average) {
+// Predicts a block of `rows` rows whose top-left sample is (px, py) half samples in the source's
+// coordinates (already inside the plane), with the kernel for its width and half-sample case.
+inline void predictBlock(const McPredictFn (&fns)[4], const SourcePlane& s, int px, int py, std::uint8_t* dst,
+                         std::ptrdiff_t dstStride, int rows) {
   const std::uint8_t* a = s.base + static_cast<std::ptrdiff_t>(py >> 1) * s.stride + (px >> 1);
-  const int hx = px & 1;
-  const int hy = py & 1;
-  const std::ptrdiff_t down = hy ? s.stride : 0;
-  for (int r = 0; r < h; ++r) {
-    const std::uint8_t* p = a + r * s.stride;
-    std::uint8_t* d = dst + r * dstStride;
-    for (int c = 0; c < w; ++c) {
-      int v;
-      if (hx && hy) {
-        v = (p[c] + p[c + 1] + p[c + down] + p[c + down + 1] + 2) >> 2;
-      } else if (hx) {
-        v = (p[c] + p[c + 1] + 1) >> 1;
-      } else if (hy) {
-        v = (p[c] + p[c + down] + 1) >> 1;
-      } else {
-        v = p[c];
-      }
-      d[c] = static_cast<std::uint8_t>(average ? (d[c] + v + 1) >> 1 : v);
-    }
-  }
+  fns[((py & 1) << 1) | (px & 1)](dst, dstStride, a, s.stride, rows);
 }
 
 // Keeps a position (half samples) of a block of `size` samples inside [0, 2 * (extent - size)].
@@ -61,7 +42,8 @@ SourcePlane planeOf(const std::vector<std::uint8_t>& plane, int stride, int rows
 
 }  // namespace
 
-PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& refs, const PictureParams& pp) {
+PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& refs, const PictureParams& pp,
+                                   const McKernels& mc) {
   PredictionResult result;
   for (int k = 0; k < mb.opCount; ++k) {
     const PredictionOp& op = mb.ops[k];
@@ -109,7 +91,8 @@ PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& ref
     const bool cx = bound(px, ly.width, 16);
     const bool cy = bound(py, ly.rows, h);
     result.clamped = result.clamped || cx || cy;
-    predictBlock(ly, px, py, dy, dyStride, 16, h, op.average);
+    const auto& fns = mc.predict[op.average ? 1 : 0];
+    predictBlock(fns[1], ly, px, py, dy, dyStride, h);
     // Chroma: the (bounded) luma vector halved toward zero (§7.6.3.7), at half the position.
     const int mvx = px - 2 * x0;
     const int mvy = py - 2 * y0;
@@ -119,8 +102,8 @@ PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& ref
     int qy = y0 + mvy / 2;
     bound(qx, lc.width, 8);
     bound(qy, lc.rows, h / 2);
-    predictBlock(lc, qx, qy, dcb, dcStride, 8, h / 2, op.average);
-    predictBlock(lr, qx, qy, dcr, dcStride, 8, h / 2, op.average);
+    predictBlock(fns[0], lc, qx, qy, dcb, dcStride, h / 2);
+    predictBlock(fns[0], lr, qx, qy, dcr, dcStride, h / 2);
   }
   return result;
 }

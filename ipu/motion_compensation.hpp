@@ -7,6 +7,7 @@
 #include "ipu/decode_report.hpp"
 #include "ipu/frame_store.hpp"
 #include "ipu/macroblock.hpp"
+#include "ipu/mc_kernels.hpp"
 #include "ipu/slice_decoder.hpp"
 
 namespace vbim::ipu {
@@ -26,7 +27,9 @@ struct PredictionResult {
 
 // Writes the prediction of `mb` (its ops) into the picture `pp` describes. Never reads outside a
 // reference frame, whatever the vectors.
-PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& refs, const PictureParams& pp);
+// `mc`: Kernels::mc of scalarKernels() or simdKernels() (ipu/kernels.hpp), the same bytes.
+PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& refs, const PictureParams& pp,
+                                   const McKernels& mc = scalarMcKernels());
 
 // Adds the coded blocks' residuals to the prediction with the clip (non-intra), or writes the
 // clipped inverse DCT of all six blocks (intra). Clears the coefficients it used.

@@ -127,6 +127,7 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
     ip.refs.forward = pic_.codingType == 2 ? frames_.backward() : frames_.forward();
     ip.refs.backward = pic_.codingType == 3 ? frames_.backward() : nullptr;
     ip.refs.current = &store;
+    ip.mc = kernels().mc;
   }
   report.macroblocks += p.mbWidth * p.mbRows;
   // One row of flags per cache line multiple, so jobs on neighbouring rows never share a line.

@@ -12,6 +12,7 @@
 
 #include "ipu/csc.hpp"
 #include "ipu/idct_libmpeg2.hpp"
+#include "ipu/simd/mc_kernels.hpp"
 
 // Basis of the 1-D transform as used by ipu/idct.cpp: B(k, n) = 2^14 for k = 0, else
 // W_j * sign with cos((2n+1) k pi / 16) = sign * cos(j pi / 16).
@@ -533,6 +534,7 @@ const Kernels& simdKernels() {
                           {idctLibmpeg2Simd, idctLibmpeg2AddSimd},
                           {idctSimd, scalarKernels().idctOf(IdctKind::Exact).add}},
                          cscRowsRgba32Simd,
+                         &simdMcKernels(),
                          "highway"};
   return k;
 }

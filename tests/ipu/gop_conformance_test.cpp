@@ -1,6 +1,7 @@
 // Whole MPEG-1 and MPEG-2 MP@ML (issue #29): streams with GOPs, P and B pictures, made by
 // libavcodec at test time, decoded by us (display order, libmpeg2's IDCT) and by libmpeg2 0.5.1's C
-// decoder (acceleration off, as `mpeg2dec -c`): every sample of every picture must be identical.
+// decoder (acceleration off, as `mpeg2dec -c`): every sample of every picture must be identical,
+// with our scalar and our Highway kernels.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -9,6 +10,7 @@
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
+#include "ipu/simd/simd_kernels.hpp"
 #include "tests/ipu/support/field_picture_writer.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 #include "tests/ipu/support/libmpeg2_decode.hpp"
@@ -23,9 +25,11 @@ struct OurDecode {
   std::string firstIssues;
 };
 
-OurDecode decodeOurs(const std::vector<std::uint8_t>& es, SliceRunner* runner = nullptr) {
+OurDecode decodeOurs(const std::vector<std::uint8_t>& es, SliceRunner* runner = nullptr,
+                     const Kernels* kernels = nullptr) {
   DecoderOptions options;
   options.idct = IdctKind::Libmpeg2;
+  options.kernels = kernels;
   Decoder dec(options);
   OurDecode out;
   auto take = [&]() {
@@ -48,17 +52,21 @@ void expectIdentical(const testing::EncodeOptions& o) {
   SCOPED_TRACE(o.describe());
   const std::vector<std::uint8_t> es = testing::encodeIntra(o);
   const std::vector<Yuv420Image> ref = testing::decodeWithLibmpeg2(es);
-  const OurDecode ours = decodeOurs(es);
-  EXPECT_EQ(ours.issues, 0u) << ours.firstIssues;
-  ASSERT_EQ(ours.frames.size(), ref.size());
-  ASSERT_EQ(ref.size(), static_cast<std::size_t>(o.frames));
-  if (o.gopSize > 1) {
-    EXPECT_GT(ours.predicted, 0);
-  }
-  for (std::size_t f = 0; f < ref.size(); ++f) {
-    const testing::PlaneDiff d = testing::compare(ours.frames[f], ref[f]);
-    EXPECT_EQ(d.samples, ref[f].y.size() + ref[f].cb.size() + ref[f].cr.size());
-    EXPECT_EQ(d.different, 0u) << "display frame " << f << ": max difference " << d.maxAbs;
+  // The scalar reference kernels (IDCT, motion compensation), then the Highway ones.
+  for (const Kernels* k : {&scalarKernels(), &simdKernels()}) {
+    SCOPED_TRACE(k->name);
+    const OurDecode ours = decodeOurs(es, nullptr, k);
+    EXPECT_EQ(ours.issues, 0u) << ours.firstIssues;
+    ASSERT_EQ(ours.frames.size(), ref.size());
+    ASSERT_EQ(ref.size(), static_cast<std::size_t>(o.frames));
+    if (o.gopSize > 1) {
+      EXPECT_GT(ours.predicted, 0);
+    }
+    for (std::size_t f = 0; f < ref.size(); ++f) {
+      const testing::PlaneDiff d = testing::compare(ours.frames[f], ref[f]);
+      EXPECT_EQ(d.samples, ref[f].y.size() + ref[f].cb.size() + ref[f].cr.size());
+      EXPECT_EQ(d.different, 0u) << "display frame " << f << ": max difference " << d.maxAbs;
+    }
   }
 }
 
