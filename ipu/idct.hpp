@@ -33,6 +33,19 @@ void idctSigned(const std::int16_t* block, std::int16_t* out);
 // residual of a non-intra block. rowMask as for idctScalar.
 void idctSignedUnclipped(const std::int16_t* block, unsigned rowMask, std::int16_t* out);
 
+// The exact transform of a block holding only F[0][0] = dc and F[7][7] = f77 (0, or 1 after
+// mismatch control) is the constant (dc + 4) >> 3 when f77 is 0, or when the F[7][7] term, below
+// 2^29 in magnitude against the 2^31 of one output step, cannot carry the rounding across a step:
+// (dc + 4) & 7 in [2, 6] (tests/ipu/idct_test.cpp checks every dc). The non-intra add kernel of
+// IdctKind::Exact then adds exactIdctConstant(dc) to the prediction.
+inline bool exactIdctIsConstant(int dc, int f77) {
+  const int r = (dc + 4) & 7;
+  return f77 == 0 || (f77 == 1 && r >= 2 && r <= 6);
+}
+inline int exactIdctConstant(int dc) {
+  return (dc + 4) >> 3;
+}
+
 // The value every sample of a block takes when only F[0][0] is non-zero: (dc + 4) >> 3, clamped.
 inline std::uint8_t idctDcValue(int dc) {
   const int v = (dc + 4) >> 3;

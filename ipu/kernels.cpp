@@ -37,10 +37,21 @@ void copyKernel(const std::int16_t* block, unsigned rowMask, unsigned, std::uint
   }
 }
 
+// A non-intra block whose residual is one value: that value added to every sample.
+bool constantResidual(IdctKind k, const std::int16_t* block, unsigned rowMask, int& value) {
+  if (!(rowMask & kIdctFirstOnly)) return false;
+  if (k != IdctKind::Exact) {
+    value = nonIntraDcResidual(block[0]);
+    return nonIntraDcShortcut(block[0]);
+  }
+  value = exactIdctConstant(block[0]);
+  return exactIdctIsConstant(block[0], block[63]);  // the exact transform's own value, not a rule
+}
+
 template <IdctKind K>
 void addKernel(const std::int16_t* block, unsigned rowMask, unsigned, std::uint8_t* dst, int stride) {
-  if (K != IdctKind::Exact && (rowMask & kIdctFirstOnly) && nonIntraDcShortcut(block[0])) {
-    const int v = nonIntraDcResidual(block[0]);
+  int v = 0;
+  if (constantResidual(K, block, rowMask, v)) {
     for (int y = 0; y < 8; ++y) {
       for (int x = 0; x < 8; ++x) {
         std::uint8_t& p = dst[static_cast<std::ptrdiff_t>(y) * stride + x];

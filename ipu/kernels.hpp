@@ -34,7 +34,8 @@ inline constexpr unsigned kIdctToggleOnly = 0x100;
 // IdctAddFn only, rowMask bit 9: the only coefficient coded was the first in scan order (F[0][0];
 // F[7][7] may hold the mismatch toggle). Pcsx2 and Libmpeg2 then add the constant
 // nonIntraDcResidual(F[0][0]) when nonIntraDcShortcut(F[0][0]) (ipu/idct_libmpeg2.hpp), as their
-// decoders do; Exact ignores the bit and transforms the block as given.
+// decoders do; Exact adds its own transform's value when that is one constant
+// (exactIdctIsConstant, ipu/idct.hpp), which gives the same bytes as the full transform.
 inline constexpr unsigned kIdctFirstOnly = 0x200;
 // Intra: writes the 8x8 result clamped to 0..255.
 using IdctFn = void (*)(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride);

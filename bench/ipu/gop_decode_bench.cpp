@@ -256,6 +256,21 @@ BENCHMARK(BM_GopDecode)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.5);
 
+// Ours alone to YCbCr (with the default IDCT, or IdctKind::Libmpeg2), for profiling:
+// perf record -g build/bench/ipu/bench_ipu_gop_decode --benchmark_filter=BM_GopDecodeOurs/...
+void BM_GopDecodeOurs(benchmark::State& state) {
+  const Clip& c = clip(state.range(0) != 0, static_cast<int>(state.range(1)));
+  Ours ours(state.range(2) != 0 ? vbim::ipu::IdctKind::Libmpeg2 : vbim::ipu::kDefaultIdct, false);
+  for (auto _ : state) benchmark::DoNotOptimize(ours.run(c));
+  state.SetItemsProcessed(state.iterations() * kFrames);
+}
+BENCHMARK(BM_GopDecodeOurs)
+    ->ArgNames({"interlaced", "q", "l2idct"})
+    ->Args({0, 4, 0})
+    ->Args({0, 4, 1})
+    ->Args({1, 4, 0})
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

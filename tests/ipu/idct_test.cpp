@@ -185,6 +185,33 @@ TEST(IpuIdct, DcFastPathsAreExact) {
   }
 }
 
+// The exact kind's non-intra constant shortcut (kIdctFirstOnly, exactIdctIsConstant) gives the
+// bytes of its full transform for every DC, with and without the mismatch toggle, on predictions
+// that include the clip's ends.
+TEST(IpuIdct, ExactAddConstantShortcutIsExact) {
+  const IdctAddFn add = scalarKernels().idctOf(IdctKind::Exact).add;
+  int constant = 0;
+  for (int dc = -2048; dc <= 2047; ++dc) {
+    for (const int f77 : {0, 1}) {
+      std::int16_t block[64] = {};
+      block[0] = static_cast<std::int16_t>(dc);
+      block[63] = static_cast<std::int16_t>(f77);
+      if (exactIdctIsConstant(dc, f77)) {
+        ++constant;
+        std::int16_t full[64];
+        idctSignedUnclipped(block, 0xFF, full);
+        for (int i = 0; i < 64; ++i) ASSERT_EQ(full[i], exactIdctConstant(dc)) << "dc " << dc << " f77 " << f77;
+      }
+      std::uint8_t shortcut[64], whole[64];
+      for (int i = 0; i < 64; ++i) shortcut[i] = whole[i] = static_cast<std::uint8_t>(i * 37 % 256 | (i % 5 ? 0 : 255));
+      add(block, 0xFF | kIdctFirstOnly, 0xFF, shortcut, 8);
+      add(block, 0xFF, 0xFF, whole, 8);
+      for (int i = 0; i < 64; ++i) ASSERT_EQ(shortcut[i], whole[i]) << "dc " << dc << " f77 " << f77;
+    }
+  }
+  EXPECT_EQ(constant, 4096 + 4096 * 5 / 8);
+}
+
 // Skipping rows the mask says are zero gives the same result as transforming all of them.
 TEST(IpuIdct, RowMaskSkipsOnlyZeroRows) {
   Ieee1180Random rng;
