@@ -32,6 +32,12 @@ class InterSliceDecoder {
         out_(out) {
     frame_ = ip.pictureStructure == 3;
     parity_ = ip.pictureStructure == 2 ? 1 : 0;
+    for (int i = 0; i < 64; ++i) {
+      const int pos = pp.scan[i];
+      const auto mask = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
+      scan_[0][i] = {ip.nonIntraMatrix[pos], static_cast<std::uint8_t>(pos), mask};
+      scan_[1][i] = {pp.intraMatrix[pos], static_cast<std::uint8_t>(pos), mask};
+    }
   }
 
   void run(int code);
@@ -69,7 +75,10 @@ class InterSliceDecoder {
   bool vector(int s, int r, bool fieldFormat, int& mvx, int& mvy, int* dmv);
   bool motionVectors(int s, int motionType);
   bool concealmentVectors();
-  bool parseBlock(int b, bool intra, IssueKind& why);
+  template <bool Intra, bool Mpeg1>
+  bool parseBlock(BitReader& br, int b, IssueKind& why);
+  template <bool Mpeg1>
+  bool parseBlocks(bool intra, IssueKind& why);
   void predictAndStore(bool parsed);
   void skipped(int address);
 
@@ -92,6 +101,14 @@ class InterSliceDecoder {
   int vdec_ = 0;
   int fdec_ = 0;
   std::uint8_t skippedPredictions_ = 0;  // predictions of each skipped macroblock before this one
+  // Per scan position, [non-intra / intra]: the matrix weight at it, its raster index, and its row
+  // bit (bits 0-7) and column bit (bits 8-15) for the IDCT's masks; one lookup once the run is known.
+  struct ScanSlot {
+    std::uint8_t weight;
+    std::uint8_t pos;
+    std::uint16_t mask;
+  };
+  ScanSlot scan_[2][64];
 };
 
 // One motion_vector(r, s) (§6.2.5.3) and its reconstruction (§7.6.3.1); a field-format vector of a
@@ -103,12 +120,12 @@ bool InterSliceDecoder::vector(int s, int r, bool fieldFormat, int& mvx, int& mv
   int dx = 0;
   int dy = 0;
   int len = 0;
-  if (!readMotionDelta(br_, fx, dx)) return false;
+  if (!readMotionDelta(br_, t_, fx, dx)) return false;
   if (dmv) {
     dmv[0] = dmvectorOf(br_.peek(2), len);
     br_.skip(len);
   }
-  if (!readMotionDelta(br_, fy, dy)) return false;
+  if (!readMotionDelta(br_, t_, fy, dy)) return false;
   if (dmv) {
     dmv[1] = dmvectorOf(br_.peek(2), len);
     br_.skip(len);
@@ -212,93 +229,156 @@ bool InterSliceDecoder::concealmentVectors() {
   return !br_.overrun();
 }
 
+// The coded blocks of the macroblock. The reader lives in registers for them (a member would be
+// stored and reloaded after every coefficient: a store-to-load round trip on the serial chain of
+// codes), as in the intra slice decoder (ipu/slice_decoder.cpp).
+template <bool Mpeg1>
+bool InterSliceDecoder::parseBlocks(bool intra, IssueKind& why) {
+  BitReader br = br_;
+  bool ok = true;
+  for (int b = 0; b < 6 && ok; ++b) {
+    mb_.rowMask[b] = 0;
+    mb_.colMask[b] = 0;
+    if (!(mb_.pattern & (32 >> b))) continue;
+    ok = intra ? parseBlock<true, Mpeg1>(br, b, why) : parseBlock<false, Mpeg1>(br, b, why);
+  }
+  br_ = br;
+  return ok;
+}
+
 // One block's coefficients (§7.2, §7.3, §7.4): intra with its DC differential, or non-intra whose
-// first code may be '1s' (run 0, level 1).
-bool InterSliceDecoder::parseBlock(int b, bool intra, IssueKind& why) {
+// first code may be '1s' (run 0, level 1). Leaves the IDCT's masks and flags (ipu/kernels.hpp) in
+// mb_.rowMask / mb_.colMask.
+template <bool Intra, bool Mpeg1>
+[[gnu::always_inline]] inline bool InterSliceDecoder::parseBlock(BitReader& br, int b, IssueKind& why) {
   std::int16_t* blk = mb_.block[b];
-  const std::uint8_t* matrix = intra ? pp_.intraMatrix.data() : ip_.nonIntraMatrix.data();
   unsigned parity = 0;
+  unsigned masks = 0;
   int i = -1;
   int coded = 0;
-  if (intra) {
+  if constexpr (Intra) {
     const int cc = b < 4 ? 0 : b - 3;
-    const VlcEntry e = cc == 0 ? t_.dcSizeLuma[br_.peek(9)] : t_.dcSizeChroma[br_.peek(10)];
+    const VlcEntry e = cc == 0 ? t_.dcSizeLuma[br.peek(9)] : t_.dcSizeChroma[br.peek(10)];
     if (e.len == 0) {
       why = IssueKind::kBadVlc;
       return false;
     }
-    br_.skip(e.len);
+    br.skip(e.len);
     const int size = static_cast<unsigned char>(e.value);
     if (size != 0) {
-      const int bits = static_cast<int>(br_.read(size));
+      const int bits = static_cast<int>(br.read(size));
       dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
     }
-    int dc = pp_.mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] * (1 << (3 - pp_.intraDcPrecision));
+    int dc = Mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] * (1 << (3 - pp_.intraDcPrecision));
     dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);
     blk[0] = static_cast<std::int16_t>(dc);
     parity = static_cast<unsigned>(dc);
     i = 0;
   }
-  const int table = (intra && !pp_.mpeg1 && pp_.intraVlcFormat) ? 1 : 0;
-  const int k = intra ? 0 : 1;  // the non-intra (2 QF + sign(QF)) term
-  auto place = [&](int mag, bool negative) {
-    if (i > 63) {
-      why = IssueKind::kCoefficientOverrun;
+  const DctCodeEntry* shortCodes = t_.dctShort[(Intra && !Mpeg1 && pp_.intraVlcFormat) ? 1 : 0];
+  const DctCodeEntry* longCodes = t_.dctLong;
+  const ScanSlot* slots = scan_[Intra ? 1 : 0];
+  const int scale = scale_;
+  constexpr int k = Intra ? 0 : 1;  // the non-intra (2 QF + sign(QF)) term
+  // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
+  auto place = [&](int mag, int negative) {
+    if (i > 63) [[unlikely]]
       return false;
-    }
-    const int pos = pp_.scan[i];
+    const ScanSlot& slot = slots[i];
     int v;
-    if (pp_.mpeg1) {
+    if constexpr (Mpeg1) {
       // 11172-2 §2.4.4.1-2.4.4.3: then towards an odd value.
-      v = ((2 * mag + k) * scale_ * matrix[pos]) >> 4;
+      v = ((2 * mag + k) * scale * slot.weight) >> 4;
       if ((v & 1) == 0 && v != 0) v -= 1;
     } else {
-      v = ((2 * mag + k) * matrix[pos] * scale_) >> 5;  // §7.4.2.3
+      v = ((2 * mag + k) * slot.weight * scale) >> 5;  // §7.4.2.3
     }
-    v = negative ? -(v > 2048 ? 2048 : v) : (v > 2047 ? 2047 : v);  // §7.4.3
-    blk[pos] = static_cast<std::int16_t>(v);
+    // §7.4.3 saturation to [-2048, 2047], applied to the magnitude before the sign.
+    const int signMask = -negative;
+    const int limit = 2047 - signMask;
+    v = v > limit ? limit : v;
+    v = (v ^ signMask) - signMask;
+    blk[slot.pos] = static_cast<std::int16_t>(v);
     parity ^= static_cast<unsigned>(v);
+    masks |= slot.mask;
     ++coded;
     return true;
   };
-  if (!intra && br_.peek(1)) {  // '1s': the first coefficient, run 0, level 1
-    const bool negative = br_.peek(2) & 1;
-    br_.skip(2);
+  br.topUp();                  // at least 56 bits
+  if (!Intra && br.peek(1)) {  // '1s': the first coefficient, run 0, level 1
+    const int negative = static_cast<int>(br.peek(2) & 1);
+    br.skipUnchecked(2);
     i = 0;
-    if (!place(1, negative)) return false;
+    place(1, negative);
   }
+  // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
+  // ends within 16 bits; the caller checks for overrun once per macroblock.
   for (;;) {
-    DctCodeEntry s = t_.dctShort[table][br_.peek(VlcTables::kDctShortBits)];
-    if (s.level == 0 && s.step == kDctKindLong) {
-      s = t_.dctLong[br_.peek(VlcTables::kDctLongBits)];
+    br.topUp();
+    // Up to four short codes (code and sign at most 11 bits each) need no look at the bit count.
+    DctCodeEntry s;
+    int n = 0;
+    for (; n < 4; ++n) {
+      s = shortCodes[br.peek(VlcTables::kDctShortBits)];
+      if (s.level == 0) [[unlikely]]
+        break;
+      br.skipUnchecked(s.bits);
+      i += s.step;
+      if (!place(s.level, s.negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return false;
+      }
+    }
+    if (n == 4) continue;
+    // Any other symbol; at least 56 - 3 * 11 = 23 bits are left.
+    if (s.step == kDctKindLong) {
+      // 12..16 bits and the sign: seven zeros, so the next 17 bits are the index.
+      s = longCodes[br.peek(VlcTables::kDctLongBits)];
       if (s.level == 0) {
         why = IssueKind::kBadVlc;
         return false;
       }
-    }
-    if (s.level != 0) {
-      br_.skip(s.bits);
+      br.skipUnchecked(s.bits);
       i += s.step;
-      if (!place(s.level, s.negative != 0)) return false;
+      if (!place(s.level, s.negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return false;
+      }
     } else if (s.step == kDctKindEob) {
-      br_.skip(s.bits);
+      br.skipUnchecked(s.bits);
       break;
     } else if (s.step == kDctKindEscape) {
+      // skip() and read() refill as they go.
       int run = 0;
-      const int level = pp_.mpeg1 ? readEscapeLevel<true>(br_, run) : readEscapeLevel<false>(br_, run);
+      const int level = readEscapeLevel<Mpeg1>(br, run);
+      const int negative = level < 0;
       i += run + 1;
-      if (!place(level < 0 ? -level : level, level < 0)) return false;
+      if (!place(negative ? -level : level, negative)) {
+        why = IssueKind::kCoefficientOverrun;
+        return false;
+      }
     } else {
       why = IssueKind::kBadVlc;
       return false;
     }
-    if (br_.overrun()) {
-      why = IssueKind::kTruncatedSlice;
-      return false;
+  }
+  // The callers' reads refill when the count is low; restore that invariant.
+  if (br.bitsCached() < 32) br.topUp();
+  unsigned rowMask = (masks & 0xFF) | (Intra ? 1u : 0u);
+  unsigned colMask = (masks >> 8) | (Intra ? 1u : 0u);
+  if (!Mpeg1 && (parity & 1) == 0) {  // §7.4.4 mismatch control
+    blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
+    if (((rowMask | colMask) & 0x80) == 0) {
+      rowMask |= kIdctToggleOnly;  // F[7][7] = +-1 alone in its row and column
+    } else {
+      rowMask |= 0x80;
+      colMask |= 0x80;
     }
   }
-  if (!pp_.mpeg1 && (parity & 1) == 0) blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);  // §7.4.4
-  mb_.onlyFirst[b] = !intra && coded == 1 && i == 0;
+  // The only coded coefficient was the first in scan order (the decoders' DC shortcut).
+  if (!Intra && coded == 1 && i == 0) rowMask |= kIdctFirstOnly;
+  mb_.rowMask[b] = static_cast<std::uint16_t>(rowMask);
+  mb_.colMask[b] = static_cast<std::uint8_t>(colMask);
   return true;
 }
 
@@ -462,15 +542,11 @@ void InterSliceDecoder::run(int code) {
       return;
     }
     IssueKind why = IssueKind::kBadVlc;
-    for (int b = 0; b < 6; ++b) {
-      mb_.onlyFirst[b] = false;
-      if (!(mb_.pattern & (32 >> b))) continue;
-      if (!parseBlock(b, intra, why)) {
-        if (br_.overrun()) why = IssueKind::kTruncatedSlice;
-        issue(why, mbX, mbY);
-        std::memset(mb_.block, 0, sizeof mb_.block);
-        return;
-      }
+    if (!(pp_.mpeg1 ? parseBlocks<true>(intra, why) : parseBlocks<false>(intra, why))) {
+      if (br_.overrun()) why = IssueKind::kTruncatedSlice;
+      issue(why, mbX, mbY);
+      std::memset(mb_.block, 0, sizeof mb_.block);
+      return;
     }
     if (br_.overrun()) {
       issue(IssueKind::kTruncatedSlice, mbX, mbY);

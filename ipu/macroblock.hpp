@@ -45,8 +45,10 @@ struct Macroblock {
   // Dequantised, saturated coefficients (raster order) with mismatch control applied; zero where
   // the block is not coded.
   alignas(32) std::int16_t block[6][64];
-  // Non-intra blocks whose only coded coefficient is the first in scan order.
-  bool onlyFirst[6] = {};
+  // Each coded block's rows and columns that may hold a non-zero coefficient, with the flags
+  // kIdctToggleOnly and kIdctFirstOnly in rowMask: the masks of the IDCT kernels (ipu/kernels.hpp).
+  std::uint16_t rowMask[6] = {};
+  std::uint8_t colMask[6] = {};
 };
 
 }  // namespace vbim::ipu

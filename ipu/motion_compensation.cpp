@@ -128,11 +128,11 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
     }
     std::int16_t* blk = mb.block[b];
     if (intra) {
-      pp.idct(blk, 0xFF, 0xFF, dst, static_cast<int>(ds));
+      pp.idct(blk, mb.rowMask[b], mb.colMask[b], dst, static_cast<int>(ds));
     } else {
       // The kind's add kernel; kIdctFirstOnly lets Pcsx2 and Libmpeg2 take their decoders' shortcut
       // for a block whose only coded coefficient is the first (ipu/idct_libmpeg2.hpp).
-      pp.idctAdd(blk, 0xFF | (mb.onlyFirst[b] ? kIdctFirstOnly : 0u), 0xFF, dst, static_cast<int>(ds));
+      pp.idctAdd(blk, mb.rowMask[b], mb.colMask[b], dst, static_cast<int>(ds));
     }
     std::memset(blk, 0, sizeof(mb.block[b]));
   }

@@ -3,13 +3,36 @@
 // and the dual-prime derived vectors (§7.6.3.6).
 #pragma once
 
+#include <cstdint>
+
 #include "ipu/bit_reader.hpp"
+#include "ipu/vlc_tables.hpp"
 
 namespace vbim::ipu {
 
 // Reads motion_code (B.10) and, if present, motion_residual, and returns the differential
 // (§7.6.3.1: delta). `fCode` 1..9. False on an invalid code.
-bool readMotionDelta(BitReader& br, int fCode, int& delta);
+// Inline, with the tables passed in: it runs twice per vector on the P/B parse's serial chain.
+inline bool readMotionDelta(BitReader& br, const VlcTables& t, int fCode, int& delta) {
+  const VlcEntry e = t.motionCode[br.peek(11)];
+  if (e.len == 0) return false;
+  br.skip(e.len);
+  // The table holds motion_code as a signed byte, -16..16; its magnitude and sign.
+  const int code = e.value < 0 ? -static_cast<int>(static_cast<std::uint8_t>(-e.value))
+                               : static_cast<int>(static_cast<std::uint8_t>(e.value));
+  const int rSize = fCode - 1;
+  if (rSize == 0 || code == 0) {
+    delta = code;
+    return true;
+  }
+  const int residual = static_cast<int>(br.read(rSize));
+  const int magnitude = ((code < 0 ? -code : code) - 1) * (1 << rSize) + residual + 1;
+  delta = code < 0 ? -magnitude : magnitude;
+  return true;
+}
+inline bool readMotionDelta(BitReader& br, int fCode, int& delta) {
+  return readMotionDelta(br, vlcTables(), fCode, delta);
+}
 
 // §7.6.3.1: prediction + delta, brought into [-16 f, 16 f - 1] with f = 2^(fCode - 1) by adding or
 // subtracting 32 f.
