@@ -493,6 +493,23 @@ void cscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_
   }
 }
 
+void cscRowsTarget(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+                   int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
+  cscRowsImpl(y, yStride, rows, cb, cr, width, rgba, rgbaStride, th.th0, th.th1);
+}
+
+// This target's kernels as plain function pointers, picked once: a dispatch per 8x8 block (the
+// exported wrappers below) cost about 2 % of a P/B decode. The kernels read only the mask bits
+// ipu/kernels.hpp defines.
+Kernels kernelTable() {
+  return Kernels{{{idctPcsx2CopyImpl, idctPcsx2AddImpl},
+                  {idctLibmpeg2CopyImpl, idctLibmpeg2AddImpl},
+                  {idctImpl, scalarKernels().idctOf(IdctKind::Exact).add}},
+                 cscRowsTarget,
+                 nullptr,
+                 "highway"};
+}
+
 }  // namespace vbim::ipu::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -505,6 +522,7 @@ HWY_EXPORT(idctPcsx2AddImpl);
 HWY_EXPORT(idctLibmpeg2CopyImpl);
 HWY_EXPORT(idctLibmpeg2AddImpl);
 HWY_EXPORT(cscRowsImpl);
+HWY_EXPORT(kernelTable);
 
 void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
   HWY_DYNAMIC_DISPATCH(idctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
@@ -528,14 +546,15 @@ void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::
   HWY_DYNAMIC_DISPATCH(cscRowsImpl)(y, yStride, rows, cb, cr, width, rgba, rgbaStride, th.th0, th.th1);
 }
 
+Kernels simdKernelsOfCurrentTarget() {
+  Kernels k = HWY_DYNAMIC_DISPATCH(kernelTable)();
+  k.mc = &simdMcKernels();
+  return k;
+}
+
 const Kernels& simdKernels() {
   // The exact kind's non-intra entry is the scalar one (no P or B picture uses it by default).
-  static const Kernels k{{{idctPcsx2Simd, idctPcsx2AddSimd},
-                          {idctLibmpeg2Simd, idctLibmpeg2AddSimd},
-                          {idctSimd, scalarKernels().idctOf(IdctKind::Exact).add}},
-                         cscRowsRgba32Simd,
-                         &simdMcKernels(),
-                         "highway"};
+  static const Kernels k = simdKernelsOfCurrentTarget();
   return k;
 }
 

@@ -18,7 +18,11 @@ void idctLibmpeg2Simd(const std::int16_t* block, unsigned rowMask, unsigned colM
 void idctLibmpeg2AddSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride);
 void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                        int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th);
+// The kernels of the best target, picked once (plain function pointers, no dispatch per call).
 const Kernels& simdKernels();
+// The kernels of the best target allowed at this moment, not cached: tests run them on every
+// target (hwy::SetSupportedTargetsForTest). Motion compensation stays simdMcKernels().
+Kernels simdKernelsOfCurrentTarget();
 // The instruction set the dispatch picked ("AVX2", "AVX3", "SSE4", ...).
 const char* simdTargetName();
 
