@@ -250,10 +250,11 @@ HWY_INLINE void mpeg2Row(const std::int16_t* row, std::int32_t* out) {
   }
 }
 
-// The column pass on columns c0 .. c0 + N - 1 of the row results t (rows R and below are zero):
-// out[y] = the 16-bit result of output row y, before any clip.
-template <bool Pcsx2, int R, class D, class V = hn::Vec<D>>
-HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, std::size_t c0, V* out) {
+// The column pass on columns c0 .. c0 + N - 1 of the row results t (rows R and below are zero,
+// except row 7 in t7 when T7, R < 8: the mismatch toggle alone in row 7): out[y] = the 16-bit
+// result of output row y, before any clip. Sums wrap as the scalar code's, so their order is free.
+template <bool Pcsx2, int R, bool T7, class D, class V = hn::Vec<D>>
+HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7, std::size_t c0, V* out) {
   constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
   const auto x = [&](int r) { return hn::LoadU(d, t + static_cast<std::ptrdiff_t>(8 * r) + c0); };
   const auto k = [&](int c) { return hn::Set(d, c); };
@@ -262,6 +263,12 @@ HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, std::size_t c0, V* out)
   // Rows 0 and 1 only (R = 2): the even part is d0 and the odd sums are o0 and o1 alone.
   V a0 = d0, a1 = d0, a2 = d0, a3 = d0;
   V o0 = hn::Mul(k(kW1), x1), o1 = hn::Mul(k(kW7), x1);
+  if constexpr (T7 && R < 8) {
+    // Row 7's terms, as the R = 8 case below adds them.
+    const V x7 = hn::LoadU(d, t7 + c0);
+    o0 = hn::Add(o0, hn::Mul(k(kW7), x7));
+    o1 = hn::Sub(o1, hn::Mul(k(kW1), x7));
+  }
   V b0 = o0, b3 = o1, u = o0, v = o1, b1, b2;
   if constexpr (R > 2) {
     const V x2 = x(2), x3 = x(3);
@@ -318,12 +325,16 @@ HWY_INLINE bool onlyFirst(const std::int16_t* row) {
 }
 
 // The whole transform; with Add the result is added to dst, else it replaces it (both clamped).
-template <bool Pcsx2, bool Add, int R>
+// T7 (R < 8): F[7][7] = +-1 is the only coefficient of row 7 and column 7 (mismatch control): row 7
+// goes through the row pass on its own and into the column pass's odd part, not R = 8.
+template <bool Pcsx2, bool Add, int R, bool T7>
 HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned cols, std::uint8_t* dst, int stride) {
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
+  alignas(64) std::int32_t t7[8];
+  if constexpr (T7) mpeg2Row<Pcsx2>(block + 56, t7);
   for (int r = 0; r < R; ++r) {
     const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
     std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
@@ -341,7 +352,7 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned col
   }
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
     hn::Vec<decltype(d)> res[8];
-    mpeg2Columns<Pcsx2, R>(d, t, c0, res);
+    mpeg2Columns<Pcsx2, R, T7>(d, t, t7, c0, res);
     for (int y = 0; y < 8; ++y) {
       std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride + c0;
       auto v = res[y];
@@ -367,12 +378,18 @@ HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned 
     }
     return;
   }
-  // The toggle alone in row 7 is part of both transforms: row 7 goes through the row pass.
-  const unsigned rows = (rowMask & 0xFF) | ((rowMask & kIdctToggleOnly) ? 0x80u : 0u);
-  const unsigned cols = (colMask & 0xFF) | ((rowMask & kIdctToggleOnly) ? 0x80u : 0u);
-  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2>(block, rows, cols, dst, stride);
-  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4>(block, rows, cols, dst, stride);
-  mpeg2Rows<Pcsx2, Add, 8>(block, rows, cols, dst, stride);
+  // The toggle alone in row 7 is part of both transforms: row 7 goes through the row pass, on its
+  // own (T7) unless other rows reach row 4 or beyond. The other rows have nothing in column 7.
+  const unsigned rows = rowMask & 0xFF;
+  const unsigned cols = colMask & 0xFF;
+  if (rowMask & kIdctToggleOnly) {
+    if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, true>(block, rows, cols, dst, stride);
+    if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, true>(block, rows, cols, dst, stride);
+    return mpeg2Rows<Pcsx2, Add, 8, false>(block, rows | 0x80u, cols | 0x80u, dst, stride);
+  }
+  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, false>(block, rows, cols, dst, stride);
+  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, false>(block, rows, cols, dst, stride);
+  mpeg2Rows<Pcsx2, Add, 8, false>(block, rows, cols, dst, stride);
 }
 
 void idctPcsx2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {

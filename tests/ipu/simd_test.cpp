@@ -136,6 +136,47 @@ TEST(IpuSimd, EveryIdctKindMatchesScalar) {
   });
 }
 
+// The masks the P/B parse gives (ipu/inter_slice_decoder.cpp): only the rows and columns that hold
+// a coded coefficient (row 0 not forced), with the mismatch toggle alone in row 7 and column 7
+// (kIdctToggleOnly) beside few rows, the case the kernels take apart from the full transform.
+TEST(IpuSimd, TightMasksAndToggleMatchScalar) {
+  forEachTarget([] {
+    const Kernels target = simdKernelsOfCurrentTarget();
+    for (IdctKind kind : kAllIdctKinds) {
+      SCOPED_TRACE(idctKindName(kind));
+      const IdctKernels& s = scalarKernels().idctOf(kind);
+      const IdctKernels& v = target.idctOf(kind);
+      Lcg rng{29};
+      for (int t = 0; t < 20000; ++t) {
+        std::int16_t blk[64] = {};
+        unsigned rows = 0, cols = 0;
+        const int maxRow = 1 + rng.below(t % 2 ? 4 : 7), maxCol = 1 + rng.below(7);
+        const int count = 1 + rng.below(6);
+        const int range = t % 5 == 0 ? 2048 : 200;
+        for (int k = 0; k < count; ++k) {
+          const int pos = 8 * rng.below(maxRow) + rng.below(maxCol);
+          blk[pos] = static_cast<std::int16_t>(rng.below(2 * range) - range);
+          rows |= 1u << (pos >> 3);
+          cols |= 1u << (pos & 7);
+        }
+        if (t % 3 != 0) {
+          blk[63] = static_cast<std::int16_t>(rng.below(2) ? 1 : -1);
+          rows |= kIdctToggleOnly;
+        }
+        std::uint8_t a[8 * 9], c[8 * 9];
+        s.copy(blk, rows, cols, a, 9);
+        v.copy(blk, rows, cols, c, 9);
+        for (int y = 0; y < 8; ++y)
+          for (int x = 0; x < 8; ++x) ASSERT_EQ(a[y * 9 + x], c[y * 9 + x]) << "copy, block " << t;
+        for (int i = 0; i < 8 * 9; ++i) a[i] = c[i] = static_cast<std::uint8_t>(rng.below(256));
+        s.add(blk, rows, cols, a, 9);
+        v.add(blk, rows, cols, c, 9);
+        for (int i = 0; i < 8 * 9; ++i) ASSERT_EQ(a[i], c[i]) << "add, block " << t;
+      }
+    }
+  });
+}
+
 TEST(IpuSimd, CscMatchesScalar) {
   forEachTarget([] {
     Lcg rng{11};
