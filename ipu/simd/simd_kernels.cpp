@@ -366,15 +366,16 @@ template <bool Pcsx2, bool Add>
 HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst,
                           int stride) {
   if (Add && (rowMask & kIdctFirstOnly) && nonIntraDcShortcut(block[0])) {
-    // Both decoders' non-intra DC shortcut: a constant residual, F[7][7] ignored.
-    const hn::CappedTag<std::int32_t, 8> d;
-    const hn::Rebind<std::uint8_t, decltype(d)> d8;
-    const auto dc = hn::Set(d, nonIntraDcResidual(block[0]));
+    // Both decoders' non-intra DC shortcut: a constant residual, F[7][7] ignored. In byte lanes with
+    // saturation: the residual is in [-256, 256], and adding +-255 instead of +-256 to a sample in
+    // 0..255 clamps to the same end.
+    const hn::FixedTag<std::uint8_t, 8> d8;
+    const int v = nonIntraDcResidual(block[0]);
+    const auto m = hn::Set(d8, static_cast<std::uint8_t>(v < 0 ? (v < -255 ? 255 : -v) : (v > 255 ? 255 : v)));
     for (int y = 0; y < 8; ++y) {
-      for (std::size_t c0 = 0; c0 < 8; c0 += hn::Lanes(d)) {
-        std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride + c0;
-        hn::StoreU(hn::DemoteTo(d8, hn::Add(dc, hn::PromoteTo(d, hn::LoadU(d8, p)))), d8, p);
-      }
+      std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride;
+      const auto x = hn::LoadU(d8, p);
+      hn::StoreU(v < 0 ? hn::SaturatedSub(x, m) : hn::SaturatedAdd(x, m), d8, p);
     }
     return;
   }
