@@ -73,6 +73,10 @@ struct Mpeg2Tables {
   alignas(64) std::int32_t rotated[8]{};  // -1 in lanes 1, 2, 5, 6: the 181/256 step applies
   alignas(64) std::int32_t negated[8]{};  // -1 in lanes 5, 6: that step's result is subtracted
   alignas(16) std::uint8_t pairs[16]{};   // the row's bytes reordered to x0 x4 x2 x6 x1 x7 x3 x5
+  // [libmpeg2 0.5.1's form][F[7][7] = -1]: the row pass of row 7 when the mismatch toggle is its
+  // only coefficient, as mpeg2Row computes it (same steps, in constexpr integers), so the kernel
+  // need not load row 7 the parser has just written.
+  alignas(64) std::int32_t toggleRow[2][2][8]{};
   constexpr Mpeg2Tables() {
     constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
     // a0, a1, a2, a3 as factors of x0, x4, x2, x6; lanes 4..7 mirror 3..0.
@@ -101,6 +105,18 @@ struct Mpeg2Tables {
       odd35[2 * n + 1] = static_cast<std::int16_t>(kOdd[n][3]);
       rotated[n] = (n == 1 || n == 2 || n == 5 || n == 6) ? -1 : 0;
       negated[n] = (n == 5 || n == 6) ? -1 : 0;
+    }
+    for (int form = 0; form < 2; ++form) {
+      for (int neg = 0; neg < 2; ++neg) {
+        const int x7 = (neg ? -1 : 1) * (form ? 16 : 1);  // libmpeg2 0.5.1 holds coefficients x16
+        for (int n = 0; n < 8; ++n) {
+          int o = kOdd[n][1] * x7;
+          if (n == 1 || n == 2 || n == 5 || n == 6) o = form ? (o >> 8) * 181 : (o * 181) >> 8;
+          if (n == 5 || n == 6) o = -o;
+          const int x = ((form ? 2048 : 128) + o) >> (form ? 12 : 8);
+          toggleRow[form][neg][n] = static_cast<std::int16_t>(x);
+        }
+      }
     }
     constexpr int kOrder[8] = {0, 4, 2, 6, 1, 7, 3, 5};
     for (int i = 0; i < 8; ++i) {
@@ -333,8 +349,7 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned col
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
-  alignas(64) std::int32_t t7[8];
-  if constexpr (T7) mpeg2Row<Pcsx2>(block + 56, t7);
+  const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][block[63] < 0 ? 1 : 0];
   for (int r = 0; r < R; ++r) {
     const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
     std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
