@@ -134,7 +134,12 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
       // for a block whose only coded coefficient is the first (ipu/idct_libmpeg2.hpp).
       pp.idctAdd(blk, mb.rowMask[b], mb.colMask[b], dst, static_cast<int>(ds));
     }
-    std::memset(blk, 0, sizeof(mb.block[b]));
+    // The rows the masks name, and the mismatch toggle (kIdctToggleOnly is not a row bit): 16-byte
+    // stores; a 128-byte memset became `rep stos`, whose start-up cost showed at ~3 % of a decode.
+    const unsigned rows = mb.rowMask[b];
+    for (int r = 0; r < 8; ++r)
+      if (rows & (1u << r)) std::memset(blk + std::ptrdiff_t{8} * r, 0, 16);
+    blk[63] = 0;
   }
 }
 
