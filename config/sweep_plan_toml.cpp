@@ -125,24 +125,90 @@ void setField(iop::Fault& f, const std::string& field, std::int64_t v) {
   if (field == "per_million") f.perMillion = v;
 }
 
-void readStreams(const Section& axes, const std::string& baseDir, SweepPlanSpec& plan) {
+// One entry of `gops`: { gop = N, b_frames = M, open_gop = true } (the limits of `vbim author`).
+StreamSpec readGop(const Section& axes, const std::string& origin, const toml::node& el) {
+  const toml::table* t = el.as_table();
+  if (t == nullptr) axes.fail(&el, "gops", "expected GOP structures as tables, e.g. { gop = 12, b_frames = 2 }");
+  const Section s(origin, *t, "axes.gops", {"gop", "b_frames", "open_gop"});
+  if (s.get("gop") == nullptr) s.fail(&el, "gop", "missing: pictures from one I picture to the next (1: intra only)");
+  StreamSpec g;
+  g.gop = static_cast<int>(s.integer("gop", 1, 1, 1024));         // temporal_reference is 10 bits (13818-2 6.3.9)
+  g.bFrames = static_cast<int>(s.integer("b_frames", 0, 0, 16));  // libavcodec's MAX_B_FRAMES
+  if (g.bFrames >= g.gop && g.bFrames > 0) {
+    s.fail(s.get("b_frames"), "b_frames",
+           std::to_string(g.bFrames) + " B pictures need a gop above " + std::to_string(g.bFrames) + " (a GOP of " +
+               std::to_string(g.gop) + " has room for " + std::to_string(g.gop - 1) + ")");
+  }
+  if (const toml::node* n = s.get("open_gop")) {
+    if (!n->is_boolean()) s.fail(n, "open_gop", "expected true or false");
+    g.openGop = *n->value<bool>();
+    if (g.openGop && g.bFrames == 0) s.fail(n, "open_gop", "needs b_frames: only B pictures refer across a GOP header");
+  }
+  return g;
+}
+
+std::string gopSuffix(const StreamSpec& g) {
+  return "_g" + std::to_string(g.gop) + (g.bFrames > 0 ? "b" + std::to_string(g.bFrames) : "") +
+         (g.openGop ? "open" : "");
+}
+
+// `streams`, then the first one re-encoded: at each of `qscales` then `bitrates`, and with `gops`
+// at each of those in each GOP structure (quality outer, GOP inner).
+void readStreams(const Section& axes, const std::string& origin, const std::string& baseDir, SweepPlanSpec& plan) {
   axes.array("streams", [&](const toml::node& el) {
     const auto s = el.value<std::string>();
     if (!s) axes.fail(&el, "streams", "expected stream file paths (strings)");
-    plan.streams.push_back({std::filesystem::path(*s).stem().string(), resolve(baseDir, *s), 0, 0});
+    StreamSpec spec;
+    spec.label = std::filesystem::path(*s).stem().string();
+    spec.path = resolve(baseDir, *s);
+    plan.streams.push_back(spec);
   });
   if (plan.streams.empty()) axes.fail(nullptr, "streams", "missing: name at least one stream file");
   const StreamSpec first = plan.streams.front();
+  std::vector<StreamSpec> qualities;  // label suffix in `label`
   axes.array("qscales", [&](const toml::node& el) {
     const auto q = el.value<std::int64_t>();
     if (!el.is_integer() || *q < 1 || *q > 31) axes.fail(&el, "qscales", "expected quantisers 1..31");
-    plan.streams.push_back({first.label + "_q" + std::to_string(*q), first.path, 0, static_cast<int>(*q)});
+    StreamSpec s;
+    s.label = "_q" + std::to_string(*q);
+    s.qscale = static_cast<int>(*q);
+    qualities.push_back(s);
   });
   axes.array("bitrates", [&](const toml::node& el) {
     const auto b = el.value<std::int64_t>();
     if (!el.is_integer() || *b < 1 || *b > 9'800'000) axes.fail(&el, "bitrates", "expected bit/s in 1..9800000");
-    plan.streams.push_back({first.label + "_" + std::to_string(*b / 1000) + "kbps", first.path, *b, 0});
+    StreamSpec s;
+    s.label = "_" + std::to_string(*b / 1000) + "kbps";
+    s.bitrate = *b;
+    qualities.push_back(s);
   });
+  std::vector<StreamSpec> gops;
+  axes.array("gops", [&](const toml::node& el) {
+    StreamSpec g = readGop(axes, origin, el);
+    for (const StreamSpec& o : gops) {
+      if (o.gop == g.gop && o.bFrames == g.bFrames && o.openGop == g.openGop)
+        axes.fail(
+            &el, "gops",
+            "gop " + std::to_string(g.gop) + " with " + std::to_string(g.bFrames) + " B pictures is listed twice");
+    }
+    gops.push_back(g);
+  });
+  if (!gops.empty() && qualities.empty()) {
+    axes.fail(axes.get("gops"), "gops",
+              "needs qscales or bitrates: the quantisers (or bit rates) each GOP structure is re-encoded at");
+  }
+  if (gops.empty()) gops.emplace_back();  // intra only, labelled as before GOPs existed
+  const bool named = gops.size() > 1 || gops.front().gop != 1 || axes.get("gops") != nullptr;
+  for (const StreamSpec& q : qualities) {
+    for (const StreamSpec& g : gops) {
+      StreamSpec s = g;
+      s.label = first.label + q.label + (named ? gopSuffix(g) : "");
+      s.path = first.path;
+      s.qscale = q.qscale;
+      s.bitrate = q.bitrate;
+      plan.streams.push_back(s);
+    }
+  }
 }
 
 void readRingsPoliciesSeeds(const Section& axes, SweepPlanSpec& plan) {
@@ -269,24 +335,70 @@ void readFaults(const Section& top, const std::string& origin, const std::string
   if (plan.faults.empty()) plan.faults.push_back({"none", {FaultDraw{}}});
 }
 
-const std::array<std::pair<const char*, Measure>, 7> kMeasures{{{"frames_late", Measure::FramesLate},
+const std::array<std::pair<const char*, Measure>, 9> kMeasures{{{"frames_late", Measure::FramesLate},
                                                                 {"frames_dropped", Measure::FramesDropped},
                                                                 {"frames_caught_up", Measure::FramesCaughtUp},
                                                                 {"pop_max", Measure::PopMax},
                                                                 {"lag_max", Measure::LagMax},
                                                                 {"ring_occupancy", Measure::RingOccupancy},
-                                                                {"survivable_stall", Measure::SurvivableStall}}};
+                                                                {"survivable_stall", Measure::SurvivableStall},
+                                                                {"coding", Measure::Coding},
+                                                                {"busy_share", Measure::BusyShare}}};
 
 // The table column a probability may test, and the measure that makes it.
-const std::array<std::pair<const char*, Measure>, 9> kColumns{{{"frames_late", Measure::FramesLate},
-                                                               {"frames_dropped", Measure::FramesDropped},
-                                                               {"frames_caught_up", Measure::FramesCaughtUp},
-                                                               {"pop_max", Measure::PopMax},
-                                                               {"lag_max", Measure::LagMax},
-                                                               {"ring_banks_min", Measure::RingOccupancy},
-                                                               {"ring_banks_mean", Measure::RingOccupancy},
-                                                               {"ring_underruns", Measure::RingOccupancy},
-                                                               {"longest_stall_s", Measure::SurvivableStall}}};
+const std::array<std::pair<const char*, Measure>, 15> kColumns{{{"frames_late", Measure::FramesLate},
+                                                                {"frames_dropped", Measure::FramesDropped},
+                                                                {"frames_caught_up", Measure::FramesCaughtUp},
+                                                                {"pop_max", Measure::PopMax},
+                                                                {"lag_max", Measure::LagMax},
+                                                                {"ring_banks_min", Measure::RingOccupancy},
+                                                                {"ring_banks_mean", Measure::RingOccupancy},
+                                                                {"ring_underruns", Measure::RingOccupancy},
+                                                                {"longest_stall_s", Measure::SurvivableStall},
+                                                                {"bitrate_bps", Measure::Coding},
+                                                                {"sectors_per_frame", Measure::Coding},
+                                                                {"psnr_mean_db", Measure::Coding},
+                                                                {"psnr_min_db", Measure::Coding},
+                                                                {"ipu_busy_share", Measure::BusyShare},
+                                                                {"ee_busy_share", Measure::BusyShare}}};
+
+std::string columnList() {
+  std::string list;
+  for (std::size_t i = 0; i < kColumns.size(); ++i)
+    list += std::string(i == 0 ? "" : i + 1 == kColumns.size() ? " or " : ", ") + kColumns[i].first;
+  return list;
+}
+
+// [equal_quality]: which re-encode is the reference, and how near is equal (sweep/plan.hpp).
+void readEqualQuality(const Section& top, const std::string& origin, SweepPlanSpec& plan) {
+  const toml::table* t = subTable(top, "equal_quality");
+  if (t == nullptr) return;
+  const Section s(origin, *t, "equal_quality",
+                  {"reference_gop", "reference_b_frames", "reference_qscale", "tolerance_db"});
+  EqualQuality e;
+  e.referenceGop = static_cast<int>(s.integer("reference_gop", 1, 1, 1024));
+  e.referenceBFrames = static_cast<int>(s.integer("reference_b_frames", 0, 0, 16));
+  if (s.get("reference_qscale") == nullptr)
+    s.fail(nullptr, "reference_qscale", "missing: the quantiser of the reference re-encode (one of axes.qscales)");
+  e.referenceQscale = static_cast<int>(s.integer("reference_qscale", 0, 1, 31));
+  if (const toml::node* n = s.get("tolerance_db")) {
+    if (!n->is_number() || *n->value<double>() <= 0)
+      s.fail(n, "tolerance_db", "expected a PSNR difference in dB above 0, e.g. 0.25");
+    e.toleranceDb = *n->value<double>();
+  }
+  const bool found = std::any_of(plan.streams.begin(), plan.streams.end(), [&](const StreamSpec& x) {
+    return x.qscale == e.referenceQscale && x.gop == e.referenceGop && x.bFrames == e.referenceBFrames;
+  });
+  if (!found) {
+    s.fail(s.get("reference_qscale"), "reference_qscale",
+           "no re-encode is the reference: axes.qscales must hold " + std::to_string(e.referenceQscale) +
+               " and axes.gops { gop = " + std::to_string(e.referenceGop) +
+               ", b_frames = " + std::to_string(e.referenceBFrames) + " }");
+  }
+  if (!hasMeasure(plan, Measure::Coding))
+    s.fail(nullptr, "reference_qscale", "needs the PSNR of each re-encode: add \"coding\" to [measures] include");
+  plan.equalQuality = e;
+}
 
 void readMeasures(const Section& top, const std::string& origin, SweepPlanSpec& plan) {
   if (const toml::table* m = subTable(top, "measures")) {
@@ -297,15 +409,15 @@ void readMeasures(const Section& top, const std::string& origin, SweepPlanSpec& 
           std::find_if(kMeasures.begin(), kMeasures.end(), [&](const auto& p) { return name && *name == p.first; });
       if (it == kMeasures.end()) {
         s.fail(&el, "include",
-               "expected frames_late, frames_dropped, frames_caught_up, pop_max, lag_max, ring_occupancy or "
-               "survivable_stall");
+               "expected frames_late, frames_dropped, frames_caught_up, pop_max, lag_max, ring_occupancy, "
+               "survivable_stall, coding or busy_share");
       }
       if (!hasMeasure(plan, it->second)) plan.measures.push_back(it->second);
     });
   }
   if (plan.measures.empty()) {
     for (const auto& [name, m] : kMeasures) {
-      if (m != Measure::SurvivableStall) plan.measures.push_back(m);
+      if (m < Measure::SurvivableStall) plan.measures.push_back(m);  // the defaults before GOP studies
     }
   }
   std::sort(plan.measures.begin(), plan.measures.end());
@@ -339,9 +451,7 @@ void readMeasures(const Section& top, const std::string& origin, SweepPlanSpec& 
     const auto* col =
         std::find_if(kColumns.begin(), kColumns.end(), [&](const auto& c) { return p.measure == c.first; });
     if (col == kColumns.end()) {
-      s.fail(s.get("measure"), "measure",
-             "expected a measured column: frames_late, frames_dropped, frames_caught_up, pop_max, lag_max, "
-             "ring_banks_min, ring_banks_mean, ring_underruns or longest_stall_s");
+      s.fail(s.get("measure"), "measure", "expected a measured column: " + columnList());
     }
     if (!hasMeasure(plan, col->second)) {
       s.fail(s.get("measure"), "measure",
@@ -362,7 +472,8 @@ void readMeasures(const Section& top, const std::string& origin, SweepPlanSpec& 
 
 SweepPlanSpec parseSweepPlan(std::string_view text, const std::string& origin, const std::string& baseDir) {
   const toml::table doc = parseTomlDocument(text, origin);
-  const Section top(origin, doc, "", {"run", "axes", "faults", "measures", "stall_search", "probability"});
+  const Section top(origin, doc, "",
+                    {"run", "axes", "faults", "measures", "stall_search", "probability", "equal_quality"});
   SweepPlanSpec plan;
   std::uint64_t seed = 1;
   player::PlatformConfig base;
@@ -378,12 +489,13 @@ SweepPlanSpec parseSweepPlan(std::string_view text, const std::string& origin, c
   const toml::table* axesTable = subTable(top, "axes");
   if (axesTable == nullptr) top.fail(nullptr, "axes", "missing: [axes] with at least streams = [\"file.vbim\"]");
   const Section axes(origin, *axesTable, "axes",
-                     {"streams", "qscales", "bitrates", "rings", "policies", "seeds", "platform"});
-  readStreams(axes, baseDir, plan);
+                     {"streams", "qscales", "bitrates", "gops", "rings", "policies", "seeds", "platform"});
+  readStreams(axes, origin, baseDir, plan);
   readRingsPoliciesSeeds(axes, plan);
   readPlatforms(axes, origin, base, plan);
   readFaults(top, origin, baseDir, seed, plan);
   readMeasures(top, origin, plan);
+  readEqualQuality(top, origin, plan);
   return plan;
 }
 

@@ -22,6 +22,10 @@ const char* toString(Measure m) {
       return "ring_occupancy";
     case Measure::SurvivableStall:
       return "survivable_stall";
+    case Measure::Coding:
+      return "coding";
+    case Measure::BusyShare:
+      return "busy_share";
   }
   return "?";
 }

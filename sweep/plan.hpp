@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,12 +21,28 @@
 
 namespace vbim::sweep {
 
-// A stream axis value: a file, optionally re-encoded (bitrate in bit/s or quantiser; 0: as is).
+// A stream axis value: a file, optionally re-encoded (bitrate in bit/s or quantiser; 0: as is) with
+// a GOP structure (gop 1: every picture intra; bFrames B pictures between references; closed GOPs
+// unless openGop), as `vbim author --gop --b-frames --open-gop` writes them.
 struct StreamSpec {
   std::string label;
   std::string path;
   std::int64_t bitrate = 0;
   int qscale = 0;
+  int gop = 1;
+  int bFrames = 0;
+  bool openGop = false;
+  bool reencoded() const { return bitrate != 0 || qscale != 0; }
+};
+
+// `[equal_quality]` (docs/gop-study.md): per GOP structure of the `gops` axis, the re-encode whose
+// mean PSNR against the source is nearest the reference's (the re-encode with gop referenceGop,
+// referenceBFrames B pictures, at referenceQscale); "equal" when within toleranceDb of it.
+struct EqualQuality {
+  int referenceGop = 1;
+  int referenceBFrames = 0;
+  int referenceQscale = 0;
+  double toleranceDb = 0.25;
 };
 
 // A platform axis value: the keys it sets (as written, for the table) and the config they make.
@@ -47,7 +64,19 @@ struct FaultTemplate {
 };
 
 // What a case measures (docs/sweeps.md, "Measures"); each adds its columns to the table.
-enum class Measure { FramesLate, FramesDropped, FramesCaughtUp, PopMax, LagMax, RingOccupancy, SurvivableStall };
+// Coding (bitrate, sectors per frame, GOP, PSNR against the source) and BusyShare (the IPU's and the
+// EE's) came last: a table's existing columns keep their order.
+enum class Measure {
+  FramesLate,
+  FramesDropped,
+  FramesCaughtUp,
+  PopMax,
+  LagMax,
+  RingOccupancy,
+  SurvivableStall,
+  Coding,
+  BusyShare
+};
 const char* toString(Measure m);
 
 // P(measure op threshold), estimated per group of cases that differ only in Monte Carlo axes.
@@ -71,6 +100,7 @@ struct SweepPlanSpec {
   Criterion stallCriterion = Criterion::Late;
   StallSearch search;
   std::vector<Probability> probabilities;
+  std::optional<EqualQuality> equalQuality;
 };
 
 // One case: indices into the plan's axes. Its run seed is seeds[seed] + draw, so the random faults

@@ -67,6 +67,14 @@ CaseResult runCase(const Case& c, bool keepSeries) {
   r.driveRetries = p.pipeline().drive().stats().retries;
   r.framesLost = p.pipeline().demux().counters().framesLost;
   r.streamBytes = c.stream->file.bytes;
+  const streams::Descriptor& d = p.stream().descriptor;
+  r.streamFrames = d.totalFrames();
+  r.gameFpsNum = d.gameFps.num;
+  r.gameFpsDen = d.gameFps.den;
+  r.quality = c.stream->quality;
+  r.elapsed = p.now();
+  r.ipuBusy = p.pipeline().decode().busy;
+  r.eeBusy = p.pipeline().decode().eeBusy;
   return r;
 }
 

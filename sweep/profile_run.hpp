@@ -29,11 +29,21 @@
 
 namespace vbim::sweep {
 
-// A stream to play: a disc and the file on it, with a label for tables and legends.
+// How close a re-encoded stream's lightmap is to the frames it was made from (measured by
+// sweep/outputs/stream_quality.hpp): luma PSNR per frame in dB, its mean and minimum over frames.
+struct StreamQuality {
+  double meanDb = 0;
+  double minDb = 0;
+  std::int64_t frames = 0;
+};
+
+// A stream to play: a disc and the file on it, with a label for tables and legends, and its quality
+// when it is a re-encode that was measured.
 struct Stream {
   std::string label;
   std::shared_ptr<iop::SectorSource> disc;
   iop::DiscFile file;
+  std::optional<StreamQuality> quality;
 };
 
 // A bare stream file on a notional disc, as `vbim play` places it (throws iop::DiscError for a file
@@ -70,6 +80,16 @@ struct CaseResult {
   std::int64_t driveRetries = 0;
   std::int64_t framesLost = 0;
   std::int64_t streamBytes = 0;
+  // The stream's length (descriptor: frames over all variants, game frames per second), for its
+  // bitrate and sectors per frame; and the quality of a measured re-encode.
+  std::int64_t streamFrames = 0;
+  std::int64_t gameFpsNum = 1, gameFpsDen = 1;
+  std::optional<StreamQuality> quality;
+  // Busy time over the run's simulated time: the IPU's command time and the EE's work in the BDEC
+  // flow of P and B pictures (zero for an intra-only stream: its IDEC path has no EE work modelled).
+  Tick elapsed = 0;
+  Tick ipuBusy = 0;
+  Tick eeBusy = 0;
   // Largest lightmap pop, counting every vsync after the first frame was shown: unlike the player's
   // totals (which leave out every snapped frame), a hard-skip snap counts here, as a viewer sees it.
   player::Extreme pop;

@@ -28,15 +28,16 @@ Rational containerRate(std::uint32_t ptsPerFrame) {
 
 }  // namespace
 
-std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, EncoderSettings encoder) {
+std::vector<std::uint8_t> transcodeStream(const std::filesystem::path& path, EncoderSettings encoder,
+                                          std::vector<Yuv420Image>* sources) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw AuthoringError(path.string() + ": cannot open the stream to re-encode");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return transcodeStream(bytes, path.string(), encoder);
+  return transcodeStream(bytes, path.string(), encoder, sources);
 }
 
 std::vector<std::uint8_t> transcodeStream(std::span<const std::uint8_t> stream, const std::string& name,
-                                          EncoderSettings encoder) {
+                                          EncoderSettings encoder, std::vector<Yuv420Image>* sources) {
   Demuxer dmx;
   std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> pictures;  // (stream, global frame)
   const auto keep = [&] {
@@ -79,6 +80,7 @@ std::vector<std::uint8_t> transcodeStream(std::span<const std::uint8_t> stream, 
       for (std::uint32_t f = 0; f < d.framesPerVariant; ++f) {
         const std::uint32_t g = static_cast<std::uint32_t>(v) * d.framesPerVariant + f;
         const Rgba8Image lightmap = dec.decodeRgba(pictures.at({0, g}));
+        if (sources != nullptr) sources->push_back(rgbaToYuv420(lightmap));
         if (!sky) {
           w.addFrame(lightmap);
           continue;

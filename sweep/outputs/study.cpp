@@ -14,6 +14,7 @@
 #include "ipu/simd/simd_kernels.hpp"
 #include "streams/authoring/transcode.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
+#include "sweep/outputs/stream_quality.hpp"
 #include "sweep/outputs/table.hpp"
 
 namespace vbim::sweep {
@@ -55,11 +56,20 @@ PlanStreams::PlanStreams(const SweepPlanSpec& plan, const std::vector<PlanCase>&
     if (!needed[i]) continue;
     const StreamSpec& s = plan.streams[i];
     bareStream(s.path);  // the file is a stream: checked once, before any case runs
-    if (s.bitrate == 0 && s.qscale == 0) continue;
+    if (!s.reencoded()) continue;
     streams::EncoderSettings e;
     if (s.bitrate > 0) e.bitrate = s.bitrate;
     if (s.qscale > 0) e.qscale = s.qscale;
-    memory_[i] = memoryStream(s.label, streams::transcodeStream(s.path, e));
+    e.gop = s.gop;
+    e.bFrames = s.bFrames;
+    e.openGop = s.openGop;
+    const bool measure = hasMeasure(plan, Measure::Coding);
+    std::vector<Yuv420Image> sources;
+    std::vector<std::uint8_t> bytes = streams::transcodeStream(s.path, e, measure ? &sources : nullptr);
+    std::optional<StreamQuality> quality;
+    if (measure) quality = measureStreamQuality(bytes, s.label + " (re-encoded in memory)", sources);
+    memory_[i] = memoryStream(s.label, std::move(bytes));
+    memory_[i]->quality = quality;
   }
 }
 

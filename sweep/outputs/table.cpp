@@ -1,5 +1,6 @@
 #include "sweep/outputs/table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -7,9 +8,47 @@
 
 #include "player/report.hpp"
 #include "plots/sweep_figures.hpp"
+#include "sweep/outputs/equal_quality.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
 
 namespace vbim::sweep {
+
+namespace {
+
+double share(Tick part, Tick whole) {
+  return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+}  // namespace
+
+std::optional<double> caseColumn(const std::string& column, const CaseRecord& r) {
+  if (!r.ok) return std::nullopt;
+  const CaseResult& m = r.result;
+  if (column == "frames_late") return static_cast<double>(m.lightmap.framesLate);
+  if (column == "frames_dropped") return static_cast<double>(m.lightmap.framesDropped);
+  if (column == "frames_caught_up") return static_cast<double>(m.lightmap.framesCaughtUp);
+  if (column == "pop_max") return m.pop.value;
+  if (column == "lag_max") return m.totals.lag.value;
+  if (column == "ring_banks_min") return static_cast<double>(m.totals.ringMin);
+  if (column == "ring_banks_mean")
+    return m.totals.vsyncs > 0 ? static_cast<double>(m.totals.ringSum) / static_cast<double>(m.totals.vsyncs) : 0.0;
+  if (column == "ring_banks_max") return static_cast<double>(m.totals.ringMax);
+  if (column == "ring_underruns") return static_cast<double>(m.ringUnderruns);
+  if (column == "longest_stall_s") return r.stall.longest ? toSeconds(*r.stall.longest) : 0.0;
+  // The stream's bytes (all variants, descriptor packs included) per frame, times game frames per
+  // second: the rate the player reads at in steady play.
+  const double frames = static_cast<double>(std::max<std::int64_t>(1, m.streamFrames));
+  if (column == "bitrate_bps") {
+    return static_cast<double>(m.streamBytes) * 8.0 * static_cast<double>(m.gameFpsNum) /
+           (frames * static_cast<double>(std::max<std::int64_t>(1, m.gameFpsDen)));
+  }
+  if (column == "sectors_per_frame") return static_cast<double>(m.streamBytes) / 2048.0 / frames;
+  if (column == "psnr_mean_db" && m.quality) return m.quality->meanDb;
+  if (column == "psnr_min_db" && m.quality) return m.quality->minDb;
+  if (column == "ipu_busy_share") return share(m.ipuBusy, m.elapsed);
+  if (column == "ee_busy_share") return share(m.eeBusy, m.elapsed);
+  return std::nullopt;
+}
 
 namespace {
 
@@ -57,7 +96,7 @@ std::vector<Cell> axisCells(const SweepPlanSpec& plan, const PlanCase& c) {
   return row;
 }
 
-std::vector<Cell> measureCells(const SweepPlanSpec& plan, const CaseRecord& r) {
+std::vector<Cell> measureCells(const SweepPlanSpec& plan, const StreamSpec& spec, const CaseRecord& r) {
   std::vector<Cell> row;
   row.push_back(text("status", r.ok ? "ok" : "failed"));
   const CaseResult& m = r.result;
@@ -101,6 +140,24 @@ std::vector<Cell> measureCells(const SweepPlanSpec& plan, const CaseRecord& r) {
         row.push_back(number("stall_saturated", r.stall.saturated ? 1 : 0));
         row.push_back(number("stall_runs", r.stall.runs));
         break;
+      case Measure::Coding: {
+        row.push_back(number("qscale", spec.qscale));
+        row.push_back(number("gop", spec.gop));
+        row.push_back(number("b_frames", spec.bFrames));
+        row.push_back(number("bitrate_bps", static_cast<std::int64_t>(std::llround(*caseColumn("bitrate_bps", r)))));
+        row.push_back(real("sectors_per_frame", *caseColumn("sectors_per_frame", r), 3));
+        const auto cell = [&](const char* key) {
+          const auto v = caseColumn(key, r);
+          return v ? real(key, *v, 3) : Cell{key, "", Cell::Kind::Null};
+        };
+        row.push_back(cell("psnr_mean_db"));
+        row.push_back(cell("psnr_min_db"));
+        break;
+      }
+      case Measure::BusyShare:
+        row.push_back(real("ipu_busy_share", *caseColumn("ipu_busy_share", r), 4));
+        row.push_back(real("ee_busy_share", *caseColumn("ee_busy_share", r), 4));
+        break;
     }
   }
   if (!r.ok) {  // a failed case measured nothing: empty cells (null in JSON), not zeros
@@ -123,24 +180,6 @@ std::string jsonLine(const std::vector<Cell>& row) {
     }
   }
   return o + "}";
-}
-
-// The value a probability tests; none for a failed case. A case that fails even without a stall
-// survives none: 0 s.
-std::optional<double> columnValue(const std::string& column, const CaseRecord& r) {
-  if (!r.ok) return std::nullopt;
-  const CaseResult& m = r.result;
-  if (column == "frames_late") return static_cast<double>(m.lightmap.framesLate);
-  if (column == "frames_dropped") return static_cast<double>(m.lightmap.framesDropped);
-  if (column == "frames_caught_up") return static_cast<double>(m.lightmap.framesCaughtUp);
-  if (column == "pop_max") return m.pop.value;
-  if (column == "lag_max") return m.totals.lag.value;
-  if (column == "ring_banks_min") return static_cast<double>(m.totals.ringMin);
-  if (column == "ring_banks_mean")
-    return m.totals.vsyncs > 0 ? static_cast<double>(m.totals.ringSum) / static_cast<double>(m.totals.vsyncs) : 0.0;
-  if (column == "ring_underruns") return static_cast<double>(m.ringUnderruns);
-  if (column == "longest_stall_s") return r.stall.longest ? toSeconds(*r.stall.longest) : 0.0;
-  return std::nullopt;
 }
 
 bool holds(const Probability& p, double v) {
@@ -173,7 +212,7 @@ std::vector<Group> groups(const SweepPlanSpec& plan, const std::vector<PlanCase>
     }
     ++g.cases;
     for (std::size_t p = 0; p < plan.probabilities.size(); ++p) {
-      const auto v = columnValue(plan.probabilities[p].measure, records[i]);
+      const auto v = caseColumn(plan.probabilities[p].measure, records[i]);
       if (v && holds(plan.probabilities[p], *v)) ++g.hits[p];
     }
   }
@@ -277,7 +316,7 @@ std::vector<std::string> writeSweepOutputs(const SweepPlanSpec& plan, const std:
     std::ofstream jsonl((dir / "cases.jsonl"), std::ios::binary);
     for (std::size_t i = 0; i < cases.size(); ++i) {
       std::vector<Cell> row = axisCells(plan, cases[i]);
-      for (Cell& c : measureCells(plan, records[i])) row.push_back(std::move(c));
+      for (Cell& c : measureCells(plan, plan.streams[cases[i].stream], records[i])) row.push_back(std::move(c));
       if (i == 0) {
         for (std::size_t k = 0; k < row.size(); ++k) csv << (k > 0 ? "," : "") << csvQuote(row[k].key);
         csv << "\n";
@@ -288,6 +327,9 @@ std::vector<std::string> writeSweepOutputs(const SweepPlanSpec& plan, const std:
     }
     written.push_back("cases.csv");
     written.push_back("cases.jsonl");
+  }
+  if (plan.equalQuality) {
+    for (std::string& w : writeEqualQuality(plan, cases, records, dir)) written.push_back(std::move(w));
   }
   if (!plan.probabilities.empty()) {
     std::ofstream csv((dir / "summary.csv"), std::ios::binary);
@@ -318,6 +360,10 @@ nlohmann::ordered_json recordJson(const CaseRecord& r) {
   j["retries"] = m.driveRetries;
   j["lost"] = m.framesLost;
   j["stream_bytes"] = m.streamBytes;
+  j["stream_frames"] = {m.streamFrames, m.gameFpsNum, m.gameFpsDen};
+  j["quality"] = m.quality ? nlohmann::ordered_json{m.quality->meanDb, m.quality->minDb, m.quality->frames}
+                           : nlohmann::ordered_json();
+  j["busy"] = {m.elapsed, m.ipuBusy, m.eeBusy};
   j["health"] = {m.totals.lastVsyncAt, m.totals.endsBehind, m.totals.lastProgressAt};
   j["stall"] = {{"longest", r.stall.longest ? nlohmann::ordered_json(*r.stall.longest) : nlohmann::ordered_json()},
                 {"saturated", r.stall.saturated},
@@ -358,6 +404,16 @@ CaseRecord recordFromJson(const nlohmann::json& j) {
   m.totals.endsBehind = health.at(1);
   m.totals.lastProgressAt = health.at(2);
   m.streamBytes = j.at("stream_bytes");
+  const auto& frames = j.at("stream_frames");
+  m.streamFrames = frames.at(0);
+  m.gameFpsNum = frames.at(1);
+  m.gameFpsDen = frames.at(2);
+  if (const auto& q = j.at("quality"); !q.is_null())
+    m.quality = StreamQuality{q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<std::int64_t>()};
+  const auto& busy = j.at("busy");
+  m.elapsed = busy.at(0);
+  m.ipuBusy = busy.at(1);
+  m.eeBusy = busy.at(2);
   const auto& s = j.at("stall");
   if (!s.at("longest").is_null()) r.stall.longest = s.at("longest").get<Tick>();
   r.stall.saturated = s.at("saturated");

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,12 @@ std::vector<std::string> writeSweepOutputs(const SweepPlanSpec& plan, const std:
 // The lines of summary.txt (also printed by the command).
 std::vector<std::string> summaryLines(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases,
                                       const std::vector<CaseRecord>& records);
+
+// The value of a table column for a case (frames_late, ring_banks_mean, longest_stall_s,
+// bitrate_bps, psnr_mean_db, ipu_busy_share, ...: docs/sweeps.md); none for a failed case, a column
+// not known, or a PSNR of a stream that is not a measured re-encode. A case that fails even without
+// a stall survives none: longest_stall_s 0.
+std::optional<double> caseColumn(const std::string& column, const CaseRecord& r);
 
 // A record as one JSON object with integer ticks (nothing rounded), and back (throws
 // std::exception on a malformed line).
