@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <tuple>
+#include <utility>
 
 #include "plots/write_chart.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
@@ -27,10 +28,15 @@ double value(const CaseRecord& r, const char* column) {
   return caseColumn(column, r).value_or(0.0);
 }
 
-// A column of the table: its CSV key, its markdown heading, its text for a row.
+// A column of the table: its CSV key, its markdown heading, its text for a row (and in the CSV, when
+// that is not the text: plain numbers there).
+using CellText = std::function<std::string(const EqualQualityRow&, const CaseRecord&, const CaseRecord& ref)>;
 struct Column {
+  Column(std::string k, std::string h, CellText t, CellText c = {})
+      : key(std::move(k)), heading(std::move(h)), text(std::move(t)), csv(std::move(c)) {}
   std::string key, heading;
-  std::function<std::string(const EqualQualityRow&, const CaseRecord&, const CaseRecord& ref)> text;
+  CellText text;  // empty: in the CSV only
+  CellText csv;   // empty: the text
 };
 
 std::string signedFixed(double v, int decimals) {
@@ -47,6 +53,11 @@ std::vector<Column> columns(const SweepPlanSpec& plan) {
   c.push_back({"structure", "GOP structure", [](const auto& row, const auto&, const auto&) {
                  return gopLabel(*row.stream) + (row.reference ? " (reference)" : "");
                }});
+  c.push_back(
+      {"gop", "", {}, [](const auto& row, const auto&, const auto&) { return std::to_string(row.stream->gop); }});
+  c.push_back({"b_frames", "", {}, [](const auto& row, const auto&, const auto&) {
+                 return std::to_string(row.stream->bFrames);
+               }});
   c.push_back({"stream", "stream", [](const auto& row, const auto&, const auto&) { return row.stream->label; }});
   c.push_back({"qscale", "q", [](const auto& row, const auto&, const auto&) {
                  return row.stream->qscale > 0 ? std::to_string(row.stream->qscale)
@@ -61,29 +72,46 @@ std::vector<Column> columns(const SweepPlanSpec& plan) {
   c.push_back({"equal", "equal", [](const auto& row, const auto&, const auto&) { return row.equal ? "yes" : "no"; }});
   c.push_back({"bitrate_kbps", "bitrate (kbit/s)",
                [](const auto&, const auto& r, const auto&) { return fixed(value(r, "bitrate_bps") / 1000.0, 1); }});
-  c.push_back({"bitrate_vs_reference_pct", "of reference", [](const auto&, const auto& r, const auto& ref) {
+  c.push_back({"bitrate_vs_reference_pct", "of reference",
+               [](const auto&, const auto& r, const auto& ref) {
                  const double b = value(ref, "bitrate_bps");
                  return b > 0 ? fixed(100.0 * value(r, "bitrate_bps") / b, 1) + " %" : std::string();
+               },
+               [](const auto&, const auto& r, const auto& ref) {
+                 const double b = value(ref, "bitrate_bps");
+                 return b > 0 ? fixed(100.0 * value(r, "bitrate_bps") / b, 1) : std::string();
                }});
   c.push_back({"sectors_per_frame", "sectors per frame",
                [](const auto&, const auto& r, const auto&) { return fixed(value(r, "sectors_per_frame"), 2); }});
   if (hasMeasure(plan, Measure::RingOccupancy)) {
-    c.push_back({"ring_banks_mean", "ring banks mean (min-max)", [](const auto&, const auto& r, const auto&) {
+    c.push_back({"ring_banks_mean", "ring banks mean (min-max)",
+                 [](const auto&, const auto& r, const auto&) {
                    return fixed(value(r, "ring_banks_mean"), 2) + " (" + fixed(value(r, "ring_banks_min"), 0) + "-" +
                           fixed(value(r, "ring_banks_max"), 0) + ")";
-                 }});
+                 },
+                 [](const auto&, const auto& r, const auto&) { return fixed(value(r, "ring_banks_mean"), 3); }});
   }
   if (hasMeasure(plan, Measure::SurvivableStall)) {
     c.push_back({"longest_stall_s", "survivable stall (s)",
-                 [](const auto&, const auto& r, const auto&) { return stallText(r); }});
+                 [](const auto&, const auto& r, const auto&) { return stallText(r); },
+                 [](const auto&, const auto& r, const auto&) {
+                   return r.stall.longest ? fixed(toSeconds(*r.stall.longest), 3) : std::string();
+                 }});
+    c.push_back({"stall_saturated", "", {}, [](const auto&, const auto& r, const auto&) {
+                   return std::string(r.stall.saturated ? "1" : "0");
+                 }});
   }
   if (hasMeasure(plan, Measure::BusyShare)) {
-    c.push_back({"ipu_busy_pct", "IPU busy", [](const auto&, const auto& r, const auto&) {
-                   return fixed(100 * value(r, "ipu_busy_share"), 2) + " %";
-                 }});
-    c.push_back({"ee_busy_pct", "EE busy", [](const auto&, const auto& r, const auto&) {
-                   return fixed(100 * value(r, "ee_busy_share"), 2) + " %";
-                 }});
+    for (const char* unit : {"ipu", "ee"}) {
+      const std::string column = std::string(unit) + "_busy_share";
+      const CellText pct = [column](const auto&, const auto& r, const auto&) {
+        return fixed(100 * value(r, column.c_str()), 2) + " %";
+      };
+      const CellText number = [column](const auto&, const auto& r, const auto&) {
+        return fixed(100 * value(r, column.c_str()), 3);
+      };
+      c.emplace_back(std::string(unit) + "_busy_pct", std::string(unit) == "ipu" ? "IPU busy" : "EE busy", pct, number);
+    }
   }
   return c;
 }
@@ -256,17 +284,22 @@ std::vector<std::string> writeEqualQuality(const SweepPlanSpec& plan, const std:
       if (r.reference) ref = &records[r.record];
     }
     md << "\n" << g.label << " (reference " << fixed(g.referenceDb, 2) << " dB):\n\n|";
-    for (const Column& c : cols) md << " " << c.heading << " |";
+    for (const Column& c : cols) {
+      if (c.text) md << " " << c.heading << " |";
+    }
     md << "\n|";
-    for (std::size_t i = 0; i < cols.size(); ++i) md << (i < 3 ? "---|" : "--:|");
+    std::size_t shown = 0;  // text columns left-aligned: structure, stream, q
+    for (const Column& c : cols) {
+      if (c.text) md << (shown++ < 3 ? "---|" : "--:|");
+    }
     md << "\n";
     for (const EqualQualityRow& row : g.rows) {
       csv << csvQuote(g.label);
       md << "|";
       for (const Column& c : cols) {
-        const std::string t = c.text(row, records[row.record], *ref);
-        csv << "," << csvQuote(t);
-        md << " " << t << " |";
+        const CaseRecord& r = records[row.record];
+        csv << "," << csvQuote(c.csv ? c.csv(row, r, *ref) : c.text(row, r, *ref));
+        if (c.text) md << " " << c.text(row, r, *ref) << " |";
       }
       csv << "\n";
       md << "\n";
