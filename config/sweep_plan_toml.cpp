@@ -186,10 +186,11 @@ void readStreams(const Section& axes, const std::string& origin, const std::stri
   axes.array("gops", [&](const toml::node& el) {
     StreamSpec g = readGop(axes, origin, el);
     for (const StreamSpec& o : gops) {
-      if (o.gop == g.gop && o.bFrames == g.bFrames && o.openGop == g.openGop)
+      if (o.gop == g.gop && o.bFrames == g.bFrames && o.openGop == g.openGop) {
         axes.fail(
             &el, "gops",
             "gop " + std::to_string(g.gop) + " with " + std::to_string(g.bFrames) + " B pictures is listed twice");
+      }
     }
     gops.push_back(g);
   });
