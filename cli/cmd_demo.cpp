@@ -4,13 +4,12 @@
 //  2. Plays it through the whole pipeline with a built-in fault plan (a long drive stall, a
 //     scratched sector, and a run past the loop point so the stream wraps), writing everything
 //     `vbim play` writes into out/demo/.
-//  3. Adds the profile plots (occupancy, lag and pop over time, the survivable-stall curve).
+//  3. Adds the profile plots (occupancy, lag and pop over time, the survivable-stall curve:
+//     sweep/outputs/demo_profile.hpp).
 //  4. Renders the saved frames with OSMesa: terrain, sky and hemisphere-lit objects, a contact sheet
 //     with the stall and catch-up marked, and a video.
 // Everything lands in out/demo/ together (complete or absent), and it says what to open.
-#include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include <unistd.h>
@@ -18,17 +17,12 @@
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
 #include "cli/play_run.hpp"
-#include "gs/simd/blend_simd.hpp"
 #include "iop/fault_plan.hpp"
-#include "ipu/simd/simd_kernels.hpp"
 #include "lighting/authoring/sample_day.hpp"
 #include "player/run_dir_reader.hpp"
-#include "plots/profile_figures.hpp"
-#include "plots/write_chart.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
-#include "sweep/outputs/profile_outputs.hpp"
-#include "sweep/profile_run.hpp"
+#include "sweep/outputs/demo_profile.hpp"
 
 namespace vbim::cli {
 
@@ -48,70 +42,6 @@ kind = "read_error"     # a scratched sector in the stream file: drive retries, 
 lba = 2090              # file sector 42 (the bare file lies at LBA 2048)
 attempts = 300
 )";
-
-// The demo's profile pass: the occupancy, lag and pop of the demo run itself, and a small
-// survivable-stall curve (five ring sizes, blend-through, both criteria) on the same stream. A few
-// seconds of host time.
-class DemoProfile {
- public:
-  void onRow(const player::VsyncRow& row) {
-    sweep::Sample s;
-    s.t = toSeconds(row.at);
-    s.ringBanks = static_cast<int>(row.ringBanks);
-    s.lag = row.lag;
-    s.pop = shown_ ? row.lightmap.pop : 0;  // the first frame copied into the empty lightmap is no pop
-    shown_ = shown_ || row.lightmap.targetSeq >= 0;
-    s.behind = row.lightmap.behind;
-    series_.push_back(s);
-  }
-  void write(const std::string& disc, const OutputDir& dir) {
-    namespace pr = sweep;
-    const auto wall0 = std::chrono::steady_clock::now();
-    std::filesystem::create_directories(dir.path("plots"));
-    const pr::RingSize demoRing{player::PlatformConfig{}.iop.ring.bankmax,
-                                player::PlatformConfig{}.iop.ring.bufmax_sectors};
-    const std::vector<plots::profile::RunTrace> runs{
-        {"vbim demo (ring 160 sectors, 5 banks)", demoRing.bankmax, pr::tracePoints(series_)}};
-    const std::string title = "vbim demo: day_clear with a 6 s stall at 0.2 s, a read error and a loop wrap";
-    plots::writeChartFiles(plots::profile::occupancyFigure(title, runs), dir.path("plots/occupancy"));
-    plots::writeChartFiles(plots::profile::lagPopFigure(title, runs, -1), dir.path("plots/lag_pop"));
-
-    const auto stream = pr::bareStream(disc);
-    // The authored file's temporary name carries the process id; the legend names it as it is
-    // saved (day.vbim), so that the figure is the same on every run.
-    stream->label = "day";
-    pr::StallSearch search;
-    search.stallAt = fromMs(3'000);
-    search.maxStall = fromMs(20'000);
-    search.resolution = fromMs(100);
-    search.settle = fromMs(5'000);
-    std::vector<pr::StallRow> rows;
-    for (const pr::RingSize ring :
-         {pr::RingSize{4, 8}, pr::RingSize{4, 16}, pr::RingSize{4, 32}, pr::RingSize{4, 64}, pr::RingSize{5, 160}}) {
-      pr::Case c;
-      c.stream = stream.get();
-      c.config.iop.ring.bankmax = ring.bankmax;
-      c.config.iop.ring.bufmax_sectors = ring.bufmax;
-      c.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
-      for (pr::Criterion crit : {pr::Criterion::Late, pr::Criterion::Pop}) {
-        rows.push_back(
-            pr::StallRow{stream->label, ring, c.config.gs.catchup, crit, pr::longestSurvivableStall(c, search, crit)});
-      }
-    }
-    plots::writeChartFiles(plots::profile::stallFigure("vbim demo: survivable drive stall against ring size",
-                                                       pr::stallPoints(rows), pr::stallSearchSetup(search)),
-                           dir.path("plots/survivable_stall"));
-    std::ofstream csv(dir.path("plots/survivable_stall.csv"), std::ios::binary);
-    pr::writeStallCsv(rows, search, csv);
-    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  }
-  double seconds() const { return seconds_; }
-
- private:
-  std::vector<sweep::Sample> series_;
-  bool shown_ = false;
-  double seconds_ = 0;
-};
 
 }  // namespace
 
@@ -160,14 +90,14 @@ void addDemo(CLI::App& app) {
     if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
     r->faultsText = kDemoFaults;
     std::cout << "vbim demo: playing it with a 6 s drive stall at 0.2 s, a read error at LBA 2090 and loop wraps\n";
-    auto prof = std::make_shared<DemoProfile>();
+    auto prof = std::make_shared<sweep::DemoProfile>();
     auto rendered = std::make_shared<render::RunRenderResult>();
     r->onRow = [prof](const player::VsyncRow& row) { prof->onRow(row); };
     // The hooks live in *r, so they reach it through a plain pointer: capturing the shared_ptr would
     // make the request own itself (LeakSanitizer).
     PlayRequest* req = r.get();
     r->beforeCommit = [prof, req, rendered, stream](const OutputDir& dir) {
-      prof->write(req->disc, dir);
+      prof->write(req->disc, dir.directory());
       std::error_code ec;
       fs::copy_file(stream, dir.path("day.vbim"), fs::copy_options::overwrite_existing, ec);
       if (ec) throw Exit(2, dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());

@@ -19,9 +19,9 @@
 #include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/report.hpp"
-#include "streams/authoring/transcode.hpp"
 #include "streams/disc/stream_disc.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
+#include "sweep/outputs/reencoded_streams.hpp"
 #include "sweep/profile_sweep.hpp"
 
 namespace vbim::cli {
@@ -65,11 +65,6 @@ std::shared_ptr<Stream> discStream(const std::string& path, const std::string& f
   return s;
 }
 
-// The first disc re-encoded at other settings (a stream that cannot be re-encoded ends the command).
-std::vector<std::uint8_t> reencoded(const Stream& disc, const std::string& name, const streams::EncoderSettings& e) {
-  return streams::transcodeStream(streams::readDiscFile(*disc.disc, disc.file), name, e);
-}
-
 void runProfile(const ProfileRequest& r) {
   const auto wall0 = std::chrono::steady_clock::now();  // host time: stdout only
   // An existing, non-empty --out is refused before the sweep, not after it.
@@ -77,28 +72,13 @@ void runProfile(const ProfileRequest& r) {
   // Streams: every disc as given, then the first one re-encoded at each quantiser and bitrate.
   std::vector<std::shared_ptr<Stream>> streams;
   for (const std::string& d : r.discs) streams.push_back(discStream(d, r.file));
-  for (int q : r.qscales) {
-    if (q < 1 || q > 31) throw Exit(2, "--qscale " + std::to_string(q) + ": expected 1..31");
-    streams::EncoderSettings e;
-    e.qscale = q;
-    streams.push_back(memoryStream(stem(r.discs[0]) + "_q" + std::to_string(q), reencoded(*streams[0], r.discs[0], e)));
-  }
-  for (std::int64_t b : r.bitrates) {
-    if (b < 1 || b > streams::kDvdMaxVideoRate)
-      throw Exit(2, "--bitrate " + std::to_string(b) + ": expected 1..9800000 bit/s");
-    streams::EncoderSettings e;
-    e.bitrate = b;
-    streams.push_back(memoryStream(stem(r.discs[0]) + "_" + std::to_string(b / 1000) + "kbps",
-                                   reencoded(*streams[0], r.discs[0], e)));
-  }
+  for (auto& s : reencodedStreams(*streams[0], r.discs[0], r.qscales, r.bitrates)) streams.push_back(std::move(s));
 
   player::PlatformConfig base;
   if (!r.config.empty()) base = config::loadPlatformFile(r.config);
   std::vector<RingSize> rings;
   for (const std::string& s : r.rings) rings.push_back(parseRingSize(s));
-  std::sort(rings.begin(), rings.end(), [](const RingSize& a, const RingSize& b) {
-    return a.bufmax != b.bufmax ? a.bufmax < b.bufmax : a.bankmax < b.bankmax;
-  });
+  sortRings(rings);
   std::vector<std::string> policies;
   for (const std::string& p : r.policies) policies.push_back(catchupPolicy(p));
   // Fault plans: "none" first, then each file (parsed against the first stream's disc).
@@ -111,20 +91,8 @@ void runProfile(const ProfileRequest& r) {
   search.maxStall = parseTime("--max-stall", r.maxStall);
   search.resolution = parseTime("--resolution", r.resolution);
   search.settle = parseTime("--settle", r.settle);
-  if (r.popThreshold != "auto") {
-    try {
-      std::size_t used = 0;
-      search.popThreshold = std::stoi(r.popThreshold, &used);
-      if (used != r.popThreshold.size() || search.popThreshold < 0 || search.popThreshold > 255)
-        throw std::invalid_argument("range");
-    } catch (const std::exception&) {
-      throw Exit(2, "--pop-threshold '" + r.popThreshold + "': expected auto or 0..255");
-    }
-  }
-  if (search.maxStall <= 0 || search.resolution <= 0 || search.settle <= 0)
-    throw Exit(2, "--max-stall, --resolution and --settle must be positive");
-  if (search.maxStall / search.resolution > 100'000)
-    throw Exit(2, "--max-stall / --resolution is above 100000 steps: choose a coarser --resolution");
+  search.popThreshold = parsePopThreshold(r.popThreshold);
+  checkStallSearch(search);
 
   SweepPlan plan;
   for (const auto& s : streams) plan.streams.push_back(s.get());

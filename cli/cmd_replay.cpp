@@ -81,12 +81,10 @@ std::string compareRow(const player::ExpectedHashes& e, const player::VsyncRow& 
 void run(const ReplayRequest& r) {
   using namespace vbim::player;
   ReplayOptions o;
+  if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
+  if (!r.policy.empty()) o.config.gs.catchup = catchupPolicy(r.policy);
   try {
-    if (!r.config.empty()) o.config = config::loadPlatformFile(r.config);
-    if (!r.policy.empty()) o.config.gs.catchup = catchupPolicy(r.policy);
     o.duration = iop::parseDuration(r.duration);
-  } catch (const ConfigError& e) {
-    throw Exit(2, e.what());
   } catch (const std::exception& e) {
     throw Exit(2, "--duration '" + r.duration + "': " + e.what() + " (expected a time with a unit, e.g. 60s)");
   }

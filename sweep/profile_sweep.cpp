@@ -1,5 +1,6 @@
 #include "sweep/profile_sweep.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "iop/params.hpp"
@@ -7,6 +8,32 @@
 #include "runtime/params.hpp"
 
 namespace vbim::sweep {
+
+void sortRings(std::vector<RingSize>& rings) {
+  std::sort(rings.begin(), rings.end(), [](const RingSize& a, const RingSize& b) {
+    return a.bufmax != b.bufmax ? a.bufmax < b.bufmax : a.bankmax < b.bankmax;
+  });
+}
+
+int parsePopThreshold(const std::string& text) {
+  if (text == "auto") return -1;
+  int threshold = -1;
+  try {
+    std::size_t used = 0;
+    threshold = std::stoi(text, &used);
+    if (used != text.size() || threshold < 0 || threshold > 255) throw std::invalid_argument("range");
+  } catch (const std::exception&) {
+    throw Error("--pop-threshold '" + text + "': expected auto or 0..255");
+  }
+  return threshold;
+}
+
+void checkStallSearch(const StallSearch& search) {
+  if (search.maxStall <= 0 || search.resolution <= 0 || search.settle <= 0)
+    throw Error("--max-stall, --resolution and --settle must be positive");
+  if (search.maxStall / search.resolution > 100'000)
+    throw Error("--max-stall / --resolution is above 100000 steps: choose a coarser --resolution");
+}
 
 RingSize parseRingSize(const std::string& text) {
   const auto colon = text.find(':');

@@ -26,6 +26,15 @@ struct RingSize {
 // (iop/params.cpp): a ring they refuse (2 banks deadlock under SDK-ST's hold rule) is refused here
 // too, before any case runs. Throws vbim::Error naming the text and what was expected.
 RingSize parseRingSize(const std::string& text);
+// Ring sizes in the order the tables list them: by sectors, then by banks.
+void sortRings(std::vector<RingSize>& rings);
+
+// `vbim profile --pop-threshold`: "auto" (-1: the configuration's own pop maximum without the
+// stall) or 0..255. Throws vbim::Error naming the text.
+int parsePopThreshold(const std::string& text);
+// Refuses a stall search that cannot run: a bound that is not positive, or more than 100,000
+// bisection steps. Throws vbim::Error naming the options.
+void checkStallSearch(const StallSearch& search);
 
 struct SweepRun {
   std::string stream;

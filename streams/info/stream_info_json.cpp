@@ -1,12 +1,10 @@
-#include "cli/info_json.hpp"
+#include "streams/info/stream_info.hpp"
 
 #include "streams/format.hpp"
 
-namespace vbim::cli {
+namespace vbim::streams {
 
 namespace {
-
-using namespace vbim::streams;
 
 nlohmann::json summaryJson(const Summary& s) {
   return {{"min", s.min}, {"mean", s.mean}, {"max", s.max}};
@@ -66,10 +64,12 @@ nlohmann::json gopJson(const StreamReport& r) {
 
 }  // namespace
 
-nlohmann::json infoJson(const std::string& path, const std::optional<iop::DiscFile>& onImage, const StreamScan& scan,
-                        const std::vector<StreamReport>& reports, const std::optional<nlohmann::ordered_json>& record) {
+nlohmann::json infoJson(const StreamInfo& info) {
+  const std::optional<iop::DiscFile>& onImage = info.onImage;
+  const StreamScan& scan = info.scan;
+  const std::optional<nlohmann::ordered_json>& record = info.record;
   nlohmann::json j;
-  j["file"] = path;
+  j["file"] = info.path;
   if (onImage) j["disc_file"] = {{"path", onImage->path}, {"lba", onImage->lba}, {"bytes", onImage->bytes}};
   j["bytes"] = scan.fileBytes;
   j["sectors"] = scan.sectors;
@@ -77,7 +77,7 @@ nlohmann::json infoJson(const std::string& path, const std::optional<iop::DiscFi
   j["mux_rate_bps"] = scan.muxRate * 400.0;
   j["descriptor"] = scan.descriptor ? descriptorJson(*scan.descriptor) : nlohmann::json(nullptr);
   if (record) j["authoring"] = nlohmann::json::parse(record->dump());
-  for (const StreamReport& r : reports) {
+  for (const StreamReport& r : info.reports) {
     nlohmann::json pictures = nlohmann::json::array();
     for (const PictureRecord& p : scan.pictures) {
       if (p.streamId == r.id) {
@@ -110,4 +110,4 @@ nlohmann::json infoJson(const std::string& path, const std::optional<iop::DiscFi
   return j;
 }
 
-}  // namespace vbim::cli
+}  // namespace vbim::streams
