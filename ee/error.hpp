@@ -1,14 +1,6 @@
-// The EE's error: the stream file on the disc is not a VBIM stream the player can play (no
-// descriptor, a malformed one, a stream without a lightmap). Thrown by probeStream before a run.
+// The EE's probe throws streams::StreamProbeError (streams/descriptor_probe.hpp), the reader's own
+// check, moved down there so that the disc-image tools need no EE. Only cli/cmd_config.cpp still
+// includes this header (without using it); it goes when that file stops (issue #32).
 #pragma once
 
-#include "runtime/error.hpp"
-
-namespace vbim::ee {
-
-class StreamProbeError : public Error {
- public:
-  using Error::Error;
-};
-
-}  // namespace vbim::ee
+#include "streams/descriptor_probe.hpp"

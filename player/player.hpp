@@ -85,7 +85,7 @@ class Player {
  public:
   using Sink = std::function<void(const VsyncRow&, const Rgba8Image& lightmap, const Rgba8Image* sky)>;
 
-  // Probes the stream (throws ee::StreamProbeError), validates the options (ConfigError, GsError).
+  // Probes the stream (throws streams::StreamProbeError), validates the options (ConfigError, GsError).
   Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions options);
   Player(const Player&) = delete;
   Player& operator=(const Player&) = delete;

@@ -86,7 +86,7 @@ class Scenario {
   // The disc, e.g. for config::parseFaultPlan to resolve `file = "..."` entries.
   const iop::SectorSource& disc() const { return *disc_; }
   PlayerOptions& options() { return options_; }
-  // Builds the run (probing the stream: throws ee::StreamProbeError) with vsyncs up to `duration`.
+  // Builds the run (probing the stream: throws streams::StreamProbeError) with vsyncs up to `duration`.
   std::unique_ptr<Run> start(Tick duration) const;
 
  private:

@@ -96,7 +96,7 @@ struct CaseResult {
   std::vector<Sample> series;  // empty unless asked for
 };
 
-// Runs one case (throws what the player throws: ee::StreamProbeError, ConfigError, gs::GsError).
+// Runs one case (throws what the player throws: streams::StreamProbeError, ConfigError, gs::GsError).
 CaseResult runCase(const Case& c, bool keepSeries);
 
 enum class Criterion { Late, Pop };

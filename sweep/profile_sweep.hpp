@@ -78,7 +78,7 @@ struct SweepObserver {
   std::function<void(const StallRow&)> onStall;
 };
 
-// Runs the whole sweep (throws what the player throws: ee::StreamProbeError, ConfigError,
+// Runs the whole sweep (throws what the player throws: streams::StreamProbeError, ConfigError,
 // gs::GsError).
 ProfileData runSweep(const SweepPlan& plan, const SweepObserver& observer = {});
 

@@ -5,10 +5,9 @@
 #include <cstring>
 #include <fstream>
 
-#include "ee/error.hpp"
-#include "ee/stream_probe.hpp"
 #include "iop/file_disc.hpp"
 #include "streams/authoring_record.hpp"
+#include "streams/descriptor_probe.hpp"
 #include "streams/disc/iso_disc.hpp"
 
 namespace vbim::streams {
@@ -24,14 +23,21 @@ std::string listed(const std::vector<iop::DiscFile>& files) {
   return r;
 }
 
-bool isVbimStream(iop::SectorSource& disc, const iop::DiscFile& file) {
-  if (file.bytes < static_cast<std::int64_t>(iop::kSectorBytes)) return false;
+// The stream's descriptor when `file` is a VBIM stream (the reader's check, on the disc's sectors).
+std::optional<Descriptor> descriptorOf(iop::SectorSource& disc, const iop::DiscFile& file) {
+  const auto read = [&](std::int64_t s, std::span<std::uint8_t, kSectorBytes> out) {
+    const iop::SectorReadResult r = disc.read(file.lba + s, iop::SectorSpan(out));
+    return r.ok ? std::string() : r.error;
+  };
   try {
-    ee::probeStream(disc, file);
-    return true;
-  } catch (const ee::StreamProbeError&) {
-    return false;
+    return probeDescriptor(file.sectors(), read, disc.describe() + ", file '" + file.path + "'").descriptor;
+  } catch (const StreamProbeError&) {
+    return std::nullopt;
   }
+}
+
+bool isVbimStream(iop::SectorSource& disc, const iop::DiscFile& file) {
+  return file.bytes >= static_cast<std::int64_t>(iop::kSectorBytes) && descriptorOf(disc, file).has_value();
 }
 
 StreamDisc onImage(const std::string& path, const std::string& name) {
@@ -105,12 +111,9 @@ std::vector<std::uint8_t> readDiscFile(iop::SectorSource& disc, const iop::DiscF
 }
 
 std::optional<std::string> readAuthoringRecord(iop::SectorSource& disc, const iop::DiscFile& file) {
-  std::int64_t video = 0;
-  try {
-    video = ee::probeStream(disc, file).descriptor.totalSectors;
-  } catch (const ee::StreamProbeError&) {
-    return std::nullopt;
-  }
+  const std::optional<Descriptor> descriptor = descriptorOf(disc, file);
+  if (!descriptor) return std::nullopt;
+  const std::int64_t video = descriptor->totalSectors;
   // A record of a few thousand frames' hours and every lighting key fits in a handful of packs.
   constexpr std::int64_t kMaxRecordSectors = 256;
   iop::DiscFile tail = file;

@@ -5,7 +5,10 @@
 #  - a folder holds two layers: a folder of the model (layers 0 to 2) with a file in a library outside
 #    the model (a vbim_library(...) without MODEL in a CMakeLists.txt);
 #  - a file includes a header of a folder in a layer above its own;
-#  - a chip (layer 1) includes another chip's header, except the EE (`ee`), which meets them all.
+#  - a chip (layer 1) includes another chip's header, except the EE (`ee`), which meets them all;
+#  - two top-level folders, each with its subfolders, include each other (or more close a loop):
+#    one of them holds two layers, one below and one above the other (streams/disc including ee/,
+#    which includes streams/, was one).
 # Reads every #include "folder/..." of the listed folders' C++ files.
 #   check_layers.sh [repository root] [layer table] [least number of includes expected]
 set -eu
@@ -102,6 +105,31 @@ awk -v layers="$work/layers" '
     close(f)
   }
   END { print "checked " checked + 0 }' "$work/files" >"$work/includes"
+
+# The includes between top-level folders (each with its subfolders) run one way: "from to file inc"
+# for each include across them, then every pair that runs both ways, and any longer loop.
+awk -v layers="$work/layers" '
+  BEGIN { while ((getline line < layers) > 0) { split(line, a, " "); sub(/\/.*$/, "", a[1]); root[a[1]] = 1 } }
+  {
+    f = $0; r = f; sub(/\/.*$/, "", r)
+    if (!(r in root)) next
+    while ((getline line < f) > 0) {
+      if (line !~ /^[[:space:]]*#[[:space:]]*include[[:space:]]*"/) continue
+      inc = line; sub(/^[^"]*"/, "", inc); sub(/".*$/, "", inc)
+      if (inc !~ /\//) continue
+      e = inc; sub(/\/.*$/, "", e)
+      if (e != r && (e in root) && !((r, e) in seen)) { seen[r, e] = 1; print r, e, f, inc }
+    }
+    close(f)
+  }' "$work/files" >"$work/roots"
+awk '{ first[$1 " " $2] = $3 " includes " $4 }
+     END { for (k in first) { split(k, p, " ")
+             if ((p[2] " " p[1]) in first && p[1] < p[2])
+               print p[1] " and " p[2] " include each other (" first[k] "; " first[p[2] " " p[1]] \
+                     "): one of them holds two layers" } }' "$work/roots" >>"$work/includes"
+if ! grep -q ' include each other ' "$work/includes" && ! cut -d' ' -f1,2 "$work/roots" | tsort >/dev/null 2>"$work/loop"; then
+  echo "the top-level folders include one another in a loop: $(grep -v '^tsort: -: input contains a loop' "$work/loop" | sed 's/^tsort: //' | tr '\n' ' ')" >>"$work/includes"
+fi
 checked=$(sed -n 's/^checked //p' "$work/includes")
 grep -v '^checked ' "$work/includes" || true
 bad=$((bad + $(grep -vc '^checked ' "$work/includes" || true)))

@@ -3,6 +3,7 @@
 #include "config/platform_config.hpp"
 #include "gs/error.hpp"
 #include "player/scenario.hpp"
+#include "streams/descriptor_probe.hpp"
 #include "tests/player/sample_path.hpp"
 
 namespace vbim::player {
@@ -121,7 +122,7 @@ TEST(Player, RejectsAFileThatIsNotAVbimStream) {
   try {
     Scenario::bareFile(bad).start(fromMs(1'000));
     FAIL() << "expected a StreamProbeError";
-  } catch (const ee::StreamProbeError& e) {
+  } catch (const streams::StreamProbeError& e) {
     EXPECT_NE(std::string(e.what()).find("not a VBIM stream"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("sector 0"), std::string::npos) << e.what();
   }
