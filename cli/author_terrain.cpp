@@ -10,7 +10,7 @@
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
 #include "config/params_toml.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/frame_stream.hpp"
 

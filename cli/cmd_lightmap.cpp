@@ -15,7 +15,7 @@
 #include "lighting/image_files.hpp"
 #include "lighting/lightmap_files.hpp"
 #include "lighting/terrain_file.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::cli {
 

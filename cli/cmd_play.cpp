@@ -23,7 +23,7 @@
 #include "cli/progress.hpp"
 #include "cli/provenance.hpp"
 #include "config/fault_plan_toml.hpp"
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "gs/error.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "imageio/error.hpp"
@@ -162,7 +162,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
     throw Exit(2, gsConfigMessage(e, r.config));
   }
 
-  // How the stream was made, for `vbim render RUN_DIR` (lighting/authoring/authoring_record.hpp).
+  // How the stream was made, for `vbim render RUN_DIR` (lighting/authoring/technique_a_record.hpp).
   const std::optional<std::string> record = streams::readAuthoringRecord(*disc, file);
 
   OutputDir dir(r.out, r.force);

@@ -14,7 +14,7 @@
 #include "cli/platform_params.hpp"
 #include "cli/profile_plan.hpp"
 #include "config/fault_plan_toml.hpp"
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "gs/error.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"

@@ -17,7 +17,7 @@
 #include "cli/output_dir.hpp"
 #include "cli/platform_params.hpp"
 #include "cli/play_run.hpp"
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "gs/error.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "iop/error.hpp"

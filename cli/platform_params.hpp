@@ -8,7 +8,7 @@
 
 #include "gs/error.hpp"
 #include "player/platform_config.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::cli {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::config {
 

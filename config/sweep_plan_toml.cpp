@@ -8,7 +8,7 @@
 
 #include "config/fault_plan_toml.hpp"
 #include "config/fault_template.hpp"
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "config/toml_document.hpp"
 #include "gs/params.hpp"
 #include "runtime/rng.hpp"

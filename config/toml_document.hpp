@@ -7,7 +7,7 @@
 
 #include <toml++/toml.h>
 
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::config {
 

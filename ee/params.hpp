@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "ipu/bdec_flow_timing.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::ee {
 

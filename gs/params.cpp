@@ -1,6 +1,6 @@
 #include "gs/params.hpp"
 
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::gs {
 

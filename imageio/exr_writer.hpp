@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "imageio/image.hpp"
+#include "imageio/image_view.hpp"
 
 namespace vbim::imageio {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "imageio/error.hpp"
-#include "imageio/image.hpp"
+#include "imageio/image_view.hpp"
 #include "runtime/image.hpp"
 
 namespace vbim::imageio {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "imageio/image.hpp"
+#include "imageio/image_view.hpp"
 
 namespace vbim::imageio {
 

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "imageio/image.hpp"
+#include "imageio/image_view.hpp"
 
 namespace vbim::imageio {
 

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "imageio/image.hpp"
+#include "imageio/image_view.hpp"
 #include "runtime/image.hpp"
 
 namespace vbim::imageio {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "iop/sector_source.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::iop {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "ipu/kernels.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::ipu {
 

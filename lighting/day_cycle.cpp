@@ -10,7 +10,7 @@
 #include "lighting/error.hpp"
 #include "lighting/ray_sweep.hpp"
 #include "lighting/sky_model.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 #include "runtime/worker_pool.hpp"
 
 namespace vbim::lighting {

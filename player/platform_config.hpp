@@ -9,7 +9,7 @@
 #include "gs/params.hpp"
 #include "iop/params.hpp"
 #include "ipu/params.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::player {
 

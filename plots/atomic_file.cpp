@@ -8,7 +8,7 @@
 #include <string>
 #include <system_error>
 
-#include "plots/error.hpp"
+#include "runtime/error.hpp"
 
 namespace vbim::plots {
 
@@ -18,7 +18,7 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
   const auto fail = [&](const std::string& why) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
-    throw PlotError(path.string() + ": cannot write the plot: " + why);
+    throw Error(path.string() + ": cannot write the plot: " + why);
   };
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (f == nullptr) fail(std::strerror(errno));

@@ -7,7 +7,7 @@
 
 namespace vbim::plots {
 
-// Throws PlotError naming `path` when the file cannot be written (the temporary file is removed).
+// Throws Error naming `path` when the file cannot be written (the temporary file is removed).
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 
 }  // namespace vbim::plots

@@ -8,7 +8,7 @@
 #include <iostream>
 #include <string_view>
 
-#include "plots/error.hpp"
+#include "runtime/error.hpp"
 
 namespace vbim::plots {
 
@@ -50,7 +50,7 @@ void requireDevice(Device device, const std::string& file) {
   const char* name = deviceName(device);
   std::error_code ec;
   if (dir.empty() || !std::filesystem::exists(dir / "cairo.so", ec) || !listsDevice(dir / "cairo.driver_info", name)) {
-    throw PlotError(file + ": PLplot's cairo driver (device " + name + ") is not installed in '" + dir.string() + "'" +
+    throw Error(file + ": PLplot's cairo driver (device " + name + ") is not installed in '" + dir.string() + "'" +
                     ": apt-get install plplot-driver-cairo" + (env != nullptr ? " (or unset PLPLOT_DRV_DIR)" : ""));
   }
   const char* menus[128];
@@ -61,7 +61,7 @@ void requireDevice(Device device, const std::string& file) {
   plgDevs(&menuList, &nameList, &count);
   for (int i = 0; i < count; ++i)
     if (std::strcmp(names[i], name) == 0) return;
-  throw PlotError(file + ": PLplot does not offer the " + name + " device: apt-get install plplot-driver-cairo");
+  throw Error(file + ": PLplot does not offer the " + name + " device: apt-get install plplot-driver-cairo");
 }
 
 }  // namespace
@@ -72,12 +72,12 @@ PlplotPage::PlplotPage(Device device, int width, int height, std::string file)
     requireDevice(device_, file_);
     memory_ = open_memstream(&bytes_, &size_);
     if (memory_ == nullptr)
-      throw PlotError(file_ + ": cannot open a memory stream for the plot: " + std::strerror(errno));
+      throw Error(file_ + ": cannot open a memory stream for the plot: " + std::strerror(errno));
     gFileBeingDrawn = &file_;
     plsexit(onPlplotExit);
     plgstrm(&previous_);
     plmkstrm(&stream_);
-    if (stream_ < 0) throw PlotError(file_ + ": PLplot has no free stream");
+    if (stream_ < 0) throw Error(file_ + ": PLplot has no free stream");
     plsError(&errorCode_, errorMessage_);
     plsdev(deviceName(device_));
     plsfile(memory_);
@@ -116,7 +116,7 @@ void PlplotPage::check() const {
   if (errorCode_ != 0) {
     const std::string_view m(errorMessage_);
     const auto first = m.find_first_not_of("\n *"), last = m.find_last_not_of("\n *");
-    throw PlotError(file_ + ": PLplot: " + std::string(first == m.npos ? "error" : m.substr(first, last - first + 1)));
+    throw Error(file_ + ": PLplot: " + std::string(first == m.npos ? "error" : m.substr(first, last - first + 1)));
   }
 }
 
@@ -127,7 +127,7 @@ std::string PlplotPage::finish() {
   // PLplot's cairo devices ignore write errors; a complete picture starts with its signature.
   const std::string_view signature = device_ == Device::Png ? std::string_view("\x89PNG\r\n\x1a\n", 8) : "<?xml";
   std::string out(bytes_ != nullptr ? bytes_ : "", size_);
-  if (!out.starts_with(signature)) throw PlotError(file_ + ": PLplot wrote no complete picture");
+  if (!out.starts_with(signature)) throw Error(file_ + ": PLplot wrote no complete picture");
   return out;
 }
 

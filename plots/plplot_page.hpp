@@ -5,7 +5,7 @@
 // is current again afterwards.
 //
 // Errors: PLplot reports recoverable errors ("plabort") into this page (check() and finish() turn
-// them into PlotError naming the file). Its fatal errors ("plexit": out of memory, a driver that
+// them into Error naming the file). Its fatal errors ("plexit": out of memory, a driver that
 // cannot be loaded) end the process; the checks made before PLplot starts (the cairo driver is
 // installed, the output is only memory) keep the foreseeable failures out of that path, and the
 // exit handler installed here names the file being drawn before PLplot exits.
@@ -24,7 +24,7 @@ enum class Device { Png, Svg };
 class PlplotPage {
  public:
   // Starts a `width` x `height` page (pixels for PNG, points for SVG) on a white background.
-  // `file` names the picture in error messages. Throws PlotError when the device is not installed.
+  // `file` names the picture in error messages. Throws Error when the device is not installed.
   PlplotPage(Device device, int width, int height, std::string file);
   ~PlplotPage();
   PlplotPage(const PlplotPage&) = delete;
@@ -33,9 +33,9 @@ class PlplotPage {
   // cmap0 has this many colour slots; slot 0 is the background.
   static constexpr int kColourSlots = 64;
 
-  // Throws PlotError if PLplot has reported an error on this page.
+  // Throws Error if PLplot has reported an error on this page.
   void check() const;
-  // Ends the page and returns the picture's bytes (a PNG or SVG file). Throws PlotError on an error.
+  // Ends the page and returns the picture's bytes (a PNG or SVG file). Throws Error on an error.
   std::string finish();
 
  private:

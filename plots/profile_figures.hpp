@@ -63,7 +63,7 @@ struct SweepTrace {
 // Writes the figures of `vbim profile` into `dir`, each as .png and .svg: one
 // plots/occupancy_<stream>_<faults>_<policy> and one plots/lag_pop_<...> per stream, fault plan
 // and policy (a line per ring size), and plots/survivable_stall when there are stall results.
-// Returns the names written, relative to `dir`. Throws PlotError.
+// Returns the names written, relative to `dir`. Throws Error.
 std::vector<std::string> writeProfileFigures(const std::vector<SweepTrace>& sweep,
                                              const std::vector<StallPoint>& stalls, const StallSearchSetup& setup,
                                              const std::filesystem::path& dir);

@@ -15,13 +15,13 @@ namespace vbim::plots {
 
 enum class Format { Png, Svg };
 
-// The picture's bytes; `name` names it in error messages. Throws PlotError.
+// The picture's bytes; `name` names it in error messages. Throws Error.
 std::string renderChart(const Figure& fig, Format format, const std::string& name);
 
-// Writes one picture file. Throws PlotError naming the file.
+// Writes one picture file. Throws Error naming the file.
 void writeChart(const Figure& fig, const std::filesystem::path& file, Format format);
 
-// Writes `stem`.png and `stem`.svg and returns their paths (PNG first). Throws PlotError.
+// Writes `stem`.png and `stem`.svg and returns their paths (PNG first). Throws Error.
 std::vector<std::filesystem::path> writeChartFiles(const Figure& fig, const std::filesystem::path& stem);
 
 }  // namespace vbim::plots

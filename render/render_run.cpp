@@ -11,14 +11,14 @@
 #include "imageio/image_reader.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
-#include "lighting/authoring/authoring_record.hpp"
+#include "lighting/authoring/technique_a_record.hpp"
 #include "lighting/error.hpp"
 #include "render/contact_sheet.hpp"
 #include "render/error.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_lighting.hpp"
 #include "render/video_writer.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 #include "streams/authoring/error.hpp"
 
 namespace vbim::render {

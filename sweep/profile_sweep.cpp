@@ -5,7 +5,7 @@
 
 #include "iop/params.hpp"
 #include "runtime/error.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::sweep {
 

@@ -15,7 +15,7 @@
 #include <ctime>
 #include <memory>
 
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "gs/tiled_blender.hpp"
 #include "iop/memory_disc.hpp"

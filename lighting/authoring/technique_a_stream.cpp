@@ -7,14 +7,14 @@
 
 #include "config/params_toml.hpp"
 #include "imageio/error.hpp"
-#include "lighting/authoring/authoring_record.hpp"
+#include "lighting/authoring/technique_a_record.hpp"
 #include "lighting/error.hpp"
 #include "lighting/image_files.hpp"
 #include "lighting/terrain_file.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/authoring/error.hpp"
-#include "streams/authoring_record.hpp"
+#include "streams/record_packs.hpp"
 
 namespace vbim::lighting {
 
@@ -266,7 +266,7 @@ AuthoredStream authorTechniqueAStream(const TechniqueAStreamSettings& s, const T
   }
   AuthoredStream out;
   out.bytes = writer.finish();
-  // How it was made, after the last video sector: players never read it (streams/authoring_record.hpp).
+  // How it was made, after the last video sector: players never read it (streams/record_packs.hpp).
   streams::appendAuthoringRecord(out.bytes, authoringRecordJson(s, variants, terrain));
   out.descriptor = writer.descriptor();
   out.maxQscaleUsed = writer.maxQscaleUsed();

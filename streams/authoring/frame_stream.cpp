@@ -11,7 +11,7 @@
 #include "imageio/image_reader.hpp"
 #include "streams/authoring/error.hpp"
 #include "streams/authoring/frame_pattern.hpp"
-#include "streams/authoring_record.hpp"
+#include "streams/record_packs.hpp"
 
 namespace vbim::streams {
 
@@ -38,7 +38,7 @@ struct VariantFiles {
 
 // The authoring record of a stream made from image files or by the synthetic day generator: what is
 // known of it (the source, the frame sizes and times, the encoder settings), in the form Technique A
-// streams carry (lighting/authoring/authoring_record.hpp) but without a terrain, which these sources
+// streams carry (lighting/authoring/technique_a_record.hpp) but without a terrain, which these sources
 // do not have. `vbim info` shows it, `vbim play` copies it, `vbim render` notes that no terrain is
 // recorded and keeps its defaults. Appended after the video, so players never read it.
 std::string frameStreamRecord(const std::string& source, const AuthorSettings& s, std::uint32_t framesPerVariant,

@@ -39,7 +39,7 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
     f.write(reinterpret_cast<const char*>(yuv_.y.data()), static_cast<std::streamsize>(yuv_.y.size()));
     f.write(reinterpret_cast<const char*>(yuv_.cb.data()), static_cast<std::streamsize>(yuv_.cb.size()));
     f.write(reinterpret_cast<const char*>(yuv_.cr.data()), static_cast<std::streamsize>(yuv_.cr.size()));
-    if (!f) throw DecodeError(path.string() + ": cannot write");
+    if (!f) throw Error(path.string() + ": cannot write");
     return;
   }
   ipu::convertToRgba32(fs, w, h, thresholds_, rgba_, decoder.kernels().cscRow);

@@ -24,7 +24,7 @@ class FrameFileWriter {
   // `thresholds`: the SETTH thresholds of the RGB32 conversion (PNG and EXR).
   FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds = {});
 
-  // Writes the frame the decoder holds as frame number `frame`. Throws DecodeError (YUV) or
+  // Writes the frame the decoder holds as frame number `frame`. Throws Error (YUV) or
   // imageio::ImageIoError (PNG, EXR) naming the file when it cannot be written.
   void write(int frame, const ipu::Decoder& decoder);
 

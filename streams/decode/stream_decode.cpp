@@ -18,7 +18,7 @@ VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::str
     case StreamForm::ProgramStream: {
       VideoElementaryStream video = readVideoStream(file, streamId);
       if (!video.streamId) {
-        throw DecodeError(
+        throw Error(
             name + ": MPEG program stream without " +
             (streamId ? "video stream " + hexId(*streamId) : std::string("a video stream (PES id 0xE0..0xEF)")));
       }
@@ -30,7 +30,7 @@ VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::str
     case StreamForm::NotMpeg:
       break;
   }
-  throw DecodeError(name +
+  throw Error(name +
                     ": byte 0: not an MPEG program stream or video elementary stream "
                     "(expected 00 00 01 BA or 00 00 01 B3)");
 }
@@ -69,7 +69,7 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
     summary.issues += r.issueCount;
     if (r.undecodable) {
       const ipu::IssueKind k = r.issues.empty() ? ipu::IssueKind::kBadHeader : r.issues.back().kind;
-      throw DecodeError(source + ": byte " + std::to_string(video.fileOffsetOf(au.offset)) +
+      throw Error(source + ": byte " + std::to_string(video.fileOffsetOf(au.offset)) +
                         ": cannot decode: " + ipu::issueName(k));
     }
     summary.concealedMacroblocks += r.macroblocksConcealed;
@@ -79,8 +79,8 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
   }
   while (decoder.flushDisplay()) frames(summary.frames++, decoder);
   if (summary.frames == 0) {
-    if (!decoder.hasSequence()) throw DecodeError(source + ": no sequence header: nothing can be decoded");
-    throw DecodeError(source + ": no picture could be decoded");
+    if (!decoder.hasSequence()) throw Error(source + ": no sequence header: nothing can be decoded");
+    throw Error(source + ": no picture could be decoded");
   }
   summary.width = decoder.width();
   summary.height = decoder.height();

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "ipu/picture_decoder.hpp"
-#include "streams/decode/error.hpp"
+#include "runtime/error.hpp"
 
 namespace vbim::streams {
 
@@ -41,7 +41,7 @@ using FrameSink = std::function<void(int frame, const ipu::Decoder& decoder)>;
 // found while decoding (with their file byte offset and macroblock).
 using DiagnosticSink = std::function<void(const std::string& line)>;
 
-// Decodes every picture of `file` (named `name` in messages). Throws DecodeError when the file is
+// Decodes every picture of `file` (named `name` in messages). Throws Error when the file is
 // not an MPEG stream, holds no such video stream, or a picture stops the decoder.
 DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string& name, const DecodeOptions& options,
                            const FrameSink& frames, const DiagnosticSink& diagnostics);

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "iop/file_disc.hpp"
-#include "streams/authoring_record.hpp"
+#include "streams/record_packs.hpp"
 #include "streams/descriptor_probe.hpp"
 #include "streams/disc/iso_disc.hpp"
 

@@ -34,7 +34,7 @@ StreamDisc openStreamDisc(const std::string& path, const std::string& file = {})
 // Throws iop::DiscError naming the disc and the LBA when a sector cannot be read.
 std::vector<std::uint8_t> readDiscFile(iop::SectorSource& disc, const iop::DiscFile& file);
 
-// The stream's authoring record (streams/authoring_record.hpp), read from the sectors after its
+// The stream's authoring record (streams/record_packs.hpp), read from the sectors after its
 // video, or nullopt when it has none (or is not a VBIM stream). Reads at most 256 sectors.
 std::optional<std::string> readAuthoringRecord(iop::SectorSource& disc, const iop::DiscFile& file);
 

@@ -1,5 +1,5 @@
 #include "config/params_toml.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 #include <gtest/gtest.h>
 

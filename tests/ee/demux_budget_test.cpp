@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "player/scenario.hpp"
 #include "streams/authoring/bench_stream.hpp"
 #include "streams/stream_stats.hpp"

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "runtime/error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -4,7 +4,7 @@
 
 #include "config/params_toml.hpp"
 #include "gs/params.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::gs {
 namespace {

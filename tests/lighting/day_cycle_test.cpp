@@ -9,7 +9,7 @@
 #include "lighting/day_cycle.hpp"
 #include "lighting/error.hpp"
 #include "lighting/procedural_terrain.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 #include "runtime/worker_pool.hpp"
 #include "tests/lighting/test_terrains.hpp"
 

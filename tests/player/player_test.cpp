@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 #include "gs/error.hpp"
 #include "player/scenario.hpp"
 #include "streams/descriptor_probe.hpp"

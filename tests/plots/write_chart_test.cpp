@@ -1,6 +1,6 @@
 // Whole picture files from PLplot: the same figure gives the same bytes (PNG and SVG, also within
 // one process), the PNG decodes to the figure's size with the series' colour in it, files are
-// complete or absent, and failures are PlotErrors that name the file and what to do.
+// complete or absent, and failures are vbim::Errors that name the file and what to do.
 #include <gtest/gtest.h>
 #include <png.h>
 #include <unistd.h>
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "plots/error.hpp"
+#include "runtime/error.hpp"
 #include "plots/write_chart.hpp"
 
 namespace {
@@ -111,13 +111,13 @@ TEST(PlotFiles, PngDecodesToTheFigureSizeWithTheSeriesColour) {
   EXPECT_GT(seriesBlue, 200u);          // the step line, 2 pixels wide
 }
 
-TEST(PlotFiles, UnwritableDirectoryIsAPlotErrorNamingTheFile) {
+TEST(PlotFiles, UnwritableDirectoryIsAnErrorNamingTheFile) {
   const fs::path missing = fs::path(::testing::TempDir()) / ("vbim_plots_missing_" + std::to_string(getpid()));
   fs::remove_all(missing);
   try {
     writeChartFiles(sampleFigure(), missing / "chart");
     FAIL() << "no error";
-  } catch (const PlotError& e) {
+  } catch (const vbim::Error& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find((missing / "chart.png").string()), std::string::npos) << what;
     EXPECT_NE(what.find("cannot write"), std::string::npos) << what;
@@ -125,7 +125,7 @@ TEST(PlotFiles, UnwritableDirectoryIsAPlotErrorNamingTheFile) {
   // A "directory" that is a regular file (fails for root too).
   const fs::path dir = scratch("file");
   std::ofstream(dir / "not_a_dir") << "x";
-  EXPECT_THROW(writeChart(sampleFigure(), dir / "not_a_dir" / "chart.svg", Format::Svg), PlotError);
+  EXPECT_THROW(writeChart(sampleFigure(), dir / "not_a_dir" / "chart.svg", Format::Svg), vbim::Error);
   EXPECT_FALSE(fs::exists(missing));
   fs::remove_all(dir);
 }
@@ -138,7 +138,7 @@ TEST(PlotFiles, MissingCairoDriverNamesThePackage) {
   try {
     renderChart(sampleFigure(), Format::Png, "chart.png");
     ADD_FAILURE() << "no error";
-  } catch (const PlotError& e) {
+  } catch (const vbim::Error& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("chart.png"), std::string::npos) << what;
     EXPECT_NE(what.find("apt-get install plplot-driver-cairo"), std::string::npos) << what;

@@ -1,4 +1,4 @@
-// The authoring record (streams/authoring_record.hpp): packs after the last video sector that the
+// The authoring record (streams/record_packs.hpp): packs after the last video sector that the
 // reader skips, found again whole, and not found when cut short.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <iterator>
 #include <string>
 
-#include "streams/authoring_record.hpp"
+#include "streams/record_packs.hpp"
 #include "streams/format.hpp"
 #include "streams/pack_parser.hpp"
 #include "streams/stream_stats.hpp"

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "streams/authoring_record.hpp"
+#include "streams/record_packs.hpp"
 #include "streams/format.hpp"
 #include "streams/stream_stats.hpp"
 

@@ -94,7 +94,7 @@ TEST(StreamsDecode, DecodesTheVideoStreamAskedFor) {
   try {
     decode(ps, {0xE2, 0});
     FAIL() << "no stream 0xE2";
-  } catch (const DecodeError& e) {
+  } catch (const vbim::Error& e) {
     EXPECT_STREQ(e.what(), "in.mpg: MPEG program stream without video stream 0xE2");
   }
 }
@@ -142,7 +142,7 @@ TEST(StreamsDecode, RefusesWhatIsNotAVideoStream) {
   const auto message = [](const Bytes& file) {
     try {
       decode(file);
-    } catch (const DecodeError& e) {
+    } catch (const vbim::Error& e) {
       return std::string(e.what());
     }
     return std::string("(decoded)");

@@ -1,4 +1,4 @@
-// The authoring record of a Technique A stream (streams/authoring_record.hpp carries it): how the
+// The authoring record of a Technique A stream (streams/record_packs.hpp carries it): how the
 // stream was made, as JSON, so that `vbim render` lights the same terrain at the same hours without
 // the options being repeated. Written by authorTechniqueAStream; read by `vbim info`, copied by
 // `vbim play` into the run directory (authoring.json) and applied by `vbim render`.

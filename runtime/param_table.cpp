@@ -1,4 +1,4 @@
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 #include <fstream>
 #include <map>

@@ -1,4 +1,4 @@
-#include "streams/authoring_record.hpp"
+#include "streams/record_packs.hpp"
 
 #include <map>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "config/platform_config.hpp"
+#include "config/platform_config_toml.hpp"
 
 #include "config/params_toml.hpp"
 

@@ -1,11 +1,11 @@
-#include "lighting/authoring/authoring_record.hpp"
+#include "lighting/authoring/technique_a_record.hpp"
 
 #include <variant>
 
 #include <nlohmann/json.hpp>
 
 #include "lighting/error.hpp"
-#include "runtime/params.hpp"
+#include "runtime/param_table.hpp"
 
 namespace vbim::lighting {
 
