@@ -9,7 +9,6 @@
 #include <memory>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <vector>
 
 #include "cli/command.hpp"
@@ -23,7 +22,6 @@
 #include "iop/error.hpp"
 #include "iop/fault_plan.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "player/frame_hash.hpp"
 #include "player/replay.hpp"
 #include "player/replay_report.hpp"
 #include "player/report.hpp"
@@ -63,21 +61,6 @@ void printWarnings(const std::vector<std::string>& warnings) {
   if (warnings.size() > kListed) std::cerr << "warning: ... and " << warnings.size() - kListed << " more\n";
 }
 
-// Empty when the row's hash is the expected one; else the first difference, explained.
-std::string compareRow(const player::ExpectedHashes& e, const player::VsyncRow& row, const player::ReplayNotes& notes) {
-  const auto v = static_cast<std::size_t>(row.vsync);
-  if (v < e.hashes.size() && e.hashes[v] == row.hash) return "";
-  std::istringstream line(player::hashesLine(row));
-  std::string vsync, seconds;
-  line >> vsync >> seconds;
-  std::string s =
-      "first difference at vsync " + vsync + " (" + seconds + " s): replay " + player::hashHex(row.hash) + ", " +
-      e.origin +
-      (v < e.hashes.size() ? ":" + std::to_string(v + 1) + " " + player::hashHex(e.hashes[v]) : " has no line for it") +
-      "\n";
-  return s + notes.describe(row);
-}
-
 void run(const ReplayRequest& r) {
   using namespace vbim::player;
   ReplayOptions o;
@@ -115,7 +98,7 @@ void run(const ReplayRequest& r) {
     timeline << replayTimelineLine(row, *replay);
     notes.add(row);
     ++rows;
-    if (expected && difference.empty()) difference = compareRow(*expected, row, notes);
+    if (expected && difference.empty()) difference = hashDifference(*expected, row, notes);
     if (r.every <= 0 || row.vsync % r.every != 0) return;
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));

@@ -1,7 +1,5 @@
 #include "cli/profile_plan.hpp"
 
-#include <sched.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,13 +8,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <thread>
 
 #include "cli/command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "config/sweep_plan_toml.hpp"
 #include "player/report.hpp"
+#include "sweep/outputs/plan_host.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
 #include "sweep/outputs/study.hpp"
 #include "sweep/outputs/table.hpp"
@@ -30,28 +28,10 @@ using sweep::CaseRecord;
 using sweep::LoadedPlan;
 using sweep::PlanCase;
 
-constexpr unsigned kMaxJobs = 64;
-
-// Cores this process may run on (a Slurm task or taskset sees fewer than the machine has).
-unsigned coresAvailable() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return std::max(1u, std::thread::hardware_concurrency());
-}
-
 unsigned jobsFor(const PlanRequest& r) {
-  const unsigned cores = coresAvailable();
-  if (r.jobs == 0) return std::min(cores, kMaxJobs);
-  if (r.jobs > kMaxJobs) {
-    throw Exit(2, "--jobs " + std::to_string(r.jobs) + ": at most " + std::to_string(kMaxJobs) +
-                      " (this machine offers " + std::to_string(cores) + " cores)");
-  }
-  if (r.jobs > cores) {
-    std::cerr << "vbim profile: --jobs " << r.jobs << " is more than the " << cores
-              << " cores available: cases will share cores (no faster, same results)\n";
-  }
-  return r.jobs;
+  const sweep::Jobs jobs = sweep::jobsFor(r.jobs);
+  if (!jobs.warning.empty()) std::cerr << "vbim profile: " << jobs.warning << "\n";
+  return jobs.jobs;
 }
 
 std::string clock(double seconds) {
@@ -173,15 +153,8 @@ std::string selfPath() {
 // per-case cost (the slowest of up to three cases spread over the plan, run here).
 void emitSlurm(const PlanRequest& r, const LoadedPlan& p) {
   OutputDir dir(r.emitSlurm, r.force);
-  double perCase = 0;
-  for (const PlanCase& c : sweep::costSample(p.cases)) {
-    const auto t0 = std::chrono::steady_clock::now();
-    runWithProgress(p, {c}, 1, false);
-    perCase = std::max(perCase, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const double rssMb = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  const auto [perCase, rssMb] =
+      sweep::measureCaseCost(p, [&](const PlanCase& c) { runWithProgress(p, {c}, 1, false); });
   const sweep::SlurmRequest request{r.shards, r.partition, r.account, r.cpusPerTask};
   const sweep::SlurmJob job = sweep::sizeSlurmJob(request, p.cases.size(), perCase, rssMb);
   const fs::path finalDir = fs::absolute(dir.finalPath());

@@ -5,6 +5,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "player/frame_hash.hpp"
 #include "player/report.hpp"
 #include "runtime/error.hpp"
 
@@ -139,6 +140,18 @@ std::vector<std::string> ReplayNotes::lateOrUnshown() const {
     out.push_back(s);
   }
   return out;
+}
+
+std::string hashDifference(const ExpectedHashes& e, const VsyncRow& row, const ReplayNotes& notes) {
+  const auto v = static_cast<std::size_t>(row.vsync);
+  if (v < e.hashes.size() && e.hashes[v] == row.hash) return "";
+  std::istringstream line(hashesLine(row));
+  std::string vsync, seconds;
+  line >> vsync >> seconds;
+  std::string s =
+      "first difference at vsync " + vsync + " (" + seconds + " s): replay " + hashHex(row.hash) + ", " + e.origin +
+      (v < e.hashes.size() ? ":" + std::to_string(v + 1) + " " + hashHex(e.hashes[v]) : " has no line for it") + "\n";
+  return s + notes.describe(row);
 }
 
 }  // namespace vbim::player

@@ -25,6 +25,11 @@ struct ExpectedHashes {
 // `path` a directory: path/hashes.txt. Throws ConfigError "FILE:LINE: what (expected ...)".
 ExpectedHashes readExpectedHashes(const std::filesystem::path& path);
 
+class ReplayNotes;
+// Empty when the row's hash is the expected one; else the first difference, explained by `notes`
+// (which has seen the row).
+std::string hashDifference(const ExpectedHashes& expected, const VsyncRow& row, const ReplayNotes& notes);
+
 // timeline.csv of a replay: play's columns that apply to it (not lag, sky_lag or ring_banks, which
 // need the drive and a reference run), then where the target came from: the vsync it arrived at,
 // the vsync it was due at and how many vsyncs late it arrived (0 on time; -1 without a target).

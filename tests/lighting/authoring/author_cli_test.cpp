@@ -30,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // The codec at the default quantiser (q = 3): the streams tests measure 40 dB per plane on smooth
-// frames; Technique A's texel-scale detail measured 36-39 dB on Y (tests/author/technique_a_stream_test).
+// frames; Technique A's texel-scale detail measured 36-39 dB on Y (tests/lighting/authoring/technique_a_stream_test).
 constexpr double kCodecPsnrDb = 35.0;
 
 struct Outcome {
