@@ -33,7 +33,6 @@
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/report.hpp"
 #include "player/run_dir.hpp"
-#include "player/scenario.hpp"
 #include "runtime/error.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -49,29 +48,6 @@ void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const 
 }
 
 namespace {
-
-// stats.json's "run": the version, the settings and every input with its SHA-256.
-json::Value provenance(const PlayRequest& r, const player::PlayerOptions& o) {
-  json::Value run = json::object({{"vbim_version", VBIM_VERSION}, {"command", "play"}});
-  json::Value disc = inputJson(r.disc);
-  if (!r.file.empty()) disc["file"] = r.file;
-  run["disc"] = disc;
-  run["config"] = r.config.empty() ? json::Value("defaults") : inputJson(r.config);
-  if (!r.faults.empty()) {
-    run["faults"] = inputJson(r.faults);
-  } else if (!r.faultsText.empty()) {
-    run["faults"] = json::object({{"path", "<built-in>"}, {"sha256", sha256Text(r.faultsText)}});
-  } else {
-    run["faults"] = "none";
-  }
-  run["seed"] = o.seed;
-  run["duration"] = r.duration;
-  run["policy"] = o.config.gs.catchup;
-  json::Value branches = json::Value::array();
-  for (const std::string& b : r.branches) branches.push(b);
-  run["branches"] = branches;
-  return run;
-}
 
 // The variant after '=' in --branch: a plain index (0 is the first variant).
 int variantIndex(const std::string& branch, const std::string& text) {
@@ -94,10 +70,6 @@ std::string picturesLine(double pictureCpu, double cpu, const PlayRequest& r) {
   return line;
 }
 
-std::string policyName(const std::string& p) {
-  return p.empty() ? "" : catchupPolicy(p);
-}
-
 }  // namespace
 
 std::string runPlay(const PlayRequest& r, bool progress) {
@@ -115,7 +87,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   } else if (!r.faultsText.empty()) {
     o.faults = config::parseFaultPlan(r.faultsText, "<built-in fault plan>", disc.get());
   }
-  if (const std::string p = policyName(r.policy); !p.empty()) o.config.gs.catchup = p;
+  if (!r.policy.empty()) o.config.gs.catchup = catchupPolicy(r.policy);
   o.seed = r.seed;
   o.duration = parseTime("--duration", r.duration);
   if (o.duration <= 0) throw Exit(2, "--duration must be positive");
@@ -203,7 +175,7 @@ std::string runPlay(const PlayRequest& r, bool progress) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   try {
-    const json::Value run = provenance(r, o);
+    const json::Value run = playProvenance(r, o);
     writer.finish(&run);
   } catch (const Error& e) {
     throw Exit(1, e.what());

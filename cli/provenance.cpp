@@ -59,4 +59,26 @@ json::Value inputJson(const std::filesystem::path& path) {
   return json::object({{"path", path.string()}, {"sha256", sha256File(path)}});
 }
 
+json::Value playProvenance(const PlayRequest& r, const player::PlayerOptions& o) {
+  json::Value run = json::object({{"vbim_version", VBIM_VERSION}, {"command", "play"}});
+  json::Value disc = inputJson(r.disc);
+  if (!r.file.empty()) disc["file"] = r.file;
+  run["disc"] = disc;
+  run["config"] = r.config.empty() ? json::Value("defaults") : inputJson(r.config);
+  if (!r.faults.empty()) {
+    run["faults"] = inputJson(r.faults);
+  } else if (!r.faultsText.empty()) {
+    run["faults"] = json::object({{"path", "<built-in>"}, {"sha256", sha256Text(r.faultsText)}});
+  } else {
+    run["faults"] = "none";
+  }
+  run["seed"] = o.seed;
+  run["duration"] = r.duration;
+  run["policy"] = o.config.gs.catchup;
+  json::Value branches = json::Value::array();
+  for (const std::string& b : r.branches) branches.push(b);
+  run["branches"] = branches;
+  return run;
+}
+
 }  // namespace vbim::cli

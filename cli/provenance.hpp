@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include "cli/play_run.hpp"
+#include "player/player.hpp"
 #include "runtime/json.hpp"
 
 namespace vbim::cli {
@@ -17,5 +19,9 @@ std::string sha256Text(const std::string& bytes);
 
 // {"path": ..., "sha256": ...} for an input file.
 json::Value inputJson(const std::filesystem::path& path);
+
+// stats.json's "run" of `vbim play` (and `vbim demo`): the version, the settings and every input
+// with its SHA-256.
+json::Value playProvenance(const PlayRequest& r, const player::PlayerOptions& o);
 
 }  // namespace vbim::cli
