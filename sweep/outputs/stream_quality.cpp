@@ -50,11 +50,8 @@ StreamQuality measureStreamQuality(std::span<const std::uint8_t> reencoded, cons
     q.minDb = std::min(q.minDb, db);
     ++q.frames;
   };
-  try {
-    streams::decodeStream(reencoded, name, options, frame, [](const std::string&) {});
-  } catch (const streams::DecodeError& e) {
-    throw Error(name + ": the re-encode does not decode: " + e.what());
-  }
+  // A re-encode that does not decode throws vbim::Error naming `name` and the place.
+  streams::decodeStream(reencoded, name, options, frame, [](const std::string&) {});
   if (q.frames != static_cast<std::int64_t>(sources.size())) {
     throw Error(name + ": the re-encode decodes to " + std::to_string(q.frames) + " lightmap frames, not the " +
                 std::to_string(sources.size()) + " it was made from");
