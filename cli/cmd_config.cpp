@@ -29,6 +29,7 @@ struct ConfigOptions {
   bool defaults = false;
   bool markdown = false;
   bool gsSetup = false;
+  std::string format = "markdown";  // --gs-setup's: markdown, gif or c
   std::string check;
   std::string faults;
   std::string stream;
@@ -98,7 +99,10 @@ void runConfig(const ConfigOptions& o) {
               << (o.stream.empty() ? "" : " with " + o.stream) << ": valid; the "
               << (o.gsSetup ? "GS setup" : "effective config") << " follows\n";
   }
-  if (o.gsSetup) {
+  if (o.gsSetup && o.format != "markdown") {
+    writeGsPackets(std::cout, params.gs, *vram, presented.lightmap, presented.sky,
+                   o.format == "c" ? PacketFormat::C : PacketFormat::Gif, o.stream);
+  } else if (o.gsSetup) {
     writeGsSetup(std::cout, params.gs, *vram, presented.lightmap, presented.sky);
   } else if (o.markdown) {
     table.writeMarkdown(std::cout);
@@ -132,12 +136,19 @@ void addConfig(CLI::App& app) {
                 "of the lightmap's and the sky's blend draws with their values (docs/porting.md)")
       ->needs(stream)
       ->excludes("--markdown");
+  cmd->add_option("--format", opts->format,
+                  "With --gs-setup: markdown (the register tables), gif (the GIF packets to send by PATH3, each "
+                  "qword's bytes) or c (the same packets as C arrays)")
+      ->check(CLI::IsMember({"markdown", "gif", "c"}))
+      ->needs("--gs-setup")
+      ->capture_default_str();
   cmd->footer(
       "Examples:\n"
       "  vbim config > platform.toml\n"
       "  vbim config --check platform.toml --faults plan.toml\n"
       "  vbim config --check platform.toml --stream streams/samples/day_clear.vbim\n"
-      "  vbim config --gs-setup --stream streams/samples/day_clear.vbim\n");
+      "  vbim config --gs-setup --stream streams/samples/day_clear.vbim\n"
+      "  vbim config --gs-setup --format c --stream streams/samples/day_clear.vbim > vbim_packets.h\n");
   cmd->callback([opts] { runConfig(*opts); });
 }
 

@@ -1,11 +1,13 @@
 // `vbim config --gs-setup`: the console's VRAM plan and the register writes of each blend draw, for
-// a port to compare with its own (docs/porting.md, "GS: upload and in-place blend"). The values come
-// from the functions the presenters use (gs::checkParams' plan, gs::blendDrawFor), so the listing
-// and a run cannot disagree.
+// a port to compare with its own (docs/porting.md, "GS: upload and in-place blend"), or, with
+// --format gif / c, the GIF packets to send by PATH3 (gs/gif_packets.hpp). The values come from the
+// functions the presenters use (gs::checkParams' plan, gs::blendDrawFor), so the listing and a run
+// cannot disagree.
 #pragma once
 
 #include <optional>
 #include <ostream>
+#include <string>
 
 #include "gs/params.hpp"
 #include "gs/presenter.hpp"
@@ -22,5 +24,15 @@ struct PictureSize {
 // of a vsync, which in strip mode covers the first strip.
 void writeGsSetup(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, PictureSize lightmap,
                   std::optional<PictureSize> sky);
+
+enum class PacketFormat : std::uint8_t {
+  Gif,  // every qword's 16 bytes in memory order, annotated
+  C,    // a C99 header: one aligned uint64_t [][2] array per packet
+};
+
+// The packets of gs::surfacePackets for the lightmap and the sky, with what to send when and what
+// to restore afterwards. `source` names the command's input in the header.
+void writeGsPackets(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, PictureSize lightmap,
+                    std::optional<PictureSize> sky, PacketFormat format, const std::string& source);
 
 }  // namespace vbim::cli

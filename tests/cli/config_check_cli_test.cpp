@@ -4,8 +4,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tests/support/run_command.hpp"
 
@@ -122,6 +127,52 @@ TEST_F(ConfigCheckCli, GsSetupListsTheVramPlanAndBothDraws) {
   const std::string refused = config("gs.sky_height = 32\n");
   EXPECT_EQ(refusal(vbim("config --gs-setup --check " + refused + " --stream " + kSample), "config"), play(refused));
   EXPECT_NE(vbim("config --gs-setup").output.find("--gs-setup requires --stream"), std::string::npos);
+}
+
+// --format gif prints each qword's bytes, --format c the same qwords as C arrays: the two agree, the
+// packets are the ones tests/gs/gif_packets_test.cpp checks field by field, and the default stays the
+// Markdown table.
+TEST_F(ConfigCheckCli, GsSetupPacketsAsBytesAndAsCArraysAgree) {
+  const auto gif = vbim("config --gs-setup --format gif --stream " + kSample);
+  const auto c = vbim("config --gs-setup --format c --stream " + kSample);
+  ASSERT_EQ(gif.status, 0) << gif.output;
+  ASSERT_EQ(c.status, 0) << c.output;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> fromGif, fromC;
+  std::istringstream g(gif.output);
+  for (std::string line; std::getline(g, line);) {
+    unsigned offset = 0;
+    unsigned b[16];
+    if (std::sscanf(line.c_str(), "%4x  %2x %2x %2x %2x %2x %2x %2x %2x  %2x %2x %2x %2x %2x %2x %2x %2x", &offset,
+                    &b[0], &b[1], &b[2], &b[3], &b[4], &b[5], &b[6], &b[7], &b[8], &b[9], &b[10], &b[11], &b[12],
+                    &b[13], &b[14], &b[15]) != 17) {
+      continue;
+    }
+    std::uint64_t lo = 0, hi = 0;
+    for (int i = 7; i >= 0; --i) {
+      lo = lo << 8 | b[i];
+      hi = hi << 8 | b[8 + i];
+    }
+    fromGif.emplace_back(lo, hi);
+  }
+  std::istringstream cs(c.output);
+  for (std::string line; std::getline(cs, line);) {
+    unsigned long long lo = 0, hi = 0;
+    if (std::sscanf(line.c_str(), " {0x%llxULL, 0x%llxULL},", &lo, &hi) == 2) fromC.emplace_back(lo, hi);
+  }
+  // Lightmap: macroblock upload 6 + next 4 + draw 20 + copy 20; sky the same.
+  EXPECT_EQ(fromGif.size(), 100u) << gif.output;
+  EXPECT_EQ(fromGif, fromC) << c.output;
+  for (const char* part : {"## lightmap_upload: 6 qwords + 64 qwords of pixels", "## sky_draw_copy: 20 qwords",
+                           "; ALPHA_1 = 0x8000000064", "sends them again after the"}) {
+    EXPECT_NE(gif.output.find(part), std::string::npos) << part << "\n" << gif.output;
+  }
+  EXPECT_NE(c.output.find("static const uint64_t vbim_lightmap_draw[20][2] __attribute__((aligned(16))) = {"),
+            std::string::npos)
+      << c.output;
+  const auto md = vbim("config --gs-setup --stream " + kSample);
+  EXPECT_NE(md.output.find("| 8 | `ALPHA_1` | 0x42 | `0x4000000064` |"), std::string::npos) << md.output;
+  EXPECT_NE(vbim("config --format gif --stream " + kSample).output.find("--format requires --gs-setup"),
+            std::string::npos);
 }
 
 TEST_F(ConfigCheckCli, AStreamThatIsNotOneIsNamed) {
