@@ -1,4 +1,4 @@
-// vbim decode STREAM --out DIR --format png|exr|yuv: every picture of a stream through the IPU
+// vbim decode STREAM --out DIR --format png|exr|yuv|rgba: every picture of a stream through the IPU
 // decoder (no timing). STREAM is an MPEG program stream (a VBIM stream, or any MPEG-2 program stream
 // or MPEG-1 system stream) or a raw MPEG-1/2 video elementary stream (.m2v / .m1v). The work is
 // streams::decodeStream (streams/decode/); this file parses the arguments and prints.
@@ -58,6 +58,7 @@ std::uint8_t parseStreamId(const std::string& text) {
 streams::FrameFileFormat formatOf(const std::string& name) {
   if (name == "exr") return streams::FrameFileFormat::Exr;
   if (name == "yuv") return streams::FrameFileFormat::Yuv;
+  if (name == "rgba") return streams::FrameFileFormat::Rgba;
   return streams::FrameFileFormat::Png;
 }
 
@@ -113,9 +114,11 @@ void addDecode(CLI::App& app) {
   cmd->add_option("--file", o->file,
                   "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_option("--out", o->outDir, "Output directory (written completely or not at all)")->required();
-  cmd->add_option("--format", o->format, "png (RGBA, GS alpha doubled), exr (half float) or yuv (planar 4:2:0)")
+  cmd->add_option("--format", o->format,
+                  "png (RGBA, GS alpha doubled), exr (half float), yuv (planar 4:2:0) or rgba (raw RGB32 bytes, GS "
+                  "alpha: what `vbim replay --frames` reads)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"png", "exr", "yuv"}));
+      ->check(CLI::IsMember({"png", "exr", "yuv", "rgba"}));
   cmd->add_option("--stream-id", o->stream, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
   cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)")
       ->capture_default_str()

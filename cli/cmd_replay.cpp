@@ -36,6 +36,7 @@ struct ReplayRequest {
   std::string file;  // the stream file on an ISO 9660 image (--file), or empty: the default
   std::string arrivals;
   std::string compare;  // a run directory or a hashes.txt to compare with, or empty
+  std::string frames;   // the port's decoded frames (player/port_frames.hpp), or empty: vbim decodes
   std::string config;
   std::string duration = "60s";
   bool durationGiven = false;  // --duration given: it wins over the log's end row
@@ -75,6 +76,7 @@ void run(const ReplayRequest& r) {
   if (r.format != "png" && r.format != "exr") throw Exit(2, "--format '" + r.format + "': expected png or exr");
   o.kernels.blend = &gs::simd::kernels();
   o.kernels.ipu = &ipu::simdKernels();
+  if (!r.frames.empty()) o.frames.emplace(r.frames);
   // A bare stream file or the stream on an ISO 9660 image, as play takes it.
   std::vector<std::uint8_t> file;
   const streams::StreamDisc disc = streams::openStreamDisc(r.stream, r.file);
@@ -116,7 +118,8 @@ void run(const ReplayRequest& r) {
   if (!hashes) throw Exit(1, dir.path("hashes.txt").string() + ": cannot write");
   if (!timeline) throw Exit(1, dir.path("timeline.csv").string() + ": cannot write");
   dir.commit();
-  std::cout << "replayed " << rows << " vsyncs of " << r.stream << " from " << r.arrivals << " into " << r.out;
+  std::cout << "replayed " << rows << " vsyncs of " << r.stream << " from " << r.arrivals
+            << (r.frames.empty() ? "" : " with the frames of " + r.frames) << " into " << r.out;
   if (replay->missingPictures() > 0) {
     std::cout << " (" << replay->missingPictures() << " arrivals named pictures the stream lacks: shown black)";
   }
@@ -155,6 +158,10 @@ void addReplay(CLI::App& app) {
   cmd->add_option("--compare", r->compare,
                   "A run directory or a port's hashes.txt: print the first vsync whose hash differs, with the "
                   "frame due, the target and its lateness there, and exit 1 on a difference");
+  cmd->add_option("--frames", r->frames,
+                  "The port's decoded frames instead of vbim's decode: DIR/lightmap/frame_NNNNN.rgba and "
+                  "DIR/sky/frame_NNNNN.rgba, raw RGB32, as `vbim decode --format rgba` writes them")
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--config", r->config, "Platform config (TOML), as given to play")->check(inputFile());
   cmd->add_option("--duration", r->duration,
                   "Simulated time to present (e.g. 60s); without it, the vsyncs the log's end row gives (play "
@@ -176,7 +183,9 @@ void addReplay(CLI::App& app) {
       "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --duration 10s --out replayed/\n"
       "  vbim replay disc.iso --file '\\DATA\\DAY.VBI;1' --arrivals run-iso/arrivals.csv --out replayed-iso/\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --compare port-hashes.txt --out "
-      "replayed/\n");
+      "replayed/\n"
+      "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --frames port-frames/ --compare "
+      "run/ --out replayed/\n");
   cmd->callback([r] { run(*r); });
 }
 

@@ -9,6 +9,7 @@
 #include "iop/sector_source.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "player/frame_hash.hpp"
+#include "player/port_frames.hpp"
 #include "player/stream_frame_decoder.hpp"
 #include "runtime/error.hpp"
 #include "runtime/serial_unit.hpp"
@@ -25,6 +26,12 @@ std::vector<gs::StreamInfo> infos(const streams::Descriptor& d, int index) {
     out.push_back(gs::StreamInfo{v.name, e.width, e.height, d.framesPerVariant, d.gameFps.num, d.gameFps.den});
   }
   return out;
+}
+
+// The picture number of timeline frame `seq` of a variant: seq -> the stream frame as play's timeline
+// maps it (after a wrap, from the descriptor's loop frame), in that variant's run of pictures.
+std::int64_t pictureOf(const streams::Descriptor& d, int variant, std::int64_t seq) {
+  return variant * static_cast<std::int64_t>(d.framesPerVariant) + ee::Timeline(d).frameInVariant(seq);
 }
 
 }  // namespace
@@ -73,6 +80,15 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
     if (a.sky && skyIndex < 0) throw ConfigError(name + ": " + where + " names the sky, but the stream has none");
     (a.sky ? sky : lm).push_back(gs::Arrival{a.vsync, a.variant, a.seq});
     m.arrivals[{a.sky, a.variant, a.seq}] = a;
+    if (m.options.frames) {
+      // Every picture the log names must be there, checked before anything is presented.
+      const streams::StreamEntry& e = m.descriptor.streams[static_cast<std::size_t>(a.sky ? skyIndex : lmIndex)];
+      const std::int64_t picture = pictureOf(m.descriptor, a.variant, a.seq);
+      m.options.frames->check(a.sky, picture, e.width, e.height,
+                              std::string(a.sky ? "the sky" : "the lightmap") + " picture " + std::to_string(picture) +
+                                  " (variant " + std::to_string(a.variant) + ", timeline frame " +
+                                  std::to_string(a.seq) + "), named by " + where);
+    }
   }
   const VsyncClock clock = [&] {
     VsyncRate rate{};
@@ -96,11 +112,11 @@ Replay::Replay(std::span<const std::uint8_t> file, const std::string& name, cons
     // seq -> the stream frame as play's timeline maps it: after a wrap, from the descriptor's loop frame.
     return [this, id](int variant, std::int64_t seq) {
       Impl& im = *impl_;
-      const std::int64_t streamFrame = ee::Timeline(im.descriptor).frameInVariant(seq);
-      const auto global =
-          static_cast<std::uint32_t>(variant * static_cast<std::int64_t>(im.descriptor.framesPerVariant) + streamFrame);
+      const std::int64_t picture = pictureOf(im.descriptor, variant, seq);
+      const auto global = static_cast<std::uint32_t>(picture);
       const streams::StreamEntry& e =
           im.descriptor.streams[static_cast<std::size_t>(im.descriptor.streamIndex(static_cast<std::uint8_t>(id)))];
+      if (im.options.frames) return im.options.frames->read(id == 0xE1, picture, e.width, e.height);
       Rgba8Image out(e.width, e.height);
       if (!im.frameDecoders.at(id)->decode(global, out)) ++missing_;
       return out;

@@ -17,6 +17,7 @@
 #include "player/arrival_log.hpp"
 #include "player/pipeline.hpp"
 #include "player/player.hpp"
+#include "player/port_frames.hpp"
 #include "streams/descriptor.hpp"
 
 namespace vbim::player {
@@ -26,13 +27,16 @@ struct ReplayOptions {
   Tick duration = fromMs(10'000);
   std::optional<std::int64_t> vsyncs;  // when set, present vsyncs 0 to vsyncs - 1 (duration unused)
   Kernels kernels;
+  // The port's decoded frames (player/port_frames.hpp) instead of vbim's decode of the stream.
+  std::optional<PortFrames> frames;
 };
 
 class Replay {
  public:
   // `file` is a whole VBIM stream file (2,048-byte sectors); throws ConfigError when it holds no
-  // playback descriptor, or an arrival names a variant or stream it does not have; GsError for
-  // settings the presenters refuse.
+  // playback descriptor, or an arrival names a variant or stream it does not have, or (with
+  // options.frames) a picture whose file is missing or of the wrong size; GsError for settings the
+  // presenters refuse.
   Replay(std::span<const std::uint8_t> file, const std::string& name, const std::vector<ReplayArrival>& arrivals,
          ReplayOptions options);
   ~Replay();

@@ -18,6 +18,8 @@ const char* extensionOf(FrameFileFormat format) {
       return "exr";
     case FrameFileFormat::Yuv:
       return "yuv";
+    case FrameFileFormat::Rgba:
+      return "rgba";
   }
   return "";
 }
@@ -43,6 +45,12 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
     return;
   }
   ipu::convertToRgba32(fs, w, h, thresholds_, rgba_, decoder.kernels().cscRow);
+  if (format_ == FrameFileFormat::Rgba) {
+    std::ofstream f(path, std::ios::binary);
+    f.write(reinterpret_cast<const char*>(rgba_.pixels.data()), static_cast<std::streamsize>(rgba_.pixels.size()));
+    if (!f) throw DecodeError(path.string() + ": cannot write");
+    return;
+  }
   // GS alpha 0x80 = 1.0: PNG alpha 255 = 2 * a (clamped), EXR alpha = a / 128.
   if (format_ == FrameFileFormat::Png) {
     for (std::size_t i = 3; i < rgba_.pixels.size(); i += 4)

@@ -1,6 +1,8 @@
 // Decoded frames as files, one per frame: frame_00000.png (RGBA, the GS alpha doubled so that 0x80
-// is opaque), .exr (half-float RGBA, alpha 0x80 = 1.0) or .yuv (the IPU's planar 4:2:0 output,
-// Y then Cb then Cr). The frame sink of decodeStream for `vbim decode`.
+// is opaque), .exr (half-float RGBA, alpha 0x80 = 1.0), .yuv (the IPU's planar 4:2:0 output,
+// Y then Cb then Cr) or .rgba (raw RGB32 as the IPU writes it: R, G, B, A bytes per pixel, rows top
+// to bottom, alpha 0x80 = 1.0; what `vbim replay --frames` reads). The frame sink of decodeStream
+// for `vbim decode`.
 #pragma once
 
 #include <cstdint>
@@ -14,17 +16,17 @@
 
 namespace vbim::streams {
 
-enum class FrameFileFormat { Png, Exr, Yuv };
+enum class FrameFileFormat { Png, Exr, Yuv, Rgba };
 
-// "png", "exr", "yuv": the file name extension.
+// "png", "exr", "yuv", "rgba": the file name extension.
 const char* extensionOf(FrameFileFormat format);
 
 class FrameFileWriter {
  public:
-  // `thresholds`: the SETTH thresholds of the RGB32 conversion (PNG and EXR).
+  // `thresholds`: the SETTH thresholds of the RGB32 conversion (PNG, EXR and RGBA).
   FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds = {});
 
-  // Writes the frame the decoder holds as frame number `frame`. Throws Error (YUV) or
+  // Writes the frame the decoder holds as frame number `frame`. Throws Error (YUV, RGBA) or
   // imageio::ImageIoError (PNG, EXR) naming the file when it cannot be written.
   void write(int frame, const ipu::Decoder& decoder);
 

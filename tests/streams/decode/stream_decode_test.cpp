@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -165,12 +166,19 @@ TEST(StreamsDecode, WritesFramesAsFiles) {
       std::filesystem::temp_directory_path() / ("vbim-stream-decode-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const Bytes es = encode(false, 2, 40, 24);
-  for (const FrameFileFormat f : {FrameFileFormat::Yuv, FrameFileFormat::Png}) {
+  for (const FrameFileFormat f : {FrameFileFormat::Yuv, FrameFileFormat::Png, FrameFileFormat::Rgba}) {
     FrameFileWriter writer(dir, f);
     decodeStream(
         es, "a.m2v", {}, [&](int frame, const ipu::Decoder& d) { writer.write(frame, d); }, [](const std::string&) {});
   }
   EXPECT_EQ(std::filesystem::file_size(dir / "frame_00001.yuv"), 40u * 24 * 3 / 2);
+  // Raw RGB32 of the 40x24 display size (vbim replay --frames): the converted pixels, alpha 0x80.
+  EXPECT_EQ(std::filesystem::file_size(dir / "frame_00001.rgba"), 40u * 24 * 4);
+  {
+    std::ifstream rgba(dir / "frame_00001.rgba", std::ios::binary);
+    rgba.seekg(3);
+    EXPECT_EQ(rgba.get(), 0x80);
+  }
   EXPECT_TRUE(std::filesystem::exists(dir / "frame_00001.png"));
   EXPECT_FALSE(std::filesystem::exists(dir / "frame_00002.png"));
   std::filesystem::remove_all(dir);
