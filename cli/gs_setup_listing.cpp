@@ -32,7 +32,7 @@ void writeDraw(std::ostream& out, const gs::GsParams& params, const gs::VramLayo
     out << "One draw per vsync (rows 0.." << rows << ").\n\n";
   }
   out << "| # | register | address | value |\n|---|---|---|---|\n";
-  const gs::BlendDrawSetup setup = gs::blendDrawSetup(draw);
+  const std::vector<gs::RegisterWrite> setup = gs::blendDrawWrites(draw);
   for (std::size_t i = 0; i < setup.size(); ++i) {
     out << "| " << i + 1 << " | `" << setup[i].reg.name << "` | " << hex(setup[i].reg.address, 2) << " | `"
         << hex(setup[i].value) << "` |\n";
@@ -56,9 +56,15 @@ std::vector<std::string> notes(const gs::GsParams& params) {
                         "GS registers are write-only: the game keeps its own copies and sends them again after the",
                         "blend. The packets overwrite context 1 (FRAME_1, ZBUF_1, TEST_1, TEX0_1, TEX1_1, CLAMP_1,",
                         "ALPHA_1, SCISSOR_1, XYOFFSET_1, FBA_1) and the shared PABE, COLCLAMP, PRIM, RGBAQ, UV and the",
-                        "transfer registers (BITBLTBUF, TRXPOS, TRXREG, TRXDIR, which need no restoring). They rely on",
-                        "SCANMSK = 0 and DTHE = 0, which they do not write: set them if the game changed them.",
+                        "transfer registers (BITBLTBUF, TRXPOS, TRXREG, TRXDIR, which need no restoring).",
                     });
+  if (params.texture_format == "ct16") {
+    n.emplace_back("16-bit path: the draws also write TEXA, DIMX and DTHE (1 for the blend, 0 for the copy);");
+    n.emplace_back("restore the game's. They rely on SCANMSK = 0, which they do not write.");
+  } else {
+    n.emplace_back(
+        "They rely on SCANMSK = 0 and DTHE = 0, which they do not write: set them if the game changed them.");
+  }
   return n;
 }
 

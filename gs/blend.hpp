@@ -27,6 +27,10 @@ struct BlendSpec {
   std::uint8_t fix = 0x40;
   ColClamp colclamp = ColClamp::Clamp;
   AlphaWrite alpha = AlphaWrite::Source;
+  // The 16-bit path (gs/blend16.hpp): PSMCT16 texels, blended by blend16Rect, never by the kernels
+  // below; `dither` is DTHE (DIMX added before the top 5 bits are kept).
+  bool psmct16 = false;
+  bool dither = false;
   bool operator==(const BlendSpec&) const = default;
 };
 

@@ -78,6 +78,7 @@ void checkSettings(const GsParams& p) {
   checkKey("gs.catchup", [&] { catchUpByName(p.catchup); });
   checkedStrips(p);
   checkedMacroblockUploads(p);
+  texturePsm(p);
 }
 
 }  // namespace

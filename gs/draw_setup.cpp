@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "gs/blend16.hpp"
 #include "gs/error.hpp"
 
 namespace vbim::gs {
@@ -40,18 +41,21 @@ U64 fixed4(int coordinate) {
 }  // 12.4 / 10.4 fixed point
 
 constexpr U64 kSprite = 6;
+constexpr U64 kPsmct16 = 0x02;  // gs_psm.h GS_PSM_16
 constexpr U64 kClampMode = 1;
 constexpr U64 kZtstAlways = 1;
 
 }  // namespace
 
 BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
-  if (d.frame.psm != Psm::Ct32 || d.texture.psm != Psm::Ct32) {
-    throw GsError("the blend draws a PSMCT32 texture into a PSMCT32 lightmap");
+  if (d.frame.psm != d.texture.psm || (d.frame.psm != Psm::Ct32 && d.frame.psm != Psm::Ct16)) {
+    throw GsError("the blend draws a PSMCT32 texture into a PSMCT32 lightmap, or a PSMCT16 one into a PSMCT16 one");
   }
   const int w = d.width;
   const int rows = d.y1 - d.y0;
-  const U64 fbmsk = d.keepAlpha ? 0xFF000000u : 0u;
+  const bool ct16 = d.frame.psm == Psm::Ct16;
+  const U64 psm = ct16 ? kPsmct16 : 0;
+  const U64 fbmsk = d.keepAlpha ? (ct16 ? 0x80000000u : 0xFF000000u) : 0u;
   BlendDrawSetup out{};
   int corner = 0;  // UV and XYZ2 are sent once per sprite corner
   for (std::size_t i = 0; i < kBlendDrawRegisters.size(); ++i) {
@@ -60,8 +64,8 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
     switch (r.address) {
       case 0x3F:  // TEXFLUSH: any value
         break;
-      case 0x4C:  // FRAME_1: FBP, FBW, PSM = PSMCT32 (0), FBMSK
-        v = static_cast<U64>(d.frame.firstPage) | width64(d.frame.width) << 16 | fbmsk << 32;
+      case 0x4C:  // FRAME_1: FBP, FBW, PSM, FBMSK
+        v = static_cast<U64>(d.frame.firstPage) | width64(d.frame.width) << 16 | psm << 24 | fbmsk << 32;
         break;
       case 0x4E:  // ZBUF_1: ZBP, PSM, ZMSK = 1
         if (d.depth != nullptr) v = static_cast<U64>(d.depth->firstPage) | zbufPsm(d.depth->psm) << 24;
@@ -70,8 +74,8 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
       case 0x47:  // TEST_1: ZTE = 1, ZTST = ALWAYS
         v = U64{1} << 16 | kZtstAlways << 17;
         break;
-      case 0x06:  // TEX0_1: TBP0, TBW, PSM = PSMCT32 (0), TW, TH, TCC = 1, TFX = MODULATE (0)
-        v = static_cast<U64>(d.texture.basePointer()) | width64(d.texture.width) << 14 |
+      case 0x06:  // TEX0_1: TBP0, TBW, PSM, TW, TH, TCC = 1, TFX = MODULATE (0)
+        v = static_cast<U64>(d.texture.basePointer()) | width64(d.texture.width) << 14 | psm << 20 |
             log2Ceil(d.texture.width) << 26 | log2Ceil(d.texture.height) << 30 | U64{1} << 34;
         break;
       case 0x08:  // CLAMP_1: WMS = WMT = CLAMP
@@ -107,6 +111,21 @@ BlendDrawSetup blendDrawSetup(const BlendDraw& d) {
   return out;
 }
 
+std::array<RegisterWrite, kSixteenBitRegisters.size()> sixteenBitSetup(const BlendDraw& d) {
+  return {RegisterWrite{kSixteenBitRegisters[0], kTexa16}, RegisterWrite{kSixteenBitRegisters[1], dimxRegister()},
+          RegisterWrite{kSixteenBitRegisters[2], d.dither ? 1u : 0u}};
+}
+
+std::vector<RegisterWrite> blendDrawWrites(const BlendDraw& d) {
+  const BlendDrawSetup setup = blendDrawSetup(d);
+  std::vector<RegisterWrite> writes(setup.begin(), setup.end());
+  if (d.frame.psm == Psm::Ct16) {
+    const auto more = sixteenBitSetup(d);
+    writes.insert(writes.begin() + static_cast<std::ptrdiff_t>(kSixteenBitInsertAt), more.begin(), more.end());
+  }
+  return writes;
+}
+
 int drawRows(const GsParams& p, int height) {
   return p.upload_mode == "strips" ? std::min<int>(static_cast<int>(p.strip_rows), height) : height;
 }
@@ -139,6 +158,7 @@ BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& p, BlendSurface s
   d.fix = static_cast<int>(p.fix);
   d.clamp = p.colclamp == "clamp";
   d.keepAlpha = p.alpha_write == "keep";
+  d.dither = d.frame.psm == Psm::Ct16 && d.fix != 0x80;
   return d;
 }
 

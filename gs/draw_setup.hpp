@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "gs/params.hpp"
 #include "gs/vram.hpp"
@@ -51,6 +52,18 @@ inline constexpr std::array kBlendDrawRegisters{
 // The A+D GIFtag, then one qword per register write.
 inline constexpr std::int64_t kBlendDrawSetupQwords = 1 + static_cast<std::int64_t>(kBlendDrawRegisters.size());
 
+// The 16-bit path (gs.texture_format = ct16, gs/blend16.hpp) writes three more, before PRIM: how the
+// RGB16 texels' alpha bit becomes As, and the GS's dither. The 32-bit draw leaves them alone.
+inline constexpr std::array kSixteenBitRegisters{
+    GsRegister{"TEXA", 0x3B, "TA0 = 0x80 for RGB16 alpha bit 0, TA1 = 0x40 for 1, AEM = 0: As as the IPU's RGB32"},
+    GsRegister{"DIMX", 0x44, "the 4x4 dither matrix DTHE adds before the top 5 bits of each channel are kept"},
+    GsRegister{"DTHE", 0x45, "1 for the blend, 0 for the copy of a first or snapped frame (FIX = 0x80)"},
+};
+// Where they go in the draw: before PRIM (kBlendDrawRegisters' 14th write).
+inline constexpr std::size_t kSixteenBitInsertAt = 13;
+inline constexpr std::int64_t kBlendDrawSetupQwords16 =
+    kBlendDrawSetupQwords + static_cast<std::int64_t>(kSixteenBitRegisters.size());
+
 // What the values depend on: where the buffers are and which rows this sprite covers.
 struct BlendDraw {
   VramRegion frame;                   // the texture blended into: the lightmap or the sky (FRAME_1.FBP)
@@ -63,7 +76,8 @@ struct BlendDraw {
   int textureRow0 = 0;     // the staging texture's row that lands on y0
   int fix = 0x40;          // ALPHA_1.FIX
   bool clamp = true;       // COLCLAMP.CLAMP
-  bool keepAlpha = false;  // FRAME_1.FBMSK = 0xFF000000
+  bool keepAlpha = false;  // FRAME_1.FBMSK = 0xFF000000 (PSMCT16: 0x80000000, the alpha bit)
+  bool dither = false;     // DTHE, for a PSMCT16 frame (the 16-bit path) drawn with FIX < 0x80
 };
 
 struct RegisterWrite {
@@ -73,8 +87,14 @@ struct RegisterWrite {
 
 using BlendDrawSetup = std::array<RegisterWrite, kBlendDrawRegisters.size()>;
 
-// The values of kBlendDrawRegisters for one sprite.
+// The values of kBlendDrawRegisters for one sprite. Throws GsError unless the frame and texture are
+// both PSMCT32 or both PSMCT16.
 BlendDrawSetup blendDrawSetup(const BlendDraw& draw);
+// For a PSMCT16 frame, the values of kSixteenBitRegisters (TEXA, DIMX, DTHE = draw.dither).
+std::array<RegisterWrite, kSixteenBitRegisters.size()> sixteenBitSetup(const BlendDraw& draw);
+// Every write of the draw in the order sent: blendDrawSetup, and for a PSMCT16 frame the
+// sixteenBitSetup writes before PRIM (kBlendDrawSetupQwords16 - 1 writes).
+std::vector<RegisterWrite> blendDrawWrites(const BlendDraw& draw);
 
 // The rows one blend draw covers (and its staging area holds): gs.strip_rows, at most the picture's
 // height, in strip mode; the whole picture in full upload mode.
@@ -89,8 +109,8 @@ const char* blendSurfaceName(BlendSurface surface);  // "lightmap", "sky"
 
 // The sprite over rows [y0, y1) of the surface's width x height picture as the presenter draws it
 // with `params` in the layout planVram gave: in strip mode the staging texture holds just this
-// strip, in full mode the whole picture. Throws GsError if the layout has no such surface, or the
-// picture or the rows do not fit it.
+// strip, in full mode the whole picture; with gs.texture_format = ct16, dithered. Throws GsError if the layout has no
+// such surface, or the picture or the rows do not fit it.
 BlendDraw blendDrawFor(const VramLayout& vram, const GsParams& params, BlendSurface surface, int width, int height,
                        int y0, int y1);
 

@@ -77,9 +77,9 @@ Qword adWrite(std::string_view name, std::uint8_t address, U64 value) {
 
 GifPacket drawPacket(const BlendDraw& draw, std::string name, std::string purpose) {
   GifPacket p{std::move(name), std::move(purpose), {}};
-  const BlendDrawSetup setup = blendDrawSetup(draw);
-  p.qwords.push_back(tagQword(static_cast<std::int64_t>(setup.size()), true, GifFlag::Packed));
-  for (const RegisterWrite& w : setup) p.qwords.push_back(adWrite(w.reg.name, w.reg.address, w.value));
+  const std::vector<RegisterWrite> writes = blendDrawWrites(draw);
+  p.qwords.push_back(tagQword(static_cast<std::int64_t>(writes.size()), true, GifFlag::Packed));
+  for (const RegisterWrite& w : writes) p.qwords.push_back(adWrite(w.reg.name, w.reg.address, w.value));
   return p;
 }
 
@@ -106,16 +106,19 @@ std::vector<GifPacket> surfacePackets(const GsParams& params, const VramLayout& 
   const int rows = drawRows(params, height);
   const BlendDraw draw = blendDrawFor(vram, params, surface, width, height, 0, rows);
   const std::string s = blendSurfaceName(surface);
-  const int bytesPerPixel = 4;  // PSMCT32 staging: the IPU's RGB32 output
+  // PSMCT32 staging: the IPU's RGB32 output; PSMCT16: its RGB16 output (gs/blend16.hpp).
+  const int bytesPerPixel = draw.texture.psm == Psm::Ct16 ? 2 : 4;
+  const std::string mbQwords = std::to_string(16 * 16 * bytesPerPixel / 16);
+  const std::string perRow = std::to_string((width + 15) / 16);
   std::vector<GifPacket> out;
   if (params.upload_strategy == "macroblocks") {
     out.push_back(uploadPacket(draw.texture, 0, 0, 16, 16, bytesPerPixel, true, s + "_upload",
-                               "a new frame: the first IMAGE transfer, macroblock 0 (16x16 at 0, 0), then its 64 "
-                               "qwords from fromIPU"));
+                               "a new frame: the first IMAGE transfer, macroblock 0 (16x16 at 0, 0), then its " +
+                                   mbQwords + " qwords from fromIPU"));
     out.push_back(uploadPacket(draw.texture, 16, 0, 16, 16, bytesPerPixel, false, s + "_upload_next",
-                               "each further macroblock m: this, with TRXPOS DSAX = 16 * (m mod " +
-                                   std::to_string((width + 15) / 16) + "), DSAY = 16 * (m div " +
-                                   std::to_string((width + 15) / 16) + ") (shown: m = 1), then its 64 qwords"));
+                               "each further macroblock m: this, with TRXPOS DSAX = 16 * (m mod " + perRow +
+                                   "), DSAY = 16 * (m div " + perRow + ") (shown: m = 1), then its " + mbQwords +
+                                   " qwords"));
   } else {
     out.push_back(uploadPacket(draw.texture, 0, 0, width, rows, bytesPerPixel, true, s + "_upload",
                                "a new frame: one IMAGE transfer of the raster image (" + std::to_string(width) + "x" +
@@ -123,11 +126,14 @@ std::vector<GifPacket> surfacePackets(const GsParams& params, const VramLayout& 
   }
   BlendDraw copy = draw;
   copy.fix = 0x80;
+  copy.dither = false;
   out.push_back(
       drawPacket(draw, s + "_draw", "every vsync after the upload: the blend, FIX = " + hex(draw.fix & 0xFF)));
   out.push_back(drawPacket(copy, s + "_draw_copy",
-                           "instead of the blend for the first frame (and a frame hard-skip copies in): FIX = 0x80, "
-                           "ALPHA_1 is the only qword that differs"));
+                           std::string("instead of the blend for the first frame (and a frame hard-skip copies in): "
+                                       "FIX = 0x80, ") +
+                               (draw.dither ? "DTHE = 0: ALPHA_1 and DTHE are the only qwords that differ"
+                                            : "ALPHA_1 is the only qword that differs")));
   return out;
 }
 

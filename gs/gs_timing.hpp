@@ -2,7 +2,8 @@
 //   IMAGE transfer over PATH3: (setup qwords * 16 + payload bytes) / GIF bytes per tick. Uploading
 //   the IPU's macroblocks one transfer each costs the full setup once and a shorter one per further
 //   macroblock (gs.macroblock_setup_qwords: only TRXPOS and TRXDIR change).
-//   Textured SPRITE draw with the blend: the register writes of gs/draw_setup.hpp over the GIF, then
+//   Textured SPRITE draw with the blend: the register writes of gs/draw_setup.hpp over the GIF (three
+//   more on the 16-bit path), then
 //   pixels / (textured px per clock) * (1 + page-break overhead).
 // Both round up to whole ticks. Sources: gs/params.cpp and docs/timing/gs.md.
 #pragma once
@@ -26,7 +27,8 @@ class GsTiming {
     return transfers <= 0 ? 0 : p_.upload_setup_qwords + (transfers - 1) * p_.macroblock_setup_qwords;
   }
   Tick spriteDraw(std::int64_t width, std::int64_t height) const {
-    const Tick setup = ceilDiv(kBlendDrawSetupQwords * 16, p_.gif_bytes_per_tick);
+    const std::int64_t qwords = p_.texture_format == "ct16" ? kBlendDrawSetupQwords16 : kBlendDrawSetupQwords;
+    const Tick setup = ceilDiv(qwords * 16, p_.gif_bytes_per_tick);
     return setup + ceilDiv(width * height * (100 + p_.page_break_overhead_pct), 100 * p_.textured_pixels_per_clock);
   }
 

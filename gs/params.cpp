@@ -41,6 +41,11 @@ void describeParams(ParamTable& t, GsParams& p) {
               "then one transfer; raster: one transfer and no reorder, vbim's model before macroblock order "
               "(docs/porting.md)");
 
+  t.addChoice("gs.texture_format", &p.texture_format, {"ct32", "ct16"},
+              "ct32: PSMCT32 textures from the IPU's RGB32 output; ct16: the 16-bit lightmap path, PSMCT16 textures "
+              "and staging areas from its RGB16 output (OFM = 1, DTE = 1), blended with DTHE and the usual DIMX "
+              "(half the VRAM and upload bytes; docs/porting.md, \"The 16-bit lightmap path\")");
+
   t.addChoice("gs.video", &p.video, {"ntsc", "ntsc-p", "pal", "pal-p"},
               "vsync rate: NTSC 59.94 Hz interlaced, PAL 50 Hz (PCSX2 Counters.cpp)");
   t.addInt("gs.fix", &p.fix, 0, 255, "1/128",

@@ -43,6 +43,9 @@ struct GsParams {
   // (docs/porting.md): one IMAGE transfer per macroblock, the EE reordering it into a raster image
   // first (then one transfer), or "raster": one transfer with no reorder, as if the IPU wrote rows.
   std::string upload_strategy = "macroblocks";  // or "ee-reorder", "raster"
+  // The texels of the blended textures (lightmap, sky) and their staging areas: ct32, or ct16 (the
+  // IPU's RGB16 output with DTE = 1, blended into a PSMCT16 texture with DTHE: gs/blend16.hpp).
+  std::string texture_format = "ct32";  // or "ct16"
 
   // Presentation.
   std::string video = "ntsc";             // ntsc, ntsc-p, pal, pal-p

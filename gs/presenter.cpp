@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gs/blend16.hpp"
 #include "gs/error.hpp"
 
 namespace vbim::gs {
@@ -42,6 +43,13 @@ const StreamInfo& checkedSource(const FrameSource& source, const GsParams& p, co
   return s;
 }
 
+// The spec as the 16-bit path draws it (gs/blend16.hpp): dithered unless a copy (FIX = 0x80).
+BlendSpec withTexels(BlendSpec spec, bool sixteen) {
+  spec.psmct16 = sixteen;
+  spec.dither = sixteen && spec.fix != 0x80;
+  return spec;
+}
+
 }  // namespace
 
 Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& params, PresenterOptions options)
@@ -52,12 +60,15 @@ Presenter::Presenter(Scheduler& sched, FrameSource& source, const GsParams& para
       stream_(checkedSource(source, params, opt_)),
       timing_(params),
       clock_(clockFor(params)),
-      spec_(makeBlendSpec(params.fix, colclampFor(params), alphaFor(params))),
-      catchupSpec_(
-          makeBlendSpec(params.catchup_fix == 0 ? params.fix : params.catchup_fix, spec_.colclamp, spec_.alpha)),
+      spec_(withTexels(makeBlendSpec(params.fix, colclampFor(params), alphaFor(params)),
+                       texturePsm(params) == Psm::Ct16)),
+      catchupSpec_(withTexels(
+          makeBlendSpec(params.catchup_fix == 0 ? params.fix : params.catchup_fix, spec_.colclamp, spec_.alpha),
+          spec_.psmct16)),
       policy_(catchUpByName(params.catchup)),
       strips_(checkedStrips(params)),
       macroblockUploads_(checkedMacroblockUploads(params)),
+      sixteen_(spec_.psmct16),
       vram_(checkedVram(params, stream_, opt_)),
       lightmap_(stream_.width, stream_.height),
       blender_(stream_.width, stream_.height, opt_.kernels != nullptr ? *opt_.kernels : scalarKernels(),
@@ -174,6 +185,7 @@ Task<void> Presenter::present(std::int64_t vsync) {
     BlendSpec spec = spec_;
     if (!filled_ || (policy_ == CatchUp::HardSkip && newTarget && target_.late)) {
       spec.fix = 0x80;  // a copy: the first frame, or a hard skip
+      spec.dither = false;
       rec.snapped = true;
       ++counters_.snaps;
     } else if (params_.catchup_fix > 0 && (rec.behind || target_.late)) {
@@ -216,10 +228,12 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
   // Full mode re-uploads only a new frame (the staging texture keeps it); strip mode has room for one
   // strip, so every vsync streams the whole frame through it again.
   const int rows = strips_ ? static_cast<int>(params_.strip_rows) : h;
+  if (sixteen_ && newTarget) staging16FromRgb32(*target_.image, staging16_);  // the IPU's RGB16 output
+  const Rgba8Image& source = sixteen_ ? staging16_ : *target_.image;
   for (int y0 = 0; y0 < h; y0 += rows) {
     const int y1 = std::min(h, y0 + rows);
     if (strips_ || newTarget) {
-      const std::int64_t bytes = static_cast<std::int64_t>(w) * (y1 - y0) * 4;
+      const std::int64_t bytes = static_cast<std::int64_t>(w) * (y1 - y0) * (sixteen_ ? 2 : 4);
       // The IPU's 16x16 macroblocks one transfer each (the last row and column may be partial), or
       // the rows as one raster transfer. Strips are whole macroblock rows (32-row multiples).
       const std::int64_t transfers =
@@ -234,7 +248,7 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
     const Tick t = sched_.now();
     co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));
     if (tr != nullptr) tr->span(track_, t, sched_.now(), blendLabel);
-    const TiledBlender::Result r = blender_.blend(lightmap_, *target_.image, spec, id, y0, y1);
+    const TiledBlender::Result r = blender_.blend(lightmap_, source, spec, id, y0, y1);
     rec.pop = std::max(rec.pop, r.pop);
     counters_.tilesBlended += r.tilesBlended;
     counters_.tilesSkipped += r.tilesSkipped;

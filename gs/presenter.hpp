@@ -169,8 +169,10 @@ class Presenter {
   CatchUp policy_;
   bool strips_;
   bool macroblockUploads_;
+  bool sixteen_;  // gs.texture_format = ct16 (gs/blend16.hpp)
   VramLayout vram_;
   Rgba8Image lightmap_;
+  Rgba8Image staging16_;  // the 16-bit path: the target as its PSMCT16 staging texture
   TiledBlender blender_;
   Target target_;
   bool filled_ = false;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gs/blend16.hpp"
 #include "gs/error.hpp"
 
 namespace vbim::gs {
@@ -54,6 +55,10 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
   const std::size_t stride = static_cast<std::size_t>(width_) * 4;  // bytes per lightmap row
   const int ty0 = rowBegin / kTileHeight;
   const int ty1 = (std::min(rowEnd, height_) + kTileHeight - 1) / kTileHeight;
+  if (spec.psmct16) {
+    blend16(dst, src, spec, ty0, ty1, r);
+    return r;
+  }
   for (int ty = ty0; ty < ty1; ++ty) {
     const int y0 = ty * kTileHeight;
     const int y1 = std::min(y0 + kTileHeight, height_);
@@ -98,6 +103,38 @@ TiledBlender::Result TiledBlender::blend(Rgba8Image& dst, const Rgba8Image& src,
     }
   }
   return r;
+}
+
+// The 16-bit path, scalar only (gs/blend16.hpp), tile by tile. Its per-pixel result depends on the
+// texel's position (DIMX), which the kernels do not see; a blend that changes nothing in a tile
+// would change nothing again (the same inputs at the same places), so such a tile is skipped until
+// the source or the spec changes, as in the 32-bit path. The hash chain is folded lazily.
+void TiledBlender::blend16(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, int ty0, int ty1, Result& r) {
+  const std::size_t stride = static_cast<std::size_t>(width_) * 4;
+  for (int ty = ty0; ty < ty1; ++ty) {
+    const int y0 = ty * kTileHeight;
+    const int y1 = std::min(y0 + kTileHeight, height_);
+    for (int tx = 0; tx < tilesX_; ++tx) {
+      std::uint32_t& settled = settled_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      if (aware_ && settled != 0) {
+        ++r.tilesSkipped;
+        continue;
+      }
+      const int x0 = tx * kTileWidth;
+      const std::size_t w = static_cast<std::size_t>(std::min(kTileWidth, width_ - x0));
+      const std::size_t left = static_cast<std::size_t>(x0) * 4;
+      const int pop = blend16Rect(dst.row(y0) + left, stride, src.row(y0) + left, stride, w,
+                                  static_cast<std::size_t>(y1 - y0), x0, y0, spec);
+      if (pop == 0) {
+        settled = ~std::uint32_t{0};
+      } else {
+        ++changes_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+        hashedRows_ = std::min(hashedRows_, ty);
+      }
+      r.pop = std::max(r.pop, pop);
+      ++r.tilesBlended;
+    }
+  }
 }
 
 // One tile row in hash mode: its unsettled tiles blended and, when the rows above are folded into

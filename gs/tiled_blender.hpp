@@ -83,6 +83,7 @@ class TiledBlender {
   void hashRow(const Rgba8Image& dst, int ty);
   void blendHashed(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, int ty, std::uint32_t allRows,
                    Result& r);
+  void blend16(Rgba8Image& dst, const Rgba8Image& src, const BlendSpec& spec, int ty0, int ty1, Result& r);
 };
 
 }  // namespace vbim::gs

@@ -24,14 +24,15 @@ VramLayout placeBuffers(const GsParams& p, int lightmapWidth, int lightmapHeight
     req.push_back(
         {"depth", psmByName(p.depth_format), static_cast<int>(p.frame_width), static_cast<int>(p.frame_height)});
   }
-  req.push_back({"lightmap", Psm::Ct32, lightmapWidth, lightmapHeight});
-  req.push_back({"staging", Psm::Ct32, lightmapWidth, drawRows(p, lightmapHeight)});
+  const Psm texels = texturePsm(p);
+  req.push_back({"lightmap", texels, lightmapWidth, lightmapHeight});
+  req.push_back({"staging", texels, lightmapWidth, drawRows(p, lightmapHeight)});
   if (p.sky_width > 0 && p.sky_height > 0) {
-    req.push_back({"sky", Psm::Ct32, static_cast<int>(p.sky_width), static_cast<int>(p.sky_height)});
+    req.push_back({"sky", texels, static_cast<int>(p.sky_width), static_cast<int>(p.sky_height)});
   }
   if (sky.width > 0 && sky.height > 0) {
     // The sky is blended in place too: its frames are uploaded to a staging area of their own.
-    req.push_back({"sky staging", Psm::Ct32, sky.width, drawRows(p, sky.height)});
+    req.push_back({"sky staging", texels, sky.width, drawRows(p, sky.height)});
   }
   return VramLayout::place(req);
 }
@@ -50,6 +51,12 @@ bool fitsWith(const GsParams& p, int width, int height, SkyTexture sky, Change c
 }
 
 }  // namespace
+
+Psm texturePsm(const GsParams& p) {
+  if (p.texture_format == "ct32") return Psm::Ct32;
+  if (p.texture_format == "ct16") return Psm::Ct16;
+  throw GsError({"gs.texture_format"}, "unknown texture format '" + p.texture_format + "' (expected ct32 or ct16)");
+}
 
 void checkSkyFits(const GsParams& p, SkyTexture sky) {
   if (sky.width <= 0 || sky.height <= 0) return;
@@ -100,9 +107,9 @@ VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight, Sk
 }
 
 const std::vector<std::string>& vramLayoutKeys() {
-  static const std::vector<std::string> keys{"gs.frame_buffers", "gs.frame_width",  "gs.frame_height",
-                                             "gs.frame_format",  "gs.depth_format", "gs.sky_width",
-                                             "gs.sky_height",    "gs.upload_mode",  "gs.strip_rows"};
+  static const std::vector<std::string> keys{
+      "gs.frame_buffers", "gs.frame_width", "gs.frame_height", "gs.frame_format", "gs.depth_format",
+      "gs.sky_width",     "gs.sky_height",  "gs.upload_mode",  "gs.strip_rows",   "gs.texture_format"};
   return keys;
 }
 

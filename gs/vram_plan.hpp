@@ -27,6 +27,9 @@ VramLayout planVram(const GsParams& p, int lightmapWidth, int lightmapHeight, Sk
 // GsError naming those keys. Width 0: no sky stream, nothing to check.
 void checkSkyFits(const GsParams& p, SkyTexture sky);
 
+// The PSM of the blended textures and their staging areas (gs.texture_format); throws GsError.
+Psm texturePsm(const GsParams& p);
+
 // The gs.* keys that decide the VRAM layout (a GsError from planVram names them).
 const std::vector<std::string>& vramLayoutKeys();
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "gs/gs_timing.hpp"
 #include "gs/vram_plan.hpp"
 
 namespace vbim::gs {
@@ -120,6 +121,51 @@ TEST(GifPackets, SkyUploadGoesToTheSkyStagingArea) {
   expectQword(up.qwords[5], tag(128 * 64 * 4 / 16, 1, kImage, 0), 0, "sky IMAGE tag");
   EXPECT_EQ(packets[1].name, "sky_draw");
   EXPECT_EQ(packets[2].name, "sky_draw_copy");
+}
+
+// gs.texture_format = ct16: PSMCT16 (0x02) in BITBLTBUF.DPSM, FRAME_1.PSM and TEX0_1.PSM, half the
+// pixels' qwords, and TEXA, DIMX and DTHE before PRIM (DTHE = 0 in the copy); VRAM in 64x64 pages.
+TEST(GifPackets, SixteenBitPathWritesPsmct16TexaDimxAndDthe) {
+  GsParams p;
+  p.texture_format = "ct16";
+  const VramLayout vram = planVram(p, 256, 256, SkyTexture{128, 64});
+  EXPECT_EQ(vram.region("lightmap").pages, 16);
+  EXPECT_EQ(vram.region("staging").firstPage, 366);  // block 11,712
+  const std::vector<GifPacket> packets = surfacePackets(p, vram, BlendSurface::Lightmap, 256, 256);
+  ASSERT_EQ(packets.size(), 4u);
+  expectQword(packets[0].qwords[1], pack({{32, 14, 11712}, {48, 6, 4}, {56, 6, 0x02}}), 0x50, "BITBLTBUF");
+  expectQword(packets[0].qwords[5], tag(32, 1, kImage, 0), 0, "IMAGE tag");  // 16 x 16 x 2 bytes / 16
+  const GifPacket& draw = packets[2];
+  const GifPacket& copy = packets[3];
+  ASSERT_EQ(draw.setupQwords(), kBlendDrawSetupQwords16);
+  ASSERT_EQ(draw.setupQwords(), 23);
+  expectQword(draw.qwords[0], tag(22, 1, kPacked, 1), kAd, "draw tag");
+  // FRAME_1: FBP 0-8, FBW 16-21, PSM 24-29, FBMSK 32-63; TEX0_1: TBP0 0-13, TBW 14-19, PSM 20-25, TW 26-29,
+  // TH 30-33, TCC 34, TFX 35-36.
+  expectQword(draw.qwords[2], pack({{0, 9, 350}, {16, 6, 4}, {24, 6, 0x02}, {32, 32, 0}}), 0x4C, "FRAME_1");
+  expectQword(draw.qwords[5],
+              pack({{0, 14, 11712}, {14, 6, 4}, {20, 6, 0x02}, {26, 4, 8}, {30, 4, 8}, {34, 1, 1}, {35, 2, 0}}), 0x06,
+              "TEX0_1");
+  // TEXA (0x3B): TA0 0-7, AEM 15, TA1 32-39; DIMX (0x44); DTHE (0x45) bit 0; then PRIM.
+  expectQword(draw.qwords[14], pack({{0, 8, 0x80}, {15, 1, 0}, {32, 8, 0x40}}), 0x3B, "TEXA");
+  EXPECT_EQ(draw.qwords[15].hi, 0x44u);
+  expectQword(draw.qwords[16], 1, 0x45, "DTHE of the blend");
+  expectQword(copy.qwords[16], 0, 0x45, "DTHE of the copy");
+  EXPECT_EQ(draw.qwords[17].hi, 0x00u) << "PRIM follows";
+  for (std::size_t i = 0; i < draw.qwords.size(); ++i) {
+    if (draw.qwords[i].hi != 0x42 && draw.qwords[i].hi != 0x45) {
+      expectQword(copy.qwords[i], draw.qwords[i].lo, draw.qwords[i].hi, "qword " + std::to_string(i));
+    }
+  }
+  // FBMSK of gs.alpha_write = keep masks the alpha bit only (bit 31: PSMCT16's A).
+  p.alpha_write = "keep";
+  const GifPacket keep = surfacePackets(p, vram, BlendSurface::Lightmap, 256, 256)[2];
+  expectQword(keep.qwords[2], pack({{0, 9, 350}, {16, 6, 4}, {24, 6, 0x02}, {32, 32, 0x80000000}}), 0x4C,
+              "FRAME_1 keeping alpha");
+  // The model charges the three extra writes on the GIF: 3 qwords, 6 ticks at 8 bytes a tick.
+  GsParams p32;
+  p.alpha_write = "source";
+  EXPECT_EQ(GsTiming(p).spriteDraw(256, 256) - GsTiming(p32).spriteDraw(256, 256), 3 * 16 / 8);
 }
 
 // NLOOP has 15 bits: a 1024x1024 raster upload (262,144 qwords) takes nine IMAGE GIFtags.
