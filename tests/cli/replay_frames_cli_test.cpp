@@ -86,6 +86,19 @@ TEST_F(ReplayFrames, FramesDecodedByVbimReproduceTheHashesAcrossABranch) {
   expectSameHashesWithAndWithoutFrames("streams/samples/day_weather.vbim");
 }
 
+// A stream with P and B pictures that loops to frame 4 and branches: `vbim decode` numbers its
+// pictures in display order, as replay names them.
+TEST_F(ReplayFrames, FramesDecodedByVbimReproduceTheHashesOfAGopStream) {
+  const std::string stream = (dir_ / "gop.vbim").string();
+  const Result a =
+      run("author --synthetic clear,overcast --synthetic-frames 16 --synthetic-size 128x128 --synthetic-sky-size 64x32 "
+          "--gop 6 --b-frames 2 --loop 4 --out " +
+          stream);
+  ASSERT_EQ(a.code, 0) << a.output;
+  playAndDecode(stream, "--duration 40s --branch 9s=1");
+  expectSameHashesWithAndWithoutFrames(stream);
+}
+
 TEST_F(ReplayFrames, AChangedFrameGivesTheFirstDifferingVsync) {
   playAndDecode("streams/samples/day_clear.vbim", "--duration 10s");
   {
