@@ -48,7 +48,7 @@ void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
   if (format_ == FrameFileFormat::Rgba) {
     std::ofstream f(path, std::ios::binary);
     f.write(reinterpret_cast<const char*>(rgba_.pixels.data()), static_cast<std::streamsize>(rgba_.pixels.size()));
-    if (!f) throw DecodeError(path.string() + ": cannot write");
+    if (!f) throw Error(path.string() + ": cannot write");
     return;
   }
   // GS alpha 0x80 = 1.0: PNG alpha 255 = 2 * a (clamped), EXR alpha = a / 128.
