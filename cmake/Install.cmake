@@ -76,6 +76,7 @@ foreach(_folder IN LISTS _vbim_header_folders)
           PATTERN "disc" EXCLUDE            # streams/disc/: disc images (xorriso, the player)
           PATTERN "outputs" EXCLUDE         # sweep/outputs/: the tables and figures (nlohmann_json, PLplot)
           PATTERN "decode" EXCLUDE          # streams/decode/: vbim decode's library (imageio, Highway)
+          PATTERN "info" EXCLUDE            # streams/info/: vbim info's library (nlohmann_json, disc images)
           PATTERN "toml_document.hpp" EXCLUDE  # config/: internal, toml++ stays inside config
           PATTERN "samples" EXCLUDE)        # streams/samples/: no headers (the streams go to share/)
 endforeach()
