@@ -51,7 +51,7 @@ void requireDevice(Device device, const std::string& file) {
   std::error_code ec;
   if (dir.empty() || !std::filesystem::exists(dir / "cairo.so", ec) || !listsDevice(dir / "cairo.driver_info", name)) {
     throw Error(file + ": PLplot's cairo driver (device " + name + ") is not installed in '" + dir.string() + "'" +
-                    ": apt-get install plplot-driver-cairo" + (env != nullptr ? " (or unset PLPLOT_DRV_DIR)" : ""));
+                ": apt-get install plplot-driver-cairo" + (env != nullptr ? " (or unset PLPLOT_DRV_DIR)" : ""));
   }
   const char* menus[128];
   const char* names[128];
@@ -71,8 +71,7 @@ PlplotPage::PlplotPage(Device device, int width, int height, std::string file)
   try {
     requireDevice(device_, file_);
     memory_ = open_memstream(&bytes_, &size_);
-    if (memory_ == nullptr)
-      throw Error(file_ + ": cannot open a memory stream for the plot: " + std::strerror(errno));
+    if (memory_ == nullptr) throw Error(file_ + ": cannot open a memory stream for the plot: " + std::strerror(errno));
     gFileBeingDrawn = &file_;
     plsexit(onPlplotExit);
     plgstrm(&previous_);

@@ -1,8 +1,9 @@
 // The errors of vbim. Every exception the project throws on purpose is a vbim::Error; a folder has
 // a type of its own only where a caller tells its errors apart (iop::DiscError,
 // streams::StreamProbeError, gs::GsError, streams::AuthoringError, lighting::LightingError, ...;
-// docs/architecture.md, "Names"), so a caller can catch one folder's problems or all of them. what() names the input (file, key, byte, sector), the place and what
-// was expected, so a command prints it as it is.
+// docs/architecture.md, "Names"), so a caller can catch one folder's problems or all of them.
+// what() names the input (file, key, byte, sector), the place and what was expected, so a command
+// prints it as it is.
 #pragma once
 
 #include <stdexcept>

@@ -31,8 +31,8 @@ VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::str
       break;
   }
   throw Error(name +
-                    ": byte 0: not an MPEG program stream or video elementary stream "
-                    "(expected 00 00 01 BA or 00 00 01 B3)");
+              ": byte 0: not an MPEG program stream or video elementary stream "
+              "(expected 00 00 01 BA or 00 00 01 B3)");
 }
 
 }  // namespace
@@ -70,7 +70,7 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
     if (r.undecodable) {
       const ipu::IssueKind k = r.issues.empty() ? ipu::IssueKind::kBadHeader : r.issues.back().kind;
       throw Error(source + ": byte " + std::to_string(video.fileOffsetOf(au.offset)) +
-                        ": cannot decode: " + ipu::issueName(k));
+                  ": cannot decode: " + ipu::issueName(k));
     }
     summary.concealedMacroblocks += r.macroblocksConcealed;
     // Frames leave in display order (§6.1.1.11): B frames at once, I and P frames when the next

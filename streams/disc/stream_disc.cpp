@@ -6,9 +6,9 @@
 #include <fstream>
 
 #include "iop/file_disc.hpp"
-#include "streams/record_packs.hpp"
 #include "streams/descriptor_probe.hpp"
 #include "streams/disc/iso_disc.hpp"
+#include "streams/record_packs.hpp"
 
 namespace vbim::streams {
 

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/error.hpp"
 #include "plots/write_chart.hpp"
+#include "runtime/error.hpp"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <iterator>
 #include <string>
 
-#include "streams/record_packs.hpp"
 #include "streams/format.hpp"
 #include "streams/pack_parser.hpp"
+#include "streams/record_packs.hpp"
 #include "streams/stream_stats.hpp"
 
 namespace vbim::streams {

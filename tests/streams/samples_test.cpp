@@ -5,8 +5,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "streams/record_packs.hpp"
 #include "streams/format.hpp"
+#include "streams/record_packs.hpp"
 #include "streams/stream_stats.hpp"
 
 namespace vbim::streams {
