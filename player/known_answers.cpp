@@ -1,10 +1,11 @@
 #include "player/known_answers.hpp"
 
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <map>
 #include <set>
 #include <sstream>
-#include <string_view>
 
 #include "gs/blend.hpp"
 #include "player/frame_hash.hpp"
@@ -130,34 +131,16 @@ std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& stre
 }
 
 bool vectorKeySelected(const std::string& key, const std::vector<std::string>& only) {
-  if (only.empty()) return true;
-  // Glob with `*` only, by the classic two-pointer walk with backtracking to the last star.
-  const auto matches = [](std::string_view p, std::string_view k) {
-    std::size_t pi = 0, ki = 0, star = std::string_view::npos, mark = 0;
-    while (ki < k.size()) {
-      if (pi < p.size() && p[pi] == '*') {
-        star = pi++;
-        mark = ki;
-      } else if (pi < p.size() && p[pi] == k[ki]) {
-        ++pi;
-        ++ki;
-      } else if (star != std::string_view::npos) {
-        pi = star + 1;
-        ki = ++mark;
-      } else {
-        return false;
-      }
-    }
-    while (pi < p.size() && p[pi] == '*') ++pi;
-    return pi == p.size();
-  };
-  return std::any_of(only.begin(), only.end(), [&](const std::string& p) { return matches(p, key); });
+  // POSIX shell patterns; without FNM_PATHNAME a `*` also spans `/`.
+  return only.empty() || std::any_of(only.begin(), only.end(),
+                                     [&](const std::string& p) { return ::fnmatch(p.c_str(), key.c_str(), 0) == 0; });
 }
 
 VectorScore scoreVectors(const VectorFile& expected, const std::string* found, const std::vector<std::string>& only) {
   VectorScore score;
   score.file = expected.name;
-  std::vector<Entry> want = parseEntries(expected.text);
+  const std::vector<Entry> all = parseEntries(expected.text);
+  std::vector<Entry> want = all;
   std::erase_if(want, [&](const Entry& e) { return !vectorKeySelected(e.key, only); });
   score.checked = want.size();
   if (found == nullptr) {
@@ -185,7 +168,7 @@ VectorScore scoreVectors(const VectorFile& expected, const std::string* found, c
     }
   }
   std::set<std::string> known;
-  for (const Entry& e : parseEntries(expected.text)) known.insert(e.key);
+  for (const Entry& e : all) known.insert(e.key);
   for (const Entry& e : got) {
     if (known.contains(e.key) || !vectorKeySelected(e.key, only)) continue;
     ++score.extra;

@@ -73,8 +73,8 @@ struct VectorScore {
   std::vector<VectorDifference> differences;  // in the expected file's order, then the extra keys
   bool passed() const { return matched == checked && extra == 0; }
 };
-// `only`: patterns a key must match to be selected (`*` stands for any run of characters, `/`
-// included); empty selects every entry.
+// `only`: shell patterns (fnmatch: `*` any run of characters, `/` included, `?` one, `[...]` a set)
+// a key must match to be selected; empty selects every entry.
 VectorScore scoreVectors(const VectorFile& expected, const std::string* found,
                          const std::vector<std::string>& only = {});
 // True when `key` matches one of `only` (or `only` is empty).
