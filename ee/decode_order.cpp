@@ -32,12 +32,11 @@ DecodeOrder::DecodeOrder(const streams::Descriptor& d, int s) : frames_(d.frames
         previousReference = fi;
       }
     }
-    // A stream that ends on a B picture (never written by vbim) ranks it past the end: clamp so the
-    // table stays a map; such a picture is then decoded last.
+    // Every variant ends on a reference (Descriptor::validate refuses one that ends on a B
+    // picture), so the ranks are a permutation of 0..F-1.
     for (std::size_t f = 0; f < frames; ++f) {
       const std::size_t g = v * frames + f;
-      rank_[g] = std::min<std::int64_t>(rank_[g], frames_ - 1);
-      byRank_[v * frames + static_cast<std::size_t>(rank_[g])] = static_cast<std::int64_t>(f);
+      if (rank_[g] < frames_) byRank_[v * frames + static_cast<std::size_t>(rank_[g])] = static_cast<std::int64_t>(f);
     }
   }
   // File order: by the sector and offset of each picture's first byte.

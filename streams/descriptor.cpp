@@ -88,6 +88,13 @@ std::string Descriptor::validate() const {
         const IndexEntry& e = index[s][v * framesPerVariant + f];
         if (e.gopStart && e.type != PictureType::I) return "a GOP starts at a picture that is not an I picture";
       }
+      // A B picture is decoded after the reference that follows it: a variant that ends on one
+      // needs the next variant's picture, so neither it nor a loop lap decodes on its own
+      // (ee/decode_order.hpp). The writer ends each variant on a reference.
+      if (index[s][v * framesPerVariant + framesPerVariant - 1].type == PictureType::B) {
+        return "the last frame of variant '" + variants[v].name + "' (stream " + std::to_string(s) +
+               ") is a B picture (a variant must end on an I or P picture)";
+      }
     }
   }
   return {};

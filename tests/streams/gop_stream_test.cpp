@@ -239,5 +239,21 @@ TEST(GopStream, Version2FlagsAreChecked) {
   EXPECT_NE(p.error.find("flags"), std::string::npos) << p.error;
 }
 
+// Every variant ends on a reference (the writer makes it so); a descriptor whose variant ends on a
+// B picture could not be decoded lap by lap (ee/decode_order.hpp) and is refused by name.
+TEST(GopStream, AVariantEndingOnABPictureIsRefused) {
+  GopCase c;
+  c.variants = 1;
+  c.frames = 8;
+  c.loop = 0;
+  Descriptor d = author(c).descriptor;
+  for (const auto& table : d.index) EXPECT_NE(table.back().type, PictureType::B);
+  EXPECT_EQ(d.validate(), "");
+  d.index[0].back().type = PictureType::B;
+  d.index[0].back().gopStart = false;
+  EXPECT_NE(d.validate().find("is a B picture (a variant must end on an I or P picture)"), std::string::npos)
+      << d.validate();
+}
+
 }  // namespace
 }  // namespace vbim::streams
