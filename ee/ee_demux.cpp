@@ -98,6 +98,15 @@ std::int64_t EeDemux::variantEndSector(int s, int variant) const {
 void EeDemux::branch(std::int64_t from) {
   ++generation_;
   branchRuns_.erase(branchRuns_.lower_bound(from), branchRuns_.end());
+  // A run whose lap ended before every stream's next key is never asked about again (runOf skips a
+  // key past its lap): drop it, so a long run with many branches keeps this map short.
+  std::int64_t oldest = std::numeric_limits<std::int64_t>::max();
+  for (int s = 0; s < 2; ++s) {
+    if (active(s)) oldest = std::min(oldest, next_[s]);
+  }
+  while (!branchRuns_.empty() && timeline_.lapEnd(branchRuns_.begin()->first) + 1 < oldest) {
+    branchRuns_.erase(branchRuns_.begin());
+  }
   const std::int64_t f = timeline_.frameInVariant(from);
   const int v = timeline_.variantOf(from);
   std::array<std::int64_t, 2> startKeys{from, from};
