@@ -127,7 +127,13 @@ VectorFile blendVectors() {
 }
 
 std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& streams, ipu::IdctKind idct) {
-  return {frameHashVectors(), blendVectors(), streamReadVectors(), ipuVectors(streams, idct)};
+  return {frameHashVectors(),        blendVectors(),      streamReadVectors(),
+          ipuVectors(streams, idct), vlcVectors(streams), idctVectors(streams, idct),
+          cscVectors(streams, idct), drawVectors()};
+}
+
+std::string vectorStage(const VectorFile& f) {
+  return f.name.ends_with(".txt") ? f.name.substr(0, f.name.size() - 4) : f.name;
 }
 
 bool vectorKeySelected(const std::string& key, const std::vector<std::string>& only) {
@@ -148,7 +154,7 @@ VectorScore scoreVectors(const VectorFile& expected, const std::string* found, c
     score.missing = want.size();
     if (!want.empty()) {
       score.differences.push_back(
-          VectorDifference{expected.name, want.front().key, want.front().value, "(no such file)"});
+          VectorDifference{expected.name, want.front().key, want.front().value, "(no such file)", {}, {}, {}});
     }
     return score;
   }
@@ -159,10 +165,12 @@ VectorScore scoreVectors(const VectorFile& expected, const std::string* found, c
     const auto it = byKey.find(e.key);
     if (it == byKey.end()) {
       ++score.missing;
-      score.differences.push_back(VectorDifference{expected.name, e.key, e.value, "(missing)"});
+      score.differences.push_back(VectorDifference{expected.name, e.key, e.value, "(missing)", {}, {}, {}});
     } else if (it->second != e.value) {
       ++score.differ;
-      score.differences.push_back(VectorDifference{expected.name, e.key, e.value, it->second});
+      VectorDifference d{expected.name, e.key, e.value, it->second, {}, {}, {}};
+      locateDifference(d);
+      score.differences.push_back(std::move(d));
     } else {
       ++score.matched;
     }
@@ -172,9 +180,57 @@ VectorScore scoreVectors(const VectorFile& expected, const std::string* found, c
   for (const Entry& e : got) {
     if (known.contains(e.key) || !vectorKeySelected(e.key, only)) continue;
     ++score.extra;
-    score.differences.push_back(VectorDifference{expected.name, e.key, "(no such entry)", e.value});
+    score.differences.push_back(VectorDifference{expected.name, e.key, "(no such entry)", e.value, {}, {}, {}});
   }
   return score;
+}
+
+namespace {
+
+std::vector<std::string> splitOn(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t at = s.find(sep, start);
+    out.push_back(s.substr(start, at - start));
+    if (at == std::string::npos) return out;
+    start = at + 1;
+  }
+}
+
+bool isHex(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+  });
+}
+
+}  // namespace
+
+void locateDifference(VectorDifference& d) {
+  const std::string& a = d.expected;
+  const std::string& b = d.found;
+  // Long hex strings (pixels, YCbCr): the first differing byte.
+  constexpr std::size_t kHashDigits = 16;
+  if (a.size() > kHashDigits && a.size() % 2 == 0 && isHex(a) && isHex(b)) {
+    std::size_t i = 0;
+    while (i + 1 < a.size() && i + 1 < b.size() && a.compare(i, 2, b, i, 2) == 0) i += 2;
+    d.place = "byte " + std::to_string(i / 2) + " of " + std::to_string(a.size() / 2);
+    d.expectedElement = a.substr(i, 2);
+    d.foundElement = i + 1 < b.size() ? b.substr(i, 2) : "(end)";
+    return;
+  }
+  // Lists: comma-separated numbers, or space-separated tokens (run/level pairs).
+  for (const char sep : {',', ' '}) {
+    const std::vector<std::string> x = splitOn(a, sep);
+    if (x.size() < 2) continue;
+    const std::vector<std::string> y = splitOn(b, sep);
+    std::size_t i = 0;
+    while (i < x.size() && i < y.size() && x[i] == y[i]) ++i;
+    d.place = "element " + std::to_string(i) + " of " + std::to_string(x.size());
+    d.expectedElement = i < x.size() ? x[i] : "(end)";
+    d.foundElement = i < y.size() ? y[i] : "(end)";
+    return;
+  }
 }
 
 std::optional<VectorDifference> compareVectors(const VectorFile& expected, const std::string* found) {

@@ -30,8 +30,9 @@ struct VectorStream {
   std::span<const std::uint8_t> bytes;
 };
 
-// The four files, in a fixed order: frame_hash.txt, blend.txt, cdstread.txt, ipu.txt. `idct` is the
-// platform's inverse DCT (ipu.idct): the IPU vectors depend on it.
+// The files, in a fixed order: frame_hash.txt, blend.txt, cdstread.txt, ipu.txt, then the per-stage
+// vlc.txt, idct.txt, csc.txt and draw.txt. `idct` is the platform's inverse DCT (ipu.idct): the IPU,
+// IDCT and CSC vectors depend on it.
 std::vector<VectorFile> knownAnswerVectors(const std::vector<VectorStream>& streams,
                                            ipu::IdctKind idct = ipu::kDefaultIdct);
 
@@ -40,6 +41,17 @@ VectorFile blendVectors();
 VectorFile streamReadVectors();
 // Throws ConfigError when a stream holds no descriptor or no picture.
 VectorFile ipuVectors(const std::vector<VectorStream>& streams, ipu::IdctKind idct = ipu::kDefaultIdct);
+
+// The per-stage vectors (player/known_answers_stages.cpp): chosen blocks of the streams' intra
+// pictures through VLC, IDCT and CSC, and the blend draw by draw. Throw ConfigError when a stream
+// holds no picture or the block walk disagrees with the decoder.
+VectorFile vlcVectors(const std::vector<VectorStream>& streams);
+VectorFile idctVectors(const std::vector<VectorStream>& streams, ipu::IdctKind idct = ipu::kDefaultIdct);
+VectorFile cscVectors(const std::vector<VectorStream>& streams, ipu::IdctKind idct = ipu::kDefaultIdct);
+VectorFile drawVectors();
+
+// The stage a vector file holds: its name without ".txt" (e.g. "vlc").
+std::string vectorStage(const VectorFile& f);
 
 // The frame hash (player/frame_hash.hpp) of `bytes` read as an RGBA8 image `width` pixels (4 bytes
 // each) wide: how the vectors hash any IPU output (RGB16 output is read as 2 pixels per 4 bytes).
@@ -53,7 +65,15 @@ struct VectorDifference {
   std::string entry;  // the key, or the line number of a malformed line
   std::string expected;
   std::string found;  // "(missing)" when the port's file lacks the entry
+  // Where in a value of many elements the two first differ, with both elements: "element 17 of 64"
+  // (comma- or space-separated lists), "byte 130 of 1024" (hex strings longer than a hash); empty
+  // otherwise.
+  std::string place;
+  std::string expectedElement;
+  std::string foundElement;
 };
+// Fills a difference's place and elements from its two values (valueDifferencePlace below).
+void locateDifference(VectorDifference& d);
 
 // The first difference between an expected vector file and a port's (`found` is null when the
 // port's directory has no such file). Entries are compared in the expected file's order; a key the

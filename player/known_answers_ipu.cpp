@@ -6,14 +6,12 @@
 #include <optional>
 #include <span>
 
-#include "iop/sector_source.hpp"
 #include "ipu/csc.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "player/frame_hash.hpp"
 #include "player/known_answers.hpp"
 #include "player/stream_frame_decoder.hpp"
-#include "runtime/error.hpp"
-#include "streams/demuxer.hpp"
+#include "player/vector_pictures.hpp"
 
 namespace vbim::player {
 
@@ -49,29 +47,6 @@ std::vector<std::uint8_t> rgb16Bytes(const std::vector<std::uint16_t>& px) {
     out[2 * i + 1] = static_cast<std::uint8_t>(px[i] >> 8);
   }
   return out;
-}
-
-// Every picture of a stream file by (stream id, global frame), and its descriptor.
-struct StreamPictures {
-  streams::Descriptor descriptor;
-  std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> pictures;
-};
-
-StreamPictures picturesOf(const VectorStream& s) {
-  streams::Demuxer demux;
-  const std::size_t sectors = s.bytes.size() / iop::kSectorBytes;
-  for (std::size_t i = 0; i < sectors; ++i) {
-    demux.feed(s.bytes.subspan(i * iop::kSectorBytes, iop::kSectorBytes), static_cast<std::uint32_t>(i));
-  }
-  demux.finish();
-  std::map<std::pair<int, std::uint32_t>, std::vector<std::uint8_t>> out;
-  for (streams::Picture& p : demux.pictures()) {
-    if (p.frame && !p.damaged) out[{p.streamId, *p.frame}] = std::move(p.data);
-  }
-  if (!demux.descriptor() || out.empty()) {
-    throw ConfigError("stream '" + s.label + "': no playback descriptor or no picture to make IPU vectors from");
-  }
-  return StreamPictures{*demux.descriptor(), std::move(out)};
 }
 
 // `frame`: the frame as the IPU holds it for display (a P or B picture's with its references).

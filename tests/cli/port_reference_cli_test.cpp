@@ -36,7 +36,8 @@ std::string readAll(const fs::path& p) {
   return vbim::testing::readFileBytes(p);
 }
 
-const char* const kVectorFiles[] = {"frame_hash.txt", "blend.txt", "cdstread.txt", "ipu.txt"};
+const char* const kVectorFiles[] = {"frame_hash.txt", "blend.txt", "cdstread.txt", "ipu.txt",
+                                    "vlc.txt",        "idct.txt",  "csc.txt",      "draw.txt"};
 
 TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
   const fs::path out = scratch("vectors");
@@ -110,8 +111,68 @@ TEST(PortReference, CheckNamesTheFirstDifference) {
       << r.output;
   fs::remove(dir / "blend.txt");
   const Result missing = run("vectors --check " + dir.string());
-  EXPECT_EQ(missing.code, 1);
-  EXPECT_NE(missing.output.find("blend.txt"), std::string::npos) << missing.output;
+  EXPECT_EQ(missing.code, 1);  // ipu.txt still differs
+  EXPECT_NE(missing.output.find("blend.txt: no such file, absent"), std::string::npos) << missing.output;
+  fs::remove_all(dir);
+}
+
+// One line per stage: pass, fail with where the value differs, or absent; absent stages do not
+// fail the check (a port in bring-up has not captured them yet), a present one that differs does.
+TEST(PortReference, CheckScoresEachStageAndSkipsAbsentOnes) {
+  const fs::path dir = scratch("stages");
+  fs::create_directories(dir);
+  for (const char* f : kVectorFiles) fs::copy_file(fs::path(VBIM_SOURCE_DIR) / "tests/vectors" / f, dir / f);
+  fs::remove(dir / "draw.txt");
+  fs::remove(dir / "cdstread.txt");
+  const Result absent = run("vectors --check " + dir.string());
+  EXPECT_EQ(absent.code, 0) << absent.output;
+  EXPECT_NE(absent.output.find("the 6 vector files present"), std::string::npos) << absent.output;
+  EXPECT_NE(absent.output.find("draw.txt: no such file, absent (52 entries not checked)"), std::string::npos)
+      << absent.output;
+  EXPECT_NE(absent.output.find("idct.txt: 276 of 276 match (pass)"), std::string::npos) << absent.output;
+
+  // Element 3 of an IDCT result off by one: the entry and the element are named.
+  std::string idct = readAll(dir / "idct.txt");
+  const std::string key = "idct/ieee1180/-5..5/sign=+1/0/result ";
+  const auto at = idct.find(key);
+  ASSERT_NE(at, std::string::npos);
+  std::size_t p = at + key.size();
+  for (int comma = 0; comma < 3; ++comma) p = idct.find(',', p) + 1;
+  const std::size_t end = idct.find(',', p);
+  const std::string element = idct.substr(p, end - p);
+  const std::string changed = std::to_string(std::stoi(element) + 1);
+  idct.replace(p, end - p, changed);
+  std::ofstream(dir / "idct.txt", std::ios::binary) << idct;
+  // A byte of a CSC output changed: its place is the byte.
+  std::string csc = readAll(dir / "csc.txt");
+  const std::string cscKey = "csc/synthetic/ramps/rgb32 ";
+  const auto cscAt = csc.find(cscKey);
+  ASSERT_NE(cscAt, std::string::npos);
+  const std::size_t digit = cscAt + cscKey.size() + 2 * 130;
+  csc[digit] = csc[digit] == 'f' ? 'e' : 'f';
+  std::ofstream(dir / "csc.txt", std::ios::binary) << csc;
+  const Result fail = run("vectors --check " + dir.string());
+  EXPECT_EQ(fail.code, 1) << fail.output;
+  EXPECT_NE(fail.output.find("idct.txt: 275 of 276 match, 1 differ (fail)"), std::string::npos) << fail.output;
+  EXPECT_NE(fail.output.find("entry 'idct/ieee1180/-5..5/sign=+1/0/result': element 3 of 64: expected '" + element +
+                             "', found '" + changed + "'"),
+            std::string::npos)
+      << fail.output;
+  EXPECT_NE(fail.output.find("entry 'csc/synthetic/ramps/rgb32': byte 130 of 1024"), std::string::npos) << fail.output;
+  EXPECT_NE(fail.output.find("vlc.txt: 130 of 130 match (pass)"), std::string::npos) << fail.output;
+
+  // --only by stage names: the failing stages left out, the check passes.
+  const Result some = run("vectors --check " + dir.string() + " --only vlc,ipu --only blend");
+  EXPECT_EQ(some.code, 0) << some.output;
+  EXPECT_NE(some.output.find("vlc.txt: 130 of 130 match (pass)"), std::string::npos) << some.output;
+  EXPECT_NE(some.output.find("idct.txt: no entry selected"), std::string::npos) << some.output;
+  EXPECT_EQ(run("vectors --check " + dir.string() + " --only idct").code, 1);
+  // A stage name and a key pattern together.
+  EXPECT_EQ(run("vectors --check " + dir.string() + " --only vlc --only 'idct/saturating/*'").code, 0);
+  // Nothing present: not a pass.
+  for (const char* f : kVectorFiles) fs::remove(dir / f);
+  const Result none = run("vectors --check " + dir.string());
+  EXPECT_EQ(none.code, 1) << none.output;
   fs::remove_all(dir);
 }
 
