@@ -94,6 +94,9 @@ else()
   set(VBIM_PACKAGE_HAS_CONFIG FALSE)
 endif()
 
+# The C99 reference of docs/porting.md ("A C reference"): one header, no dependency.
+install(FILES ${PROJECT_SOURCE_DIR}/ref/vbim_ref.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vbim)
+
 file(GLOB _vbim_samples ${PROJECT_SOURCE_DIR}/streams/samples/*.vbim)
 install(FILES ${_vbim_samples} DESTINATION ${VBIM_INSTALL_SAMPLESDIR})
 
