@@ -298,12 +298,13 @@ FrameStore assembleIntraPicture(const WalkedPicture& picture, IdctKind kind) {
         // Blocks 0/1 on top, 2/3 below; with field DCT (§6.1.3) 0/1 hold the top field's lines.
         const std::ptrdiff_t ls = fs.lumaStride;
         stride = mb.fieldDct ? 2 * ls : ls;
-        dst = fs.y.data() + ls * 16 * mb.mbY + 16 * mb.mbX + 8 * (b & 1) + (mb.fieldDct ? ls : 8 * ls) * (b >> 1);
+        const std::ptrdiff_t x = std::ptrdiff_t{16} * mb.mbX + std::ptrdiff_t{8} * (b & 1);
+        dst = fs.y.data() + ls * 16 * mb.mbY + x + (mb.fieldDct ? ls : 8 * ls) * (b >> 1);
       } else {
         stride = fs.chromaStride;
-        dst = (b == 4 ? fs.cb.data() : fs.cr.data()) + stride * 8 * mb.mbY + 8 * mb.mbX;
+        dst = (b == 4 ? fs.cb.data() : fs.cr.data()) + stride * 8 * mb.mbY + std::ptrdiff_t{8} * mb.mbX;
       }
-      for (int r = 0; r < 8; ++r) std::memcpy(dst + stride * r, px + 8 * r, 8);
+      for (std::ptrdiff_t r = 0; r < 8; ++r) std::memcpy(dst + stride * r, px + 8 * r, 8);
     }
   }
   return fs;

@@ -82,7 +82,8 @@ std::vector<ChosenPicture> choosePictures(const std::vector<VectorStream>& strea
   std::string busiestPrefix;
   for (const VectorStream& s : streams) {
     const StreamPictures sp = picturesOf(s);
-    for (const auto& [id, name] : {std::pair<int, const char*>{0xE0, "lightmap"}, {0xE1, "sky"}}) {
+    for (const auto& [streamId, name] : {std::pair<int, const char*>{0xE0, "lightmap"}, {0xE1, "sky"}}) {
+      const int id = streamId;  // a structured binding cannot be captured before C++20's P1091 in clang 14
       const auto first =
           std::find_if(sp.pictures.begin(), sp.pictures.end(), [&](const auto& p) { return p.first.first == id; });
       if (first == sp.pictures.end()) continue;
@@ -152,7 +153,7 @@ constexpr std::int32_t kFdct[8][8] = {{11585, 11585, 11585, 11585, 11585, 11585,
 // [-2048, 2047]: IEEE 1180's test input.
 void ieee1180Block(Ieee1180Random& rng, int lo, int hi, int sign, std::int16_t* coeffs) {
   std::int64_t pixels[64];
-  for (std::int64_t& p : pixels) p = sign * rng.next(lo, hi);
+  for (std::int64_t& p : pixels) p = std::int64_t{sign} * rng.next(lo, hi);
   std::int64_t rows[64];
   for (int y = 0; y < 8; ++y) {
     for (int u = 0; u < 8; ++u) {
@@ -212,17 +213,18 @@ void addCscEntry(std::string& t, const std::string& key, const ipu::FrameStore& 
 ipu::FrameStore macroblockOf(const ipu::FrameStore& fs, int mbX, int mbY) {
   ipu::FrameStore mb;
   mb.reset(1, 1);
-  for (int r = 0; r < 16; ++r) {
-    for (int x = 0; x < 16; ++x) {
-      mb.y[static_cast<std::size_t>(16 * r + x)] =
-          fs.y[static_cast<std::size_t>((16 * mbY + r) * fs.lumaStride + 16 * mbX + x)];
-    }
+  const auto lumaStride = static_cast<std::size_t>(fs.lumaStride);
+  const auto chromaStride = static_cast<std::size_t>(fs.chromaStride);
+  const auto x0 = static_cast<std::size_t>(mbX);
+  const auto y0 = static_cast<std::size_t>(mbY);
+  for (std::size_t r = 0; r < 16; ++r) {
+    for (std::size_t x = 0; x < 16; ++x) mb.y[16 * r + x] = fs.y[(16 * y0 + r) * lumaStride + 16 * x0 + x];
   }
-  for (int r = 0; r < 8; ++r) {
-    for (int x = 0; x < 8; ++x) {
-      const std::size_t at = static_cast<std::size_t>((8 * mbY + r) * fs.chromaStride + 8 * mbX + x);
-      mb.cb[static_cast<std::size_t>(8 * r + x)] = fs.cb[at];
-      mb.cr[static_cast<std::size_t>(8 * r + x)] = fs.cr[at];
+  for (std::size_t r = 0; r < 8; ++r) {
+    for (std::size_t x = 0; x < 8; ++x) {
+      const std::size_t at = (8 * y0 + r) * chromaStride + 8 * x0 + x;
+      mb.cb[8 * r + x] = fs.cb[at];
+      mb.cr[8 * r + x] = fs.cr[at];
     }
   }
   return mb;
@@ -376,12 +378,15 @@ VectorFile cscVectors(const std::vector<VectorStream>& streams, ipu::IdctKind id
   for (const Synthetic& s : synthetic) {
     ipu::FrameStore mb;
     mb.reset(1, 1);
-    for (int r = 0; r < 16; ++r)
-      for (int x = 0; x < 16; ++x) mb.y[static_cast<std::size_t>(16 * r + x)] = static_cast<std::uint8_t>(s.y(x, r));
+    std::size_t i = 0;
+    for (int r = 0; r < 16; ++r) {
+      for (int x = 0; x < 16; ++x) mb.y[i++] = static_cast<std::uint8_t>(s.y(x, r));
+    }
+    i = 0;
     for (int r = 0; r < 8; ++r) {
-      for (int x = 0; x < 8; ++x) {
-        mb.cb[static_cast<std::size_t>(8 * r + x)] = static_cast<std::uint8_t>(s.cb(x, r));
-        mb.cr[static_cast<std::size_t>(8 * r + x)] = static_cast<std::uint8_t>(s.cr(x, r));
+      for (int x = 0; x < 8; ++x, ++i) {
+        mb.cb[i] = static_cast<std::uint8_t>(s.cb(x, r));
+        mb.cr[i] = static_cast<std::uint8_t>(s.cr(x, r));
       }
     }
     addCscEntry(t, std::string("csc/synthetic/") + s.name, mb);
