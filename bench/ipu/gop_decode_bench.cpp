@@ -244,20 +244,22 @@ BENCHMARK(BM_GopDecode)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.5);
 
-// Ours alone to YCbCr (with the default IDCT, or IdctKind::Libmpeg2), for profiling:
+// Ours alone to YCbCr (with the default IDCT, or IdctKind::Libmpeg2) or to RGBA, for profiling:
 // perf record -g build/bench/ipu/bench_ipu_gop_decode --benchmark_filter=BM_GopDecodeOurs/...
 void BM_GopDecodeOurs(benchmark::State& state) {
   const Clip& c = clip(state.range(0) != 0, static_cast<int>(state.range(1)));
-  Ours ours(state.range(2) != 0 ? vbim::ipu::IdctKind::Libmpeg2 : vbim::ipu::kDefaultIdct, false);
+  Ours ours(state.range(2) != 0 ? vbim::ipu::IdctKind::Libmpeg2 : vbim::ipu::kDefaultIdct, state.range(3) != 0);
   for (auto _ : state) benchmark::DoNotOptimize(ours.run(c));
   state.SetItemsProcessed(state.iterations() * kFrames);
 }
 BENCHMARK(BM_GopDecodeOurs)
-    ->ArgNames({"interlaced", "q", "l2idct"})
-    ->Args({0, 4, 0})
-    ->Args({0, 2, 0})
-    ->Args({0, 4, 1})
-    ->Args({1, 4, 0})
+    ->ArgNames({"interlaced", "q", "l2idct", "rgba"})
+    ->Args({0, 4, 0, 0})
+    ->Args({0, 2, 0, 0})
+    ->Args({0, 4, 1, 0})
+    ->Args({1, 4, 0, 0})
+    ->Args({0, 4, 0, 1})
+    ->Args({0, 2, 0, 1})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

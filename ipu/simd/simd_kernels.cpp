@@ -441,15 +441,142 @@ void idctLibmpeg2AddImpl(const std::int16_t* block, unsigned rowMask, unsigned c
 }
 #endif
 
+// The scalar reference's arithmetic for pixels [x0, width) of each line (the tail of the vector loops).
+void cscRowsTail(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr, int x0,
+                 int width, std::uint8_t* rgba, int rgbaStride, int th0, int th1) {
+  for (int x = x0; x < width; ++x) {
+    const int cbv = cb[x >> 1] - 128, crv = cr[x >> 1] - 128;
+    const int rTerm = (0xCC * crv) >> 6, gTerm = ((-0x68 * crv) >> 6) + ((-0x32 * cbv) >> 6),
+              bTerm = (0x102 * cbv) >> 6;
+    for (int row = 0; row < rows; ++row) {
+      const std::uint8_t yv = y[row * yStride + x];
+      const int lum = ((0x95 * (yv > 16 ? yv - 16 : 0)) >> 6) + 1;
+      auto clamp = [](int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); };
+      const int r = clamp((lum + rTerm) >> 1), g = clamp((lum + gTerm) >> 1), b = clamp((lum + bTerm) >> 1);
+      const int m = r > g ? (r > b ? r : b) : (g > b ? g : b);
+      std::uint8_t* o = rgba + static_cast<std::ptrdiff_t>(row) * rgbaStride + 4 * static_cast<std::ptrdiff_t>(x);
+      if (m < th0) {
+        o[0] = o[1] = o[2] = o[3] = 0;
+      } else {
+        o[0] = static_cast<std::uint8_t>(r);
+        o[1] = static_cast<std::uint8_t>(g);
+        o[2] = static_cast<std::uint8_t>(b);
+        o[3] = static_cast<std::uint8_t>(m < th1 ? 0x40 : 0x80);
+      }
+    }
+  }
+}
+
+// Runs block(x) over [0, width) in steps of `step` pixels and returns where the scalar tail starts.
+// A last partial step is done by one more block ending at the line's end (overlapping the one
+// before it, which gives the same bytes there), started on an even pixel so that its chroma pairs
+// stay whole; only an odd line's last pixel is left over.
+template <class Block>
+int cscSteps(int width, int step, Block&& block) {
+  int x = 0;
+  for (; x + step <= width; x += step) block(x);
+  if (x < width && width >= step + 1) {
+    const int last = (width - step) & ~1;
+    block(last);
+    x = last + step;
+  }
+  return x;
+}
+
+#if HWY_TARGET != HWY_SCALAR && HWY_ARCH_X86 && HWY_TARGET <= HWY_SSSE3
+// Saturating narrow of two 16-bit vectors within each 128-bit block (packuswb): Highway 1.0.3 has
+// no two-vector i16 -> u8 demote, and its one-vector DemoteTo adds a cross-block permute.
+inline hn::Vec128<std::uint8_t> packUs(hn::Vec128<std::int16_t> a, hn::Vec128<std::int16_t> b) {
+  return hn::Vec128<std::uint8_t>{_mm_packus_epi16(a.raw, b.raw)};
+}
+#if HWY_TARGET <= HWY_AVX2
+inline hn::Vec256<std::uint8_t> packUs(hn::Vec256<std::int16_t> a, hn::Vec256<std::int16_t> b) {
+  return hn::Vec256<std::uint8_t>{_mm256_packus_epi16(a.raw, b.raw)};
+}
+#endif
+
+// RGB32 without SETTH thresholds (alpha 0x80 everywhere; the saturating narrow is the clamp), 2 x
+// 8 or 2 x 16 pixels per step, kept within 128-bit blocks until the store: Y is widened by
+// interleaving with zero bytes (block k: pixels 16k..16k+7 in the low vector, 16k+8..16k+15 in the
+// high one), which packuswb undoes, so no lane crosses a block before the four RGBA vectors are put
+// in memory order. Interleaving zero below Y gives Y << 8, and MulHigh(Y << 8, 0x95 << 2) ==
+// (0x95 * Y) >> 6 exactly; the chroma terms (+1 for the rounding) are doubled for the two pixels
+// they cover by interleaving them with themselves, which matches the luma layout when block k of
+// the term vector holds chroma samples 8k..8k+7 (a plain widening of the 8 or 16 chroma bytes).
+int cscRowsOpaqueX86(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
+                     int width, std::uint8_t* rgba, int rgbaStride) {
+  const hn::CappedTag<std::int16_t, 16> d;  // 16 lanes on AVX2 and AVX-512, 8 on SSE4 and SSSE3
+  const hn::RebindToUnsigned<decltype(d)> du;
+  const hn::Repartition<std::uint8_t, decltype(d)> d8;
+  const hn::Half<decltype(d8)> dh8;
+  constexpr int kBlocks = static_cast<int>(hn::MaxLanes(d8)) / 16;
+  static_assert(kBlocks == 1 || kBlocks == 2);
+  const int step = static_cast<int>(hn::Lanes(d8));
+  const auto kRcr = hn::Set(d, 0xCC << 6), kGcr = hn::Set(d, -0x68 << 6);
+  const auto kGcb = hn::Set(d, -0x32 << 6), kBcb = hn::Set(d, 0x102 << 6);
+  const auto c128 = hn::Set(d, 128), one = hn::Set(d, 1);
+  const auto kY = hn::Set(du, 0x95 << 2);
+  const auto zero8 = hn::Zero(d8), y16 = hn::Set(d8, 16), alpha = hn::Set(d8, 0x80);
+  return cscSteps(width, step, [&](int x) {
+    // (a << 4) * (b << 6) >> 16 == (a * b) >> 6 for these |a| <= 128 (the scalar code's floor shift).
+    const auto vb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(dh8, cb + x / 2)), c128));
+    const auto vr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(d, hn::LoadU(dh8, cr + x / 2)), c128));
+    const auto rT = hn::Add(hn::MulHigh(vr, kRcr), one);
+    const auto gT = hn::Add(hn::Add(hn::MulHigh(vr, kGcr), hn::MulHigh(vb, kGcb)), one);
+    const auto bT = hn::Add(hn::MulHigh(vb, kBcb), one);
+    const auto rLo = hn::InterleaveLower(d, rT, rT), rHi = hn::InterleaveUpper(d, rT, rT);
+    const auto gLo = hn::InterleaveLower(d, gT, gT), gHi = hn::InterleaveUpper(d, gT, gT);
+    const auto bLo = hn::InterleaveLower(d, bT, bT), bHi = hn::InterleaveUpper(d, bT, bT);
+    for (int row = 0; row < rows; ++row) {
+      const auto ys = hn::SaturatedSub(hn::LoadU(d8, y + static_cast<std::ptrdiff_t>(row) * yStride + x), y16);
+      const auto lumLo = hn::BitCast(d, hn::MulHigh(hn::BitCast(du, hn::InterleaveLower(d8, zero8, ys)), kY));
+      const auto lumHi = hn::BitCast(d, hn::MulHigh(hn::BitCast(du, hn::InterleaveUpper(d8, zero8, ys)), kY));
+      const auto r = packUs(hn::ShiftRight<1>(hn::Add(lumLo, rLo)), hn::ShiftRight<1>(hn::Add(lumHi, rHi)));
+      const auto g = packUs(hn::ShiftRight<1>(hn::Add(lumLo, gLo)), hn::ShiftRight<1>(hn::Add(lumHi, gHi)));
+      const auto b = packUs(hn::ShiftRight<1>(hn::Add(lumLo, bLo)), hn::ShiftRight<1>(hn::Add(lumHi, bHi)));
+      const auto rgLo = hn::BitCast(du, hn::InterleaveLower(d8, r, g));
+      const auto rgHi = hn::BitCast(du, hn::InterleaveUpper(d8, r, g));
+      const auto baLo = hn::BitCast(du, hn::InterleaveLower(d8, b, alpha));
+      const auto baHi = hn::BitCast(du, hn::InterleaveUpper(d8, b, alpha));
+      // Block k of p0..p3: pixels 16k + 0..3, 4..7, 8..11, 12..15.
+      const auto p0 = hn::BitCast(d8, hn::InterleaveLower(du, rgLo, baLo));
+      const auto p1 = hn::BitCast(d8, hn::InterleaveUpper(du, rgLo, baLo));
+      const auto p2 = hn::BitCast(d8, hn::InterleaveLower(du, rgHi, baHi));
+      const auto p3 = hn::BitCast(d8, hn::InterleaveUpper(du, rgHi, baHi));
+      std::uint8_t* out = rgba + static_cast<std::ptrdiff_t>(row) * rgbaStride + 4 * static_cast<std::ptrdiff_t>(x);
+      const int n = step;
+      if constexpr (kBlocks == 1) {
+        hn::StoreU(p0, d8, out);
+        hn::StoreU(p1, d8, out + n);
+        hn::StoreU(p2, d8, out + 2 * n);
+        hn::StoreU(p3, d8, out + 3 * n);
+      } else {
+        hn::StoreU(hn::ConcatLowerLower(d8, p1, p0), d8, out);
+        hn::StoreU(hn::ConcatLowerLower(d8, p3, p2), d8, out + n);
+        hn::StoreU(hn::ConcatUpperUpper(d8, p1, p0), d8, out + 2 * n);
+        hn::StoreU(hn::ConcatUpperUpper(d8, p3, p2), d8, out + 3 * n);
+      }
+    }
+  });
+}
+#endif
+
 // One chroma line's RGB32 rows (1 or 2 luma lines) with the PS2 matrix, in 16-bit lanes:
 // lum = (0x95 * max(0, Y - 16)) >> 6, then (lum + term + 1) >> 1 clamped to 0..255; alpha 0x80;
 // SETTH. The chroma terms are computed once per chroma sample, at half resolution, and doubled in
 // registers for the two pixels (and the two lines) they cover: (a << 4) * (b << 6) >> 16 ==
 // (a * b) >> 6 exactly for |a| < 2^11 and the coefficients below (the scalar code's floor shift).
-// rc = Cr term of R, gc = both terms of G, bc = Cb term of B.
+// rc = Cr term of R, gc = both terms of G, bc = Cb term of B. Without thresholds, x86 targets take
+// cscRowsOpaqueX86.
 void cscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                  int width, std::uint8_t* rgba, int rgbaStride, int th0, int th1) {
   int x = 0;
+#if HWY_TARGET != HWY_SCALAR && HWY_ARCH_X86 && HWY_TARGET <= HWY_SSSE3
+  if (th0 <= 0 && th1 <= 0) {
+    x = cscRowsOpaqueX86(y, yStride, rows, cb, cr, width, rgba, rgbaStride);
+    return cscRowsTail(y, yStride, rows, cb, cr, x, width, rgba, rgbaStride, th0, th1);
+  }
+#endif
 #if HWY_TARGET != HWY_SCALAR
   const hn::ScalableTag<std::int16_t> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
@@ -470,16 +597,16 @@ void cscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_
   const auto one = hn::Set(d, 1);
   const auto vTh0 = hn::Set(d, static_cast<std::int16_t>(th0)), vTh1 = hn::Set(d, static_cast<std::int16_t>(th1));
   const auto a80 = hn::Set(d, 0x80), a40 = hn::Set(d, 0x40);
-  for (; x + N <= width; x += N) {
-    const auto vb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(dh, hn::LoadU(dh8, cb + x / 2)), c128));
-    const auto vr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(dh, hn::LoadU(dh8, cr + x / 2)), c128));
+  x = cscSteps(width, N, [&](int x0) {
+    const auto vb = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(dh, hn::LoadU(dh8, cb + x0 / 2)), c128));
+    const auto vr = hn::ShiftLeft<4>(hn::Sub(hn::PromoteTo(dh, hn::LoadU(dh8, cr + x0 / 2)), c128));
     const auto rTerm = doubled(hn::MulHigh(vr, kRcr));
     const auto gTerm = doubled(hn::Add(hn::MulHigh(vr, kGcr), hn::MulHigh(vb, kGcb)));
     const auto bTerm = doubled(hn::MulHigh(vb, kBcb));
     for (int row = 0; row < rows; ++row) {
       const std::uint8_t* yl = y + static_cast<std::ptrdiff_t>(row) * yStride;
-      std::uint8_t* out = rgba + static_cast<std::ptrdiff_t>(row) * rgbaStride + 4 * static_cast<std::ptrdiff_t>(x);
-      const auto yy = hn::PromoteTo(d, hn::SaturatedSub(hn::LoadU(d8, yl + x), hn::Set(d8, 16)));
+      std::uint8_t* out = rgba + static_cast<std::ptrdiff_t>(row) * rgbaStride + 4 * static_cast<std::ptrdiff_t>(x0);
+      const auto yy = hn::PromoteTo(d, hn::SaturatedSub(hn::LoadU(d8, yl + x0), hn::Set(d8, 16)));
       const auto lum = hn::Add(hn::MulHigh(hn::ShiftLeft<4>(yy), kY), one);
       const auto r = hn::ShiftRight<1>(hn::Add(lum, rTerm));
       const auto g = hn::ShiftRight<1>(hn::Add(lum, gTerm));
@@ -501,29 +628,9 @@ void cscRowsImpl(const std::uint8_t* y, int yStride, int rows, const std::uint8_
                             hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, gc)),
                             hn::DemoteTo(d8, hn::IfThenZeroElse(cleared, bc)), hn::DemoteTo(d8, alpha), d8, out);
     }
-  }
+  });
 #endif
-  for (; x < width; ++x) {
-    const int cbv = cb[x >> 1] - 128, crv = cr[x >> 1] - 128;
-    const int rTerm = (0xCC * crv) >> 6, gTerm = ((-0x68 * crv) >> 6) + ((-0x32 * cbv) >> 6),
-              bTerm = (0x102 * cbv) >> 6;
-    for (int row = 0; row < rows; ++row) {
-      const std::uint8_t yv = y[row * yStride + x];
-      const int lum = ((0x95 * (yv > 16 ? yv - 16 : 0)) >> 6) + 1;
-      auto clamp = [](int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); };
-      const int r = clamp((lum + rTerm) >> 1), g = clamp((lum + gTerm) >> 1), b = clamp((lum + bTerm) >> 1);
-      const int m = r > g ? (r > b ? r : b) : (g > b ? g : b);
-      std::uint8_t* o = rgba + static_cast<std::ptrdiff_t>(row) * rgbaStride + 4 * static_cast<std::ptrdiff_t>(x);
-      if (m < th0) {
-        o[0] = o[1] = o[2] = o[3] = 0;
-      } else {
-        o[0] = static_cast<std::uint8_t>(r);
-        o[1] = static_cast<std::uint8_t>(g);
-        o[2] = static_cast<std::uint8_t>(b);
-        o[3] = static_cast<std::uint8_t>(m < th1 ? 0x40 : 0x80);
-      }
-    }
-  }
+  cscRowsTail(y, yStride, rows, cb, cr, x, width, rgba, rgbaStride, th0, th1);
 }
 
 void cscRowsTarget(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,

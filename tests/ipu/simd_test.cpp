@@ -180,7 +180,9 @@ TEST(IpuSimd, TightMasksAndToggleMatchScalar) {
 TEST(IpuSimd, CscMatchesScalar) {
   forEachTarget([] {
     Lcg rng{11};
-    for (int width : {1, 2, 7, 16, 33, 64, 100, 512}) {
+    // Widths below, at and just past each target's step (8 to 64 pixels), odd ones, and 720 (a last
+    // step that overlaps the one before it).
+    for (int width : {1, 2, 7, 15, 16, 17, 31, 32, 33, 47, 48, 63, 64, 65, 100, 512, 719, 720}) {
       for (CscThresholds th :
            {CscThresholds{}, CscThresholds{40, 100}, CscThresholds{0, 300}, CscThresholds{511, 511}}) {
         // Two luma lines sharing one chroma line, as the frame conversion calls it.
