@@ -8,9 +8,9 @@
 #include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
-#include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "iop/error.hpp"
+#include "runs/output_dir.hpp"
 #include "streams/authoring/frame_stream.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "streams/disc/iso_writer.hpp"
@@ -150,7 +150,7 @@ void addAuthor(CLI::App& app) {
       "  vbim author --procedural --out day.vbim\n"
       "  vbim author --frames 'lm_%04d.exr' --sky 'sky_%04d.exr' --fps 1 --out day.vbim\n");
   cmd->callback([o, terrain] {
-    refuseExistingOutputFile(o->out, o->force);  // before minutes of encoding, not after
+    runs::refuseExistingOutputFile(o->out, o->force);  // before minutes of encoding, not after
     if (!o->iso.empty() && std::filesystem::path(o->iso) == std::filesystem::path(o->out)) {
       throw Exit(2, "--iso " + o->iso + " is the --out stream file; give the image another name");
     }

@@ -7,18 +7,18 @@
 #include <optional>
 
 #include "cli/command.hpp"
-#include "cli/gs_setup_listing.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/platform_params.hpp"
 #include "config/fault_plan_toml.hpp"
+#include "config/option_values.hpp"
 #include "config/params_toml.hpp"
-#include "ee/error.hpp"
 #include "ee/stream_probe.hpp"
 #include "gs/draw_checks.hpp"
 #include "gs/error.hpp"
+#include "gs/setup_listing.hpp"
 #include "gs/tiled_blender.hpp"
 #include "iop/error.hpp"
 #include "iop/fault_plan.hpp"
+#include "player/platform_config.hpp"
 #include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
@@ -46,8 +46,8 @@ std::optional<streams::StreamDisc> openGivenStream(const ConfigOptions& o) {
 // The pictures the presenters of a run blend: the lightmap and, if the stream has one, the sky.
 // Without a stream, the smallest lightmap a stream can have (one 32x32 page) and no sky.
 struct Presented {
-  PictureSize lightmap{gs::kTileHeight, gs::kTileHeight};
-  std::optional<PictureSize> sky;
+  gs::PictureSize lightmap{gs::kTileHeight, gs::kTileHeight};
+  std::optional<gs::PictureSize> sky;
 };
 
 Presented presentedSizes(const streams::StreamDisc* disc) {
@@ -55,7 +55,7 @@ Presented presentedSizes(const streams::StreamDisc* disc) {
   const ee::ProbedStream probed = ee::probeStream(*disc->disc, disc->file);
   const auto size = [&](int index) {
     const streams::StreamEntry& e = probed.descriptor.streams[static_cast<std::size_t>(index)];
-    return PictureSize{e.width, e.height};
+    return gs::PictureSize{e.width, e.height};
   };
   Presented p;
   if (probed.lightmapIndex >= 0) p.lightmap = size(probed.lightmapIndex);
@@ -65,24 +65,24 @@ Presented presentedSizes(const streams::StreamDisc* disc) {
 
 // The GS checks `vbim play` makes when it builds the presenters (gs::checkConsole); returns the VRAM
 // plan they make.
-gs::VramLayout checkPresenters(const ConfigOptions& o, const Presented& p, const PlatformParams& params) {
+gs::VramLayout checkPresenters(const ConfigOptions& o, const Presented& p, const player::PlatformConfig& params) {
   try {
     const gs::SkyTexture sky = p.sky ? gs::SkyTexture{p.sky->width, p.sky->height} : gs::SkyTexture{};
     return gs::checkConsole(params.gs, p.lightmap.width, p.lightmap.height, sky);
   } catch (const gs::GsError& e) {
-    throw Exit(2, gsConfigMessage(e, o.check));
+    throw Exit(2, config::gsConfigMessage(e, o.check));
   }
 }
 
 void runConfig(const ConfigOptions& o) {
-  PlatformParams params;
+  player::PlatformConfig params;
   ParamTable table;
-  describePlatform(table, params);
+  player::describeParams(table, params);
   Presented presented;
   std::optional<gs::VramLayout> vram;  // checked with --check or --stream (--gs-setup needs --stream)
   if (!o.check.empty()) {
     config::applyTomlFile(table, o.check);
-    validatePlatform(params);
+    player::validate(params);
   }
   const std::optional<streams::StreamDisc> given = openGivenStream(o);
   const streams::StreamDisc* disc = given ? &*given : nullptr;
@@ -100,10 +100,10 @@ void runConfig(const ConfigOptions& o) {
               << (o.gsSetup ? "GS setup" : "effective config") << " follows\n";
   }
   if (o.gsSetup && o.format != "markdown") {
-    writeGsPackets(std::cout, params.gs, *vram, presented.lightmap, presented.sky,
-                   o.format == "c" ? PacketFormat::C : PacketFormat::Gif, o.stream);
+    gs::writeGsPackets(std::cout, params.gs, *vram, presented.lightmap, presented.sky,
+                       o.format == "c" ? gs::PacketFormat::C : gs::PacketFormat::Gif, o.stream);
   } else if (o.gsSetup) {
-    writeGsSetup(std::cout, params.gs, *vram, presented.lightmap, presented.sky);
+    gs::writeGsSetup(std::cout, params.gs, *vram, presented.lightmap, presented.sky);
   } else if (o.markdown) {
     table.writeMarkdown(std::cout);
   } else {

@@ -13,9 +13,9 @@
 #include "cli/command.hpp"
 #include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "iop/error.hpp"
+#include "runs/output_dir.hpp"
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -77,7 +77,7 @@ void run(const Options& o) {
   } else {
     file = readFile(o.input);
   }
-  OutputDir dir(o.outDir, o.force);
+  runs::OutputDir dir(o.outDir, o.force);
   streams::FrameFileWriter writer(dir.directory(), formatOf(o.format), ipu::CscThresholds{o.th0, o.th1});
   streams::DecodeSummary s;
   Progress progress("vbim decode", "pictures");

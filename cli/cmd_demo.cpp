@@ -16,12 +16,13 @@
 
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
-#include "cli/play_run.hpp"
+#include "cli/interrupt.hpp"
 #include "iop/fault_plan.hpp"
 #include "lighting/authoring/sample_day.hpp"
 #include "player/run_dir_reader.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
+#include "runs/play_run.hpp"
 #include "sweep/outputs/demo_profile.hpp"
 
 namespace vbim::cli {
@@ -46,7 +47,7 @@ attempts = 300
 }  // namespace
 
 void addDemo(CLI::App& app) {
-  auto r = std::make_shared<PlayRequest>();
+  auto r = std::make_shared<runs::PlayRequest>();
   r->out = "out/demo";
   r->duration = "60s";         // past the sample day's end: loop wraps (24 frames: at 24.5 s and 44.5 s)
   r->every = 240;              // about every 4 s: a rendered day on the contact sheet
@@ -67,8 +68,8 @@ void addDemo(CLI::App& app) {
   cmd->callback([r] {
     namespace fs = std::filesystem;
     // The authored stream goes beside the output first and into it with the rest at commit.
-    const fs::path out = outputPath(r->out);
-    refuseExistingOutputDir(out, r->force);  // before minutes of work, not after
+    const fs::path out = runs::outputPath(r->out);
+    runs::refuseExistingOutputDir(out, r->force);  // before minutes of work, not after
     const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
     fs::create_directories(parent);
     const fs::path stream = parent / ("." + out.filename().string() + ".day-" + std::to_string(::getpid()) + ".vbim");
@@ -95,8 +96,8 @@ void addDemo(CLI::App& app) {
     r->onRow = [prof](const player::VsyncRow& row) { prof->onRow(row); };
     // The hooks live in *r, so they reach it through a plain pointer: capturing the shared_ptr would
     // make the request own itself (LeakSanitizer).
-    PlayRequest* req = r.get();
-    r->beforeCommit = [prof, req, rendered, stream](const OutputDir& dir) {
+    runs::PlayRequest* req = r.get();
+    r->beforeCommit = [prof, req, rendered, stream](const runs::OutputDir& dir) {
       prof->write(req->disc, dir.directory());
       std::error_code ec;
       fs::copy_file(stream, dir.path("day.vbim"), fs::copy_options::overwrite_existing, ec);
@@ -113,7 +114,7 @@ void addDemo(CLI::App& app) {
         throw Exit(1, std::string("rendering failed: ") + e.what());
       }
     };
-    std::cout << runPlay(*r, false);
+    printPlayResult(exitOneOnRunFailure([&] { return runs::playRun(*r, [](double, double) { checkInterrupted(); }); }));
     std::cout << "profile pass (plots, survivable-stall curve): " << static_cast<int>(prof->seconds() * 10) / 10.0
               << " s of host time; rendered " << rendered->frames << " frames (" << rendered->context << ")\n";
     const std::string shown = out.string();  // "--out dd/" is shown as dd

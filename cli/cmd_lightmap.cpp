@@ -8,13 +8,13 @@
 #include "cli/host_threads.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "config/params_toml.hpp"
 #include "lighting/day_cycle.hpp"
 #include "lighting/image_files.hpp"
 #include "lighting/lightmap_files.hpp"
 #include "lighting/terrain_file.hpp"
+#include "runs/output_dir.hpp"
 #include "runtime/param_table.hpp"
 
 namespace vbim::cli {
@@ -51,7 +51,7 @@ void run(LightmapOptions& o, const LightingOverrides& given) {
   for (const std::string& note : terrain.notes)
     std::printf("vbim lightmap: %s: %s\n", o.terrain.heightfield.c_str(), note.c_str());
 
-  OutputDir dir(o.out, o.force);
+  runs::OutputDir dir(o.out, o.force);
   Progress progress("vbim lightmap", "frames");
   const LightmapFiles written =
       writeLightmapFiles(o.files, std::move(terrain), params, std::move(cloudTexture), dir.directory(),

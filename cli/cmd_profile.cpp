@@ -10,15 +10,15 @@
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/output_dir.hpp"
-#include "cli/platform_params.hpp"
 #include "cli/profile_plan.hpp"
 #include "config/fault_plan_toml.hpp"
+#include "config/option_values.hpp"
 #include "config/platform_config_toml.hpp"
 #include "gs/error.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "player/report.hpp"
+#include "runs/output_dir.hpp"
 #include "streams/disc/stream_disc.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
 #include "sweep/outputs/reencoded_streams.hpp"
@@ -68,7 +68,7 @@ std::shared_ptr<Stream> discStream(const std::string& path, const std::string& f
 void runProfile(const ProfileRequest& r) {
   const auto wall0 = std::chrono::steady_clock::now();  // host time: stdout only
   // An existing, non-empty --out is refused before the sweep, not after it.
-  OutputDir dir(r.out, r.force);
+  runs::OutputDir dir(r.out, r.force);
   // Streams: every disc as given, then the first one re-encoded at each quantiser and bitrate.
   std::vector<std::shared_ptr<Stream>> streams;
   for (const std::string& d : r.discs) streams.push_back(discStream(d, r.file));
@@ -80,17 +80,17 @@ void runProfile(const ProfileRequest& r) {
   for (const std::string& s : r.rings) rings.push_back(parseRingSize(s));
   sortRings(rings);
   std::vector<std::string> policies;
-  for (const std::string& p : r.policies) policies.push_back(catchupPolicy(p));
+  for (const std::string& p : r.policies) policies.push_back(config::catchupPolicy(p));
   // Fault plans: "none" first, then each file (parsed against the first stream's disc).
   std::vector<std::pair<std::string, iop::FaultPlan>> plans{{"none", iop::FaultPlan{}}};
   for (const std::string& f : r.faults) plans.emplace_back(stem(f), config::loadFaultPlan(f, streams[0]->disc.get()));
-  const Tick duration = parseTime("--duration", r.duration);
+  const Tick duration = config::parseTime("--duration", r.duration);
   if (duration <= 0) throw Exit(2, "--duration must be positive");
   StallSearch search;
-  search.stallAt = parseTime("--stall-at", r.stallAt);
-  search.maxStall = parseTime("--max-stall", r.maxStall);
-  search.resolution = parseTime("--resolution", r.resolution);
-  search.settle = parseTime("--settle", r.settle);
+  search.stallAt = config::parseTime("--stall-at", r.stallAt);
+  search.maxStall = config::parseTime("--max-stall", r.maxStall);
+  search.resolution = config::parseTime("--resolution", r.resolution);
+  search.settle = config::parseTime("--settle", r.settle);
   search.popThreshold = parsePopThreshold(r.popThreshold);
   checkStallSearch(search);
 
@@ -145,7 +145,7 @@ void runProfile(const ProfileRequest& r) {
   try {
     data = runSweep(plan, progress);
   } catch (const gs::GsError& e) {
-    throw Exit(2, gsConfigMessage(e, r.config));
+    throw Exit(2, config::gsConfigMessage(e, r.config));
   }
 
   const std::vector<std::string> written = writeProfileOutputs(data, dir.directory());

@@ -8,10 +8,10 @@
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
+#include "runs/output_dir.hpp"
 
 namespace vbim::cli {
 
@@ -69,7 +69,7 @@ void runRender(RenderOptions& o) {
   o.req.video = !o.noVideo;
   const player::RunDir run = player::readRunDir(o.run);
   const RunRenderRequest req = requestFor(o, run);
-  OutputDir dir(o.out, o.force);
+  runs::OutputDir dir(o.out, o.force);
   Progress progress("vbim render", "frames");
   const RunRenderResult r =
       renderRun(run, req, dir.path(""), [&progress](int done, int total) { progress.show(done, total); });

@@ -12,9 +12,9 @@
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/output_dir.hpp"
 #include "cli/samples.hpp"
 #include "player/known_answers.hpp"
+#include "runs/output_dir.hpp"
 #include "runtime/error.hpp"
 
 namespace vbim::cli {
@@ -87,10 +87,10 @@ void run(const VectorsRequest& r) {
   if (!r.check.empty() && !std::filesystem::is_directory(r.check)) {
     throw Exit(2, "--check " + r.check + ": not a directory");
   }
-  if (!r.out.empty()) refuseExistingOutputDir(outputPath(r.out), r.force);
+  if (!r.out.empty()) runs::refuseExistingOutputDir(runs::outputPath(r.out), r.force);
   const std::vector<player::VectorFile> files = generate(r);
   if (!r.out.empty()) {
-    OutputDir dir(r.out, r.force);
+    runs::OutputDir dir(r.out, r.force);
     std::size_t entries = 0;
     for (const player::VectorFile& f : files) {
       std::ofstream o(dir.path(f.name), std::ios::binary);

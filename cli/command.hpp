@@ -14,6 +14,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "runs/error.hpp"
+
+namespace vbim::runs {
+struct PlayResult;
+}
+
 namespace vbim::cli {
 
 // Thrown by a subcommand to end the program with a message on stderr and an exit code.
@@ -25,6 +31,20 @@ class Exit : public std::runtime_error {
  private:
   int code_;
 };
+
+// Runs a library call; a failure while it ran (runs::RunFailure: an output that cannot be written)
+// ends the command with exit 1, where every other vbim::Error is bad input (exit 2, runApp).
+template <typename Body>
+decltype(auto) exitOneOnRunFailure(Body&& body) {
+  try {
+    return body();
+  } catch (const runs::RunFailure& e) {
+    throw Exit(1, e.what());
+  }
+}
+
+// A play's summary on stdout, after its health warning on stderr (`vbim play: ...`); play and demo.
+void printPlayResult(const runs::PlayResult& result);
 
 // A subcommand's name and one-line summary, shared by its registration and by `vbim --help`.
 struct CommandInfo {

@@ -10,9 +10,6 @@
 #include <string>
 #include <system_error>
 
-#include "cli/command.hpp"
-#include "iop/fault_plan.hpp"
-
 namespace vbim::cli {
 
 namespace fs = std::filesystem;
@@ -131,14 +128,6 @@ void refuseOptionsAsValues(CLI::App& app) {
         "", "not an option"));
   }
   for (CLI::App* sub : app.get_subcommands({})) refuseOptionsAsValues(*sub);
-}
-
-Tick parseTime(const std::string& what, const std::string& text) {
-  try {
-    return iop::parseDuration(text);
-  } catch (const std::exception& e) {
-    throw Exit(2, what + " '" + text + "': " + e.what() + " (expected a time with a unit, e.g. 12.5s or 800ms)");
-  }
 }
 
 }  // namespace vbim::cli

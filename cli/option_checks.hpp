@@ -11,8 +11,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include "runtime/clock.hpp"
-
 namespace vbim::cli {
 
 // An input file: exists, is not a directory, can be opened for reading.
@@ -33,8 +31,5 @@ void checkNumbersStrictly(CLI::App& app);
 // file, got the option '--stream'", "--out: is empty; expected the name of what to write". Call it after
 // checkNumbersStrictly, which sets the type names it reads.
 void refuseOptionsAsValues(CLI::App& app);
-
-// A simulated time with a unit ("12.5s", "800ms"), or Exit(2) naming the option `what` and `text`.
-Tick parseTime(const std::string& what, const std::string& text);
 
 }  // namespace vbim::cli

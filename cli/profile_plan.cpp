@@ -10,10 +10,10 @@
 #include <iostream>
 
 #include "cli/command.hpp"
-#include "cli/output_dir.hpp"
 #include "cli/progress.hpp"
 #include "config/sweep_plan_toml.hpp"
 #include "player/report.hpp"
+#include "runs/output_dir.hpp"
 #include "sweep/outputs/plan_host.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
 #include "sweep/outputs/study.hpp"
@@ -92,7 +92,7 @@ void reportFailures(const std::vector<CaseRecord>& records) {
   }
 }
 
-void writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, OutputDir& dir) {
+void writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, runs::OutputDir& dir) {
   const std::vector<std::string> written = sweep::writeSweepOutputs(p.spec, p.cases, records, dir.directory());
   dir.commit();
   for (const std::string& line : sweep::summaryLines(p.spec, p.cases, records)) std::cout << line << "\n";
@@ -101,7 +101,7 @@ void writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, Outpu
 }
 
 void runLocal(const PlanRequest& r, const LoadedPlan& p) {
-  OutputDir dir(r.out, r.force);  // an existing --out is refused before the sweep, not after it
+  runs::OutputDir dir(r.out, r.force);  // an existing --out is refused before the sweep, not after it
   const unsigned jobs = jobsFor(r);
   const auto wall0 = std::chrono::steady_clock::now();
   const std::vector<CaseRecord> records = runWithProgress(p, p.cases, jobs, r.progress);
@@ -116,7 +116,7 @@ void runLocal(const PlanRequest& r, const LoadedPlan& p) {
 void runShard(const PlanRequest& r, const LoadedPlan& p) {
   const auto [k, n] = sweep::parseShard(r.shard);
   const auto [first, last] = sweep::shardRange(p.cases.size(), k, n);
-  OutputDir dir(fs::path(r.out) / sweep::shardName(k, n), r.force);
+  runs::OutputDir dir(fs::path(r.out) / sweep::shardName(k, n), r.force);
   const std::vector<PlanCase> mine(p.cases.begin() + static_cast<std::ptrdiff_t>(first),
                                    p.cases.begin() + static_cast<std::ptrdiff_t>(last));
   const unsigned jobs = jobsFor(r);
@@ -138,7 +138,7 @@ void runMerge(const PlanRequest& r, const LoadedPlan& p) {
   }
   for (const std::string& f : m.failedShards)
     std::cerr << "vbim profile: shard " << f << ": kept in the table with status failed\n";
-  OutputDir dir(r.out, r.force);
+  runs::OutputDir dir(r.out, r.force);
   writeAll(p, m.records, dir);
   std::cout << "merged " << m.shards << " shards, " << m.records.size() << " cases\n";
 }
@@ -152,7 +152,7 @@ std::string selfPath() {
 // --emit-slurm DIR: a job array with one task per shard, its time and memory from a measured
 // per-case cost (the slowest of up to three cases spread over the plan, run here).
 void emitSlurm(const PlanRequest& r, const LoadedPlan& p) {
-  OutputDir dir(r.emitSlurm, r.force);
+  runs::OutputDir dir(r.emitSlurm, r.force);
   const auto [perCase, rssMb] =
       sweep::measureCaseCost(p, [&](const PlanCase& c) { runWithProgress(p, {c}, 1, false); });
   const sweep::SlurmRequest request{r.shards, r.partition, r.account, r.cpusPerTask};

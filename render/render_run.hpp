@@ -4,7 +4,7 @@
 //   const player::RunDir run = player::readRunDir(runDir);
 //   render::RunRenderRequest req;                         // procedural terrain, samples' day settings
 //   if (run.authoring) render::applyAuthoring(*run.authoring, runDir / "authoring.json", req);
-//   cli::OutputDir dir(out, force);                        // complete or absent
+//   runs::OutputDir dir(out, force);                      // complete or absent
 //   render::RunRenderResult r = render::renderRun(run, req, dir.path(""), [](int done, int total) { ... });
 //   dir.commit();
 //

@@ -1,9 +1,9 @@
-#include "cli/output_dir.hpp"
+#include "runs/output_dir.hpp"
 
-#include "cli/command.hpp"
+#include "runtime/error.hpp"
 #include "streams/temporary_files.hpp"
 
-namespace vbim::cli {
+namespace vbim::runs {
 
 namespace fs = std::filesystem;
 
@@ -18,16 +18,16 @@ void refuseExistingOutputDir(const fs::path& given, bool force) {
   const fs::path final = outputPath(given);
   std::error_code ec;
   if (!fs::exists(final, ec)) return;
-  if (!fs::is_directory(final, ec)) throw Exit(2, "--out " + final.string() + ": exists and is not a directory");
+  if (!fs::is_directory(final, ec)) throw Error("--out " + final.string() + ": exists and is not a directory");
   if (!force && !fs::is_empty(final, ec))
-    throw Exit(2, "--out " + final.string() + ": exists and is not empty (use --force to replace it)");
+    throw Error("--out " + final.string() + ": exists and is not empty (use --force to replace it)");
 }
 
 void refuseExistingOutputFile(const fs::path& file, bool force) {
   std::error_code ec;
   if (fs::is_directory(file, ec))
-    throw Exit(2, "--out " + file.string() + ": is a directory; expected the name of the file to write");
-  if (!force && fs::exists(file, ec)) throw Exit(2, "--out " + file.string() + ": exists (use --force to replace it)");
+    throw Error("--out " + file.string() + ": is a directory; expected the name of the file to write");
+  if (!force && fs::exists(file, ec)) throw Error("--out " + file.string() + ": exists (use --force to replace it)");
 }
 
 OutputDir::OutputDir(const fs::path& final, bool force) : final_(outputPath(final)), force_(force) {
@@ -35,13 +35,13 @@ OutputDir::OutputDir(const fs::path& final, bool force) : final_(outputPath(fina
   std::error_code ec;
   const fs::path parent = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
   fs::create_directories(parent, ec);
-  if (ec) throw Exit(2, parent.string() + ": cannot create the directory: " + ec.message());
+  if (ec) throw Error(parent.string() + ": cannot create the directory: " + ec.message());
   // What a killed run left here goes first (streams/temporary_files.hpp), then ours is made.
   streams::removeStaleTemporaries(parent);
   tmp_ = streams::temporarySibling(final_);
   fs::remove_all(tmp_, ec);
   fs::create_directory(tmp_, ec);
-  if (ec) throw Exit(2, tmp_.string() + ": cannot create the temporary output directory: " + ec.message());
+  if (ec) throw Error(tmp_.string() + ": cannot create the temporary output directory: " + ec.message());
 }
 
 OutputDir::~OutputDir() {
@@ -58,12 +58,12 @@ void OutputDir::commit() {
     const fs::path old = tmp_.string() + ".old";
     fs::remove_all(old, ec);
     fs::rename(final_, old, ec);
-    if (ec) throw Exit(2, final_.string() + ": cannot replace the existing directory: " + ec.message());
+    if (ec) throw Error(final_.string() + ": cannot replace the existing directory: " + ec.message());
     fs::remove_all(old, ec);
   }
   fs::rename(tmp_, final_, ec);
-  if (ec) throw Exit(2, final_.string() + ": cannot move the finished output into place: " + ec.message());
+  if (ec) throw Error(final_.string() + ": cannot move the finished output into place: " + ec.message());
   committed_ = true;
 }
 
-}  // namespace vbim::cli
+}  // namespace vbim::runs

@@ -1,5 +1,9 @@
-// The body of `vbim play`, shared with `vbim demo`: one run of the player on a disc, every output
-// written into an OutputDir (complete or absent).
+// One run of the player on a disc, as `vbim play` and `vbim demo` make it: the disc opened (a bare
+// stream file or the stream on an ISO 9660 image), the platform config and fault plan read, the
+// options checked, and every output written into a run directory (player::RunDirWriter through an
+// OutputDir: complete or absent), or, without `out`, nothing written at all: the summary only.
+// Not model code: it reads TOML (config/), writes pictures (imageio/) and digests (OpenSSL); the
+// simulated clock's cost is the player's, the host's is in the summary.
 #pragma once
 
 #include <cstdint>
@@ -8,12 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "cli/output_dir.hpp"
 #include "imageio/texel_files.hpp"
-#include "iop/fault_plan.hpp"
 #include "player/player.hpp"
+#include "runs/output_dir.hpp"
 
-namespace vbim::cli {
+namespace vbim::runs {
 
 struct PlayRequest {
   std::string disc;
@@ -35,19 +38,31 @@ struct PlayRequest {
   bool trace = true;
   std::string traceDetail = "coalesced";  // or "full": every same-instant toggle in signals.vcd
   unsigned threads = 1;                   // host threads for the IPU's slice-parallel decode (same bytes)
+  // The run directory, or empty: the run is played and summarised, and nothing is written (no
+  // directory, no temporary one); --every and --at, which ask for pictures, are refused then.
   std::string out;
   // Hooks for callers that add outputs (vbim demo's profile plots): every recorded vsync, and the
-  // output directory just before it is committed.
+  // output directory just before it is committed (only with `out`).
   std::function<void(const player::VsyncRow&)> onRow;
   std::function<void(const OutputDir&)> beforeCommit;
 };
 
-// Returns a one-paragraph summary; throws cli::Exit on bad input.
-std::string runPlay(const PlayRequest& r, bool progress);
+struct PlayResult {
+  std::string summary;  // one paragraph: what was played, frames, pop, lag, ring, pictures
+  std::string warning;  // a run that stopped showing frames (player::healthWarning), or empty
+};
+
+// Called after each simulated second with the time played and the run's length, in seconds (a
+// progress line; a place to stop the run by throwing).
+using PlayProgressFn = std::function<void(double played, double total)>;
+
+// Throws vbim::Error on bad input (an option, a file, a config the GS refuses: named as
+// config::gsConfigMessage says it) and RunFailure (runs/error.hpp) when an output cannot be written.
+PlayResult playRun(const PlayRequest& r, const PlayProgressFn& onSecond);
 
 // A lightmap or sky picture of a run: PNG (at format.pngLevel) or EXR, alpha 255 unless
 // format.gsAlpha (the texels as in VRAM; set in place in `texels`, the caller's copy). Throws
-// cli::Exit(1) when it cannot be written.
+// RunFailure when it cannot be written.
 void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const imageio::TexelFileFormat& format);
 
-}  // namespace vbim::cli
+}  // namespace vbim::runs

@@ -1,4 +1,4 @@
-#include "cli/provenance.hpp"
+#include "runs/provenance.hpp"
 
 #include <openssl/evp.h>
 
@@ -7,9 +7,9 @@
 #include <fstream>
 #include <memory>
 
-#include "cli/command.hpp"
+#include "runs/error.hpp"
 
-namespace vbim::cli {
+namespace vbim::runs {
 
 namespace {
 
@@ -17,14 +17,15 @@ using DigestContext = std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)>;
 
 DigestContext newContext() {
   DigestContext ctx(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
-  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1) throw Exit(1, "SHA-256: cannot start a digest");
+  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
+    throw RunFailure("SHA-256: cannot start a digest");
   return ctx;
 }
 
 std::string finish(EVP_MD_CTX* ctx) {
   std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
   unsigned int length = 0;
-  if (EVP_DigestFinal_ex(ctx, digest.data(), &length) != 1) throw Exit(1, "SHA-256: cannot finish a digest");
+  if (EVP_DigestFinal_ex(ctx, digest.data(), &length) != 1) throw RunFailure("SHA-256: cannot finish a digest");
   std::string hex;
   for (unsigned int i = 0; i < length; ++i) {
     char two[3];
@@ -38,14 +39,14 @@ std::string finish(EVP_MD_CTX* ctx) {
 
 std::string sha256File(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Exit(2, path.string() + ": cannot be read");
+  if (!in) throw Error(path.string() + ": cannot be read");
   DigestContext ctx = newContext();
   std::array<char, 1 << 16> buffer{};
   while (in) {
     in.read(buffer.data(), buffer.size());
     if (in.gcount() > 0) EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
   }
-  if (in.bad()) throw Exit(2, path.string() + ": read failed");
+  if (in.bad()) throw Error(path.string() + ": read failed");
   return finish(ctx.get());
 }
 
@@ -81,4 +82,4 @@ json::Value playProvenance(const PlayRequest& r, const player::PlayerOptions& o)
   return run;
 }
 
-}  // namespace vbim::cli
+}  // namespace vbim::runs

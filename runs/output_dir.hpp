@@ -1,18 +1,21 @@
 // An output directory that is complete or absent: files are written into a temporary sibling
 // directory, which is renamed onto the final name by commit(). If the program fails before
-// commit(), the temporary directory is removed and the final name is left untouched.
+// commit(), the temporary directory is removed and the final name is left untouched. Every command
+// that writes a directory writes it through one (play, replay, decode, render, lightmap, profile,
+// vectors, demo). Errors are vbim::Error naming the path (bad input: an output that exists, a
+// parent that cannot be made).
 #pragma once
 
 #include <filesystem>
 #include <string>
 
-namespace vbim::cli {
+namespace vbim::runs {
 
 // `--out dir`, `--out dir/` and `--out ./dir` name the same directory: the path without a trailing
 // separator, `.` and `..` resolved lexically.
 std::filesystem::path outputPath(const std::filesystem::path& given);
 
-// Refuses (cli::Exit, status 2) before any work starts: an output directory that exists and is
+// Refuses (vbim::Error) before any work starts: an output directory that exists and is
 // not empty unless `force`, or a path that exists and is not a directory.
 void refuseExistingOutputDir(const std::filesystem::path& final, bool force);
 // The same for a command that writes one file (vbim author): refused if it exists unless `force`,
@@ -21,7 +24,7 @@ void refuseExistingOutputFile(const std::filesystem::path& file, bool force);
 
 class OutputDir {
  public:
-  // Fails (cli::Exit) if `final` exists, is not empty and `force` is false.
+  // Fails (vbim::Error) if `final` exists, is not empty and `force` is false.
   OutputDir(const std::filesystem::path& final, bool force);
   ~OutputDir();
   OutputDir(const OutputDir&) = delete;
@@ -41,4 +44,4 @@ class OutputDir {
   bool committed_ = false;
 };
 
-}  // namespace vbim::cli
+}  // namespace vbim::runs

@@ -6,13 +6,13 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/play_run.hpp"
 #include "player/player.hpp"
+#include "runs/play_run.hpp"
 #include "runtime/json.hpp"
 
-namespace vbim::cli {
+namespace vbim::runs {
 
-// Lowercase hex SHA-256 of a file's bytes; throws cli::Exit (status 2) if it cannot be read.
+// Lowercase hex SHA-256 of a file's bytes; throws vbim::Error (bad input) if it cannot be read.
 std::string sha256File(const std::filesystem::path& path);
 // Of bytes in memory (a fault plan given inline).
 std::string sha256Text(const std::string& bytes);
@@ -24,4 +24,4 @@ json::Value inputJson(const std::filesystem::path& path);
 // with its SHA-256.
 json::Value playProvenance(const PlayRequest& r, const player::PlayerOptions& o);
 
-}  // namespace vbim::cli
+}  // namespace vbim::runs

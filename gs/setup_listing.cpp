@@ -1,4 +1,4 @@
-#include "cli/gs_setup_listing.hpp"
+#include "gs/setup_listing.hpp"
 
 #include <cstdio>
 #include <string>
@@ -7,7 +7,7 @@
 #include "gs/draw_setup.hpp"
 #include "gs/gif_packets.hpp"
 
-namespace vbim::cli {
+namespace vbim::gs {
 
 namespace {
 
@@ -17,12 +17,12 @@ std::string hex(std::uint64_t v, int digits = 0) {
   return buf;
 }
 
-void writeDraw(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, gs::BlendSurface surface,
+void writeDraw(std::ostream& out, const GsParams& params, const VramLayout& vram, BlendSurface surface,
                PictureSize size) {
-  const int rows = gs::drawRows(params, size.height);
-  const gs::BlendDraw draw = gs::blendDrawFor(vram, params, surface, size.width, size.height, 0, rows);
+  const int rows = drawRows(params, size.height);
+  const BlendDraw draw = blendDrawFor(vram, params, surface, size.width, size.height, 0, rows);
   const int draws = (size.height + rows - 1) / rows;
-  out << "\n## " << gs::blendSurfaceName(surface) << " " << size.width << "x" << size.height << ": " << draw.frame.name
+  out << "\n## " << blendSurfaceName(surface) << " " << size.width << "x" << size.height << ": " << draw.frame.name
       << " at page " << draw.frame.firstPage << ", blended from " << draw.texture.name << " at page "
       << draw.texture.firstPage << " (block " << draw.texture.basePointer() << ")\n\n";
   if (draws > 1) {
@@ -32,7 +32,7 @@ void writeDraw(std::ostream& out, const gs::GsParams& params, const gs::VramLayo
     out << "One draw per vsync (rows 0.." << rows << ").\n\n";
   }
   out << "| # | register | address | value |\n|---|---|---|---|\n";
-  const std::vector<gs::RegisterWrite> setup = gs::blendDrawWrites(draw);
+  const std::vector<RegisterWrite> setup = blendDrawWrites(draw);
   for (std::size_t i = 0; i < setup.size(); ++i) {
     out << "| " << i + 1 << " | `" << setup[i].reg.name << "` | " << hex(setup[i].reg.address, 2) << " | `"
         << hex(setup[i].value) << "` |\n";
@@ -41,7 +41,7 @@ void writeDraw(std::ostream& out, const gs::GsParams& params, const gs::VramLayo
 
 // What a port restores after the packets, and in which order it sends them (docs/porting.md,
 // "Packets to paste"). One line per element, without a comment marker.
-std::vector<std::string> notes(const gs::GsParams& params) {
+std::vector<std::string> notes(const GsParams& params) {
   std::vector<std::string> n{
       "Send by PATH3 (GIF DMA channel 2, normal mode, QWC = the packet's qwords), 16-byte aligned.",
       "Per vsync and surface: with a new frame, the upload packet(s) and the frame's pixels after each IMAGE",
@@ -68,12 +68,11 @@ std::vector<std::string> notes(const gs::GsParams& params) {
   return n;
 }
 
-std::vector<gs::GifPacket> allPackets(const gs::GsParams& params, const gs::VramLayout& vram, PictureSize lightmap,
-                                      std::optional<PictureSize> sky) {
-  std::vector<gs::GifPacket> all =
-      gs::surfacePackets(params, vram, gs::BlendSurface::Lightmap, lightmap.width, lightmap.height);
+std::vector<GifPacket> allPackets(const GsParams& params, const VramLayout& vram, PictureSize lightmap,
+                                  std::optional<PictureSize> sky) {
+  std::vector<GifPacket> all = surfacePackets(params, vram, BlendSurface::Lightmap, lightmap.width, lightmap.height);
   if (sky) {
-    for (gs::GifPacket& p : gs::surfacePackets(params, vram, gs::BlendSurface::Sky, sky->width, sky->height)) {
+    for (GifPacket& p : surfacePackets(params, vram, BlendSurface::Sky, sky->width, sky->height)) {
       all.push_back(std::move(p));
     }
   }
@@ -88,13 +87,13 @@ void writeBytes(std::ostream& out, std::uint64_t v) {
   }
 }
 
-void writeGif(std::ostream& out, const std::vector<gs::GifPacket>& packets) {
-  for (const gs::GifPacket& p : packets) {
+void writeGif(std::ostream& out, const std::vector<GifPacket>& packets) {
+  for (const GifPacket& p : packets) {
     out << "\n## " << p.name << ": " << p.setupQwords() << " qwords"
         << (p.dataQwords() > 0 ? " + " + std::to_string(p.dataQwords()) + " qwords of pixels" : "") << "\n# "
         << p.purpose << "\n";
     for (std::size_t i = 0; i < p.qwords.size(); ++i) {
-      const gs::Qword& q = p.qwords[i];
+      const Qword& q = p.qwords[i];
       char off[16];
       std::snprintf(off, sizeof off, "%04zx  ", i * 16);
       out << off;
@@ -107,13 +106,13 @@ void writeGif(std::ostream& out, const std::vector<gs::GifPacket>& packets) {
   }
 }
 
-void writeC(std::ostream& out, const std::vector<gs::GifPacket>& packets) {
+void writeC(std::ostream& out, const std::vector<GifPacket>& packets) {
   out << "\n#include <stdint.h>\n";
-  for (const gs::GifPacket& p : packets) {
+  for (const GifPacket& p : packets) {
     out << "\n/* " << p.purpose << " */\n"
         << "static const uint64_t vbim_" << p.name << "[" << p.qwords.size()
         << "][2] __attribute__((aligned(16))) = {\n";
-    for (const gs::Qword& q : p.qwords) {
+    for (const Qword& q : p.qwords) {
       out << "    {" << hex(q.lo, 16) << "ULL, " << hex(q.hi, 16) << "ULL}, /* " << q.what
           << (q.dataAfter > 0 ? ", then " + std::to_string(q.dataAfter) + " qwords of pixels" : "") << " */\n";
     }
@@ -123,17 +122,17 @@ void writeC(std::ostream& out, const std::vector<gs::GifPacket>& packets) {
 
 }  // namespace
 
-void writeGsSetup(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, PictureSize lightmap,
+void writeGsSetup(std::ostream& out, const GsParams& params, const VramLayout& vram, PictureSize lightmap,
                   std::optional<PictureSize> sky) {
   out << "# GS setup: VRAM and the blend draws' register writes (A+D, after one GIFtag)\n\n## VRAM\n\n";
   out << vram.describe();
-  writeDraw(out, params, vram, gs::BlendSurface::Lightmap, lightmap);
-  if (sky) writeDraw(out, params, vram, gs::BlendSurface::Sky, *sky);
+  writeDraw(out, params, vram, BlendSurface::Lightmap, lightmap);
+  if (sky) writeDraw(out, params, vram, BlendSurface::Sky, *sky);
 }
 
-void writeGsPackets(std::ostream& out, const gs::GsParams& params, const gs::VramLayout& vram, PictureSize lightmap,
+void writeGsPackets(std::ostream& out, const GsParams& params, const VramLayout& vram, PictureSize lightmap,
                     std::optional<PictureSize> sky, PacketFormat format, const std::string& source) {
-  const std::vector<gs::GifPacket> packets = allPackets(params, vram, lightmap, sky);
+  const std::vector<GifPacket> packets = allPackets(params, vram, lightmap, sky);
   const bool c = format == PacketFormat::C;
   out << (c ? "/* " : "# ") << "GS packets of the in-place blend for " << source << " (vbim config --gs-setup --format "
       << (c ? "c" : "gif") << ")\n";
@@ -148,4 +147,4 @@ void writeGsPackets(std::ostream& out, const gs::GsParams& params, const gs::Vra
   }
 }
 
-}  // namespace vbim::cli
+}  // namespace vbim::gs
