@@ -2,37 +2,13 @@
 
 #include <iostream>
 #include <map>
-#include <sstream>
 
-#include "cli/command.hpp"
 #include "cli/host_threads.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
-#include "config/params_toml.hpp"
-#include "runtime/param_table.hpp"
-#include "streams/authoring/error.hpp"
-#include "streams/authoring/frame_stream.hpp"
 
 namespace vbim::cli {
-
-namespace {
-
-using lighting::DayCycleParams;
-
-// Base settings: the generator's defaults, then --lighting-config, then the options given.
-DayCycleParams baseParams(const TerrainAuthorOptions& o) {
-  DayCycleParams params;
-  if (!o.lightingConfig.empty()) {
-    ParamTable table;
-    lighting::describeParams(table, params);
-    config::applyTomlFile(table, o.lightingConfig);
-  }
-  applyGivenLightingOptions(o.given, params);
-  return params;
-}
-
-}  // namespace
 
 void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o) {
   const std::string group = "Technique A (--terrain FILE or --procedural)";
@@ -96,18 +72,18 @@ std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o) {
   return "";
 }
 
-void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, const std::string& out) {
-  if (o.procedural && !o.terrain.heightfield.empty()) throw Exit(2, "--procedural and --terrain exclude each other");
-  lighting::TechniqueAStreamSettings s;
-  s.terrain = o.terrain;
-  s.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
-  s.terrain.verticalScaleGiven = o.verticalScaleOption != nullptr && o.verticalScaleOption->count() > 0;
-  s.terrain.procedural.cellSize = s.terrain.cellSize;  // --cell-size sizes the procedural terrain's cells too
-  s.stream = streamSettings(enc);
-  s.tone = toneMapping(enc);
-  s.threads = o.threads;
-  s.base = baseParams(o);
-  s.variants = lighting::weatherVariants(o.weather, s.base);
+void runTerrainAuthor(const TerrainAuthorOptions& o, const streams::EncodeOptions& enc, const std::string& out) {
+  lighting::TerrainAuthorRequest request;
+  request.terrain = o.terrain;
+  request.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
+  request.terrain.verticalScaleGiven = o.verticalScaleOption != nullptr && o.verticalScaleOption->count() > 0;
+  request.procedural = o.procedural;
+  request.lightingConfig = o.lightingConfig;
+  request.applyGiven = [&o](lighting::DayCycleParams& params) { applyGivenLightingOptions(o.given, params); };
+  request.weather = o.weather;
+  request.threads = o.threads;
+  request.encode = enc;
+  const lighting::TechniqueAStreamSettings s = lighting::terrainAuthorSettings(request);
 
   Progress progress("vbim author", "frames");
   const lighting::AuthoredStream stream =
@@ -117,18 +93,7 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, c
   progress.finish();
   for (const std::string& note : stream.terrainNotes)
     std::cout << "vbim author: " << o.terrain.heightfield << ": " << note << "\n";
-  std::cout << authoredSummary(out, stream, s.stream.encoder.containerFps);
-}
-
-std::string authoredSummary(const std::string& out, const lighting::AuthoredStream& stream,
-                            streams::Rational containerFps) {
-  const streams::Descriptor& d = stream.descriptor;
-  std::ostringstream o;
-  o << out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes), "
-    << d.variants.size() << " variant(s) x " << d.framesPerVariant << " frames, lightmap " << d.streams[0].width << "x"
-    << d.streams[0].height << ", sky " << d.streams[1].width << "x" << d.streams[1].height << "\n"
-    << streams::containerStretchNote(stream.containerStretch, containerFps);
-  return o.str();
+  std::cout << lighting::authoredSummary(out, stream, s.stream.encoder.containerFps);
 }
 
 }  // namespace vbim::cli

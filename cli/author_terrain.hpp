@@ -1,5 +1,7 @@
 // `vbim author --terrain FILE | --procedural ...`: Technique A (lighting/) straight to a VBIM stream,
-// frames rendered one at a time in memory (lighting/authoring/technique_a_stream.hpp).
+// frames rendered one at a time in memory (lighting/authoring/technique_a_stream.hpp): the options
+// (shared with `vbim lightmap`'s lighting ones, cli/lighting_options.hpp) and the progress and lines
+// printed; the settings are lighting::terrainAuthorSettings (lighting/authoring/terrain_author.hpp).
 #pragma once
 
 #include <functional>
@@ -10,9 +12,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/author_common.hpp"
 #include "cli/lighting_options.hpp"
-#include "lighting/authoring/technique_a_stream.hpp"
+#include "lighting/authoring/terrain_author.hpp"
 
 namespace vbim::cli {
 
@@ -31,9 +32,6 @@ struct TerrainAuthorOptions {
 void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o);
 // The first Technique A option on the command line ("" if none): selects this source.
 std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o);
-// What `vbim author` (and `vbim demo`) prints about a Technique A stream written to `out`.
-std::string authoredSummary(const std::string& out, const lighting::AuthoredStream& stream,
-                            streams::Rational containerFps);
-void runTerrainAuthor(const TerrainAuthorOptions& o, const EncodeOptions& enc, const std::string& out);
+void runTerrainAuthor(const TerrainAuthorOptions& o, const streams::EncodeOptions& enc, const std::string& out);
 
 }  // namespace vbim::cli

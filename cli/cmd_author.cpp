@@ -5,12 +5,12 @@
 #include <sstream>
 #include <utility>
 
-#include "cli/author_common.hpp"
 #include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
 #include "cli/progress.hpp"
 #include "iop/error.hpp"
 #include "runs/output_dir.hpp"
+#include "streams/authoring/encode_options.hpp"
 #include "streams/authoring/frame_stream.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "streams/disc/iso_writer.hpp"
@@ -20,6 +20,30 @@ namespace vbim::cli {
 namespace {
 
 using namespace vbim::streams;
+
+// --fps, --container-fps, --loop, --q, --bitrate, --gop, --b-frames, --open-gop, --exposure, --tone,
+// --transfer, --white: what every source encodes with.
+void addEncodeOptions(CLI::App* cmd, EncodeOptions& o) {
+  cmd->add_option("--fps", o.fps, "Game-time frame rate: stream frames per second of game time (N or N/D)")
+      ->capture_default_str();
+  cmd->add_option("--container-fps", o.containerFps, "Frame rate written in the MPEG headers (what ffplay shows)")
+      ->capture_default_str();
+  cmd->add_option("--loop", o.loop, "Frame playback returns to after the last one")->capture_default_str();
+  auto* q = cmd->add_option("--q", o.q, "Fixed quantiser_scale 1..31 (lower is better)")->capture_default_str();
+  cmd->add_option("--bitrate", o.bitrate, "Target bit/s instead of a fixed quantiser (VBV sized for DVD)")->excludes(q);
+  cmd->add_option("--gop", o.gop,
+                  "Pictures per GOP, from one I picture to the next (1: every picture I; more: P pictures)")
+      ->capture_default_str();
+  cmd->add_option("--b-frames", o.bFrames, "B pictures between references (below --gop)")->capture_default_str();
+  cmd->add_flag("--open-gop", o.openGop,
+                "Let B pictures refer across GOP headers (default: closed GOPs); each variant's first frame and "
+                "the loop frame still start a GOP no B picture reaches back from");
+  cmd->add_option("--exposure", o.exposure, "Linear inputs: multiply by 2^EV before the curve")->capture_default_str();
+  cmd->add_option("--tone", o.tone, "Tone curve for linear inputs: clamp, reinhard, filmic")->capture_default_str();
+  cmd->add_option("--transfer", o.transfer, "Encoding after the curve: srgb, linear, gamma:G")->capture_default_str();
+  cmd->add_option("--white", o.white, "8-bit code of 1.0 after the curve (128 = GS MODULATE 1.0)")
+      ->capture_default_str();
+}
 
 struct AuthorOptions {
   std::string frames, sky, name = "default";

@@ -14,11 +14,11 @@
 
 #include <unistd.h>
 
-#include "cli/author_terrain.hpp"
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
 #include "iop/fault_plan.hpp"
 #include "lighting/authoring/sample_day.hpp"
+#include "lighting/authoring/terrain_author.hpp"
 #include "player/run_dir_reader.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
@@ -84,8 +84,8 @@ void addDemo(CLI::App& app) {
     // The sample's recipe, so that the demo's stream and the committed sample cannot drift apart (a
     // test checks they are byte-identical).
     const lighting::TechniqueAStreamSettings recipe = lighting::sampleDaySettings();
-    std::cout << authoredSummary(stream.string(), lighting::authorTechniqueA(recipe, stream),
-                                 recipe.stream.encoder.containerFps);
+    std::cout << lighting::authoredSummary(stream.string(), lighting::authorTechniqueA(recipe, stream),
+                                           recipe.stream.encoder.containerFps);
     r->disc = stream.string();
     r->discLabel = "day.vbim";  // as it is saved in the output: the summary is the same on every run
     if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
