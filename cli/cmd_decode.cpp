@@ -2,32 +2,21 @@
 // decoder (no timing). STREAM is an MPEG program stream (a VBIM stream, or any MPEG-2 program stream
 // or MPEG-1 system stream) or a raw MPEG-1/2 video elementary stream (.m2v / .m1v). The work is
 // streams::decodeStream (streams/decode/); this file parses the arguments and prints.
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <memory>
-#include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "cli/command.hpp"
 #include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
-#include "iop/error.hpp"
 #include "runs/output_dir.hpp"
+#include "streams/decode/decode_input.hpp"
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
-#include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
 namespace {
-
-std::vector<std::uint8_t> readFile(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw Exit(2, path + ": cannot open the file");
-  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
 
 struct Options {
   std::string input;
@@ -43,47 +32,21 @@ struct Options {
   int th1 = 0;
 };
 
-std::uint8_t parseStreamId(const std::string& text) {
-  std::size_t used = 0;
-  unsigned long id = 0x100;
-  try {
-    id = std::stoul(text, &used, 0);
-  } catch (const std::logic_error&) {
-  }
-  if (used != text.size() || id > 0xFF)
-    throw Exit(2, "--stream-id " + text + ": expected a PES stream id such as 0xE1 (video: 0xE0..0xEF)");
-  return static_cast<std::uint8_t>(id);
-}
-
-streams::FrameFileFormat formatOf(const std::string& name) {
-  if (name == "exr") return streams::FrameFileFormat::Exr;
-  if (name == "yuv") return streams::FrameFileFormat::Yuv;
-  if (name == "rgba") return streams::FrameFileFormat::Rgba;
-  return streams::FrameFileFormat::Png;
-}
-
 void run(const Options& o) {
   streams::DecodeOptions options;
   options.threads = o.threads;
   options.idct = ipu::idctKindByName(o.idct).value_or(ipu::kDefaultIdct);
-  if (!o.stream.empty()) options.streamId = parseStreamId(o.stream);
-  // A disc image: the picked file's bytes, named by image and file in messages.
-  std::vector<std::uint8_t> file;
-  std::string name = o.input;
-  if (streams::isIsoImage(o.input) || !o.file.empty()) {
-    const streams::StreamDisc disc = streams::openStreamDisc(o.input, o.file);
-    file = streams::readDiscFile(*disc.disc, disc.file);
-    name += " " + disc.file.path;
-  } else {
-    file = readFile(o.input);
-  }
+  if (!o.stream.empty()) options.streamId = streams::parseStreamId(o.stream);
+  const streams::DecodeInput in = streams::readDecodeInput(o.input, o.file);
+  const std::string& name = in.name;
   runs::OutputDir dir(o.outDir, o.force);
-  streams::FrameFileWriter writer(dir.directory(), formatOf(o.format), ipu::CscThresholds{o.th0, o.th1});
+  streams::FrameFileWriter writer(dir.directory(), streams::frameFileFormatNamed(o.format),
+                                  ipu::CscThresholds{o.th0, o.th1});
   streams::DecodeSummary s;
   Progress progress("vbim decode", "pictures");
   int pictures = 0;
   s = streams::decodeStream(
-      file, name, options,
+      in.bytes, name, options,
       [&](int frame, const ipu::Decoder& d) {
         writer.write(frame, d);
         progress.show(++pictures, 0);
