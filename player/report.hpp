@@ -41,7 +41,7 @@ std::string playSummary(const Player& player, const std::string& disc, double wa
 
 // Everything stats.json holds, for a run that has been run to its end (or to now()).
 // `run`, when given, is written first as "run": where the run came from (the command's inputs and
-// their digests, the vbim version: cli/provenance.hpp), so the totals can be traced to their inputs.
+// their digests, the vbim version: runs/provenance.hpp), so the totals can be traced to their inputs.
 void writeStatsJson(const Player& player, std::ostream& out, const json::Value* run = nullptr);
 
 }  // namespace vbim::player

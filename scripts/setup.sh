@@ -10,7 +10,7 @@ PACKAGES=(
   build-essential cmake pkg-config git ccache clang libclang-rt-14-dev clang-format clang-tidy
   # command line, config, JSON (header-only)
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
-  # SHA-256 of a run's inputs in stats.json (cli/provenance.cpp)
+  # SHA-256 of a run's inputs in stats.json (runs/provenance.cpp)
   libssl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -16,7 +16,7 @@
 namespace vbim::sweep {
 
 // The runs and the sweep are sweep/profile_run.hpp's and sweep/profile_sweep.hpp's; this file writes
-// their results into a directory (the caller makes it complete or absent: cli/output_dir.hpp).
+// their results into a directory (the caller makes it complete or absent: runs/output_dir.hpp).
 
 // `v` with `decimals` digits after the point (C locale), for the tables and the command's lines.
 std::string fixed(double v, int decimals);

@@ -119,6 +119,35 @@ TEST(PlayCli, WritesEveryFileAndPicturesMatchTheirHashes) {
   fs::remove_all(out);
 }
 
+// Without --out (issue #33), play runs and prints the summary a run with --out prints, and writes
+// nothing: no directory, no hidden temporary one, in the directory it runs from. --every and --at,
+// which ask for pictures, are refused.
+TEST(PlayCli, WithoutOutPrintsTheSummaryAndWritesNothing) {
+  const fs::path cwd = scratch("no_out");
+  fs::create_directories(cwd);
+  const auto r = vbim::testing::runProgram(VBIM_BINARY, "play " + kSample + " --duration 10s", cwd);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("played 10.0 s of " + kSample + " (600 vsyncs)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("  frames: 10 shown"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("images written 0"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::is_empty(cwd)) << fs::begin(fs::directory_iterator(cwd))->path();
+  // The same frames, pop and lag as the run that writes its directory (the host times differ).
+  const fs::path out = cwd / "run";
+  const auto with = play(kSample + " --duration 10s --out " + out.string());
+  ASSERT_EQ(with.status, 0) << with.output;
+  const auto afterHostTime = [](const std::string& s) { return s.substr(s.find('\n')); };
+  EXPECT_EQ(afterHostTime(r.output), afterHostTime(with.output));
+  for (const char* asks : {" --every 60", " --at 5s"}) {
+    const auto refused = vbim::testing::runProgram(VBIM_BINARY, "play " + kSample + " --duration 10s" + asks, cwd);
+    EXPECT_EQ(refused.status, 2) << asks << ": " << refused.output;
+    EXPECT_NE(refused.output.find("writes pictures into the run directory: give --out DIR"), std::string::npos)
+        << refused.output;
+  }
+  fs::remove_all(out);
+  EXPECT_TRUE(fs::is_empty(cwd));
+  fs::remove_all(cwd);
+}
+
 // `--out run/` (as the README writes it) and `--out ./run` name the directory `run`, and the files
 // are those of `--out run`.
 TEST(PlayCli, OutAcceptsATrailingSlashAndDotSlash) {
