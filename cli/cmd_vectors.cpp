@@ -15,7 +15,6 @@
 #include "cli/samples.hpp"
 #include "player/known_answers.hpp"
 #include "runs/output_dir.hpp"
-#include "runs/output_dir.hpp"
 #include "runtime/error.hpp"
 
 namespace vbim::cli {
