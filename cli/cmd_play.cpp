@@ -52,8 +52,9 @@ void addPlay(CLI::App& app) {
   cmd->add_flag_callback(
       "--no-trace", [r] { r->trace = false; }, "Skip trace.json and signals.vcd (written as the run goes)");
   cmd->add_option("--trace-detail", r->traceDetail,
-                  "coalesced: signals.vcd keeps the value each signal ends an instant with; full: every change")
-      ->check(CLI::IsMember({"coalesced", "full"}))
+                  "coalesced: signals.vcd keeps the value each signal ends an instant with; full: every change; "
+                  "ipu: coalesced, and ipu_commands.csv with every IPU command word and its time (docs/run-files.md)")
+      ->check(CLI::IsMember({"coalesced", "full", "ipu"}))
       ->capture_default_str();
   cmd->add_option("--threads", r->threads,
                   "Host threads for the IPU's slice-parallel picture decode (same bytes out; default 1)")

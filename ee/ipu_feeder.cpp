@@ -75,6 +75,9 @@ Task<void> IpuFeeder::decodeOne(int stream) {
   // A recycled buffer of this stream's size: the IPU writes every byte of it.
   std::shared_ptr<Rgba8Image> image = images_[si].take();
   const ipu::TimedPicture tp = co_await ipu_.decode(ipuStreams_[si], pic.data, *image);
+  // The variant the picture belongs to (its number in the stream), not the one a branch may have
+  // switched to meanwhile.
+  if (commandHook_) commandHook_(stream, static_cast<int>(pic.globalFrame / timeline_.framesPerVariant()), pic, tp);
   const Tick took = s_.now() - t0;
   if (tracer_ != nullptr) tracer_->span(track_, t0, s_.now(), stream == kLightmap ? "lightmap" : "sky");
   ++dc_.pictures;

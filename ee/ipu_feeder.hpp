@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 
 #include "ee/ee_demux.hpp"
@@ -68,6 +69,10 @@ class IpuFeeder {
   void branch(std::int64_t fromSeq);
 
   const DecodeCounters& counters() const { return dc_; }
+  // Called after each picture the IPU decoded, with its stream (kLightmap, kSky), its variant and
+  // what the IPU reported (the command log when the IPU records commands: ipu::IpuUnit::recordCommands).
+  using CommandHook = std::function<void(int stream, int variant, const CompressedPicture&, const ipu::TimedPicture&)>;
+  void setCommandHook(CommandHook hook) { commandHook_ = std::move(hook); }
 
  private:
   // A picture the IPU has decoded, waiting to be shown (BDEC flow: the last I or P picture).
@@ -101,6 +106,7 @@ class IpuFeeder {
   std::array<bool, 2> bdec_{false, false};
   std::array<std::optional<Held>, 2> held_;
   std::array<bool, 2> brokenChain_{false, false};  // since the last clean I picture, a reference was lost or damaged
+  CommandHook commandHook_;
 };
 
 }  // namespace vbim::ee

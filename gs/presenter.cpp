@@ -243,7 +243,7 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
       if (tr != nullptr) tr->span(track_, t, sched_.now(), uploadLabel);
       counters_.uploadBytes += bytes;
       counters_.uploadTransfers += transfers;
-      counters_.uploadSetupQwords += timing_.setupQwords(transfers);
+      counters_.uploadSetupQwords += timing_.setupQwords(transfers, bytes);
     }
     const Tick t = sched_.now();
     co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "ipu/bit_reader.hpp"
+#include "ipu/ipu_commands.hpp"
 #include "ipu/start_code.hpp"
 
 namespace vbim::ipu {
@@ -28,9 +29,21 @@ void skipBits(BitReader& br, int n) {
   br.skip(n);
 }
 
-void defaultMatrices(IpuCommandCounts& c) {
+void defaultMatrices(IpuCommandCounts& c, std::vector<std::uint32_t>* words) {
   c.bclr += 2;
   c.setiq += 2;
+  if (words != nullptr) words->insert(words->end(), {bclrWord(0), setiqWord(0, false), setiqWord(0, true), bclrWord(0)});
+}
+
+// Appends `n` FDEC words (FB = 0) and counts them.
+void fdecs(IpuCommandCounts& c, int n, std::vector<std::uint32_t>* words) {
+  c.fdec += n;
+  if (words != nullptr) words->insert(words->end(), static_cast<std::size_t>(n), fdecWord(0));
+}
+
+void setiq(IpuCommandCounts& c, bool nonIntra, std::vector<std::uint32_t>* words) {
+  ++c.setiq;
+  if (words != nullptr) words->push_back(setiqWord(0, nonIntra));
 }
 
 }  // namespace
@@ -47,7 +60,8 @@ IpuCommandCounts& IpuCommandCounts::operator+=(const IpuCommandCounts& o) {
   return *this;
 }
 
-IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32_t& headerBytes) {
+IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32_t& headerBytes,
+                                std::vector<std::uint32_t>* words) {
   IpuCommandCounts c;
   const std::uint8_t* d = bytes.data();
   const std::size_t n = bytes.size();
@@ -61,40 +75,41 @@ IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32
       break;
     }
     BitReader br(d + pos + 4, d + next);
-    c.fdec += kStartCodeFdec;
+    fdecs(c, kStartCodeFdec, words);
     if (code == 0xB3) {  // sequence header: a matrix loaded with SETIQ from the stream, or defaults
-      c.fdec += kSequenceHeaderFdec;
+      fdecs(c, kSequenceHeaderFdec, words);
       skipBits(br, 62);
       const bool intra = br.readBit();
       if (intra) skipBits(br, 64 * 8);
       const bool nonIntra = br.readBit();
-      for (const bool loaded : {intra, nonIntra}) {
-        if (loaded) {
-          ++c.setiq;
+      for (const bool nonIntraMatrix : {false, true}) {
+        if (nonIntraMatrix ? nonIntra : intra) {
+          setiq(c, nonIntraMatrix, words);
         } else {
-          defaultMatrices(c);
+          defaultMatrices(c, words);
         }
       }
     } else if (code == 0xB8) {
-      c.fdec += kGopFdec;
+      fdecs(c, kGopFdec, words);
     } else if (code == 0x00) {
       const int type = static_cast<int>((br.peek(13)) & 7);
-      c.fdec += kPictureHeaderFdec + (type == 2 || type == 3 ? 2 : 0) + (type == 3 ? 2 : 0);
+      fdecs(c, kPictureHeaderFdec + (type == 2 || type == 3 ? 2 : 0) + (type == 3 ? 2 : 0), words);
     } else if (code == 0xB5) {
       const int id = static_cast<int>(br.read(4));
-      c.fdec += 1;
+      fdecs(c, 1, words);
       if (id == 1) {
-        c.fdec += kSequenceExtensionFdec;
+        fdecs(c, kSequenceExtensionFdec, words);
       } else if (id == 8) {
-        c.fdec += kPictureCodingExtensionFdec;
+        fdecs(c, kPictureCodingExtensionFdec, words);
       } else if (id == 3) {  // quant matrix extension: the intra and non-intra matrices are the IPU's
-        c.fdec += kQuantMatrixExtensionFdec;
+        fdecs(c, kQuantMatrixExtensionFdec, words);
         const bool intra = br.readBit();
         if (intra) skipBits(br, 64 * 8);
         const bool nonIntra = br.readBit();
-        c.setiq += (intra ? 1 : 0) + (nonIntra ? 1 : 0);
+        if (intra) setiq(c, false, words);
+        if (nonIntra) setiq(c, true, words);
       } else {
-        c.fdec += kOtherExtensionFdec;
+        fdecs(c, kOtherExtensionFdec, words);
       }
     }
     pos = next;
@@ -107,17 +122,22 @@ FlowPicture buildFlow(std::span<const std::uint8_t> bytes, const std::vector<Mac
   FlowPicture f;
   f.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
   std::uint32_t headerBytes = 0;
-  f.header = headerCommands(bytes, headerBytes);
+  f.header = headerCommands(bytes, headerBytes, &f.headerWords);
   f.headerQwords = std::min(f.inQwords, (headerBytes + 15) / 16);
   std::uint32_t need = f.headerQwords;
   for (const MacroblockBits& m : trace) {
     FlowMacroblock skip;
     skip.skipped = true;
+    skip.address = m.address >= m.skippedBefore ? m.address - m.skippedBefore : 0;
     skip.needQwords = need;
     skip.predictions = m.skippedPredictions;
     skip.averaged = m.skippedPredictions > 1 ? 1 : 0;
-    for (int k = 0; k < m.skippedBefore; ++k) f.macroblocks.push_back(skip);
+    for (int k = 0; k < m.skippedBefore; ++k) {
+      f.macroblocks.push_back(skip);
+      ++skip.address;
+    }
     FlowMacroblock mb;
+    mb.address = m.address;
     mb.sliceStart = m.sliceStart;
     if (intraPicture) {
       mb.vdec = 2;  // address increment, macroblock_type

@@ -42,12 +42,15 @@ struct FlowMacroblock {
   std::uint32_t needQwords = 0;  // input qwords read once this macroblock is parsed
   std::uint8_t predictions = 0;
   std::uint8_t averaged = 0;
+  std::uint32_t address = 0;  // in the picture (the macroblock trace's), skipped ones included
+  std::uint32_t bdecWord = 0;  // the BDEC command word, for the command log (set by IpuUnit when it records)
 };
 
 struct FlowPicture {
   std::uint32_t inQwords = 0;               // the picture's bytes, in qwords (toIPU)
   std::uint32_t headerQwords = 0;           // read before the first slice
   IpuCommandCounts header;                  // the headers' commands (FDEC, SETIQ, and BCLR of SetDefQM)
+  std::vector<std::uint32_t> headerWords;   // the same, in the order the EE issues them (ipu/ipu_commands.hpp)
   std::vector<FlowMacroblock> macroblocks;  // in decode order
 };
 
@@ -57,7 +60,12 @@ inline constexpr int kSliceHeaderFdec = 4;
 
 // The header commands of `bytes` before the first slice (start codes, sequence header and
 // extension, GOP, picture header and extensions; SETIQ per quantiser matrix, as libmpeg reads them).
-IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32_t& headerBytes);
+// With `words`, also their command words in issue order: per start code 2 FDECs then the header's
+// reads, SETIQ (IQM = 0 intra, 1 non-intra) per matrix the stream loads, and for a default matrix
+// _MPEG_SetDefQM's BCLR, SETIQ intra, SETIQ non-intra, BCLR. FB is 0 throughout: the flow counts
+// libmpeg's reads, not their widths.
+IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32_t& headerBytes,
+                                std::vector<std::uint32_t>* words = nullptr);
 
 // The picture's flow. `trace` is the decoder's macroblock trace of that picture; `intraPicture`:
 // an I picture, whose trace (ipu/slice_decoder.cpp) has no VDEC/FDEC counts: each macroblock then

@@ -65,6 +65,7 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
               const DmaStalls& out, FlowTiming& t) {
   t.spans.clear();
   t.spans.reserve(f.macroblocks.size() * 3 + 1);
+  t.commands.clear();
   t.counts = f.header;
   t.eeBusy = 0;
   t.eeWait = 0;
@@ -87,8 +88,25 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
   ++t.counts.bclr;
   const Tick header = fromEeCycles(ee.fdec_cycles) * (1 + f.header.bclr + f.header.setiq) + fdec * f.header.fdec +
                       p.bclr_cycles * (1 + f.header.bclr) + p.setiq_cycles * f.header.setiq;
+  // The log: each command after the one before, for the cost the sum above charges it.
+  Tick at = e;
+  auto issue = [&](std::uint32_t word, Tick cost) {
+    t.commands.push_back({word, at, at + cost});
+    at += cost;
+  };
+  if (t.recordCommands) {
+    const Tick roundTrip = fromEeCycles(ee.fdec_cycles);
+    issue(bclrWord(0), roundTrip + p.bclr_cycles);
+    for (const std::uint32_t w : f.headerWords) {
+      const IpuOpcode op = opcodeOf(w);
+      issue(w, op == IpuOpcode::kBclr    ? roundTrip + p.bclr_cycles
+               : op == IpuOpcode::kSetiq ? roundTrip + p.setiq_cycles
+                                         : fdec);
+    }
+  }
   eeSpan(e, e + header, "parse");
   e = std::max(e + header, feed.readThrough(f.headerQwords, e));
+  if (t.recordCommands && !t.commands.empty()) t.commands.back().end = std::max(t.commands.back().end, e);
   Tick ipuFree = e;
   Tick bdecDone = e;
   Tick fromFree = out.defer(t.arrival);
@@ -105,6 +123,14 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
     }
     if (!m.skipped) {
       const Tick begin = e;
+      if (t.recordCommands) {
+        at = begin;
+        const int sliceFdec = m.sliceStart ? std::min<int>(m.fdec, kSliceHeaderFdec) : 0;
+        for (int k = 0; k < sliceFdec; ++k) issue(fdecWord(0), fdec);
+        for (int k = 0; k < std::min<int>(m.vdec, 2); ++k) issue(vdecWord(0, static_cast<VdecTable>(k)), vdec);
+        for (int k = sliceFdec; k < m.fdec; ++k) issue(fdecWord(0), fdec);
+        for (int k = 2; k < m.vdec; ++k) issue(vdecWord(0, VdecTable::kMotionCode), vdec);
+      }
       e += vdec * m.vdec + fdec * m.fdec + fromEeCycles(ee.mb_cycles);
       // VDEC and FDEC read the macroblock's first bits: they wait for them to be in the FIFO.
       e = std::max(e, feed.readThrough(std::min(m.needQwords, readBefore + 1), begin));
@@ -134,6 +160,7 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
         }
         ipuFree = q;
         bdecDone = fromFree;
+        if (t.recordCommands) t.commands.push_back({m.bdecWord, start - p.idec_start_cycles, bdecDone});
         t.spans.push_back({start - p.idec_start_cycles, bdecDone, 1, "bdec"});
         t.ipuBusy += bdecDone - (start - p.idec_start_cycles);
       } else {

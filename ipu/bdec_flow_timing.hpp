@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "ipu/bdec_flow.hpp"
+#include "ipu/ipu_commands.hpp"
 #include "ipu/ipu_unit_timing.hpp"
 #include "ipu/params.hpp"
 #include "runtime/clock.hpp"
@@ -48,7 +49,8 @@ struct FlowSpan {
 };
 
 struct FlowTiming {
-  Tick arrival = 0;  // the EE starts the picture (after the previous command)
+  Tick arrival = 0;             // the EE starts the picture (after the previous command)
+  bool recordCommands = false;  // fill `commands`
   // Out.
   Tick decodeEnd = 0;             // the last macroblock is predicted and stored
   Tick inFree = 0;                // toIPU after its last qword
@@ -60,6 +62,13 @@ struct FlowTiming {
   std::int64_t outputStalls = 0;  // BDEC output qwords that waited for room in the output FIFO
   IpuCommandCounts counts;        // BCLR at the picture start, the headers', VDEC, FDEC, BDEC
   std::vector<FlowSpan> spans;    // ordered by end (then begin)
+  // With recordCommands, every command in issue order with its time: the picture's BCLR, the
+  // headers' (FlowPicture::headerWords), then per macroblock the slice header's 4 FDECs, VDEC of the
+  // address increment and the macroblock type, the macroblock's other FDECs, its other VDECs (TBL =
+  // motion code), and BDEC (FlowMacroblock::bdecWord). The flow counts a macroblock's reads, not
+  // their order or widths: FB is 0 and the reads after the first two VDECs are in that fixed order.
+  // A read ends when the EE has its answer; BDEC when its 48 qwords are in memory.
+  std::vector<IssuedCommand> commands;
 };
 
 // Plans `f` from `t.arrival` with the FIFOs empty (the EE clears them with BCLR when it starts a

@@ -104,9 +104,14 @@ Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t
       }
     }
     tm.restart = idecRestarts(dec.macroblockTrace(), mbs);
+    tm.qwordsPerRow = qwordsPerRow();
     result.idecCommands = 1 + std::count(tm.restart.begin(), tm.restart.end(), std::uint8_t{1});
     result.commands.idec = result.idecCommands;
-    result.outputQwords = static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
+    result.outputQwords = static_cast<std::int64_t>(mbs) * kRowsPerMacroblock * qwordsPerRow();
+    if (recordCommands_) {
+      result.ctrl = ipuCtrl(dec.sequence(), dec.picture());
+      planIdecWords(cmd, bytes, dec, th);
+    }
     result.displayed = true;
     tm.needQwords.resize(mbs);
     std::uint32_t need = 0;
@@ -126,6 +131,10 @@ Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t
   const bool fieldDct = dec.sequence().mpeg2 && pic.pictureStructure == 3 && !pic.framePredFrameDct;
   cmd.flow = true;
   cmd.flowWork = buildFlow(bytes, dec.macroblockTrace(), result.report.pictureCodingType == 1, fieldDct);
+  if (recordCommands_) {
+    result.ctrl = ipuCtrl(dec.sequence(), pic);
+    planFlowWords(cmd, bytes, dec);
+  }
   const FrameStore* shown = dec.displayFrame();
   int width = 0;
   int height = 0;
@@ -149,26 +158,130 @@ Task<TimedPicture> IpuUnit::flush(StreamId stream, Rgba8Image& out, CscThreshold
   Command& cmd = *shared;
   cmd.arrival = s_.now();
   cmd.flow = true;  // no picture: only the CSC
+  cmd.flowTiming.recordCommands = recordCommands_;
   result.report.produced = true;
   result.outputQwords = stageDisplayCsc(cmd, dec, shown, th, out);
   co_return co_await submit(shared, std::move(result), out, dec.displayWidth(), dec.displayHeight());
 }
 
 std::int64_t IpuUnit::stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
-                                      Rgba8Image& out) {
+                                      Rgba8Image& out) const {
   cmd.staged = std::move(out);
   out = Rgba8Image{};
   convertToRgba32(shown, shown.mbWidth * 16, shown.mbHeight * 16, th, cmd.staged, dec.kernels().cscRow);
   cmd.hasCsc = true;
   const std::size_t mbs = static_cast<std::size_t>(shown.mbWidth) * shown.mbHeight;
   cmd.timing.csc = true;
+  cmd.timing.qwordsPerRow = qwordsPerRow();
   cmd.timing.inQwords = static_cast<std::uint32_t>(mbs) * kCscInQwordsPerMacroblock;
   cmd.timing.bits.assign(mbs, 0);
   cmd.timing.restart.assign(mbs, 0);
   cmd.timing.needQwords.resize(mbs);
   for (std::size_t i = 0; i < mbs; ++i)
     cmd.timing.needQwords[i] = static_cast<std::uint32_t>(i + 1) * kCscInQwordsPerMacroblock;
-  return static_cast<std::int64_t>(mbs) * kQwordsPerMacroblock;
+  return static_cast<std::int64_t>(mbs) * kRowsPerMacroblock * qwordsPerRow();
+}
+
+// IDEC path: BCLR with the bit position of the first slice start code in its qword (toIPU DMA
+// starts on a 16-byte boundary; the picture's bytes are taken to start on one), SETTH when the
+// thresholds are not 0, then one IDEC per slice the timing restarts IDEC at. FB skips the start
+// code, the slice header and the first address increment (a longer skip than FB's 6 bits is done by
+// FDECs first); DTD = !frame_pred_frame_dct (P-IPU ipuIDEC); SGN = 0; OFM and DTE the output's.
+void IpuUnit::planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec,
+                            CscThresholds th) const {
+  const FrameStore& fs = dec.frame();
+  const PictureHeader& pic = dec.picture();
+  const std::vector<SliceStart> slices = sliceStarts(bytes, dec.sequence(), pic, fs.mbWidth, fs.mbHeight);
+  const bool dtd = dec.sequence().mpeg2 && pic.pictureStructure == 3 && !pic.framePredFrameDct;
+  cmd.planned.clear();
+  cmd.planned.push_back({bclrWord(slices.empty() ? 0 : static_cast<int>(8 * (slices.front().offset & 15))), -1});
+  if (th.th0 != 0 || th.th1 != 0) cmd.planned.push_back({setthWord(th.th0, th.th1), -1});
+  const auto sliceAt = [&](std::uint32_t address) -> const SliceStart* {
+    for (const SliceStart& s : slices) {
+      if (s.address == address) return &s;
+    }
+    return nullptr;
+  };
+  const auto idec = [&](const SliceStart* s, std::int64_t mb) {
+    int fb = s != nullptr ? s->fb : 0;
+    while (fb > 63) {
+      const int k = std::min(fb - 63, 63);
+      cmd.planned.push_back({fdecWord(k), mb});
+      fb -= k;
+    }
+    cmd.planned.push_back({idecWord(fb, s != nullptr ? s->qsc : 0, dtd, false, rgb16_ && dither_, rgb16_), mb});
+  };
+  // The first IDEC covers the picture up to the first restart, with the first slice decoded.
+  const std::vector<MacroblockBits>& trace = dec.macroblockTrace();
+  const auto first = std::find_if(trace.begin(), trace.end(), [](const MacroblockBits& m) { return m.sliceStart; });
+  idec(first != trace.end() ? sliceAt(first->address) : nullptr, 0);
+  const std::vector<std::uint8_t>& restart = cmd.timing.restart;
+  for (std::size_t i = 0; i < restart.size(); ++i) {
+    if (restart[i] != 0) idec(sliceAt(static_cast<std::uint32_t>(i)), static_cast<std::int64_t>(i));
+  }
+}
+
+// BDEC path: each macroblock's BDEC word. QSC is its slice's quantiser_scale_code (a macroblock's
+// own, when it has one, is not in the flow); DCR = 1 for an intra macroblock after a slice start or
+// a macroblock that was not intra (ISO/IEC 13818-2 §7.2.1: the DC predictors reset there); DT = 0
+// (the flow does not carry dct_type); MBI = intra.
+void IpuUnit::planFlowWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec) const {
+  const FrameStore& fs = dec.frame();
+  const std::vector<SliceStart> slices = sliceStarts(bytes, dec.sequence(), dec.picture(), fs.mbWidth, fs.mbHeight);
+  int qsc = 0;
+  bool lastIntra = false;
+  for (FlowMacroblock& m : cmd.flowWork.macroblocks) {
+    if (m.sliceStart) {
+      for (const SliceStart& s : slices) {
+        if (s.address == m.address) qsc = s.qsc;
+      }
+    }
+    if (m.bdec) m.bdecWord = bdecWord(0, qsc, false, m.intra && (m.sliceStart || !lastIntra), m.intra);
+    lastIntra = !m.skipped && m.intra;
+  }
+  cmd.flowTiming.recordCommands = true;
+}
+
+// The planned words with their times, now that the command's schedule is final.
+void IpuUnit::logCommands(const Command& cmd, TimedPicture& result) const {
+  std::vector<IssuedCommand>& out = result.issued;
+  out.clear();
+  const CommandTiming& tm = cmd.timing;
+  if (!cmd.flow) {
+    const std::size_t mbs = tm.mbBegin.size();
+    if (mbs == 0) return;
+    for (std::size_t k = 0; k < cmd.planned.size(); ++k) {
+      const Command::PlannedWord& w = cmd.planned[k];
+      const auto mb = static_cast<std::size_t>(std::max<std::int64_t>(w.mb, 0));
+      // Issued idec_start_cycles before its first macroblock begins.
+      const Tick begin = tm.mbBegin[mb] - p_.idec_start_cycles;
+      if (opcodeOf(w.word) != IpuOpcode::kIdec) {
+        out.push_back({w.word, begin, begin});
+        continue;
+      }
+      std::size_t next = mbs;  // the next IDEC's first macroblock
+      for (std::size_t j = k + 1; j < cmd.planned.size(); ++j) {
+        if (opcodeOf(cmd.planned[j].word) == IpuOpcode::kIdec) {
+          next = static_cast<std::size_t>(cmd.planned[j].mb);
+          break;
+        }
+      }
+      out.push_back({w.word, begin, tm.mbEnd[std::max(next, mb + 1) - 1]});
+    }
+    return;
+  }
+  out = cmd.flowTiming.commands;
+  if (!cmd.hasCsc || tm.mbEnd.empty()) return;
+  // _MPEG_CSCImage: BCLR (suspend), CSC of at most kCscMaxMacroblocks each, BCLR (resume).
+  const Tick decodeEnd = cmd.flowTiming.decodeEnd;
+  out.push_back({bclrWord(0), decodeEnd, decodeEnd});
+  const std::size_t mbs = tm.mbEnd.size();
+  for (std::size_t a = 0; a < mbs; a += static_cast<std::size_t>(kCscMaxMacroblocks)) {
+    const std::size_t b = std::min(mbs, a + static_cast<std::size_t>(kCscMaxMacroblocks));
+    const Tick begin = a == 0 ? tm.arrival : tm.mbBegin[a];
+    out.push_back({cscWord(static_cast<int>(b - a), rgb16_ && dither_, rgb16_), begin, tm.mbEnd[b - 1]});
+  }
+  out.push_back({bclrWord(0), tm.mbEnd.back(), tm.mbEnd.back()});
 }
 
 // Plans the command, hands it to the "ipu" process and waits for its last event; then `out` gets
@@ -209,6 +322,7 @@ Task<TimedPicture> IpuUnit::submit(std::shared_ptr<Command> shared, TimedPicture
       result.eeBusy += fromEeCycles(ee_.csc_setup_cycles);
     }
   }
+  if (recordCommands_) logCommands(cmd, result);
   co_return result;
 }
 

@@ -33,6 +33,7 @@
 #include "ipu/bdec_flow.hpp"
 #include "ipu/bdec_flow_timing.hpp"
 #include "ipu/csc.hpp"
+#include "ipu/ipu_commands.hpp"
 #include "ipu/ipu_unit_timing.hpp"
 #include "ipu/params.hpp"
 #include "ipu/picture_decoder.hpp"
@@ -51,7 +52,7 @@ struct TimedPicture {
   Tick finished = 0;              // last output qword in memory
   std::int64_t outputStalls = 0;  // CSC rows that waited for room in the output FIFO
   std::int64_t idecCommands = 0;  // IDEC issued: one per slice (the EE restarts it at each slice start code)
-  std::int64_t outputQwords = 0;  // written by fromIPU DMA: 64 per macroblock, in macroblock order
+  std::int64_t outputQwords = 0;  // written by fromIPU DMA: 64 per macroblock (32 in RGB16), in macroblock order
   // `out` holds a new frame: every produced picture on the IDEC path; on the BDEC path when a frame
   // became due for display (display order: an I or P frame when the next one is decoded).
   bool displayed = false;
@@ -59,6 +60,10 @@ struct TimedPicture {
   Tick decodeEnd = 0;         // BDEC path: the last macroblock stored (the CSC follows)
   Tick eeBusy = 0;            // BDEC path: the EE's work (parse, command issue, MC, CSC set-up)
   Tick eeWait = 0;            // BDEC path: the EE waiting for BDEC
+  // With IpuUnit::recordCommands: IPU_CTRL as set for the picture, and every command issued for it
+  // in issue order with its word and time (docs/run-files.md, "ipu_commands.csv").
+  std::uint32_t ctrl = 0;
+  std::vector<IssuedCommand> issued;
 };
 
 enum class DecodePath : std::uint8_t { kIdec, kBdec };
@@ -101,6 +106,18 @@ class IpuUnit {
   // either way: only the host's wall time changes.
   void setSliceRunner(SliceRunner* runner) { runner_ = runner; }
 
+  // The IPU writes RGB16 (IDEC and CSC with OFM = 1, DTE = `dither`): 32 output qwords per macroblock
+  // instead of 64, so the fromIPU DMA and the output FIFO carry half (gs.texture_format = ct16).
+  // `out` stays RGB32: the pixels the RGB16 output is converted from (gs/blend16.hpp). Call before
+  // the first decode.
+  void setRgb16Output(bool dither) {
+    rgb16_ = true;
+    dither_ = dither;
+  }
+  bool rgb16Output() const { return rgb16_; }
+  // Fill TimedPicture::ctrl and ::issued from now on (the command log of `vbim play --trace-detail ipu`).
+  void recordCommands() { recordCommands_ = true; }
+
   // Tests: keep when every qword entered and left each FIFO, one entry per command from now on.
   void recordQwords() { recordQwords_ = true; }
   std::vector<CommandTiming::Qwords> qwordLog() const;
@@ -116,6 +133,13 @@ class IpuUnit {
     FlowPicture flowWork;
     FlowTiming flowTiming;
     IpuTimeline::State before;  // the timeline before this command, to plan it again after a stall
+    // The command log (recordCommands): IDEC path, each IDEC (or FDEC skipping a long slice header)
+    // with the macroblock its slice starts at, -1 for BCLR and SETTH issued at the start.
+    struct PlannedWord {
+      std::uint32_t word;
+      std::int64_t mb;
+    };
+    std::vector<PlannedWord> planned;
     Rgba8Image staged;          // the IPU's output, whole macroblocks
     bool done = false;
     Event finishedEvent;
@@ -133,8 +157,13 @@ class IpuUnit {
   void plan(Command& c);
   // The display CSC of a BDEC flow: `shown` converted into cmd.staged (taking `out`'s buffer) and
   // its timing (24 qwords in per macroblock from EE memory); returns the output qwords.
-  static std::int64_t stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
-                                      Rgba8Image& out);
+  std::int64_t stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
+                               Rgba8Image& out) const;
+  // The command log of a finished command (recordCommands).
+  void planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec, CscThresholds th) const;
+  void planFlowWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec) const;
+  void logCommands(const Command& cmd, TimedPicture& result) const;
+  int qwordsPerRow() const { return rgb16_ ? kQwordsPerRow16 : kQwordsPerRow; }
   static Tick quietAfter(const Command& c);
   void retire();
   void replan();
@@ -156,6 +185,9 @@ class IpuUnit {
   Fifo<CommandRef> commands_;
   bool recordQwords_ = false;
   std::vector<CommandRef> recorded_;
+  bool rgb16_ = false;
+  bool dither_ = false;
+  bool recordCommands_ = false;
 };
 
 }  // namespace vbim::ipu

@@ -64,7 +64,8 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
   const Tick inPeriod = p_.toipu_cycles_per_qword;
   const Tick outPeriod = p_.fromipu_cycles_per_qword;
   const std::size_t mbs = c.needQwords.size();
-  const std::uint64_t outTotal = static_cast<std::uint64_t>(mbs) * kRowsPerMacroblock * kQwordsPerRow;
+  const int qpr = c.qwordsPerRow;
+  const std::uint64_t outTotal = static_cast<std::uint64_t>(mbs) * kRowsPerMacroblock * static_cast<std::uint64_t>(qpr);
   c.mbBegin.assign(mbs, 0);
   c.mbDecoded.assign(mbs, 0);
   c.mbEnd.assign(mbs, 0);
@@ -136,8 +137,8 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
     return q;
   };
 
-  const bool drainKeepsUp = dout_ >= static_cast<std::uint64_t>(kQwordsPerRow) &&
-                            kQwordsPerRow * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
+  const bool drainKeepsUp = dout_ >= static_cast<std::uint64_t>(qpr) &&
+                            qpr * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
 
   // The core: per macroblock its cost spread over the input qwords it pops, then CSC row by row.
   Tick t = std::max(st_.coreFree, arrival) + (c.csc ? 0 : p_.idec_start_cycles);
@@ -167,20 +168,20 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
     c.mbDecoded[i] = t;
     if (drainKeepsUp) {
       // The stretch where no FIFO can block: fromIPU has taken the earlier rows when a row is
-      // ready, and drains each row before the next (4 DMA periods <= a row's CSC time, and the
+      // ready, and drains each row before the next (a row's DMA periods <= its CSC time, and the
       // FIFO holds a row), so row r's qwords go in at its ready time R and out at R + n periods.
       while (taken < pushed) takeOutput();
       const Tick firstRow = t + p_.csc_cycles_per_mb / kRowsPerMacroblock;
-      if (fromFree <= firstRow && out.clear(firstRow, t + p_.csc_cycles_per_mb + kQwordsPerRow * outPeriod)) {
+      if (fromFree <= firstRow && out.clear(firstRow, t + p_.csc_cycles_per_mb + qpr * outPeriod)) {
         const Tick begin = t;
-        constexpr auto kPerMacroblock = static_cast<std::uint64_t>(kRowsPerMacroblock) * kQwordsPerRow;
+        const auto perMacroblock = static_cast<std::uint64_t>(kRowsPerMacroblock) * static_cast<std::uint64_t>(qpr);
         // Only the last `ring` takes stay in the ring; unless every qword is logged, the earlier
         // ones are skipped (64 qwords per macroblock against a ring of Dout + 1, 9 by default).
-        const std::uint64_t skip = recordQwords || kPerMacroblock <= ring ? 0 : kPerMacroblock - ring;
+        const std::uint64_t skip = recordQwords || perMacroblock <= ring ? 0 : perMacroblock - ring;
         takeSlot = (takeSlot + skip) % ring;
-        for (std::uint64_t q = skip; q < kPerMacroblock; ++q) {
-          const auto row = static_cast<Tick>(q / kQwordsPerRow);
-          const auto n = static_cast<Tick>(q % kQwordsPerRow);
+        for (std::uint64_t q = skip; q < perMacroblock; ++q) {
+          const auto row = static_cast<Tick>(q / static_cast<std::uint64_t>(qpr));
+          const auto n = static_cast<Tick>(q % static_cast<std::uint64_t>(qpr));
           const Tick ready = begin + p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock;
           takes[takeSlot] = ready + n * outPeriod;
           if (recordQwords) {
@@ -190,11 +191,11 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
           if (++takeSlot == ring) takeSlot = 0;
         }
         t = begin + p_.csc_cycles_per_mb;
-        pushed += kPerMacroblock;
-        taken += kPerMacroblock;
+        pushed += perMacroblock;
+        taken += perMacroblock;
         pushSlot = takeSlot;
-        lastResume = t + (kQwordsPerRow - 1) * outPeriod;
-        fromFree = t + kQwordsPerRow * outPeriod;
+        lastResume = t + (qpr - 1) * outPeriod;
+        fromFree = t + qpr * outPeriod;
         c.mbEnd[i] = t;
         continue;
       }
@@ -202,7 +203,7 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
     for (int row = 0; row < kRowsPerMacroblock; ++row) {
       t += p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock - p_.csc_cycles_per_mb * row / kRowsPerMacroblock;
       const Tick ready = t;
-      for (int n = 0; n < kQwordsPerRow; ++n) t = pushOutput(t);
+      for (int n = 0; n < qpr; ++n) t = pushOutput(t);
       if (t != ready) {
         ++c.stalls;
         c.rowStalls.push_back({static_cast<std::uint32_t>(i), ready, t});

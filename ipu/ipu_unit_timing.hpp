@@ -27,10 +27,13 @@
 namespace vbim::ipu {
 
 // The IPU's RGB32 output of one macroblock: 16 rows of 4 quadwords (16 pixels x 4 bytes),
-// 64 quadwords in all (docs/hardware.md#idec).
+// 64 quadwords in all; RGB16 (IDEC or CSC with OFM = 1) is 2 quadwords a row, 32 in all
+// (docs/hardware.md#idec).
 inline constexpr int kRowsPerMacroblock = 16;
 inline constexpr int kQwordsPerRow = 4;
+inline constexpr int kQwordsPerRow16 = 2;
 inline constexpr int kQwordsPerMacroblock = kRowsPerMacroblock * kQwordsPerRow;
+inline constexpr int kQwordsPerMacroblock16 = kRowsPerMacroblock * kQwordsPerRow16;
 
 // The stalls of one DMA channel: each holds [from, to] (a wake-up at `to` itself is on time).
 class DmaStalls {
@@ -69,6 +72,8 @@ struct CommandTiming {
   // CSC of YCbCr macroblocks from EE memory (the BDEC flow's display frame, 24 input qwords per
   // macroblock in needQwords): no start delay and no decode cost, only csc_cycles_per_mb.
   bool csc = false;
+  // Output qwords per macroblock row: kQwordsPerRow (RGB32) or kQwordsPerRow16 (RGB16, OFM = 1).
+  int qwordsPerRow = kQwordsPerRow;
 
   // Out, per macroblock: started, last input qword popped, last output qword pushed.
   std::vector<Tick> mbBegin;

@@ -60,6 +60,9 @@ Pipeline::Pipeline(Scheduler& s, iop::SectorSource& disc, const ee::ProbedStream
       ipu_(s, config.ipu, tracer_, decoderOptions(kernels), config.ee.mc),
       gs_(s) {
   ipu_.setSliceRunner(kernels.sliceRunner);
+  // The 16-bit path: the IPU writes dithered RGB16 (IDEC OFM = 1, DTE = 1; docs/porting.md), half
+  // the fromIPU qwords of RGB32.
+  if (config.gs.texture_format == "ct16") ipu_.setRgb16Output(true);
   const auto depth = static_cast<std::size_t>(config.ee.decoded_frames);
   lmFrames_ = std::make_unique<ee::DecodedFrames>(s, streamInfos(stream, stream.lightmapIndex), depth, *this);
   const auto recorder = [this](bool sky) {

@@ -59,6 +59,11 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   // Called the first time a presenter receives each frame (the arrivals a port would log).
   using ArrivalHook = std::function<void(bool sky, int variant, std::int64_t seq, Tick readyAt)>;
   void setArrivalHook(ArrivalHook hook) { arrivalHook_ = std::move(hook); }
+  // The IPU records every command it issues, and `hook` gets each picture's (ipu_commands.csv).
+  void setIpuCommandHook(ee::IpuFeeder::CommandHook hook) {
+    ipu_.recordCommands();
+    feeder_->setCommandHook(std::move(hook));
+  }
 
   // hashChain: the lightmap presenter keeps the frame hash's chain (gs::PresenterOptions::hashChain).
   gs::Presenter& lightmap() { return *lightmap_; }

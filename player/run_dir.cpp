@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "gs/arrival_source.hpp"
+#include "player/ipu_command_log.hpp"
 #include "player/replay.hpp"
 #include "player/report.hpp"
 #include "runtime/error.hpp"
@@ -33,6 +34,14 @@ RunDirWriter::RunDirWriter(Player& player, const std::filesystem::path& dir, Run
   player_.pipeline().setArrivalHook([this, vsyncs](bool sky, int variant, std::int64_t seq, Tick readyAt) {
     arrivals_ << arrivalLine(ReplayArrival{gs::firstVsyncAtOrAfter(vsyncs, readyAt), sky, variant, seq});
   });
+  if (options_.ipuCommands) {
+    ipuCommands_ = openIn(dir_, "ipu_commands.csv");
+    ipuCommands_ << ipuCommandsHeader();
+    player_.pipeline().setIpuCommandHook(
+        [this](int stream, int variant, const ee::CompressedPicture& pic, const ipu::TimedPicture& tp) {
+          ipuCommands_ << ipuCommandLines(stream, variant, pic, tp);
+        });
+  }
   std::filesystem::create_directories(dir_ / "frames");
   Player::Sink before = player_.sink();
   player_.setSink([this, before](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
@@ -88,7 +97,10 @@ void RunDirWriter::finish(const json::Value* run) {
   timeline_.close();
   arrivals_ << arrivalsEndLine(presented_);
   arrivals_.close();
-  if (!hashes_ || !timeline_ || !arrivals_) throw Error(dir_.string() + ": cannot write the run's text files");
+  if (options_.ipuCommands) ipuCommands_.close();
+  if (!hashes_ || !timeline_ || !arrivals_ || (options_.ipuCommands && !ipuCommands_)) {
+    throw Error(dir_.string() + ": cannot write the run's text files");
+  }
   {
     std::ofstream f = openIn(dir_, "stats.json");
     writeStatsJson(player_, f, run);

@@ -3,6 +3,7 @@
 //   timeline.csv   one row per vsync
 //   arrivals.csv   each frame the presenters received, for `vbim replay` (player/replay.hpp)
 //   trace.json, signals.vcd   the trace, streamed as the run goes (optional)
+//   ipu_commands.csv   every IPU command, word and time (optional: player/ipu_command_log.hpp)
 //   frames/lightmap_NNNNNN.EXT, frames/sky_NNNNNN.EXT   pictures every N vsyncs and at given times
 //   stats.json     at the end (player/report.hpp)
 // `vbim play` and `vbim demo` write through it, and a test can too (docs/test-api.md): attach a
@@ -41,6 +42,7 @@ struct RunDirOptions {
   std::size_t pictureQueue = 8;
   bool trace = true;  // trace.json and signals.vcd (the Player must trace: PlayerOptions::trace)
   TraceDetail traceDetail = TraceDetail::Coalesced;
+  bool ipuCommands = false;  // ipu_commands.csv (`vbim play --trace-detail ipu`)
   std::function<void(const VsyncRow&)> onRow;  // every vsync, after its lines are written
 };
 
@@ -79,6 +81,7 @@ class RunDirWriter {
   std::ofstream arrivals_;
   std::ofstream traceJson_;
   std::ofstream traceVcd_;
+  std::ofstream ipuCommands_;
   std::set<Tick>::const_iterator nextAt_;
   std::int64_t presented_ = 0;  // the vsyncs of hashes.txt: arrivals.csv's end row, for replay
   std::int64_t images_ = 0;

@@ -127,6 +127,7 @@ RunDirOptions runDirOptions(const PlayRequest& r, const std::set<Tick>& atTimes)
   };
   files.trace = r.trace;
   files.traceDetail = r.traceDetail == "full" ? TraceDetail::Full : TraceDetail::Coalesced;
+  files.ipuCommands = r.traceDetail == "ipu";
   files.onRow = r.onRow;
   return files;
 }

@@ -36,7 +36,7 @@ struct PlayRequest {
   std::vector<std::string> branches;              // "12.5s=1": switch to variant 1 at 12.5 s
   bool force = false;
   bool trace = true;
-  std::string traceDetail = "coalesced";  // or "full": every same-instant toggle in signals.vcd
+  std::string traceDetail = "coalesced";  // "full": every same-instant toggle in signals.vcd; "ipu": ipu_commands.csv too
   unsigned threads = 1;                   // host threads for the IPU's slice-parallel decode (same bytes)
   // The run directory, or empty: the run is played and summarised, and nothing is written (no
   // directory, no temporary one); --every and --at, which ask for pictures, are refused then.

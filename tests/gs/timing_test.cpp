@@ -38,6 +38,30 @@ TEST(GsTiming, MacroblockTransfersShareOneFullSetup) {
   EXPECT_EQ(GsTiming(q).setupQwords(256), 1'536);
 }
 
+// An IMAGE GIFtag's NLOOP has 15 bits (T-GS GIF; SDK-GS GIF_SET_TAG): a raster transfer of more than
+// 0x7FFF qwords carries one more GIFtag qword per further 0x7FFF, as uploadPacket sends it.
+TEST(GsTiming, RasterUploadsOverNloopChargeTheirFurtherGifTags) {
+  const GsTiming t{GsParams{}};
+  // 512x512 PSMCT16 (the 16-bit path): 32,768 qwords, one over 0x7FFF: 2 IMAGE GIFtags.
+  const std::int64_t ct16 = 512 * 512 * 2;
+  EXPECT_EQ(t.setupQwords(1, ct16), 7);
+  EXPECT_EQ(t.imageTransfer(ct16), (7 * 16 + 524'288) / 8);  // 65,550 ticks (65,548 before)
+  // Exactly 0x7FFF qwords: one GIFtag; one qword more: two.
+  EXPECT_EQ(t.setupQwords(1, 0x7FFF * 16), 6);
+  EXPECT_EQ(t.setupQwords(1, 0x7FFF * 16 + 1), 7);
+  // 512x512 PSMCT32: 65,536 qwords, 3 GIFtags.
+  EXPECT_EQ(t.setupQwords(1, 512 * 512 * 4), 8);
+  EXPECT_EQ(t.imageTransfer(512 * 512 * 4), (8 * 16 + 1'048'576) / 8);
+  // Macroblock transfers (64 qwords each) never need a second tag.
+  EXPECT_EQ(t.setupQwords(1024, 512 * 512 * 4), 6 + 1023 * 4);
+  // The charge is the packet's size.
+  for (const int bpp : {2, 4}) {
+    const VramRegion staging{"staging", bpp == 2 ? Psm::Ct16 : Psm::Ct32, 512, 512, 0, 512};
+    const GifPacket up = uploadPacket(staging, 0, 0, 512, 512, bpp, true, "raster", "");
+    EXPECT_EQ(t.setupQwords(1, std::int64_t{512} * 512 * bpp), up.setupQwords()) << bpp;
+  }
+}
+
 TEST(GsTiming, ParamsLoadFromTomlAndRejectBadValues) {
   ParamTable table;
   GsParams p;

@@ -6,8 +6,6 @@
 namespace vbim::ipu::reference {
 namespace {
 
-constexpr std::uint32_t kQwordsPerMacroblock = 64;  // RGB32: 16 x 16 x 4 bytes / 16 (docs/hardware.md#idec)
-constexpr std::uint32_t kQwordsPerRow = 4;
 
 DecoderOptions withTrace(DecoderOptions o) {
   o.recordMacroblocks = true;
@@ -127,7 +125,7 @@ Task<void> ReferenceIpuUnit::coreLoop(ReferenceIpuUnit& u) {
       for (int row = 0; row < 16; ++row) {
         co_await u.s_.delay(u.p_.csc_cycles_per_mb * (row + 1) / 16 - u.p_.csc_cycles_per_mb * row / 16);
         const Tick ready = u.s_.now();
-        for (std::uint32_t k = 0; k < kQwordsPerRow; ++k) {
+        for (std::uint32_t k = 0; k < u.qwordsPerRow_; ++k) {
           co_await u.out_.push(q++);
           u.sample();
         }
@@ -150,7 +148,7 @@ Task<void> ReferenceIpuUnit::coreLoop(ReferenceIpuUnit& u) {
 Task<void> ReferenceIpuUnit::fromIpuLoop(ReferenceIpuUnit& u) {
   for (;;) {
     const JobRef job = co_await u.fromIpuJobs_.pop();
-    const std::uint32_t total = static_cast<std::uint32_t>(job->needQwords.size()) * kQwordsPerMacroblock;
+    const std::uint32_t total = static_cast<std::uint32_t>(job->needQwords.size()) * 16 * u.qwordsPerRow_;
     for (std::uint32_t n = 0; n < total; ++n) {
       const std::uint32_t q = co_await u.out_.pop();
       u.sample();
@@ -169,13 +167,17 @@ void ReferenceIpuUnit::sample() {
 }
 
 void ReferenceIpuUnit::writeQword(const Job& job, std::uint32_t q) {
-  const std::uint32_t mb = q / kQwordsPerMacroblock;
-  const std::uint32_t within = q % kQwordsPerMacroblock;
-  const int px = static_cast<int>(mb % job.mbWidth) * 16 + static_cast<int>(within % kQwordsPerRow) * 4;
-  const int py = static_cast<int>(mb / job.mbWidth) * 16 + static_cast<int>(within / kQwordsPerRow);
+  // RGB32: 16 x 16 x 4 bytes / 16 = 64 qwords a macroblock, 4 pixels each (docs/hardware.md#idec);
+  // RGB16: 32, 8 pixels each (the picture's RGB32 pixels are written where that qword's land).
+  const std::uint32_t perMacroblock = 16 * qwordsPerRow_;
+  const int pixels = 16 / static_cast<int>(qwordsPerRow_);
+  const std::uint32_t mb = q / perMacroblock;
+  const std::uint32_t within = q % perMacroblock;
+  const int px = static_cast<int>(mb % job.mbWidth) * 16 + static_cast<int>(within % qwordsPerRow_) * pixels;
+  const int py = static_cast<int>(mb / job.mbWidth) * 16 + static_cast<int>(within / qwordsPerRow_);
   Rgba8Image& out = *job.out;
   if (py >= out.height || px >= out.width) return;
-  const int n = std::min(4, out.width - px);
+  const int n = std::min(pixels, out.width - px);
   std::memcpy(out.row(py) + 4 * px, job.staged.row(py) + 4 * px, static_cast<std::size_t>(n) * 4);
 }
 

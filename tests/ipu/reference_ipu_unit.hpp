@@ -1,7 +1,8 @@
 // The qword-stepping IPU timing model that ipu/ipu_unit.hpp replaced (issue #17), kept verbatim as
 // the reference of tests/ipu/ipu_unit_equivalence_test.cpp. Additions: record(), the level of both
 // FIFOs after every push and pop, to compare against the stepped model; and the EE's restart of
-// IDEC at each slice after the first (the core waits slice_restart_cycles + idec_start_cycles).
+// IDEC at each slice after the first (the core waits slice_restart_cycles + idec_start_cycles); and
+// RGB16 output (setRgb16Output: 2 qwords a row instead of 4, each qword 8 pixels of the picture).
 //
 // The IPU on the simulated clock: three cooperating threads, as on the console.
 //
@@ -64,6 +65,7 @@ class ReferenceIpuUnit {
   Process& coreProcess() { return *core_; }
   const Decoder& decoder() const { return decoder_; }
   void record(FifoRecording* r) { recording_ = r; }
+  void setRgb16Output() { qwordsPerRow_ = 2; }
 
  private:
   // One command's data. The three loops share it: decode() returns when the output is in memory,
@@ -105,6 +107,7 @@ class ReferenceIpuUnit {
   Process* core_ = nullptr;
   Process* fromIpu_ = nullptr;
   FifoRecording* recording_ = nullptr;
+  std::uint32_t qwordsPerRow_ = 4;  // RGB32; 2 for RGB16
 };
 
 }  // namespace vbim::ipu::reference
