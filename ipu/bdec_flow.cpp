@@ -32,7 +32,8 @@ void skipBits(BitReader& br, int n) {
 void defaultMatrices(IpuCommandCounts& c, std::vector<std::uint32_t>* words) {
   c.bclr += 2;
   c.setiq += 2;
-  if (words != nullptr) words->insert(words->end(), {bclrWord(0), setiqWord(0, false), setiqWord(0, true), bclrWord(0)});
+  if (words != nullptr)
+    words->insert(words->end(), {bclrWord(0), setiqWord(0, false), setiqWord(0, true), bclrWord(0)});
 }
 
 // Appends `n` FDEC words (FB = 0) and counts them.

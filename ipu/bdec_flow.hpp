@@ -42,7 +42,7 @@ struct FlowMacroblock {
   std::uint32_t needQwords = 0;  // input qwords read once this macroblock is parsed
   std::uint8_t predictions = 0;
   std::uint8_t averaged = 0;
-  std::uint32_t address = 0;  // in the picture (the macroblock trace's), skipped ones included
+  std::uint32_t address = 0;   // in the picture (the macroblock trace's), skipped ones included
   std::uint32_t bdecWord = 0;  // the BDEC command word, for the command log (set by IpuUnit when it records)
 };
 

@@ -66,8 +66,8 @@ std::uint32_t bclrWord(int bp) {
 }
 
 std::uint32_t idecWord(int fb, int qsc, bool dtd, bool sgn, bool dte, bool ofm) {
-  return code(IpuOpcode::kIdec) | field(fb, 6, 0) | field(qsc, 5, 16) | flag(dtd, 24) | flag(sgn, 25) |
-         flag(dte, 26) | flag(ofm, 27);
+  return code(IpuOpcode::kIdec) | field(fb, 6, 0) | field(qsc, 5, 16) | flag(dtd, 24) | flag(sgn, 25) | flag(dte, 26) |
+         flag(ofm, 27);
 }
 
 std::uint32_t bdecWord(int fb, int qsc, bool dt, bool dcr, bool mbi) {

@@ -140,7 +140,7 @@ class IpuUnit {
       std::int64_t mb;
     };
     std::vector<PlannedWord> planned;
-    Rgba8Image staged;          // the IPU's output, whole macroblocks
+    Rgba8Image staged;  // the IPU's output, whole macroblocks
     bool done = false;
     Event finishedEvent;
   };

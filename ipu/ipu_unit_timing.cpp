@@ -137,8 +137,8 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
     return q;
   };
 
-  const bool drainKeepsUp = dout_ >= static_cast<std::uint64_t>(qpr) &&
-                            qpr * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
+  const bool drainKeepsUp =
+      dout_ >= static_cast<std::uint64_t>(qpr) && qpr * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
 
   // The core: per macroblock its cost spread over the input qwords it pops, then CSC row by row.
   Tick t = std::max(st_.coreFree, arrival) + (c.csc ? 0 : p_.idec_start_cycles);

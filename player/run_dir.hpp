@@ -42,7 +42,7 @@ struct RunDirOptions {
   std::size_t pictureQueue = 8;
   bool trace = true;  // trace.json and signals.vcd (the Player must trace: PlayerOptions::trace)
   TraceDetail traceDetail = TraceDetail::Coalesced;
-  bool ipuCommands = false;  // ipu_commands.csv (`vbim play --trace-detail ipu`)
+  bool ipuCommands = false;                    // ipu_commands.csv (`vbim play --trace-detail ipu`)
   std::function<void(const VsyncRow&)> onRow;  // every vsync, after its lines are written
 };
 

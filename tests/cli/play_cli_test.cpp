@@ -97,6 +97,37 @@ TEST(PlayCli, TraceDetailFullKeepsMacroblockSpansAndEveryToggle) {
   fs::remove_all(b);
 }
 
+// --trace-detail ipu (issue #30): the coalesced trace plus ipu_commands.csv, one row per IPU command;
+// nothing else changes, and without it there is no such file.
+TEST(PlayCli, TraceDetailIpuLogsEveryIpuCommand) {
+  const fs::path a = scratch("plain");
+  const fs::path b = scratch("ipu");
+  ASSERT_EQ(play(kSample + " --duration 3s --out " + a.string()).status, 0);
+  ASSERT_EQ(play(kSample + " --duration 3s --trace-detail ipu --out " + b.string()).status, 0);
+  EXPECT_FALSE(fs::exists(a / "ipu_commands.csv"));
+  for (const char* f : {"hashes.txt", "timeline.csv", "arrivals.csv", "trace.json", "signals.vcd"})
+    EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
+  std::istringstream log(slurp(b / "ipu_commands.csv"));
+  std::string line;
+  std::getline(log, line);
+  EXPECT_EQ(line, "stream,picture,frame,type,command,word,fields,ctrl,begin_tick,end_tick");
+  int bclr = 0;
+  int idec = 0;
+  while (std::getline(log, line)) {
+    if (line.find(",BCLR,") != std::string::npos) ++bclr;
+    if (line.find(",IDEC,") == std::string::npos) continue;
+    ++idec;
+    // The samples' slices: FB = 39 (start code, scale code, extra_bit_slice, address increment 1).
+    EXPECT_NE(line.find(",FB=39 QSC="), std::string::npos) << line;
+    EXPECT_NE(line.find(" DTD=0 SGN=0 DTE=0 OFM=0,0x01000000,"), std::string::npos) << line;
+  }
+  // 3 s: lightmap frames 0-3 (16 slices each) and sky frames 0-3 (4 each), a BCLR per picture.
+  EXPECT_EQ(bclr, 8);
+  EXPECT_EQ(idec, 4 * 16 + 4 * 4);
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
 TEST(PlayCli, WritesEveryFileAndPicturesMatchTheirHashes) {
   const fs::path out = scratch("run");
   // --alpha gs: the texels as they are in VRAM, the bytes the hashes hash.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# docs/run-files.md names every column of timeline.csv and every field of stats.json that a play
-# writes (issue #33: the run files document their units). Two plays: a sample with a fault plan and a
+# docs/run-files.md names every column of timeline.csv and ipu_commands.csv and every field of
+# stats.json that a play writes (issue #33: the run files document their units; issue #30). Two plays: a sample with a fault plan and a
 # branch, and a stream with P and B pictures whose first P picture is damaged.
 #   check_run_files.sh VBIM SOURCE_DIR
 set -euo pipefail
@@ -9,7 +9,7 @@ src="$2"
 work=$(mktemp -d "${TMPDIR:-/tmp}/vbim-run-files.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 "$vbim" play "$src/streams/samples/day_weather.vbim" --faults "$src/examples/fault-plans/stall.toml" \
-  --branch 10s=1 --duration 30s --no-trace --out "$work/a" >/dev/null
+  --branch 10s=1 --duration 30s --no-trace --trace-detail ipu --out "$work/a" >/dev/null
 "$vbim" author --synthetic clear --synthetic-frames 12 --synthetic-size 64x64 --synthetic-sky-size 32x16 \
   --gop 6 --b-frames 2 --out "$work/gop.vbim" >/dev/null
 python3 - "$work/gop.vbim" "$work/damaged.vbim" <<'PY'
@@ -21,7 +21,7 @@ while (d[i + 5] >> 3) & 7 != 2:
 d[i + 40] ^= 0xFF
 open(sys.argv[2], 'wb').write(d)
 PY
-"$vbim" play "$work/damaged.vbim" --duration 20s --no-trace --out "$work/b" >/dev/null
+"$vbim" play "$work/damaged.vbim" --duration 20s --no-trace --trace-detail ipu --out "$work/b" >/dev/null
 python3 - "$src/docs/run-files.md" "$work/a" "$work/b" <<'PY'
 import json, re, sys
 doc = open(sys.argv[1], encoding='utf-8').read()
@@ -50,8 +50,9 @@ for run in sys.argv[2:]:
     for key in flat(json.load(open(run + '/stats.json'))):
         if not documented(key):
             missing.append('stats.json ' + key)
-    header = open(run + '/timeline.csv').readline().strip().split(',')
-    missing += ['timeline.csv ' + c for c in header if c not in named]
+    for name in ('timeline.csv', 'ipu_commands.csv'):
+        header = open(run + '/' + name).readline().strip().split(',')
+        missing += [name + ' ' + c for c in header if c not in named]
 missing = sorted(set(missing))
 if missing:
     print('docs/run-files.md does not document:\n  ' + '\n  '.join(missing))

@@ -189,7 +189,7 @@ TEST(IpuCommandLog, Rgb16OutputSetsOfmAndDteAndHalvesTheFromIpuQwords) {
   ASSERT_EQ(rgb16.issued.size(), rgb32.issued.size());
   for (std::size_t k = 1; k < rgb16.issued.size(); ++k) {
     EXPECT_EQ(rgb16.issued[k].word, rgb32.issued[k].word | 0x0C000000u);  // OFM = 1, DTE = 1
-    EXPECT_EQ(rgb16.issued[k].end, rgb32.issued[k].end);  // CSC-bound: the core's time is the same
+    EXPECT_EQ(rgb16.issued[k].end, rgb32.issued[k].end);                  // CSC-bound: the core's time is the same
   }
   // The drain keeps up with CSC either way: the picture is in memory 2 DMA periods after its last
   // row instead of 4.

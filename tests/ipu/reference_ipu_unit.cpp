@@ -6,7 +6,6 @@
 namespace vbim::ipu::reference {
 namespace {
 
-
 DecoderOptions withTrace(DecoderOptions o) {
   o.recordMacroblocks = true;
   o.freshStorePerDecode = true;  // as IpuUnit: a concealed macroblock is mid-grey

@@ -21,9 +21,11 @@ struct Played {
   ee::DecodeCounters decode;
 };
 
-Played play(const std::string& strategy, const std::string& uploadMode = "full") {
+Played play(const std::string& strategy, const std::string& uploadMode = "full",
+            const std::string& textureFormat = "ct32") {
   PlatformConfig c;
   c.gs.upload_strategy = strategy;
+  c.gs.texture_format = textureFormat;
   c.gs.upload_mode = uploadMode;
   if (uploadMode == "strips") c.gs.sky_height = 128;
   auto run =
@@ -80,6 +82,20 @@ TEST(UploadStrategy, EeReorderCostsTheEeAndNotTheGif) {
   // One raster transfer per frame, as without the reorder.
   EXPECT_EQ(reorder.lightmap.uploadTransfers, raster.lightmap.uploadTransfers);
   EXPECT_EQ(reorder.lightmap.gsBusy, raster.lightmap.gsBusy);
+}
+
+// The 16-bit path (issue #30): the IPU writes RGB16 (OFM = 1), 32 qwords a macroblock, so the EE
+// reorders half the qwords of RGB32 and the upload moves 2 bytes a pixel.
+TEST(UploadStrategy, Ct16ReordersAndUploadsTheIpusRgb16) {
+  const Played reorder = play("ee-reorder", "full", "ct16");
+  const std::int64_t lmPictures = reorder.decode.picturesPerStream[0];
+  const std::int64_t skyPictures = reorder.decode.picturesPerStream[1];
+  ASSERT_GT(lmPictures, 3);
+  EXPECT_EQ(reorder.decode.reorderedQwords, (lmPictures * kLightmapMacroblocks + skyPictures * kSkyMacroblocks) * 32);
+  EXPECT_EQ(reorder.decode.reorderBusy, reorder.decode.reorderedQwords * 4);
+  EXPECT_EQ(reorder.lightmap.uploadBytes, reorder.lightmap.uploadTransfers * 256 * 256 * 2);
+  const Played raster = play("raster", "full", "ct16");
+  EXPECT_EQ(reorder.hashes, raster.hashes);
 }
 
 TEST(UploadStrategy, StripsUploadTheirOwnMacroblockRows) {
