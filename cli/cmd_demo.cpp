@@ -84,10 +84,12 @@ void addDemo(CLI::App& app) {
     // The sample's recipe, so that the demo's stream and the committed sample cannot drift apart (a
     // test checks they are byte-identical).
     const lighting::TechniqueAStreamSettings recipe = lighting::sampleDaySettings();
-    std::cout << lighting::authoredSummary(stream.string(), lighting::authorTechniqueA(recipe, stream),
-                                           recipe.stream.encoder.containerFps);
+    // Named as it is kept in the output (day.vbim), never by its temporary name: the summary and
+    // stats.json's run.disc.path are the same on every run.
     r->disc = stream.string();
-    r->discLabel = "day.vbim";  // as it is saved in the output: the summary is the same on every run
+    r->discLabel = "day.vbim";
+    std::cout << lighting::authoredSummary((out / r->discLabel).string(), lighting::authorTechniqueA(recipe, stream),
+                                           recipe.stream.encoder.containerFps);
     if (iop::parseDuration(r->duration) <= fromMs(8'000)) r->at.clear();  // the catch-up shots lie past a short run
     r->faultsText = kDemoFaults;
     std::cout << "vbim demo: playing it with a 6 s drive stall at 0.2 s, a read error at LBA 2090 and loop wraps\n";

@@ -20,7 +20,7 @@ namespace vbim::runs {
 
 struct PlayRequest {
   std::string disc;
-  std::string discLabel;   // how the summary names the disc (default: the path given)
+  std::string discLabel;   // how the summary and stats.json name the disc (default: the path given)
   std::string file;        // the stream file on an ISO 9660 image (--file), or empty: the default
   std::string config;      // platform config TOML, or empty
   std::string faults;      // fault plan TOML path, or empty

@@ -63,6 +63,9 @@ json::Value inputJson(const std::filesystem::path& path) {
 json::Value playProvenance(const PlayRequest& r, const player::PlayerOptions& o) {
   json::Value run = json::object({{"vbim_version", VBIM_VERSION}, {"command", "play"}});
   json::Value disc = inputJson(r.disc);
+  // A disc the caller names otherwise (the demo's stream, authored under a temporary name and kept
+  // as day.vbim in its output): recorded by that name, so two runs give the same stats.json.
+  if (!r.discLabel.empty()) disc["path"] = r.discLabel;
   if (!r.file.empty()) disc["file"] = r.file;
   run["disc"] = disc;
   run["config"] = r.config.empty() ? json::Value("defaults") : inputJson(r.config);
