@@ -61,6 +61,7 @@ void RunDirWriter::onVsync(const VsyncRow& row, const Rgba8Image& lightmap, cons
   hashes_ << hashesLine(row);
   ++presented_;
   timeline_ << timelineLine(row);
+  readErrors_.onVsync(row.at, player_.pipeline().drive().stats().retries);
   if (options_.onRow) options_.onRow(row);
   bool shoot = options_.every > 0 && row.vsync % options_.every == 0;
   while (nextAt_ != options_.at.end() && *nextAt_ <= row.at) {
@@ -100,6 +101,12 @@ void RunDirWriter::finish(const json::Value* run) {
   if (options_.ipuCommands) ipuCommands_.close();
   if (!hashes_ || !timeline_ || !arrivals_ || (options_.ipuCommands && !ipuCommands_)) {
     throw Error(dir_.string() + ": cannot write the run's text files");
+  }
+  {
+    std::ofstream f = openIn(dir_, "faults.csv");
+    writeFaultSpansCsv(
+        f, mergeFaultSpans(plannedFaultSpans(player_.options().faults, player_.duration()), readErrors_.spans()));
+    if (!f) throw Error((dir_ / "faults.csv").string() + ": cannot write the file");
   }
   {
     std::ofstream f = openIn(dir_, "stats.json");

@@ -2,6 +2,8 @@
 //   hashes.txt     one line per vsync (player/report.hpp)
 //   timeline.csv   one row per vsync
 //   arrivals.csv   each frame the presenters received, for `vbim replay` (player/replay.hpp)
+//   faults.csv     when the drive was disturbed: the plan's timed faults, the read errors met
+//                  (player/fault_spans.hpp)
 //   trace.json, signals.vcd   the trace, streamed as the run goes (optional)
 //   ipu_commands.csv   every IPU command, word and time (optional: player/ipu_command_log.hpp)
 //   frames/lightmap_NNNNNN.EXT, frames/sky_NNNNNN.EXT   pictures every N vsyncs and at given times
@@ -23,6 +25,7 @@
 #include <set>
 #include <string>
 
+#include "player/fault_spans.hpp"
 #include "player/picture_queue.hpp"
 #include "player/player.hpp"
 #include "runtime/json.hpp"
@@ -62,7 +65,7 @@ class RunDirWriter {
   double pictureCpuSeconds() const { return pictures_ ? pictures_->cpuSeconds() : 0.0; }
 
   // After the run: closes hashes.txt, timeline.csv and arrivals.csv (its end line), writes
-  // stats.json (with `run` first, when given: where the run came from) and finishes the trace.
+  // faults.csv and stats.json (with `run` first, when given: where the run came from) and finishes the trace.
   // Throws vbim::Error when a file cannot be written.
   void finish(const json::Value* run = nullptr);
 
@@ -85,6 +88,7 @@ class RunDirWriter {
   std::set<Tick>::const_iterator nextAt_;
   std::int64_t presented_ = 0;  // the vsyncs of hashes.txt: arrivals.csv's end row, for replay
   std::int64_t images_ = 0;
+  ReadErrorSpans readErrors_;
   Rgba8Image copy_;                       // without a PictureQueue: the copy handed to writeImage
   std::optional<PictureQueue> pictures_;  // last: its thread stops before options_ goes
 };

@@ -86,6 +86,7 @@ RunDir readRunDir(const std::filesystem::path& dir) {
     throw Error(dir.string() + ": no frames/lightmap_NNNNNN.png in this run (play it with --every N or --at TIMES)");
   }
   readTimeline(dir / "timeline.csv", run);
+  run.faults = readFaultSpansCsv(dir / "faults.csv");
   if (std::ifstream a(dir / "authoring.json", std::ios::binary); a) {
     run.authoring = std::string(std::istreambuf_iterator<char>(a), std::istreambuf_iterator<char>());
   }

@@ -1,7 +1,8 @@
 // The reader of a run directory (the writer is player/run_dir.hpp): what a `vbim play ... --every N
 // --out RUN_DIR` run left behind, as the renderer (render/render_run.hpp) needs it:
 // frames/lightmap_NNNNNN.png (+ sky_NNNNNN.png), timeline.csv (one row per vsync, docs/player.md),
-// and authoring.json (how the stream was made, when it carried a record).
+// faults.csv (when the drive was disturbed, player/fault_spans.hpp) and authoring.json (how the
+// stream was made, when it carried a record).
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "player/fault_spans.hpp"
 
 namespace vbim::player {
 
@@ -33,6 +36,7 @@ struct RunDir {
   std::vector<RunFrame> frames;                  // by vsync
   std::map<std::int64_t, TimelineRow> timeline;  // by vsync; empty if timeline.csv is missing
   std::int64_t vsyncs = 0;                       // rows in timeline.csv
+  std::vector<FaultSpan> faults;                 // faults.csv; empty without faults or the file
   std::optional<std::string> authoring;          // authoring.json as written, if the run has one
 };
 

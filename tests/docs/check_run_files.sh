@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# docs/run-files.md names every column of timeline.csv and ipu_commands.csv and every field of
-# stats.json that a play writes (issue #33: the run files document their units; issue #30). Two plays: a sample with a fault plan and a
+# docs/run-files.md names every column of timeline.csv, faults.csv and ipu_commands.csv and every
+# field of stats.json that a play writes (issue #33: the run files document their units; issue #30).
+# Two plays: a sample with a fault plan and a
 # branch, and a stream with P and B pictures whose first P picture is damaged.
 #   check_run_files.sh VBIM SOURCE_DIR
 set -euo pipefail
@@ -50,7 +51,7 @@ for run in sys.argv[2:]:
     for key in flat(json.load(open(run + '/stats.json'))):
         if not documented(key):
             missing.append('stats.json ' + key)
-    for name in ('timeline.csv', 'ipu_commands.csv'):
+    for name in ('timeline.csv', 'faults.csv', 'ipu_commands.csv'):
         header = open(run + '/' + name).readline().strip().split(',')
         missing += [name + ' ' + c for c in header if c not in named]
 missing = sorted(set(missing))

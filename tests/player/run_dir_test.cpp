@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "player/fault_spans.hpp"
 #include "player/report.hpp"
 #include "player/run_dir.hpp"
 #include "player/scenario.hpp"
@@ -63,6 +64,81 @@ TEST(RunDir, ATestWritesTheFilesOfAPlayAndKeepsItsRows) {
   EXPECT_FALSE(readText(dir / "trace.json").empty());
   EXPECT_FALSE(readText(dir / "signals.vcd").empty());
   std::filesystem::remove_all(dir);
+}
+
+// faults.csv says when the drive was disturbed: the plan's stall as planned, and the read error
+// when the drive met it (the plan gives only its sector), read back as written (issue #33).
+TEST(RunDir, FaultsCsvHasThePlannedStallAndTheReadErrorAsMet) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("vbim-run-dir-faults-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  auto run = Scenario::bareFile(testing::samplePath("day_clear.vbim"))
+                 .stall(fromMs(200), fromMs(1'000))
+                 .readError(42, 300)
+                 .start(fromMs(8'000));
+  RunDirOptions options;
+  options.trace = false;
+  RunDirWriter writer(run->player(), dir, options);
+  run->runToEnd();
+  writer.finish();
+  const std::vector<FaultSpan> spans = readFaultSpansCsv(dir / "faults.csv");
+  // The stall, then the read error as the drive met it: its retries, and after a failed read the
+  // driver's retries of the read (one or more runs of vsyncs), once the stall was over.
+  ASSERT_GE(spans.size(), 2u) << readText(dir / "faults.csv");
+  EXPECT_EQ(spans[0], (FaultSpan{"stall", 0.2, 1.2}));
+  for (std::size_t i = 1; i < spans.size(); ++i) {
+    EXPECT_EQ(spans[i].kind, "read error") << i;
+    EXPECT_GT(spans[i].endS, spans[i].beginS) << i;
+    EXPECT_GE(spans[i].beginS, 1.2) << i;
+    EXPECT_LT(spans[i].endS, 8.0) << i;
+  }
+  EXPECT_TRUE(readText(dir / "faults.csv").starts_with("kind,begin_s,end_s\nstall,0.200000,1.200000\n"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FaultSpans, ReadErrorsAreTheVsyncsAtWhichTheRetriesGrew) {
+  ReadErrorSpans r;
+  const Tick v = kBusHz / 60;
+  const std::int64_t retries[] = {0, 0, 3, 5, 5, 5, 6, 6};
+  for (int i = 0; i < 8; ++i) r.onVsync(i * v, retries[i]);
+  const std::vector<FaultSpan> s = r.spans();
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0], (FaultSpan{"read error", toSeconds(1 * v), toSeconds(3 * v)}));
+  EXPECT_EQ(s[1], (FaultSpan{"read error", toSeconds(5 * v), toSeconds(6 * v)}));
+}
+
+TEST(FaultSpans, ThePlansTimedEntriesClippedToTheRun) {
+  iop::FaultPlan plan;
+  iop::Fault stall;
+  stall.at = fromMs(9'000);
+  stall.duration = fromMs(5'000);
+  iop::Fault contention;
+  contention.kind = iop::Fault::Kind::Contention;
+  contention.at = fromMs(1'000);
+  contention.duration = fromMs(2'000);
+  iop::Fault error;
+  error.kind = iop::Fault::Kind::ReadError;
+  plan.faults = {stall, contention, error};
+  const std::vector<FaultSpan> s = mergeFaultSpans(plannedFaultSpans(plan, fromMs(10'000)), {});
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0], (FaultSpan{"contention", 1.0, 3.0}));
+  EXPECT_EQ(s[1], (FaultSpan{"stall", 9.0, 10.0}));
+}
+
+TEST(FaultSpans, AMalformedRowNamesTheFileAndLine) {
+  const std::filesystem::path f =
+      std::filesystem::temp_directory_path() / ("vbim-faults-csv-" + std::to_string(::getpid()) + ".csv");
+  std::ofstream(f) << "kind,begin_s,end_s\nstall,1,2\nstall,x\n";
+  try {
+    readFaultSpansCsv(f);
+    FAIL() << "expected vbim::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(f.string() + ":3: expected kind,begin_s,end_s"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(f);
+  EXPECT_TRUE(readFaultSpansCsv(f).empty()) << "no file: no faults";
 }
 
 // The pictures written on their own thread (the default) are the files written on the
