@@ -1,5 +1,6 @@
 #include "render/render_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <memory>
@@ -79,8 +80,25 @@ void writePicture(const std::filesystem::path& path, const Rgba8Image& picture) 
   }
 }
 
+// The simulated time of a vsync: timeline.csv's, else (no timeline) 60 vsyncs a second. Past the
+// timeline's last row (the run's end), one more vsync period per vsync.
+double timeOf(const player::RunDir& run, std::int64_t vsync) {
+  if (run.timeline.empty()) return static_cast<double>(vsync) / 60.0;
+  if (const auto it = run.timeline.find(vsync); it != run.timeline.end()) return it->second.timeSeconds;
+  const auto& [lastV, lastRow] = *run.timeline.rbegin();
+  const auto& [firstV, firstRow] = *run.timeline.begin();
+  const double period =
+      lastV > firstV ? (lastRow.timeSeconds - firstRow.timeSeconds) / static_cast<double>(lastV - firstV) : 1.0 / 60.0;
+  return lastRow.timeSeconds + period * static_cast<double>(vsync - lastV);
+}
+
+// The last vsync of the run: timeline.csv's last row, else the last saved frame.
+std::int64_t lastVsync(const player::RunDir& run) {
+  return run.timeline.empty() ? run.frames.back().vsync : run.timeline.rbegin()->first;
+}
+
 Moment momentOf(const player::TimelineRow& r) {
-  return r.behind ? Moment::Stall : r.catchUp ? Moment::CatchUp : Moment::OnTime;
+  return r.behind ? Moment::Late : r.catchUp ? Moment::CatchUp : Moment::OnTime;
 }
 
 }  // namespace
@@ -131,12 +149,22 @@ RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& req
                                           req.settings.height - req.settings.height % 2, req.videoFps);
   }
 
-  // Per-vsync state for the sheet.
-  std::vector<Moment> states;
+  // The video plays at the run's speed: each saved frame from its vsync's simulated time until the
+  // next saved frame's, the last until the run's end (the vsync after timeline.csv's last row).
+  std::vector<double> frameTimes;
+  for (const player::RunFrame& f : run.frames) frameTimes.push_back(timeOf(run, f.vsync));
+  const double runEnd = std::max(frameTimes.back(), timeOf(run, lastVsync(run) + 1));
+  const std::vector<VideoSlot> slots =
+      req.video ? videoSlots(frameTimes, runEnd, req.videoFps) : std::vector<VideoSlot>(frameTimes.size());
+
+  // Per-vsync state and the drive's faults for the sheet.
+  SheetRun sheetRun;
   if (!run.timeline.empty()) {
-    states.assign(static_cast<std::size_t>(run.timeline.rbegin()->first + 1), Moment::OnTime);
-    for (const auto& [v, row] : run.timeline) states[static_cast<std::size_t>(v)] = momentOf(row);
+    sheetRun.states.assign(static_cast<std::size_t>(run.timeline.rbegin()->first + 1), Moment::OnTime);
+    for (const auto& [v, row] : run.timeline) sheetRun.states[static_cast<std::size_t>(v)] = momentOf(row);
   }
+  sheetRun.seconds = runEnd;
+  sheetRun.faults = run.faults;
   // Tiles: at most ~48 evenly spread over the frames.
   const std::size_t n = run.frames.size();
   const std::size_t tileStep = std::max<std::size_t>(1, (n + 47) / 48);
@@ -144,6 +172,7 @@ RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& req
   nlohmann::json framesJson = nlohmann::json::array();
   std::vector<SheetTile> tiles;
   std::int64_t previousTileVsync = -1;
+  double previousTileTime = 0;
   double renderSeconds = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const player::RunFrame& f = run.frames[i];
@@ -172,14 +201,14 @@ RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& req
     char name[64];
     std::snprintf(name, sizeof name, "render_%06lld.png", static_cast<long long>(f.vsync));
     writePicture(outDir / "frames" / name, picture);
-    if (video) {
+    if (video && slots[i].shown) {
       if (picture.width % 2 != 0 || picture.height % 2 != 0) {
-        Rgba8Image even(video ? picture.width - picture.width % 2 : 0, picture.height - picture.height % 2);
+        Rgba8Image even(picture.width - picture.width % 2, picture.height - picture.height % 2);
         for (int y = 0; y < even.height; ++y)
           std::copy_n(picture.row(y), static_cast<std::size_t>(even.width) * 4, even.row(y));
-        video->add(even);
+        video->add(even, slots[i].pts, slots[i].duration);
       } else {
-        video->add(picture);
+        video->add(picture, slots[i].pts, slots[i].duration);
       }
     }
     framesJson.push_back({{"vsync", f.vsync},
@@ -195,14 +224,28 @@ RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& req
       for (auto it = run.timeline.upper_bound(previousTileVsync); it != run.timeline.end() && it->first <= f.vsync;
            ++it)
         worst = std::max(worst, momentOf(it->second));
-      tiles.push_back(SheetTile{f.vsync, downscale(picture, req.sheetThumbWidth), worst});
+      // The drive's faults since the previous tile (for the first: since the start).
+      std::vector<std::string> faults;
+      for (const player::FaultSpan& span : run.faults) {
+        const bool overlaps = span.beginS <= frameTimes[i] && span.endS >= previousTileTime;
+        if (overlaps && std::find(faults.begin(), faults.end(), span.kind) == faults.end()) faults.push_back(span.kind);
+      }
+      tiles.push_back(
+          SheetTile{f.vsync, frameTimes[i], downscale(picture, req.sheetThumbWidth), worst, std::move(faults)});
       previousTileVsync = f.vsync;
+      previousTileTime = frameTimes[i];
     }
     if (progress) progress(static_cast<int>(i + 1), static_cast<int>(n));
   }
-  if (video) video->finish();
+  if (video) {
+    video->finish();
+    result.videoFrames = video->frames();
+    for (const VideoSlot& v : slots) {
+      if (v.shown) result.videoSeconds = static_cast<double>(v.pts + v.duration) / req.videoFps;
+    }
+  }
   result.sheet = outDir / "contact_sheet.png";
-  writePicture(result.sheet, contactSheet(tiles, states, req.sheetColumns, req.sheetThumbWidth));
+  writePicture(result.sheet, contactSheet(tiles, sheetRun, req.sheetColumns, req.sheetThumbWidth));
   result.frames = static_cast<int>(n);
   result.secondsPerFrame = renderSeconds / static_cast<double>(n);
 
@@ -222,6 +265,19 @@ RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& req
                           {"latitude_deg", req.day.latitudeDeg},
                           {"day_of_year", req.day.dayOfYear}}},
                         {"frames", framesJson}};
+  if (video) {
+    doc["video"] = {{"file", "playback.mp4"},
+                    {"codec", "MPEG-4 Part 2"},
+                    {"clock_fps", req.videoFps},
+                    {"frames", result.videoFrames},
+                    {"duration_s", result.videoSeconds},
+                    {"from_s", frameTimes.front()},
+                    {"to_s", runEnd},
+                    {"timing",
+                     "the run's speed: each saved frame is shown from its simulated time until the next saved "
+                     "frame's, the last until the run's end; frames closer than 1/clock_fps s to the one before "
+                     "are left out"}};
+  }
   std::ofstream(outDir / "render.json") << doc.dump(1) << "\n";
   return result;
 }

@@ -39,7 +39,7 @@ struct RunRenderRequest {
   // `day` for every frame (a run without a record).
   std::vector<lighting::DayCycleParams> variantDays;
   int loopFrame = 0;
-  int videoFps = 10;
+  int videoFps = 10;  // the video's clock: ticks per second (it plays at the run's speed at any value)
   int sheetColumns = 6;
   int sheetThumbWidth = 200;
   bool video = true;
@@ -62,8 +62,10 @@ void applyAuthoring(const std::string& record, const std::string& origin, RunRen
 struct RunRenderResult {
   int frames = 0;
   std::filesystem::path sheet, video;
-  std::string context;         // GL version / renderer
-  double secondsPerFrame = 0;  // host time, rendering only
+  std::int64_t videoFrames = 0;  // frames in playback.mp4 (saved frames closer than 1/fps s are left out)
+  double videoSeconds = 0;       // its length: the simulated time from the first saved frame to the run's end
+  std::string context;           // GL version / renderer
+  double secondsPerFrame = 0;    // host time, rendering only
 };
 
 using RenderProgressFn = std::function<void(int done, int total)>;

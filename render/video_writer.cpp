@@ -1,5 +1,10 @@
 #include "render/video_writer.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <string>
+
 #include "render/error.hpp"
 #include "streams/authoring/libav.hpp"
 
@@ -14,6 +19,8 @@ struct VideoWriter::Av {
   AVPacket* packet = nullptr;
   SwsContext* sws = nullptr;
   std::int64_t count = 0;
+  std::int64_t lastPts = -1;
+  std::deque<std::int64_t> durations;  // of the frames sent, not yet out as packets, in order
   int quality = 0;
   bool headerWritten = false, finished = false;
 
@@ -38,12 +45,43 @@ struct VideoWriter::Av {
       const int rc = avcodec_receive_packet(codec, packet);
       if (rc == AVERROR(EAGAIN) || rc == AVERROR_EOF) return;
       check(rc, "encoding the video");
+      // No B-frames: packets come out in the order the frames went in, one each. The MP4 muxer
+      // takes a sample's length from the next one's start; the last one's from this duration.
+      if (!durations.empty()) {
+        packet->duration = durations.front();
+        durations.pop_front();
+      }
       av_packet_rescale_ts(packet, codec->time_base, stream->time_base);
       packet->stream_index = stream->index;
       check(av_interleaved_write_frame(fmt, packet), "writing the video");
     }
   }
 };
+
+std::vector<VideoSlot> videoSlots(const std::vector<double>& startS, double endS, int fps) {
+  std::vector<VideoSlot> slots(startS.size());
+  if (startS.empty()) return slots;
+  const double origin = startS.front();
+  const auto tick = [&](double t) { return static_cast<std::int64_t>(std::llround((t - origin) * fps)); };
+  std::size_t last = 0;  // the shown frame before
+  for (std::size_t i = 0; i < startS.size(); ++i) {
+    if (i > 0 && !(startS[i] >= startS[i - 1])) {
+      throw RenderError("video: frame " + std::to_string(i) + " at " + std::to_string(startS[i]) +
+                        " s comes before the frame before it (" + std::to_string(startS[i - 1]) + " s)");
+    }
+    const std::int64_t pts = tick(startS[i]);
+    if (i > 0 && pts <= slots[last].pts) continue;
+    if (i > 0) slots[last].duration = pts - slots[last].pts;
+    slots[i] = VideoSlot{true, pts, 0};
+    last = i;
+  }
+  if (!(endS >= startS.back())) {
+    throw RenderError("video: the run ends at " + std::to_string(endS) + " s, before its last saved frame (" +
+                      std::to_string(startS.back()) + " s)");
+  }
+  slots[last].duration = std::max<std::int64_t>(1, tick(endS) - slots[last].pts);
+  return slots;
+}
 
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, int fps, int quantiser)
     : av_(std::make_unique<Av>()) {
@@ -97,16 +135,24 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
 
 VideoWriter::~VideoWriter() = default;
 
-void VideoWriter::add(const Rgba8Image& img) {
+void VideoWriter::add(const Rgba8Image& img, std::int64_t pts, std::int64_t duration) {
   Av& a = *av_;
   if (img.width != a.codec->width || img.height != a.codec->height) {
     throw RenderError(a.path.string() + ": video frame " + std::to_string(a.count) + " has another size");
+  }
+  if (pts <= a.lastPts || duration < 1) {
+    throw RenderError(a.path.string() + ": video frame " + std::to_string(a.count) + " at tick " + std::to_string(pts) +
+                      " for " + std::to_string(duration) +
+                      " ticks: expected a start after the previous frame's and a positive duration");
   }
   a.check(av_frame_make_writable(a.frame), "preparing a frame");
   const std::uint8_t* src[1] = {img.pixels.data()};
   const int stride[1] = {img.width * 4};
   sws_scale(a.sws, src, stride, 0, img.height, a.frame->data, a.frame->linesize);
-  a.frame->pts = a.count++;
+  a.frame->pts = pts;
+  a.lastPts = pts;
+  ++a.count;
+  a.durations.push_back(duration);
   a.frame->quality = a.quality;
   a.check(avcodec_send_frame(a.codec, a.frame), "encoding the video");
   a.drain();

@@ -14,7 +14,9 @@
 #include "render/contact_sheet.hpp"
 #include "render/error.hpp"
 #include "render/render_run.hpp"
+#include "render/video_writer.hpp"
 #include "render_test_scene.hpp"
+#include "tests/support/run_command.hpp"
 
 namespace vbim::render {
 namespace {
@@ -89,6 +91,54 @@ TEST(RenderRun, WritesFramesSheetVideoAndSummary) {
   EXPECT_EQ(firstBorder[0], 90) << "the first tile is on time";
   fs::remove_all(run);
   fs::remove_all(out);
+}
+
+// playback.mp4 plays at the run's speed: the fake run's 121 vsyncs (2.02 s) play in about 2 s,
+// not as three frames at the video's rate (0.3 s at 10 frames/s) (issue #33).
+TEST(RenderRun, VideoPlaysAtTheRunsSpeed) {
+  const fs::path run = fakeRun();
+  const fs::path out = freshDir("speed");
+  RunRenderRequest req = smallRequest();
+  req.videoFps = 10;
+  const RunRenderResult r = renderRun(readRunDir(run), req, out, nullptr);
+  EXPECT_EQ(r.videoFrames, 3);
+  EXPECT_NEAR(r.videoSeconds, 2.1, 1e-9);  // frames at 0, 1 and 2 s; the last lasts one tick of 0.1 s
+  const auto probe = vbim::testing::runCommand("ffprobe -v error -show_entries format=duration -of csv=p=0 " +
+                                               (out / "playback.mp4").string());
+  ASSERT_EQ(probe.status, 0) << probe.output;
+  EXPECT_NEAR(std::stod(probe.output), 2.02, 0.1) << probe.output;
+  const auto frames = vbim::testing::runCommand(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
+      (out / "playback.mp4").string());
+  ASSERT_EQ(frames.status, 0) << frames.output;
+  EXPECT_EQ(std::stoi(frames.output), 3) << frames.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "render.json"));
+  EXPECT_EQ(j["video"]["frames"], 3);
+  EXPECT_EQ(j["video"]["clock_fps"], 10);
+  EXPECT_NEAR(j["video"]["to_s"].get<double>(), 121 / 60.0, 1e-9);
+  fs::remove_all(run);
+  fs::remove_all(out);
+}
+
+// Each saved frame lasts until the next; one that falls on the tick of the frame before is left out.
+TEST(VideoSlots, FramesLastUntilTheNextAndTheLastUntilTheEnd) {
+  const std::vector<VideoSlot> s = videoSlots({4.0, 8.0, 8.02, 12.0}, 60.0, 10);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_TRUE(s[0].shown);
+  EXPECT_EQ(s[0].pts, 0);
+  EXPECT_EQ(s[0].duration, 40);
+  EXPECT_TRUE(s[1].shown);
+  EXPECT_EQ(s[1].pts, 40);
+  EXPECT_EQ(s[1].duration, 40);
+  EXPECT_FALSE(s[2].shown) << "8.02 s is on 8.0 s's tick at 10 ticks/s";
+  EXPECT_EQ(s[3].pts, 80);
+  EXPECT_EQ(s[3].duration, 480);
+  // A last frame left out: the one before holds until the end.
+  const std::vector<VideoSlot> t = videoSlots({0.0, 1.0, 1.01}, 3.0, 10);
+  EXPECT_FALSE(t[2].shown);
+  EXPECT_EQ(t[1].duration, 20);
+  EXPECT_THROW(videoSlots({1.0, 0.5}, 3.0, 10), RenderError);
+  EXPECT_THROW(videoSlots({1.0, 2.0}, 1.5, 10), RenderError);
 }
 
 nlohmann::json renderJsonOf(const RunDir& dir, const RunRenderRequest& req, const std::string& name) {
