@@ -1,6 +1,7 @@
 // A line chart as plain data: one or more panels stacked vertically that share one x range, each
-// with a title, axis labels, named series (listed in a legend right of the panel) and optional
-// horizontal reference lines (a threshold, a search limit). plots/write_chart.hpp draws it.
+// with a title, axis labels, named series (listed in a legend right of the panel), optional
+// horizontal reference lines (a threshold, a search limit) and shaded x intervals (faults). plots/write_chart.hpp draws
+// it.
 #pragma once
 
 #include <cstddef>
@@ -34,12 +35,21 @@ struct RefLine {
   Rgb color{204, 26, 26};
 };
 
+// A shaded interval of x across the whole panel, behind the grid and the lines (a drive stall, a
+// read error), named in the legend by a colour box (one entry per name).
+struct Band {
+  std::string name;
+  double x0 = 0, x1 = 0;
+  Rgb color{230, 230, 230};
+};
+
 struct Panel {
   std::string title;
   std::string xLabel;
   std::string yLabel;
   std::vector<Series> series;
   std::vector<RefLine> refLines;
+  std::vector<Band> bands;
   std::optional<double> yMin, yMax;  // default: from the data (yMin 0 when all data are >= 0)
   bool xLog2 = false;                // x axis in powers of two (ring sizes)
 };

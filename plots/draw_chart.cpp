@@ -115,6 +115,8 @@ class Drawer {
         if (!s.name.empty()) chars = std::max(chars, std::min(s.name.size(), kMaxText)), any = true;
       for (const RefLine& r : p.refLines)
         if (!r.name.empty()) chars = std::max(chars, std::min(r.name.size(), kMaxText)), any = true;
+      for (const Band& b : p.bands)
+        if (!b.name.empty()) chars = std::max(chars, std::min(b.name.size(), kMaxText)), any = true;
     }
     if (!any) return 0;
     const double w = kLegendGap + kLegendSample + kLegendPadding + 0.6 * kLabelText * static_cast<double>(chars);
@@ -145,6 +147,14 @@ class Drawer {
     viewport(plot, xa, ya);
     plwidth(1);
     pllsty(1);
+    // Bands first, so the grid and the lines stay visible over them.
+    for (const Band& b : p.bands) {
+      const double x0 = std::max(xa.toDrawing(b.x0), xa.lo), x1 = std::min(xa.toDrawing(b.x1), xa.hi);
+      if (!(x1 > x0)) continue;
+      const PLFLT xs[4] = {x0, x1, x1, x0}, ys[4] = {ya.lo, ya.lo, ya.hi, ya.hi};
+      colours_.use(b.color);
+      plfill(4, xs, ys);
+    }
     colours_.use(kGridGrey);
     plbox("g", xa.step, 0, "g", ya.step, 0);
     // Left and bottom axes with outward ticks, then the tick labels in black.
@@ -209,18 +219,30 @@ class Drawer {
     std::vector<std::string> names;
     std::vector<PLINT> opts, textColours, lineColours, lineStyles;
     std::vector<PLFLT> lineWidths;
-    const auto add = [&](const std::string& name, Rgb colour, PLINT style) {
+    std::vector<PLINT> boxColours, boxPatterns;
+    std::vector<PLFLT> boxScales, boxLineWidths;
+    const auto add = [&](const std::string& name, Rgb colour, PLINT style, bool box) {
       names.push_back(plainText(name));
-      opts.push_back(PL_LEGEND_LINE);
+      opts.push_back(box ? PL_LEGEND_COLOR_BOX : PL_LEGEND_LINE);
       textColours.push_back(colours_.slot(kBlack));
       lineColours.push_back(colours_.slot(colour));
       lineStyles.push_back(style);
       lineWidths.push_back(3);
+      boxColours.push_back(colours_.slot(colour));
+      boxPatterns.push_back(0);
+      boxScales.push_back(0.8);
+      boxLineWidths.push_back(1);
     };
     for (const Series& s : p.series)
-      if (!s.name.empty()) add(s.name, s.color, 1);
+      if (!s.name.empty()) add(s.name, s.color, 1, false);
     for (const RefLine& r : p.refLines)
-      if (!r.name.empty()) add(r.name, r.color, 2);
+      if (!r.name.empty()) add(r.name, r.color, 2, false);
+    bool anyBox = false;
+    for (const Band& b : p.bands) {
+      if (b.name.empty() || std::find(names.begin(), names.end(), plainText(b.name)) != names.end()) continue;
+      add(b.name, b.color, 1, true);
+      anyBox = true;
+    }
     if (names.empty()) return;
     std::vector<const char*> texts;
     texts.reserve(names.size());
@@ -232,8 +254,10 @@ class Drawer {
     pllegend(&width, &height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
              PL_POSITION_LEFT | PL_POSITION_TOP | PL_POSITION_INSIDE, 0, 0, kLegendSample / area.width(),
              colours_.slot(kWhite), colours_.slot(kAxisGrey), 1, 0, 0, static_cast<PLINT>(names.size()), opts.data(),
-             kLegendTextOffset, 1.0, kLegendRowSpacing, 0, textColours.data(), texts.data(), nullptr, nullptr, nullptr,
-             nullptr, lineColours.data(), lineStyles.data(), lineWidths.data(), nullptr, nullptr, nullptr, nullptr);
+             kLegendTextOffset, 1.0, kLegendRowSpacing, 0, textColours.data(), texts.data(),
+             anyBox ? boxColours.data() : nullptr, anyBox ? boxPatterns.data() : nullptr,
+             anyBox ? boxScales.data() : nullptr, anyBox ? boxLineWidths.data() : nullptr, lineColours.data(),
+             lineStyles.data(), lineWidths.data(), nullptr, nullptr, nullptr, nullptr);
   }
 
   const Figure& fig_;

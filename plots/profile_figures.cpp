@@ -30,7 +30,30 @@ std::string ringLabel(std::int64_t bankmax, std::int64_t bufmax) {
 
 }  // namespace
 
-Figure occupancyFigure(const std::string& title, const std::vector<RunTrace>& runs) {
+std::vector<Band> faultBands(const std::vector<FaultInterval>& faults) {
+  static const struct {
+    const char* kind;
+    const char* name;
+    Rgb colour;
+  } kKinds[] = {{"stall", "drive stall (fault plan)", Rgb{226, 204, 246}},
+                {"read error", "read error (drive retries)", Rgb{196, 220, 255}},
+                {"contention", "contention (another client)", Rgb{250, 236, 170}},
+                {"seek away", "seek away (another file)", Rgb{186, 234, 228}},
+                {"random stalls", "random stalls may strike", Rgb{238, 220, 250}},
+                {"random errors", "random errors may strike", Rgb{216, 234, 255}}};
+  std::vector<Band> bands;
+  for (const FaultInterval& f : faults) {
+    Band b{f.kind + " (drive)", f.beginS, f.endS, Rgb{224, 224, 224}};
+    for (const auto& k : kKinds) {
+      if (f.kind == k.kind) b = Band{k.name, f.beginS, f.endS, k.colour};
+    }
+    bands.push_back(std::move(b));
+  }
+  return bands;
+}
+
+Figure occupancyFigure(const std::string& title, const std::vector<RunTrace>& runs,
+                       const std::vector<FaultInterval>& faults) {
   Figure f;
   f.title = title;
   f.panelHeight = 360;
@@ -40,6 +63,7 @@ Figure occupancyFigure(const std::string& title, const std::vector<RunTrace>& ru
   p.xLabel = "simulated time (s)";
   p.yMin = 0;
   p.yMax = 105;
+  p.bands = faultBands(faults);
   for (std::size_t i = 0; i < runs.size(); ++i) {
     Series s;
     s.name = runs[i].name;
@@ -57,7 +81,8 @@ Figure occupancyFigure(const std::string& title, const std::vector<RunTrace>& ru
   return f;
 }
 
-Figure lagPopFigure(const std::string& title, const std::vector<RunTrace>& runs, int popThreshold) {
+Figure lagPopFigure(const std::string& title, const std::vector<RunTrace>& runs, int popThreshold,
+                    const std::vector<FaultInterval>& faults) {
   Figure f;
   f.title = title;
   Panel lag, pop;
@@ -67,6 +92,7 @@ Figure lagPopFigure(const std::string& title, const std::vector<RunTrace>& runs,
   pop.title = "Pop: largest per-byte change of the lightmap in one vsync";
   pop.yLabel = "pop (8-bit levels)";
   pop.xLabel = "simulated time (s)";
+  lag.bands = pop.bands = faultBands(faults);
   if (popThreshold >= 0)
     pop.refLines.push_back(RefLine{"threshold " + std::to_string(popThreshold), static_cast<double>(popThreshold)});
   for (std::size_t i = 0; i < runs.size(); ++i) {

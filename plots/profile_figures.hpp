@@ -28,6 +28,16 @@ struct RunTrace {
   std::vector<TracePoint> points;
 };
 
+// A time the drive was disturbed (a run's faults.csv row, player/fault_spans.hpp): shaded on the
+// time axis of the occupancy and lag/pop figures, in a colour per kind, named in the legend.
+struct FaultInterval {
+  std::string kind;  // "stall", "read error", "contention", "seek away", "random stalls", "random errors"
+  double beginS = 0, endS = 0;
+};
+
+// The bands for `faults`: pale colours per kind, legend names that say what each is.
+std::vector<Band> faultBands(const std::vector<FaultInterval>& faults);
+
 // One result of a stall search: the line it belongs to (legend name, e.g. stream, policy and
 // criterion), the ring size, and the longest stall survived (none: fails even without a stall).
 struct StallPoint {
@@ -42,10 +52,13 @@ struct StallSearchSetup {
   int popThreshold = -1;  // -1: auto
 };
 
-// Ring occupancy (percent of the ring readable) over time, one line per run.
-Figure occupancyFigure(const std::string& title, const std::vector<RunTrace>& runs);
-// Lag and pop over time (two panels), one line per run; a dashed threshold when popThreshold >= 0.
-Figure lagPopFigure(const std::string& title, const std::vector<RunTrace>& runs, int popThreshold);
+// Ring occupancy (percent of the ring readable) over time, one line per run; `faults` shaded.
+Figure occupancyFigure(const std::string& title, const std::vector<RunTrace>& runs,
+                       const std::vector<FaultInterval>& faults = {});
+// Lag and pop over time (two panels), one line per run; a dashed threshold when popThreshold >= 0;
+// `faults` shaded in both panels.
+Figure lagPopFigure(const std::string& title, const std::vector<RunTrace>& runs, int popThreshold,
+                    const std::vector<FaultInterval>& faults = {});
 // Longest survivable stall against ring size (log2 axis), one line per StallPoint::line in order of
 // first appearance, with the search limit dashed.
 Figure stallFigure(const std::string& title, const std::vector<StallPoint>& points, const StallSearchSetup& setup);

@@ -6,6 +6,7 @@
 
 #include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "player/fault_spans.hpp"
 #include "plots/profile_figures.hpp"
 #include "plots/write_chart.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
@@ -30,8 +31,12 @@ void DemoProfile::write(const std::string& disc, const std::filesystem::path& di
   const std::vector<plots::profile::RunTrace> runs{
       {"vbim demo (ring 160 sectors, 5 banks)", demoRing.bankmax, tracePoints(series_)}};
   const std::string title = "vbim demo: day_clear with a 6 s stall at 0.2 s, a read error and a loop wrap";
-  plots::writeChartFiles(plots::profile::occupancyFigure(title, runs), dir / "plots/occupancy");
-  plots::writeChartFiles(plots::profile::lagPopFigure(title, runs, -1), dir / "plots/lag_pop");
+  // The drive's faults as the run wrote them (faults.csv, already in `dir`), shaded in the figures.
+  std::vector<plots::profile::FaultInterval> faults;
+  for (const player::FaultSpan& f : player::readFaultSpansCsv(dir / "faults.csv"))
+    faults.push_back({f.kind, f.beginS, f.endS});
+  plots::writeChartFiles(plots::profile::occupancyFigure(title, runs, faults), dir / "plots/occupancy");
+  plots::writeChartFiles(plots::profile::lagPopFigure(title, runs, -1, faults), dir / "plots/lag_pop");
 
   const auto stream = bareStream(disc);
   // The authored file's temporary name carries the process id; the legend names it as it is

@@ -48,6 +48,26 @@ TEST(ProfileFigures, LagPopHasTwoPanelsAndAThresholdOnlyWhenFixed) {
   EXPECT_TRUE(lagPopFigure("t", runs, -1).panels[1].refLines.empty());
 }
 
+// The run's drive faults are shaded in every panel of the occupancy and lag/pop figures, each kind
+// in its own colour and named for what it is (issue #33).
+TEST(ProfileFigures, FaultsAreShadedInEveryTimePanelWithTheirNames) {
+  const std::vector<RunTrace> runs{{"demo", 5, trace(5)}};
+  const std::vector<FaultInterval> faults{{"stall", 0.2, 6.2}, {"read error", 7.0, 7.5}, {"contention", 8, 9}};
+  const Figure occ = occupancyFigure("t", runs, faults);
+  const Figure lp = lagPopFigure("t", runs, -1, faults);
+  for (const Panel* p : {&occ.panels[0], &lp.panels[0], &lp.panels[1]}) {
+    ASSERT_EQ(p->bands.size(), 3u) << p->title;
+    EXPECT_EQ(p->bands[0].name, "drive stall (fault plan)");
+    EXPECT_EQ(p->bands[0].x0, 0.2);
+    EXPECT_EQ(p->bands[0].x1, 6.2);
+    EXPECT_EQ(p->bands[1].name, "read error (drive retries)");
+    EXPECT_EQ(p->bands[2].name, "contention (another client)");
+    EXPECT_NE(p->bands[0].color, p->bands[1].color);
+    EXPECT_NE(p->bands[1].color, p->bands[2].color);
+  }
+  EXPECT_TRUE(occupancyFigure("t", runs).panels[0].bands.empty());
+}
+
 TEST(ProfileFigures, StallCurveOneNestedLinePerKeyOnALog2Axis) {
   const std::vector<StallPoint> points{{"a, blend, pop", 8, 4.3},
                                        {"a, blend, late", 8, std::nullopt},  // fails without a stall

@@ -111,6 +111,33 @@ TEST(PlotFiles, PngDecodesToTheFigureSizeWithTheSeriesColour) {
   EXPECT_GT(seriesBlue, 200u);          // the step line, 2 pixels wide
 }
 
+// A band (a drive stall) is shaded across the panel between its x values, behind the line, and
+// named in the legend by a box of its colour; the picture without it has none of that colour.
+TEST(PlotFiles, BandsAreShadedAndNamedInTheLegend) {
+  Figure fig = sampleFigure();
+  const Rgb pale{226, 204, 246};
+  fig.panels[0].bands.push_back(Band{"drive stall (fault plan)", 2.0, 4.0, pale});
+  const std::optional<Rgba> img = decodePng(renderChart(fig, Format::Png, "bands.png"));
+  const std::optional<Rgba> plain = decodePng(renderChart(sampleFigure(), Format::Png, "plain.png"));
+  ASSERT_TRUE(img.has_value() && plain.has_value());
+  // Columns holding the colour, in the plot area (left of the legend) and in the legend.
+  const auto count = [&](const Rgba& im, int x0, int x1) {
+    std::size_t n = 0;
+    for (int y = 40; y < 40 + 320; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        const unsigned char* p = &im.rgb[(static_cast<std::size_t>(y) * im.width + x) * 3];
+        n += p[0] == pale.r && p[1] == pale.g && p[2] == pale.b;
+      }
+    }
+    return n;
+  };
+  EXPECT_EQ(count(*plain, 0, img->width), 0u);
+  EXPECT_GT(count(*img, 0, 800), 100u * 100u) << "the band: 2 of 8 s across a panel about 220 pixels high";
+  EXPECT_GT(count(*img, 900, img->width), 50u) << "its box in the legend";
+  // Drawn again: the same bytes.
+  EXPECT_EQ(renderChart(fig, Format::Png, "bands.png"), renderChart(fig, Format::Png, "bands.png"));
+}
+
 TEST(PlotFiles, UnwritableDirectoryIsAnErrorNamingTheFile) {
   const fs::path missing = fs::path(::testing::TempDir()) / ("vbim_plots_missing_" + std::to_string(getpid()));
   fs::remove_all(missing);
