@@ -120,6 +120,35 @@ TEST(LightmapCli, WritesFramesAndDebugLayers) {
   EXPECT_EQ(runVbim("lightmap --size 32 --frames 1 --force --out " + out.string()).code, 0);
 }
 
+// Mean of the 8-bit channels of an image file (OpenImageIO).
+double meanLevel(const fs::path& file) {
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) return -1;
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<unsigned char> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, px.data())) return -1;
+  double sum = 0;
+  for (unsigned char v : px) sum += v;
+  return sum / static_cast<double>(px.size());
+}
+
+// The first picture a user opens is lit: `vbim lightmap --frames 1` renders the day's start hour,
+// which by default is in daylight (6 h at 45 N on 21 June), far brighter than the night (issue #33).
+TEST(LightmapCli, TheDefaultFirstFrameIsInDaylight) {
+  const fs::path day = scratch("cli_daylight"), night = scratch("cli_night");
+  fs::remove_all(day);
+  fs::remove_all(night);
+  const Result d = runVbim("lightmap --size 32 --frames 1 --sky-width 16 --out " + day.string());
+  ASSERT_EQ(d.code, 0) << d.err;
+  const Result n = runVbim("lightmap --size 32 --frames 1 --sky-width 16 --start-hour 0 --out " + night.string());
+  ASSERT_EQ(n.code, 0) << n.err;
+  const double dayLevel = meanLevel(day / "lightmap_0000.png"), nightLevel = meanLevel(night / "lightmap_0000.png");
+  // Here: 33 at 6 h; 4.4 at the old default of 4 h (moonlight), 2.9 at midnight.
+  EXPECT_GT(dayLevel, 20.0) << "frame 0 of the defaults: " << readText(day / "frames.csv");
+  EXPECT_GT(dayLevel, 4.0 * nightLevel) << "day " << dayLevel << ", night " << nightLevel;
+  EXPECT_NE(readText(day / "frames.csv").find("\n0,6,"), std::string::npos) << readText(day / "frames.csv");
+}
+
 void expectFailure(const std::string& args, const std::string& message, const fs::path& out) {
   fs::remove_all(out);
   const Result r = runVbim(args + " --out " + out.string());
