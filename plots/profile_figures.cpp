@@ -174,8 +174,8 @@ std::vector<std::string> writeProfileFigures(const std::vector<SweepTrace>& swee
       runs.push_back(RunTrace{"ring " + ringLabel(s->bankmax, s->bufmax), s->bankmax, s->points});
     const SweepTrace& first = *groups[key].front();
     const std::string what = first.stream + ", faults: " + first.faults + ", catch-up: " + first.policy;
-    write(occupancyFigure(what, runs), "plots/occupancy_" + safe(key));
-    write(lagPopFigure(what, runs, setup.popThreshold), "plots/lag_pop_" + safe(key));
+    write(occupancyFigure(what, runs, first.faultSpans), "plots/occupancy_" + safe(key));
+    write(lagPopFigure(what, runs, setup.popThreshold, first.faultSpans), "plots/lag_pop_" + safe(key));
   }
   if (!stalls.empty())
     write(stallFigure("Survivable drive stall against ring size", stalls, setup), "plots/survivable_stall");

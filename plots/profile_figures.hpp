@@ -71,11 +71,13 @@ struct SweepTrace {
   std::int64_t bankmax = 5;
   std::int64_t bufmax = 160;  // sectors
   std::vector<TracePoint> points;
+  std::vector<FaultInterval> faultSpans;  // the drive's faults in this run, shaded
 };
 
 // Writes the figures of `vbim profile` into `dir`, each as .png and .svg: one
 // plots/occupancy_<stream>_<faults>_<policy> and one plots/lag_pop_<...> per stream, fault plan
-// and policy (a line per ring size), and plots/survivable_stall when there are stall results.
+// and policy (a line per ring size; the faults of its first run shaded: the same plan, and read
+// errors as the first ring met them), and plots/survivable_stall when there are stall results.
 // Returns the names written, relative to `dir`. Throws Error.
 std::vector<std::string> writeProfileFigures(const std::vector<SweepTrace>& sweep,
                                              const std::vector<StallPoint>& stalls, const StallSearchSetup& setup,

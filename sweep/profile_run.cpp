@@ -44,6 +44,7 @@ CaseResult runCase(const Case& c, bool keepSeries) {
   CaseResult r;
   if (keepSeries) r.series.reserve(static_cast<std::size_t>(toSeconds(c.duration) * 60.0) + 2);
   bool shown = false, skyShown = false;  // a frame was in the lightmap (sky) before this vsync
+  player::ReadErrorSpans readErrors;
   p.setSink([&](const VsyncRow& row, const Rgba8Image&, const Rgba8Image*) {
     const int pop = shown ? row.lightmap.pop : 0;
     const int skyPop = skyShown && row.sky ? row.sky->pop : 0;
@@ -59,8 +60,11 @@ CaseResult runCase(const Case& c, bool keepSeries) {
     s.skyPop = skyPop;
     s.behind = row.lightmap.behind;
     r.series.push_back(s);
+    readErrors.onVsync(row.at, p.pipeline().drive().stats().retries);
   });
   p.runToEnd();
+  if (keepSeries)
+    r.faults = player::mergeFaultSpans(player::plannedFaultSpans(c.faults, c.duration), readErrors.spans());
   r.lightmap = p.pipeline().lightmap().counters();
   r.totals = p.totals();
   r.ringUnderruns = p.pipeline().ring().stats().underruns;

@@ -25,6 +25,7 @@
 
 #include "iop/fault_plan.hpp"
 #include "iop/sector_source.hpp"
+#include "player/fault_spans.hpp"
 #include "player/player.hpp"
 
 namespace vbim::sweep {
@@ -94,6 +95,8 @@ struct CaseResult {
   // totals (which leave out every snapped frame), a hard-skip snap counts here, as a viewer sees it.
   player::Extreme pop;
   std::vector<Sample> series;  // empty unless asked for
+  // With the series: when the drive was disturbed (as a run directory's faults.csv), for the plots.
+  std::vector<player::FaultSpan> faults;
 };
 
 // Runs one case (throws what the player throws: streams::StreamProbeError, ConfigError, gs::GsError).

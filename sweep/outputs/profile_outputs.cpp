@@ -137,8 +137,12 @@ plots::profile::StallSearchSetup stallSearchSetup(const StallSearch& search) {
 
 std::vector<std::string> writeProfileOutputs(const ProfileData& d, const std::filesystem::path& dir) {
   std::vector<plots::profile::SweepTrace> sweep;
-  for (const SweepRun& s : d.sweep)
-    sweep.push_back({s.stream, s.faults, s.policy, s.ring.bankmax, s.ring.bufmax, tracePoints(s.result.series)});
+  for (const SweepRun& s : d.sweep) {
+    std::vector<plots::profile::FaultInterval> faults;
+    for (const player::FaultSpan& f : s.result.faults) faults.push_back({f.kind, f.beginS, f.endS});
+    sweep.push_back(
+        {s.stream, s.faults, s.policy, s.ring.bankmax, s.ring.bufmax, tracePoints(s.result.series), faults});
+  }
   std::vector<std::string> written =
       plots::profile::writeProfileFigures(sweep, stallPoints(d.stalls), stallSearchSetup(d.search), (dir / ""));
   {

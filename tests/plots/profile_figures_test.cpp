@@ -92,9 +92,10 @@ TEST(ProfileFigures, StallCurveOneNestedLinePerKeyOnALog2Axis) {
 TEST(ProfileFigures, WritesEveryFigureAsPngAndSvg) {
   const fs::path dir = fs::path(::testing::TempDir()) / ("vbim_profile_figures_" + std::to_string(getpid()));
   fs::remove_all(dir);
-  const std::vector<SweepTrace> sweep{{"day", "none", "blend-through", 4, 8, trace(4)},
-                                      {"day", "none", "blend-through", 4, 64, trace(4)},
-                                      {"day", "none", "hard-skip", 4, 8, trace(4)}};
+  const std::vector<FaultInterval> stall{{"stall", 0.2, 0.6}};
+  const std::vector<SweepTrace> sweep{{"day", "none", "blend-through", 4, 8, trace(4), stall},
+                                      {"day", "none", "blend-through", 4, 64, trace(4), stall},
+                                      {"day", "none", "hard-skip", 4, 8, trace(4), {}}};
   const std::vector<std::string> written =
       writeProfileFigures(sweep, {{"day, blend-through, pop", 8, 1.0}}, {3.0, 12.0, -1}, dir);
   const std::vector<std::string> expected{"plots/occupancy_day_none_blend-through.png",
