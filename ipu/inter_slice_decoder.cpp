@@ -255,7 +255,6 @@ template <bool Intra, bool Mpeg1>
   unsigned parity = 0;
   unsigned masks = 0;
   int i = -1;
-  int coded = 0;
   if constexpr (Intra) {
     const int cc = b < 4 ? 0 : b - 3;
     const VlcEntry e = cc == 0 ? t_.dcSizeLuma[br.peek(9)] : t_.dcSizeChroma[br.peek(10)];
@@ -277,47 +276,82 @@ template <bool Intra, bool Mpeg1>
   }
   const DctCodeEntry* shortCodes = t_.dctShort[(Intra && !Mpeg1 && pp_.intraVlcFormat) ? 1 : 0];
   const DctCodeEntry* longCodes = t_.dctLong;
+  const DctCodeEobEntry* codes = t_.dctNonIntra[0];
   const ScanSlot* slots = scan_[Intra ? 1 : 0];
   const int scale = scale_;
   constexpr int k = Intra ? 0 : 1;  // the non-intra (2 QF + sign(QF)) term
-  // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
-  auto place = [&](int mag, int negative) {
-    if (i > 63) [[unlikely]]
-      return false;
-    const ScanSlot& slot = slots[i];
+  // Places the coefficient (2 x magnitude + k) x weight x scale at the slot; signMask is 0 or -1.
+  auto placeAt = [&](const ScanSlot& slot, int twoLevel, int signMask) {
     int v;
     if constexpr (Mpeg1) {
       // 11172-2 §2.4.4.1-2.4.4.3: then towards an odd value.
-      v = ((2 * mag + k) * scale * slot.weight) >> 4;
+      v = (twoLevel * scale * slot.weight) >> 4;
       if ((v & 1) == 0 && v != 0) v -= 1;
     } else {
-      v = ((2 * mag + k) * slot.weight * scale) >> 5;  // §7.4.2.3
+      v = (twoLevel * slot.weight * scale) >> 5;  // §7.4.2.3
     }
     // §7.4.3 saturation to [-2048, 2047], applied to the magnitude before the sign.
-    const int signMask = -negative;
     const int limit = 2047 - signMask;
     v = v > limit ? limit : v;
     v = (v ^ signMask) - signMask;
     blk[slot.pos] = static_cast<std::int16_t>(v);
     parity ^= static_cast<unsigned>(v);
     masks |= slot.mask;
-    ++coded;
+  };
+  // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
+  auto place = [&](int mag, int negative) {
+    if (i > 63) [[unlikely]]
+      return false;
+    placeAt(slots[i], 2 * mag + k, -negative);
     return true;
   };
-  br.topUp();                  // at least 56 bits
-  if (!Intra && br.peek(1)) {  // '1s': the first coefficient, run 0, level 1
-    const int negative = static_cast<int>(br.peek(2) & 1);
-    br.skipUnchecked(2);
-    i = 0;
-    place(1, negative);
-  }
+  // A non-intra table's signed +-(2 x level + 1).
+  auto placeSigned = [&](const ScanSlot& slot, int level) {
+    const int signMask = level >> 31;
+    placeAt(slot, (level ^ signMask) - signMask, signMask);
+  };
+  br.topUp();  // at least 56 bits
   // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
   // ends within 16 bits; the caller checks for overrun once per macroblock.
-  for (;;) {
+  bool done = false;
+  while (!done) {
     br.topUp();
-    // Up to four short codes (code and sign at most 11 bits each) need no look at the bit count.
-    DctCodeEntry s;
     int n = 0;
+    if constexpr (!Intra) {
+      // Up to four codes (code, sign and EOB at most 11 bits each) need no look at the bit count;
+      // the first of a block in the table with '1s' for run 0, level 1.
+      for (; n < 4; ++n) {
+        const DctCodeEobEntry e = codes[br.peek(VlcTables::kDctShortBits)];
+        codes = t_.dctNonIntra[1];
+        if (e.level == 0) {
+          // An end of block alone (after a code too long to share the lookup with it), or any
+          // other symbol: one at a time below.
+          if (e.eob) {
+            br.skipUnchecked(e.bits);
+            done = true;
+          }
+          break;
+        }
+        i += e.step;
+        if (i > 63) [[unlikely]] {
+          // Reported after the code, as before: the EOB after it ('10', 2 bits) is not read.
+          br.skipUnchecked(e.bits - 2 * e.eob);
+          why = IssueKind::kCoefficientOverrun;
+          return false;
+        }
+        br.skipUnchecked(e.bits);
+        placeSigned(slots[i], e.level);
+        if (e.eob) {
+          done = true;
+          break;
+        }
+      }
+      if (done) break;
+      if (n == 4) continue;
+    }
+    // Up to four short codes (code and sign at most 11 bits each) need no look at the bit count;
+    // for non-intra blocks, one symbol after the lookups above (at most three of them, 33 bits).
+    DctCodeEntry s{};
     for (; n < 4; ++n) {
       s = shortCodes[br.peek(VlcTables::kDctShortBits)];
       if (s.level == 0) [[unlikely]]
@@ -328,8 +362,9 @@ template <bool Intra, bool Mpeg1>
         why = IssueKind::kCoefficientOverrun;
         return false;
       }
+      if constexpr (!Intra) break;
     }
-    if (n == 4) continue;
+    if (s.level != 0) continue;
     // Any other symbol; at least 56 - 3 * 11 = 23 bits are left.
     if (s.step == kDctKindLong) {
       // 12..16 bits and the sign: seven zeros, so the next 17 bits are the index.
@@ -346,7 +381,7 @@ template <bool Intra, bool Mpeg1>
       }
     } else if (s.step == kDctKindEob) {
       br.skipUnchecked(s.bits);
-      break;
+      done = true;
     } else if (s.step == kDctKindEscape) {
       // skip() and read() refill as they go.
       int run = 0;
@@ -375,8 +410,9 @@ template <bool Intra, bool Mpeg1>
       colMask |= 0x80;
     }
   }
-  // The only coded coefficient was the first in scan order (the decoders' DC shortcut).
-  if (!Intra && coded == 1 && i == 0) rowMask |= kIdctFirstOnly;
+  // The only coded coefficient was the first in scan order (the decoders' DC shortcut): a non-intra
+  // block's first code is a coefficient and scan positions only grow, so the last one at 0 is it.
+  if (!Intra && i == 0) rowMask |= kIdctFirstOnly;
   mb_.rowMask[b] = static_cast<std::uint16_t>(rowMask);
   mb_.colMask[b] = static_cast<std::uint8_t>(colMask);
   return true;

@@ -179,6 +179,35 @@ void fillDctShort(DctCodeEntry (&table)[1 << VlcTables::kDctShortBits], const Co
   }
 }
 
+// A non-intra table from the short table of B.14: the first symbol of each index (for the first
+// code of a block, '1s' is run 0, level 1, and no EOB begins with '1'), and an EOB after it if its
+// whole code lies in the index's remaining bits (the short table gives a code's meaning from its
+// leading bits, the bits after it being don't-care).
+void fillDctNonIntra(DctCodeEobEntry (&table)[1 << VlcTables::kDctShortBits],
+                     const DctCodeEntry (&codes)[1 << VlcTables::kDctShortBits], bool firstOfBlock) {
+  constexpr int kBits = VlcTables::kDctShortBits;
+  constexpr std::uint32_t kAll = (1u << kBits) - 1;
+  for (std::uint32_t index = 0; index <= kAll; ++index) {
+    DctCodeEntry code = codes[index];
+    if (firstOfBlock && (index >> (kBits - 1)) != 0) {
+      code = DctCodeEntry{2, 1, 1, static_cast<std::uint8_t>((index >> (kBits - 2)) & 1)};
+    }
+    DctCodeEobEntry& e = table[index];
+    e = DctCodeEobEntry{0, 0, 0, 0};
+    if (code.level == 0) {
+      if (code.step == kDctKindEob) e = DctCodeEobEntry{code.bits, 0, 0, 1};
+      continue;
+    }
+    const int level = 2 * code.level + 1;
+    e = DctCodeEobEntry{code.bits, code.step, static_cast<std::int8_t>(code.negative ? -level : level), 0};
+    const DctCodeEntry next = codes[(index << code.bits) & kAll];
+    if (next.level == 0 && next.step == kDctKindEob && code.bits + next.bits <= kBits) {
+      e.bits = static_cast<std::uint8_t>(code.bits + next.bits);
+      e.eob = 1;
+    }
+  }
+}
+
 VlcTables build() {
   VlcTables t{};
   fillDirect(t.mbAddressIncrement, 11, kB1);
@@ -191,6 +220,8 @@ VlcTables build() {
   // The long codes are the same in both tables.
   for (auto& e : t.dctLong) e = DctCodeEntry{0, kDctKindInvalid, 0, 0};
   fillDctCodes(t.dctLong, VlcTables::kDctLongBits, VlcTables::kDctShortBits, 16, kB14);
+  fillDctNonIntra(t.dctNonIntra[0], t.dctShort[0], true);
+  fillDctNonIntra(t.dctNonIntra[1], t.dctShort[0], false);
   return t;
 }
 

@@ -30,6 +30,18 @@ inline constexpr std::uint8_t kDctKindEob = 1;
 inline constexpr std::uint8_t kDctKindEscape = 2;
 inline constexpr std::uint8_t kDctKindLong = 3;  // 12..16-bit code: look it up in dctLong
 
+// A run/level code of B.14 with its sign, and the end of block after it when that fits in the
+// same kDctShortBits bits, for the non-intra AC loop: most non-intra blocks hold one to three
+// coefficients, so the end of a block is found with its last code, in one lookup (and the
+// '1s' form of a block's first code in its own table instead of a branch on the first bit).
+// level == 0: an end of block alone (eob = 1), or a symbol to look up in dctShort[0].
+struct DctCodeEobEntry {
+  std::uint8_t bits;  // bits of the code with its sign, and of the EOB if eob = 1
+  std::uint8_t step;  // run + 1
+  std::int8_t level;  // +-(2 x level + 1): the non-intra term of §7.4.2.3 with its sign; 0: none
+  std::uint8_t eob;   // 1: an end of block follows the code (its bits are in `bits`)
+};
+
 // Special values of the macroblock address increment table (B.1).
 inline constexpr std::int8_t kMbaEscape = -1;    // '0000 0001 000': add 33
 inline constexpr std::int8_t kMbaStuffing = -2;  // '0000 0001 111': MPEG-1 macroblock_stuffing
@@ -50,6 +62,9 @@ struct VlcTables {
   // bits, so the next 17 bits, read as a number, are below 2^10 and index this table directly.
   static constexpr int kDctLongBits = 17;
   DctCodeEntry dctLong[1 << 10];
+  // B.14 for non-intra blocks on the next kDctShortBits bits: [0] for the first code of a block
+  // ('1s' for run 0, level 1), [1] after it ('11s').
+  DctCodeEobEntry dctNonIntra[2][1 << kDctShortBits];
 };
 
 const VlcTables& vlcTables();
