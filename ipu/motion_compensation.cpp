@@ -1,6 +1,7 @@
 #include "ipu/motion_compensation.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstring>
 
@@ -115,8 +116,11 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
   const std::ptrdiff_t down = mb.fieldDct ? stride : 8 * stride;
   const std::ptrdiff_t lumaStride = mb.fieldDct ? 2 * stride : stride;
   const std::size_t c = static_cast<std::size_t>(mb.mbY) * 8 * pp.cStride + static_cast<std::size_t>(mb.mbX) * 8;
-  for (int b = 0; b < 6; ++b) {
-    if (!intra && !(mb.pattern & (32 >> b))) continue;
+  // The coded blocks by the pattern's set bits (bit 5 is block 0), and below the rows to clear by
+  // the mask's set bits: a branch per bit would be a coin toss on busy P and B pictures.
+  for (unsigned pattern = intra ? 0x3Fu : mb.pattern & 0x3Fu; pattern != 0;) {
+    const int b = std::countl_zero(pattern) - 26;
+    pattern &= ~(32u >> b);
     std::uint8_t* dst;
     std::ptrdiff_t ds;
     if (b < 4) {
@@ -136,9 +140,9 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
     }
     // The rows the masks name, and the mismatch toggle (kIdctToggleOnly is not a row bit): 16-byte
     // stores; a 128-byte memset became `rep stos`, whose start-up cost showed at ~3 % of a decode.
-    const unsigned rows = mb.rowMask[b];
-    for (int r = 0; r < 8; ++r)
-      if (rows & (1u << r)) std::memset(blk + std::ptrdiff_t{8} * r, 0, 16);
+    for (unsigned rows = mb.rowMask[b] & 0xFFu; rows != 0; rows &= rows - 1) {
+      std::memset(blk + std::ptrdiff_t{8} * std::countr_zero(rows), 0, 16);
+    }
     blk[63] = 0;
   }
 }
