@@ -17,8 +17,11 @@
 #include <system_error>
 
 #include "cli/command.hpp"
+#include "cli/common_options.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/stdin_input.hpp"
+#include "cli/suggest.hpp"
 #include "runtime/error.hpp"
 
 namespace vbim::cli {
@@ -75,7 +78,10 @@ void configureApp(CLI::App& app) {
       "vbim: a simulator of the PlayStation 2 video-based illumination map pipeline\n"
       "(DVD -> IOP stream ring -> SIF -> EE demux -> IPU decode -> GS blend, on a simulated clock)");
   app.name("vbim");
-  app.set_version_flag("--version", "vbim " VBIM_VERSION);
+  app.set_version_flag("-V,--version", "vbim " VBIM_VERSION);
+  app.add_subcommand("version", "Print the version (as vbim --version)")->callback([] {
+    std::cout << "vbim " VBIM_VERSION "\n";
+  });
   app.require_subcommand(1);
   app.fallthrough(false);
   app.formatter(std::make_shared<HelpFormatter>());
@@ -102,41 +108,52 @@ std::vector<char*> helpAsOption(int argc, char** argv) {
   return out;
 }
 
-int runApp(CLI::App& app, int argc, char** argv) {
-  installInterruptHandlers();
+void prepareApp(CLI::App& app) {
+  addCommonOptions(app);
   checkNumbersStrictly(app);
   refuseOptionsAsValues(app);
+}
+
+int runApp(CLI::App& app, int argc, char** argv) {
+  installInterruptHandlers();
+  prepareApp(app);
   const std::vector<char*> args = helpAsOption(argc, argv);
   argc = static_cast<int>(args.size()) - 1;
   argv = const_cast<char**>(args.data());
   // A first word that is neither an option nor a subcommand gets a plain answer.
   if (argc > 1 && argv[1][0] != '-' && subcommandNamed(app, argv[1]) == nullptr) {
-    std::cerr << "vbim: unknown command '" << argv[1] << "'; see 'vbim --help'\n";
+    std::cerr << "vbim: " << unknownCommand(app, argv[1]) << "; see 'vbim --help'\n";
     return 2;
   }
   const std::string prefix = prefixFor(app, argc, argv);
   const std::string seeHelp =
       argc > 1 && argv[1][0] != '-' ? "see 'vbim " + std::string(argv[1]) + " --help'" : "see 'vbim --help'";
+  // An unknown option is named first: CLI11 would complain of a missing --out when --outt was meant.
+  if (const auto unknown = unknownOption(app, argc, argv)) {
+    std::cerr << prefix << *unknown << "; " << seeHelp << "\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
+    for (const CLI::App* sub : app.get_subcommands()) listWritten(*sub);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() != 0) {
-      std::cerr << prefix << e.what() << "; " << seeHelp << "\n";
+      std::cerr << prefix << nameStdin(e.what()) << "; " << seeHelp << "\n";
       return 2;
     }
     return app.exit(e);  // --help, --version
   } catch (const Exit& e) {
-    std::cerr << prefix << e.what() << "\n";
+    std::cerr << prefix << nameStdin(e.what()) << "\n";
     return e.code();
   } catch (const Error& e) {
     // The project's own errors name the input and what was expected: bad input.
-    std::cerr << prefix << e.what() << "\n";
+    std::cerr << prefix << nameStdin(e.what()) << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << prefix << "out of memory (the input or the options ask for more than this machine has)\n";
     return 1;
   } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << prefix << e.path1().string() << ": " << e.code().message() << "\n";
+    std::cerr << prefix << nameStdin(e.path1().string()) << ": " << e.code().message() << "\n";
     return 1;
   } catch (const std::system_error& e) {
     std::cerr << prefix << "system error: " << e.code().message() << "\n";

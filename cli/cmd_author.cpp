@@ -162,7 +162,7 @@ void addAuthor(CLI::App& app) {
   cmd->add_option("--synthetic-size", o->syntheticSize, "Synthetic lightmap size WxH")->capture_default_str();
   cmd->add_option("--synthetic-sky-size", o->syntheticSkySize, "Synthetic sky size WxH (0x0: no sky)")
       ->capture_default_str();
-  cmd->add_option("--out", o->out, "Output stream file (complete or left as it was)")->required();
+  cmd->add_option("-o,--out", o->out, "Output stream file (complete or left as it was)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing output file");
   cmd->add_option("--iso", o->iso, "Also write an ISO 9660 disc image holding the stream (made with xorriso)");
   cmd->add_option("--iso-file", o->isoFile, "Where the stream lies on the --iso image (ISO 9660 level 1 names)")

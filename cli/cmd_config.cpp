@@ -29,6 +29,7 @@ struct ConfigOptions {
   bool defaults = false;
   bool markdown = false;
   bool gsSetup = false;
+  bool effective = false;           // with --check: print the effective config too
   std::string format = "markdown";  // --gs-setup's: markdown, gif or c
   std::string check;
   std::string faults;
@@ -88,17 +89,24 @@ void runConfig(const ConfigOptions& o) {
   const streams::StreamDisc* disc = given ? &*given : nullptr;
   presented = presentedSizes(disc);
   if (!o.check.empty() || disc != nullptr) vram = checkPresenters(o, presented, params);
+  // A check that passes is one line (on stdout), unless a config or the GS setup is asked for too:
+  // then the line goes to stderr, before it.
+  const bool checking = !o.check.empty() || !o.stream.empty() || !o.faults.empty();
+  const bool printing = !checking || o.gsSetup || o.markdown || o.defaults || o.effective;
+  std::ostream& verdict = printing ? std::cerr : std::cout;
   if (!o.faults.empty()) {
     // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
     // disc and LBAs checked against its size, as play does.
     const iop::FaultPlan plan = config::loadFaultPlan(o.faults, disc != nullptr ? disc->disc.get() : nullptr);
-    std::cerr << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
+    verdict << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
   }
   if (!o.check.empty() || !o.stream.empty()) {
-    std::cerr << (o.check.empty() ? std::string("the default platform config") : o.check)
-              << (o.stream.empty() ? "" : " with " + o.stream) << ": valid; the "
-              << (o.gsSetup ? "GS setup" : "effective config") << " follows\n";
+    verdict << (o.check.empty() ? std::string("the default platform config") : o.check)
+            << (o.stream.empty() ? "" : " with " + o.stream) << ": valid";
+    if (printing) verdict << "; the " << (o.gsSetup ? "GS setup" : "effective config") << " follows";
+    verdict << "\n";
   }
+  if (!printing) return;
   if (o.gsSetup && o.format != "markdown") {
     gs::writeGsPackets(std::cout, params.gs, *vram, presented.lightmap, presented.sky,
                        o.format == "c" ? gs::PacketFormat::C : gs::PacketFormat::Gif, o.stream);
@@ -121,8 +129,12 @@ void addConfig(CLI::App& app) {
       "config", "Print the platform config (every timing constant, with sources), or check a config / fault plan");
   cmd->add_flag("--defaults", opts->defaults, "Print the defaults as TOML (the default action)");
   cmd->add_flag("--markdown", opts->markdown, "Print a Markdown table instead of TOML");
-  cmd->add_option("--check", opts->check, "A platform config (TOML) to validate; prints the effective config")
-      ->check(inputFile());
+  auto* check =
+      cmd->add_option("--check", opts->check, "A platform config (TOML) to validate; prints one line when it passes")
+          ->check(inputFile());
+  cmd->add_flag("--effective", opts->effective,
+                "With --check: print the effective config too (the file's values over the defaults)")
+      ->needs(check);
   cmd->add_option("--faults", opts->faults, "A fault plan (TOML) to validate")->check(inputFile());
   auto* stream =
       cmd->add_option("--stream", opts->stream,
@@ -146,6 +158,7 @@ void addConfig(CLI::App& app) {
       "Examples:\n"
       "  vbim config > platform.toml\n"
       "  vbim config --check platform.toml --faults plan.toml\n"
+      "  vbim config --check platform.toml --effective > effective.toml\n"
       "  vbim config --check platform.toml --stream streams/samples/day_clear.vbim\n"
       "  vbim config --gs-setup --stream streams/samples/day_clear.vbim\n"
       "  vbim config --gs-setup --format c --stream streams/samples/day_clear.vbim > vbim_packets.h\n");

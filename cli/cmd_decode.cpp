@@ -10,6 +10,7 @@
 #include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
+#include "cli/stdin_input.hpp"
 #include "runs/output_dir.hpp"
 #include "streams/decode/decode_input.hpp"
 #include "streams/decode/frame_files.hpp"
@@ -38,7 +39,7 @@ void run(const Options& o) {
   options.idct = ipu::idctKindByName(o.idct).value_or(ipu::kDefaultIdct);
   if (!o.stream.empty()) options.streamId = streams::parseStreamId(o.stream);
   const streams::DecodeInput in = streams::readDecodeInput(o.input, o.file);
-  const std::string& name = in.name;
+  const std::string name = nameStdin(in.name);
   runs::OutputDir dir(o.outDir, o.force);
   streams::FrameFileWriter writer(dir.directory(), streams::frameFileFormatNamed(o.format),
                                   ipu::CscThresholds{o.th0, o.th1});
@@ -71,21 +72,21 @@ void addDecode(CLI::App& app) {
   auto* cmd = app.add_subcommand("decode", "Decode every picture of a stream with the IPU model (no timing)");
   auto o = std::make_shared<Options>();
   cmd->add_option("stream", o->input,
-                  "MPEG program stream (VBIM stream), MPEG-1/2 video elementary stream, or an ISO 9660 disc image")
+                  "MPEG program stream (VBIM stream), MPEG-1/2 video elementary stream, or an ISO 9660 disc image; - "
+                  "reads it from stdin")
       ->required()
+      ->transform(stdinAsFile())
       ->check(inputFile());
   cmd->add_option("--file", o->file,
                   "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
-  cmd->add_option("--out", o->outDir, "Output directory (written completely or not at all)")->required();
+  cmd->add_option("-o,--out", o->outDir, "Output directory (written completely or not at all)")->required();
   cmd->add_option("--format", o->format,
                   "png (RGBA, GS alpha doubled), exr (half float), yuv (planar 4:2:0) or rgba (raw RGB32 bytes, GS "
                   "alpha: what `vbim replay --frames` reads)")
       ->capture_default_str()
       ->check(CLI::IsMember({"png", "exr", "yuv", "rgba"}));
   cmd->add_option("--stream-id", o->stream, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
-  cmd->add_option("--threads", o->threads, "Slice-parallel decode on this many host threads (same bytes out)")
-      ->capture_default_str()
-      ->check(hostThreads());
+  addThreadsOption(*cmd, o->threads, "Host threads for the slice-parallel decode");
   cmd->add_option("--idct", o->idct, "Inverse DCT as ipu.idct: pcsx2, libmpeg2 (mpeg2dec -c) or exact")
       ->capture_default_str()
       ->check(CLI::IsMember({"pcsx2", "libmpeg2", "exact"}));

@@ -54,7 +54,7 @@ void addDemo(CLI::App& app) {
   r->at = {"6s", "7s", "8s"};  // the catch-up after the stall
   r->seed = 1;
   auto* cmd = app.add_subcommand(kDemoCommand.name, kDemoCommand.summary);
-  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->capture_default_str();
+  cmd->add_option("-o,--out", r->out, "Output directory (written complete or not at all)")->capture_default_str();
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory (scripts/demo.sh passes it)");
   cmd->add_option("--duration", r->duration, "Simulated time")->capture_default_str();
   static double seconds = 0.0;  // CLI11 writes here; lives as long as the app

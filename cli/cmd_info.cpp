@@ -6,6 +6,7 @@
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/stdin_input.hpp"
 #include "streams/info/stream_info.hpp"
 
 namespace vbim::cli {
@@ -16,7 +17,10 @@ void addInfo(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto file = std::make_shared<std::string>();
-  cmd->add_option("STREAM", *path, "Stream file, or an ISO 9660 disc image")->required()->check(inputFile());
+  cmd->add_option("STREAM", *path, "Stream file, or an ISO 9660 disc image; - reads it from stdin")
+      ->required()
+      ->transform(stdinAsFile())
+      ->check(inputFile());
   cmd->add_option("--file", *file,
                   "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
   cmd->add_flag("--json", *json, "Machine-readable output");
@@ -38,9 +42,9 @@ void addInfo(CLI::App& app) {
         std::cerr << "vbim info: warning: " << info.shown
                   << ": text in the stream is not UTF-8; its bytes are replaced by U+FFFD in the JSON\n";
       }
-      std::cout << text << "\n";
+      std::cout << nameStdin(text) << "\n";
     } else {
-      std::cout << streams::infoText(info);
+      std::cout << nameStdin(streams::infoText(info));
     }
     const auto& errors = info.scan.errors;
     if (!errors.empty()) {

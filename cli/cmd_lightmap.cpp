@@ -102,10 +102,8 @@ void addLightmap(CLI::App& app) {
   cmd->add_option("--layers-format", o->files.layersFormat,
                   "Float debug layers as exr, or tif (GeoTIFF with the DEM's georeferencing)")
       ->default_val("exr");
-  cmd->add_option("--threads", o->files.threads, "Host threads (the output does not depend on it)")
-      ->default_val(2)
-      ->check(hostThreads());
-  cmd->add_option("--out", o->out, "Output directory (complete or absent)")->required();
+  addThreadsOption(*cmd, o->files.threads, "Host threads that compute the lighting");
+  cmd->add_option("-o,--out", o->out, "Output directory (complete or absent)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing non-empty output directory");
   cmd->footer(
       "Examples:\n"

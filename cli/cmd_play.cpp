@@ -5,10 +5,12 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/common_options.hpp"
 #include "cli/host_threads.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
+#include "cli/stdin_input.hpp"
 #include "runs/play_run.hpp"
 
 namespace vbim::cli {
@@ -21,8 +23,10 @@ void printPlayResult(const runs::PlayResult& result) {
 void addPlay(CLI::App& app) {
   auto r = std::make_shared<runs::PlayRequest>();
   auto* cmd = app.add_subcommand("play", "Play a VBIM disc through the whole pipeline on the simulated clock");
-  cmd->add_option("disc", r->disc, "A VBIM stream file (a disc with one file) or an ISO 9660 disc image")
+  cmd->add_option("disc", r->disc,
+                  "A VBIM stream file (a disc with one file) or an ISO 9660 disc image; - reads it from stdin")
       ->required()
+      ->transform(stdinAsFile())
       ->check(inputFile());
   cmd->add_option("--file", r->file,
                   "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
@@ -49,6 +53,7 @@ void addPlay(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--branch", r->branches, "Switch to a variant at a time: 12.5s=1 (repeatable)");
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
+  cmd->add_flag("--json", r->json, "Print the summary as JSON on stdout (docs/cli.md, \"JSON summaries\")");
   cmd->add_flag_callback(
       "--no-trace", [r] { r->trace = false; }, "Skip trace.json and signals.vcd (written as the run goes)");
   cmd->add_option("--trace-detail", r->traceDetail,
@@ -56,11 +61,8 @@ void addPlay(CLI::App& app) {
                   "ipu: coalesced, and ipu_commands.csv with every IPU command word and its time (docs/run-files.md)")
       ->check(CLI::IsMember({"coalesced", "full", "ipu"}))
       ->capture_default_str();
-  cmd->add_option("--threads", r->threads,
-                  "Host threads for the IPU's slice-parallel picture decode (same bytes out; default 1)")
-      ->capture_default_str()
-      ->check(hostThreads());
-  cmd->add_option("--out", r->out,
+  addThreadsOption(*cmd, r->threads, "Host threads for the IPU's slice-parallel picture decode");
+  cmd->add_option("-o,--out", r->out,
                   "Output directory (written complete or not at all); without it, the run is played and "
                   "summarised and nothing is written");
   cmd->footer(
@@ -69,6 +71,7 @@ void addPlay(CLI::App& app) {
       "  vbim play streams/samples/day_clear.vbim --duration 20s\n"
       "  vbim play streams/samples/day_clear.vbim --faults plan.toml --seed 7 --duration 60s --every 60 --out run/\n");
   cmd->callback([r] {
+    if (isStdin(r->disc)) r->discLabel = "<stdin>";  // the summary and stats.json
     Progress bar("vbim play", "s");
     const runs::PlayResult result = exitOneOnRunFailure([&] {
       return runs::playRun(*r, [&bar](double played, double total) {
@@ -77,6 +80,11 @@ void addPlay(CLI::App& app) {
       });
     });
     bar.finish();
+    if (r->json) {
+      if (!result.warning.empty()) std::cerr << "vbim play: " << result.warning << "\n";
+      requestedOut() << result.summary;
+      return;
+    }
     printPlayResult(result);
   });
 }

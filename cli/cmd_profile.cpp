@@ -8,8 +8,10 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/common_options.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/profile_json.hpp"
 #include "cli/profile_plan.hpp"
 #include "config/fault_plan_toml.hpp"
 #include "config/option_values.hpp"
@@ -48,6 +50,7 @@ struct ProfileRequest {
   std::string popThreshold = "auto";
   bool search = true;
   bool force = false;
+  bool json = false;  // the summary as JSON on stdout, instead of the lines (cli/profile_json.hpp)
   std::string out;
 };
 
@@ -116,30 +119,32 @@ void runProfile(const ProfileRequest& r) {
     const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - std::min(done, total));
     return "[" + std::to_string(done) + "/" + std::to_string(total) + ", " + fixed(left, 0) + " s left] ";
   };
+  // With --json the lines are in the document at the end, not on stdout.
+  std::ostream nowhere(nullptr);
+  std::ostream& lines = r.json ? nowhere : std::cout;
   SweepObserver progress;
-  progress.onRun = [&count](const SweepRun& run) {
+  progress.onRun = [&count, &lines](const SweepRun& run) {
     checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
-    std::cout << count() << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax
-              << "  faults " << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate
-              << ", pop max " << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
+    lines << count() << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax
+          << "  faults " << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate
+          << ", pop max " << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
     // A run that stopped showing frames is flagged on its line and warned about on stderr.
     // The line is finished (and flushed) before the warning, so the two never share a line.
     const auto h = player::runHealth(run.result.lightmap, run.result.totals);
-    if (h.verdict != "ok") std::cout << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
-    std::cout << std::endl;
+    if (h.verdict != "ok") lines << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
+    lines << std::endl;
     if (h.verdict != "ok") {
       std::cerr << "vbim profile: " << run.stream << " ring " << run.ring.bankmax << ":" << run.ring.bufmax << " "
                 << run.policy << ": " << player::healthWarning(h) << "\n";
     }
   };
-  progress.onStall = [&count](const StallRow& row) {
+  progress.onStall = [&count, &lines](const StallRow& row) {
     checkInterrupted();
-    std::cout << count() << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
-              << row.policy << "  " << toString(row.criterion) << ": "
-              << (row.result.longest
-                      ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
-                      : std::string("fails without a stall"))
-              << " (" << row.result.runs << " runs)\n";
+    lines << count() << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
+          << row.policy << "  " << toString(row.criterion) << ": "
+          << (row.result.longest ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
+                                 : std::string("fails without a stall"))
+          << " (" << row.result.runs << " runs)\n";
   };
   ProfileData data;
   try {
@@ -151,6 +156,13 @@ void runProfile(const ProfileRequest& r) {
   const std::vector<std::string> written = writeProfileOutputs(data, dir.directory());
   dir.commit();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  if (r.json) {
+    std::vector<std::string> paths;
+    paths.reserve(written.size());
+    for (const std::string& w : written) paths.push_back((dir.finalPath() / w).string());
+    requestedOut() << profileSummaryJson(data, wall, paths);
+    return;
+  }
   std::cout << "profiled " << data.sweep.size() << " sweep runs and " << data.stalls.size() << " stall searches in "
             << fixed(wall, 1) << " s of host time\nOpen:\n";
   for (const std::string& w : written) std::cout << "  " << (dir.finalPath() / w).string() << "\n";
@@ -194,7 +206,9 @@ void addProfile(CLI::App& app) {
   cmd->add_flag_callback(
       "--no-search", [r] { r->search = false; }, "Skip the survivable-stall search");
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
-  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)");
+  cmd->add_flag("--json", r->json,
+                "Print the summary as JSON on stdout instead of a line per run (docs/cli.md, \"JSON summaries\")");
+  cmd->add_option("-o,--out", r->out, "Output directory (written complete or not at all)");
   addPlanOptions(*cmd, *plan);
   cmd->footer(
       "Examples:\n"
@@ -207,6 +221,7 @@ void addProfile(CLI::App& app) {
       if (!r->discs.empty()) throw Exit(2, "a sweep plan names its streams: give --plan or stream files, not both");
       plan->out = r->out;
       plan->force = r->force;
+      plan->json = r->json;
       return runPlan(*plan);
     }
     if (r->discs.empty()) throw Exit(2, "no stream file given (or --plan sweep.toml)");

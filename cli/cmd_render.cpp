@@ -91,7 +91,7 @@ void addRender(CLI::App& app) {
   cmd->add_option("run", o->run, "A `vbim play --every N --out RUN_DIR` directory")
       ->required()
       ->check(inputDirectory());
-  cmd->add_option("--out", o->out, "Output directory (written complete or not at all)")->required();
+  cmd->add_option("-o,--out", o->out, "Output directory (written complete or not at all)")->required();
   cmd->add_option("--camera", o->camera,
                   "EX,EZ,EH,TX,TZ: eye east/south in metres, eye height above ground, target east/south "
                   "(default: from the south-east valley towards the north-west mountains)");

@@ -46,7 +46,7 @@ void addReplay(CLI::App& app) {
       ->check(CLI::IsMember({"opaque", "gs"}))
       ->capture_default_str();
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
-  cmd->add_option("--out", r->out, "Output directory (written complete or not at all)")->required();
+  cmd->add_option("-o,--out", r->out, "Output directory (written complete or not at all)")->required();
   cmd->footer(
       "Examples:\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --out replayed/\n"

@@ -191,7 +191,7 @@ void addVectors(CLI::App& app) {
   auto r = std::make_shared<VectorsRequest>();
   auto* cmd = app.add_subcommand(
       "vectors", "Write the timing-independent known-answer vectors for a port, or check a port's against them");
-  cmd->add_option("--out", r->out, "Write the vector files into this directory (complete or not at all)");
+  cmd->add_option("-o,--out", r->out, "Write the vector files into this directory (complete or not at all)");
   cmd->add_option("--check", r->check,
                   "Compare the vector files in this directory: every entry, scored per file, differences named");
   cmd->add_option("--only", r->only,

@@ -68,7 +68,10 @@ inline constexpr std::array kFullOnlyCommands{kDemoCommand, kAuthorCommand, kLig
 
 // The tool's name, description and version (both programs).
 void configureApp(CLI::App& app);
-// Parses and runs; every error becomes `vbim CMD: message` on stderr and exit 2 (bad usage or
+// Adds what every command shares (cli/common_options.hpp) and the checks of every value
+// (cli/option_checks.hpp): the tree as it is parsed, and as --generate describes it.
+void prepareApp(CLI::App& app);
+// Parses and runs (after prepareApp); every error becomes `vbim CMD: message` on stderr and exit 2 (bad usage or
 // input) or 1 (a failure while running).
 int runApp(CLI::App& app, int argc, char** argv);
 // argv with `vbim help CMD ...` turned into `vbim CMD ... --help` (null-terminated, for exec too).

@@ -10,6 +10,8 @@
 #include <iostream>
 
 #include "cli/command.hpp"
+#include "cli/common_options.hpp"
+#include "cli/profile_json.hpp"
 #include "cli/progress.hpp"
 #include "config/sweep_plan_toml.hpp"
 #include "player/report.hpp"
@@ -92,12 +94,19 @@ void reportFailures(const std::vector<CaseRecord>& records) {
   }
 }
 
-void writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, runs::OutputDir& dir) {
+// Writes the outputs; prints the summary lines and the files (and returns them, for --json).
+PlanSummary writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, runs::OutputDir& dir, bool json) {
   const std::vector<std::string> written = sweep::writeSweepOutputs(p.spec, p.cases, records, dir.directory());
   dir.commit();
-  for (const std::string& line : sweep::summaryLines(p.spec, p.cases, records)) std::cout << line << "\n";
+  PlanSummary s;
+  s.lines = sweep::summaryLines(p.spec, p.cases, records);
+  s.cases = records.size();
+  for (const std::string& w : written) s.written.push_back((dir.finalPath() / w).string());
+  if (json) return s;
+  for (const std::string& line : s.lines) std::cout << line << "\n";
   std::cout << "Open:\n";
-  for (const std::string& w : written) std::cout << "  " << (dir.finalPath() / w).string() << "\n";
+  for (const std::string& w : s.written) std::cout << "  " << w << "\n";
+  return s;
 }
 
 void runLocal(const PlanRequest& r, const LoadedPlan& p) {
@@ -107,7 +116,13 @@ void runLocal(const PlanRequest& r, const LoadedPlan& p) {
   const std::vector<CaseRecord> records = runWithProgress(p, p.cases, jobs, r.progress);
   reportFailures(records);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  writeAll(p, records, dir);
+  PlanSummary summary = writeAll(p, records, dir, r.json);
+  if (r.json) {
+    summary.jobs = jobs;
+    summary.wallSeconds = wall;
+    requestedOut() << planSummaryJson(summary);
+    return;
+  }
   std::cout << "ran " << p.cases.size() << " cases with " << jobs << " job(s) in " << sweep::fixed(wall, 1)
             << " s of host time\n";
 }
@@ -139,7 +154,12 @@ void runMerge(const PlanRequest& r, const LoadedPlan& p) {
   for (const std::string& f : m.failedShards)
     std::cerr << "vbim profile: shard " << f << ": kept in the table with status failed\n";
   runs::OutputDir dir(r.out, r.force);
-  writeAll(p, m.records, dir);
+  PlanSummary summary = writeAll(p, m.records, dir, r.json);
+  if (r.json) {
+    summary.shards = static_cast<std::size_t>(m.shards);
+    requestedOut() << planSummaryJson(summary);
+    return;
+  }
   std::cout << "merged " << m.shards << " shards, " << m.records.size() << " cases\n";
 }
 
@@ -192,6 +212,9 @@ void runPlan(const PlanRequest& r) {
   const int modes = (r.shard.empty() ? 0 : 1) + (r.merge.empty() ? 0 : 1) + (r.emitSlurm.empty() ? 0 : 1);
   if (modes > 1) throw Exit(2, "give one of --shard, --merge and --emit-slurm");
   if (r.emitSlurm.empty() && r.out.empty()) throw Exit(2, "--out is required");
+  if (r.json && (!r.shard.empty() || !r.emitSlurm.empty())) {
+    throw Exit(2, "--json summarises a plan run here or merged (--merge), not --shard or --emit-slurm");
+  }
   const LoadedPlan p = sweep::loadedPlan(config::loadSweepPlan(r.plan), r.plan);
   if (!r.emitSlurm.empty()) return emitSlurm(r, p);
   if (!r.merge.empty()) return runMerge(r, p);

@@ -15,6 +15,7 @@ struct PlanRequest {
   bool force = false;
   unsigned jobs = 0;  // 0: the cores available
   bool progress = false;
+  bool json = false;      // vbim profile --json: the summary as JSON (a local run only)
   std::string shard;      // "K/N"
   std::string merge;      // directory of shards
   std::string emitSlurm;  // directory for the job-array script

@@ -1,5 +1,6 @@
 #include "cli/progress.hpp"
 
+#include "cli/common_options.hpp"
 #include "cli/interrupt.hpp"
 
 #include <unistd.h>
@@ -48,7 +49,8 @@ Progress::Progress(std::string label, std::string unit, bool always)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       terminal_(::isatty(STDERR_FILENO) == 1),
-      always_(always || askedInEnvironment()) {}
+      always_(always || askedInEnvironment() || verbosity() == Verbosity::Verbose),
+      never_(verbosity() == Verbosity::Quiet) {}
 
 Progress::~Progress() {
   finish();
@@ -56,7 +58,7 @@ Progress::~Progress() {
 
 void Progress::show(double done, double total, std::string_view note) {
   checkInterrupted();  // every long loop passes here: Ctrl-C stops it and unwinds (cli/interrupt.hpp)
-  if (!terminal_ && !always_) return;
+  if (never_ || (!terminal_ && !always_)) return;
   const auto now = std::chrono::steady_clock::now();
   const bool last = total > 0 && done >= total;
   if (!terminal_ && !last && lastLog_.time_since_epoch().count() != 0 && now - lastLog_ < std::chrono::seconds(5)) {

@@ -5,9 +5,9 @@
 // redrawn in place ("\r") on stderr, and only when stderr is a terminal, so logs, pipes and tests
 // stay clean; finished with a newline. Asked for explicitly (`always`, or VBIM_PROGRESS=1 in the
 // environment), it also writes to a non-terminal: whole lines, at most one every 5 s (a batch
-// job's log). Rate and time left come from the host's clock: shown to the user, never hashed. Libraries never print:
-// they report through a plain callback (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command
-// forwards here.
+// job's log), as under --verbose; --quiet draws nothing. Rate and time left come from the host's clock: shown to the
+// user, never hashed. Libraries never print: they report through a plain callback (render::RenderProgressFn,
+// lighting::TechniqueAProgressFn) that the command forwards here.
 #pragma once
 
 #include <chrono>
@@ -37,6 +37,7 @@ class Progress {
   std::string unit_;
   bool terminal_;
   bool always_;
+  bool never_;  // --quiet (cli/common_options.hpp)
   bool drawn_ = false;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point lastLog_{};

@@ -24,6 +24,7 @@
 #include "player/report.hpp"
 #include "player/run_dir.hpp"
 #include "runs/error.hpp"
+#include "runs/play_json.hpp"
 #include "runs/provenance.hpp"
 #include "runtime/worker_pool.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -197,10 +198,17 @@ PlayResult playRun(const PlayRequest& r, const PlayProgressFn& onSecond) {
 
   const std::int64_t images = writer ? writer->images() : 0;
   PlayResult result;
-  result.summary = playSummary(*player, r.discLabel.empty() ? shown : r.discLabel, wall, cpu, images);
-  if (images > 0) result.summary += picturesLine(writer->pictureCpuSeconds(), cpu, r);
+  const std::string label = r.discLabel.empty() ? shown : r.discLabel;
   // A run that completed but stopped showing frames says so loudly (stderr) as well as in the summary.
   result.warning = healthWarning(runHealth(player->pipeline().lightmap().counters(), player->totals()));
+  if (r.json) {
+    const PictureCost pictures{writer ? writer->pictureCpuSeconds() : 0.0,
+                               r.format == "exr" ? "EXR" : "PNG level " + std::to_string(r.pngLevel)};
+    result.summary = playSummaryJson(*player, label, wall, cpu, images, pictures);
+    return result;
+  }
+  result.summary = playSummary(*player, label, wall, cpu, images);
+  if (images > 0) result.summary += picturesLine(writer->pictureCpuSeconds(), cpu, r);
   if (!result.warning.empty()) result.summary += "  " + result.warning + "\n";
   return result;
 }

@@ -35,9 +35,11 @@ struct PlayRequest {
   std::string alpha = "opaque";                   // pictures' alpha: opaque (255) or gs (the texels as in VRAM)
   std::vector<std::string> branches;              // "12.5s=1": switch to variant 1 at 12.5 s
   bool force = false;
+  bool json = false;  // PlayResult::summary as JSON (runs/play_json.hpp)
   bool trace = true;
-  std::string traceDetail = "coalesced";  // "full": every same-instant toggle in signals.vcd; "ipu": ipu_commands.csv too
-  unsigned threads = 1;                   // host threads for the IPU's slice-parallel decode (same bytes)
+  std::string traceDetail =
+      "coalesced";       // "full": every same-instant toggle in signals.vcd; "ipu": ipu_commands.csv too
+  unsigned threads = 1;  // host threads for the IPU's slice-parallel decode (same bytes)
   // The run directory, or empty: the run is played and summarised, and nothing is written (no
   // directory, no temporary one); --every and --at, which ask for pictures, are refused then.
   std::string out;

@@ -3,7 +3,8 @@
 #   1. builds vbim in BUILD_DIR (default build/; configured first if it is not) and installs it
 #      into a temporary prefix with `cmake --install`;
 #   2. checks the installed tree: the package files, the samples, no path back into this source
-#      tree, and every `#include "..."` of an installed header found under include/vbim;
+#      tree, every `#include "..."` of an installed header found under include/vbim, and the man
+#      page (man -l), the bash and zsh completions and the docs;
 #   3. configures examples/stall-test against the installed vbim (find_package), builds it and runs
 #      its tests with ctest;
 #   4. configures the same example with -DVBIM_EXAMPLE_FROM_SOURCE=ON (add_subdirectory of this
@@ -58,6 +59,17 @@ missing=$(cd "$prefix/include/vbim" && grep -rhoE '^#include "[^"]+"' . | sed -E
 # The installed vbim finds the installed samples (its vectors default), run from elsewhere.
 (cd "$work" && "$prefix/bin/vbim" vectors --check "$root/tests/vectors" >/dev/null) ||
   fail "the installed vbim's vectors (from share/vbim/samples) differ from tests/vectors"
+
+# The man page, the completions and the docs (generated from --help's definitions: cli/generate_docs.hpp).
+for f in share/man/man1/vbim.1 share/bash-completion/completions/vbim share/zsh/site-functions/_vbim \
+  share/doc/vbim/cli.md share/doc/vbim/README.md; do
+  [ -s "$prefix/$f" ] || fail "$f was not installed"
+done
+man_warnings=$(MANWIDTH=80 man -l "$prefix/share/man/man1/vbim.1" 2>&1 >/dev/null) || fail "man -l vbim.1"
+[ -z "$man_warnings" ] || fail "man -l vbim.1 warns: $man_warnings"
+bash -c "source '$prefix/share/bash-completion/completions/vbim' && complete -p vbim" >/dev/null ||
+  fail "the bash completion does not register for vbim"
+grep -q '^#compdef vbim' "$prefix/share/zsh/site-functions/_vbim" || fail "_vbim is not a zsh completion for vbim"
 
 step "examples/stall-test against the installed vbim"
 example=$work/example

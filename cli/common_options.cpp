@@ -1,0 +1,109 @@
+#include "cli/common_options.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <streambuf>
+#include <system_error>
+#include <vector>
+
+namespace vbim::cli {
+
+namespace {
+
+Verbosity& level() {
+  static Verbosity v = Verbosity::Normal;
+  return v;
+}
+
+// A stream buffer that drops everything (std::cout under --quiet).
+class NullBuffer : public std::streambuf {
+ protected:
+  int overflow(int c) override { return traits_type::not_eof(c); }
+  std::streamsize xsputn(const char* /*s*/, std::streamsize n) override { return n; }
+};
+
+std::streambuf*& originalStdout() {
+  static std::streambuf* buffer = nullptr;
+  return buffer;
+}
+
+void beQuiet() {
+  static NullBuffer sink;
+  level() = Verbosity::Quiet;
+  if (originalStdout() == nullptr) originalStdout() = std::cout.rdbuf(&sink);
+}
+
+// "12.3 kB" (decimal units, as `ls -h --si`).
+std::string size(std::uintmax_t bytes) {
+  const char* units[] = {"bytes", "kB", "MB", "GB", "TB"};
+  double v = static_cast<double>(bytes);
+  std::size_t u = 0;
+  while (v >= 1000 && u + 1 < std::size(units)) {
+    v /= 1000;
+    ++u;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, u == 0 ? "%.0f %s" : "%.1f %s", v, units[u]);
+  return text;
+}
+
+}  // namespace
+
+void addCommonOptions(CLI::App& app) {
+  for (CLI::App* sub : app.get_subcommands({})) {
+    const CLI::Option* out = nullptr;
+    for (const CLI::Option* opt : sub->get_options({})) {
+      if (opt->check_lname("out")) out = opt;
+    }
+    if (out == nullptr) continue;
+    if (!out->check_sname("o")) {
+      throw std::logic_error("vbim " + sub->get_name() + ": --out is registered without -o");
+    }
+    CLI::Option* quiet = sub->add_flag_callback(
+        "-q,--quiet", [] { beQuiet(); }, "No progress and no summary: only warnings and errors (and --json)");
+    CLI::Option* verbose = sub->add_flag_callback(
+        "-v,--verbose", [] { level() = Verbosity::Verbose; },
+        "Progress lines even into a log or pipe, and every file written with its size");
+    quiet->excludes(verbose);
+  }
+}
+
+Verbosity verbosity() {
+  return level();
+}
+
+std::ostream& requestedOut() {
+  static std::ostream out(nullptr);
+  out.rdbuf(originalStdout() != nullptr ? originalStdout() : std::cout.rdbuf());
+  return out;
+}
+
+void listWritten(const CLI::App& command) {
+  if (level() != Verbosity::Verbose) return;
+  std::vector<std::filesystem::path> outputs;
+  for (const CLI::Option* opt : command.get_options({})) {
+    if ((opt->check_lname("out") || opt->check_lname("iso")) && opt->count() > 0) {
+      outputs.emplace_back(opt->as<std::string>());
+    }
+  }
+  for (const std::filesystem::path& out : outputs) {
+    std::error_code ec;
+    std::vector<std::filesystem::path> files;
+    if (std::filesystem::is_directory(out, ec)) {
+      for (const auto& e : std::filesystem::recursive_directory_iterator(out, ec)) {
+        if (e.is_regular_file(ec)) files.push_back(e.path());
+      }
+    } else if (std::filesystem::is_regular_file(out, ec)) {
+      files.push_back(out);
+    }
+    std::sort(files.begin(), files.end());
+    for (const std::filesystem::path& f : files) {
+      std::cerr << "vbim " << command.get_name() << ": wrote " << f.string() << " ("
+                << size(std::filesystem::file_size(f, ec)) << ")\n";
+    }
+  }
+}
+
+}  // namespace vbim::cli
