@@ -14,6 +14,8 @@ PACKAGES=(
   libssl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # `man -l` checks the generated man page (tests/cli/habits_test.cpp, scripts/check-install.sh)
+  man-db
   # media around the model: images, encoding, the comparison decoders, ffprobe
   libopenimageio-dev libpng-dev libopenexr-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
