@@ -31,24 +31,44 @@ bool writeAll(int fd, const char* data, ssize_t n) {
 // Standard input copied into a memfd; "" on success, else what went wrong.
 std::string readStdin() {
   if (!stdinFile().empty()) return "'-' (standard input) can be read only once";
-  const int fd = ::memfd_create("vbim-stdin", MFD_CLOEXEC);
-  if (fd < 0) return std::string("<stdin>: cannot hold standard input in memory (") + std::strerror(errno) + ")";
-  std::vector<char> buffer(1 << 16);
-  for (;;) {
-    const ssize_t n = ::read(STDIN_FILENO, buffer.data(), buffer.size());
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return std::string("<stdin>: cannot be read (") + std::strerror(errno) + ")";
-    if (n == 0) break;
-    if (!writeAll(fd, buffer.data(), n)) {
-      return std::string("<stdin>: cannot hold standard input in memory (") + std::strerror(errno) + ")";
-    }
-  }
+  std::string problem;
+  const int fd = copyIntoMemoryFile(STDIN_FILENO, kStdinLimitBytes, problem);
+  if (fd < 0) return problem;
   // The descriptor stays open for the whole process: its /proc path is the file.
   stdinFile() = "/proc/self/fd/" + std::to_string(fd);
   return {};
 }
 
 }  // namespace
+
+int copyIntoMemoryFile(int fd, std::uint64_t limit, std::string& problem) {
+  const int out = ::memfd_create("vbim-stdin", MFD_CLOEXEC);
+  if (out < 0) {
+    problem = std::string("<stdin>: cannot hold standard input in memory (") + std::strerror(errno) + ")";
+    return -1;
+  }
+  std::vector<char> buffer(1 << 16);
+  std::uint64_t held = 0;
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      problem = std::string("<stdin>: cannot be read (") + std::strerror(errno) + ")";
+    } else if (n == 0) {
+      return out;
+    } else if (held + static_cast<std::uint64_t>(n) > limit) {
+      problem = "<stdin>: more than " + std::to_string(limit) +
+                " bytes (expected a stream no larger than a dual-layer DVD); give a file instead";
+    } else if (!writeAll(out, buffer.data(), n)) {
+      problem = std::string("<stdin>: cannot hold standard input in memory (") + std::strerror(errno) + ")";
+    } else {
+      held += static_cast<std::uint64_t>(n);
+      continue;
+    }
+    ::close(out);
+    return -1;
+  }
+}
 
 const CLI::Validator& stdinAsFile() {
   static const CLI::Validator v(

@@ -4,6 +4,7 @@
 // SIGKILL), reached by its /proc/self/fd path. Messages and summaries name it "<stdin>".
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -14,6 +15,15 @@ namespace vbim::cli {
 // use; once per process: a second "-" is refused), any other value is left as it is. Register it
 // before the option's check(inputFile()).
 const CLI::Validator& stdinAsFile();
+
+// The most standard input may hold: a dual-layer DVD (DVD-9, ECMA-267) holds 4,173,824 sectors of
+// 2,048 bytes, the largest disc a stream comes from. More is refused, not held in memory: `vbim info -
+// < /dev/urandom` must end with a message, not fill the machine.
+inline constexpr std::uint64_t kStdinLimitBytes = 4'173'824ULL * 2048;
+
+// Copies everything `fd` gives, at most `limit` bytes, into a new anonymous memory file (memfd) and
+// returns its descriptor; or -1 with `problem` saying why (naming "<stdin>").
+int copyIntoMemoryFile(int fd, std::uint64_t limit, std::string& problem);
 
 // True when `path` is where stdinAsFile() put standard input.
 bool isStdin(const std::string& path);
