@@ -31,10 +31,7 @@ class SliceWalker {
     error = "byte " + std::to_string(offset_ + br_.bytePosition()) + ": " + what;
     return false;
   }
-  int scale(int code) const {
-    if (pp_.mpeg1) return code;
-    return pp_.qScaleType ? kNonLinearQuantiserScale[static_cast<std::size_t>(code)] : 2 * code;
-  }
+  int scale(int code) const { return quantiserScale(pp_.mpeg1, pp_.qScaleType, code); }
   bool block(int b, int qsc, WalkedBlock& blk, std::string& error);
 
   const WalkedPicture& pic_;

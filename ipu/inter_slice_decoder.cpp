@@ -45,9 +45,7 @@ class InterSliceDecoder {
 
  private:
   void issue(IssueKind kind, int mbX, int mbY) { out_.report->add(kind, offset_ + br_.bytePosition(), mbX, mbY); }
-  void setQuantiserScale(int code) {
-    scale_ = pp_.mpeg1 ? code : (pp_.qScaleType ? kNonLinearQuantiserScale[code] : 2 * code);
-  }
+  void setQuantiserScale(int code) { scale_ = quantiserScale(pp_.mpeg1, pp_.qScaleType, code); }
   void resetDc() {
     const int reset = pp_.mpeg1 ? 128 : (1 << (7 + pp_.intraDcPrecision));
     dcPred_[0] = dcPred_[1] = dcPred_[2] = reset;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace vbim::ipu {
@@ -27,5 +28,12 @@ inline constexpr std::array<std::uint8_t, 64> kDefaultIntraMatrix = {
 inline constexpr std::array<std::uint8_t, 32> kNonLinearQuantiserScale = {0,  1,  2,  3,  4,  5,  6,  7,  8,   10, 12,
                                                                           14, 16, 18, 20, 22, 24, 28, 32, 36,  40, 44,
                                                                           48, 52, 56, 64, 72, 80, 88, 96, 104, 112};
+
+// §7.4.2.2: quantiser_scale from quantiser_scale_code. MPEG-1 uses the code itself (ISO/IEC 11172-2
+// §2.4.4); MPEG-2 doubles it (q_scale_type 0) or looks it up in Table 7-6 (q_scale_type 1).
+inline int quantiserScale(bool mpeg1, bool nonLinear, int code) {
+  if (mpeg1) return code;
+  return nonLinear ? kNonLinearQuantiserScale[static_cast<std::size_t>(code)] : 2 * code;
+}
 
 }  // namespace vbim::ipu

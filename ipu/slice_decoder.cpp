@@ -65,12 +65,7 @@ class SliceDecoder {
 };
 
 void SliceDecoder::setQuantiserScale(int code) {
-  int scale;
-  if (pp_.mpeg1) {
-    scale = code;
-  } else {
-    scale = pp_.qScaleType ? kNonLinearQuantiserScale[code] : 2 * code;
-  }
+  const int scale = quantiserScale(pp_.mpeg1, pp_.qScaleType, code);
   for (int i = 0; i < 64; ++i) {
     const int pos = pp_.scan[i];
     scan_[i].pos = static_cast<std::uint8_t>(pos);

@@ -28,12 +28,7 @@ std::vector<Bytes> gopPictures(testing::Content content, int gopSize, int bFrame
   o.quantiser = 4;
   o.content = content;
   o.seed = seed;
-  const Bytes es = testing::encodeIntra(o);
-  std::vector<Bytes> out;
-  for (const AccessUnit& au : splitAccessUnits(es))
-    out.emplace_back(es.begin() + static_cast<std::ptrdiff_t>(au.offset),
-                     es.begin() + static_cast<std::ptrdiff_t>(au.offset + au.size));
-  return out;
+  return testing::encodePictures(o);
 }
 
 struct Shown {

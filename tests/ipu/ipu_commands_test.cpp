@@ -20,15 +20,6 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-std::vector<Bytes> pictures(const testing::EncodeOptions& o) {
-  const Bytes es = testing::encodeIntra(o);
-  std::vector<Bytes> out;
-  for (const AccessUnit& au : splitAccessUnits(es))
-    out.emplace_back(es.begin() + static_cast<std::ptrdiff_t>(au.offset),
-                     es.begin() + static_cast<std::ptrdiff_t>(au.offset + au.size));
-  return out;
-}
-
 Bytes intraPicture(bool interlacedDct = false) {
   testing::EncodeOptions o;
   o.width = 128;
@@ -37,7 +28,7 @@ Bytes intraPicture(bool interlacedDct = false) {
   o.quantiser = 3;
   o.content = testing::Content::kBusy;
   o.interlacedDct = interlacedDct;
-  return pictures(o).at(0);
+  return testing::encodePictures(o).at(0);
 }
 
 // The slice start codes of a picture (00 00 01 then 01..AF), read here byte by byte.
@@ -212,7 +203,7 @@ TEST(IpuCommandLog, GopStreamFollowsTheBdecFlow) {
   o.bFrames = 2;
   o.quantiser = 4;
   o.content = testing::Content::kPattern;
-  const std::vector<Bytes> pics = pictures(o);
+  const std::vector<Bytes> pics = testing::encodePictures(o);
   const std::vector<TimedPicture> r = logged(pics, DecodePath::kBdec);
   ASSERT_EQ(r.size(), pics.size() + 1);
   bool sawP = false;

@@ -28,10 +28,7 @@ std::vector<std::uint8_t> firstPicture(int width, int height, int quantiser, tes
   o.frames = 1;
   o.quantiser = quantiser;
   o.content = content;
-  std::vector<std::uint8_t> es = testing::encodeIntra(o);
-  const AccessUnit au = splitAccessUnits(es).at(0);
-  return {es.begin() + static_cast<std::ptrdiff_t>(au.offset),
-          es.begin() + static_cast<std::ptrdiff_t>(au.offset + au.size)};
+  return testing::encodePictures(o).at(0);
 }
 
 const std::vector<std::vector<std::uint8_t>>& picturePool() {

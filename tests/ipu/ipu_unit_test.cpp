@@ -17,10 +17,7 @@ std::vector<std::uint8_t> firstPicture(testing::Content content = testing::Conte
   o.frames = 1;
   o.quantiser = 3;
   o.content = content;
-  std::vector<std::uint8_t> es = testing::encodeIntra(o);
-  const AccessUnit au = splitAccessUnits(es).at(0);
-  return {es.begin() + static_cast<std::ptrdiff_t>(au.offset),
-          es.begin() + static_cast<std::ptrdiff_t>(au.offset + au.size)};
+  return testing::encodePictures(o).at(0);
 }
 
 struct TimedRun {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ipu/elementary_stream.hpp"
 #include "runtime/image.hpp"
 
 namespace vbim::ipu::testing {
@@ -41,6 +42,17 @@ std::vector<Yuv420Image> makeFrames(const EncodeOptions& o);
 std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<Yuv420Image>& frames);
 inline std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o) {
   return encodeIntra(o, makeFrames(o));
+}
+// The pictures of encodeIntra(o), each its own bytes (an access unit: headers .. last slice), in
+// stream order. Callers link vbim_ipu (splitAccessUnits).
+inline std::vector<std::vector<std::uint8_t>> encodePictures(const EncodeOptions& o) {
+  const std::vector<std::uint8_t> es = encodeIntra(o);
+  std::vector<std::vector<std::uint8_t>> out;
+  for (const AccessUnit& au : splitAccessUnits(es)) {
+    out.emplace_back(es.begin() + static_cast<std::ptrdiff_t>(au.offset),
+                     es.begin() + static_cast<std::ptrdiff_t>(au.offset + au.size));
+  }
+  return out;
 }
 
 // libavcodec's decode of an elementary stream, threads = 1. idctAlgo: an FF_IDCT_* value.
