@@ -5,11 +5,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <regex>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -47,6 +48,49 @@ std::string slurp(const fs::path& p) {
 
 bool has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
+}
+
+// Plain string scans rather than <regex>: GCC 12 warns falsely inside <regex> in the -O1 sanitizer
+// build, and -Werror turns that into a build failure (it stopped CI once).
+
+// "vbim MAJOR.MINOR.PATCH\n", each part one or more digits.
+bool isVersionLine(const std::string& line) {
+  const std::string prefix = "vbim ";
+  if (line.rfind(prefix, 0) != 0 || line.empty() || line.back() != '\n') return false;
+  int parts = 0;
+  std::size_t at = prefix.size();
+  const std::size_t end = line.size() - 1;
+  while (at < end) {
+    const std::size_t digits = line.find_first_not_of("0123456789", at);
+    const std::size_t stop = digits == std::string::npos ? end : std::min(digits, end);
+    if (stop == at) return false;
+    ++parts;
+    at = stop;
+    if (at < end) {
+      if (line[at] != '.') return false;
+      ++at;
+      if (at == end) return false;
+    }
+  }
+  return parts == 3;
+}
+
+// Every "--name" in `text` whose name starts with a lowercase letter and goes on in [a-z0-9-].
+std::vector<std::string> longOptionsIn(const std::string& text) {
+  const auto nameChar = [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-'; };
+  std::vector<std::string> names;
+  std::size_t at = text.find("--");
+  while (at != std::string::npos) {
+    std::size_t end = at + 2;
+    if (end >= text.size() || text[end] < 'a' || text[end] > 'z') {
+      at = text.find("--", at + 1);
+      continue;
+    }
+    while (end < text.size() && nameChar(text[end])) ++end;
+    names.push_back(text.substr(at, end - at));
+    at = text.find("--", end);
+  }
+  return names;
 }
 
 // One line on stderr naming the command, the unknown option and the suggestion; exit 2.
@@ -103,8 +147,7 @@ TEST(CliHabits, EveryCommandThatWritesTakesShortOptions) {
   }
   const Result longVersion = run("--version");
   ASSERT_EQ(longVersion.status, 0);
-  EXPECT_TRUE(std::regex_match(longVersion.output, std::regex("vbim [0-9]+\\.[0-9]+\\.[0-9]+\n")))
-      << longVersion.output;
+  EXPECT_TRUE(isVersionLine(longVersion.output)) << longVersion.output;
   EXPECT_EQ(run("-V").output, longVersion.output);
   const Result version = run("version");
   EXPECT_EQ(version.status, 0);
@@ -295,9 +338,7 @@ TEST(CliHabits, ManPageAndCompletionsNameEveryCommandAndOption) {
     EXPECT_TRUE(has(zsh, std::string("    ") + cmd + ")\n")) << cmd;
     // Every long option the command's --help shows.
     const std::string help = run(std::string(cmd) + " --help").output;
-    const std::regex option("--[a-z][a-z0-9-]*");
-    for (auto it = std::sregex_iterator(help.begin(), help.end(), option); it != std::sregex_iterator(); ++it) {
-      const std::string name = it->str();
+    for (const std::string& name : longOptionsIn(help)) {
       if (!has(help, "  " + name) && !has(help, "," + name)) continue;  // named in a description only
       std::string roff;
       for (char c : name) roff += c == '-' ? std::string("\\-") : std::string(1, c);
