@@ -30,9 +30,11 @@ std::streambuf*& originalStdout() {
 }
 
 void beQuiet() {
-  static NullBuffer sink;
+  // Never destroyed: std::cout is flushed by std::ios_base::Init's destructor after every
+  // function-local static is gone, and a destroyed sink there is a use after free (ASan saw it).
+  static NullBuffer* const sink = new NullBuffer;
   level() = Verbosity::Quiet;
-  if (originalStdout() == nullptr) originalStdout() = std::cout.rdbuf(&sink);
+  if (originalStdout() == nullptr) originalStdout() = std::cout.rdbuf(sink);
 }
 
 // "12.3 kB" (decimal units, as `ls -h --si`).

@@ -68,6 +68,17 @@ static void load(const char* dir, const char* name, vfile* f) {
   fclose(in);
 }
 
+static void release(vfile* f) {
+  size_t i;
+  for (i = 0; i < f->n; ++i) {
+    free(f->e[i].key);
+    free(f->e[i].value);
+  }
+  free(f->e);
+  f->e = NULL;
+  f->n = 0;
+}
+
 static const char* find(const vfile* f, const char* key) {
   size_t i;
   for (i = 0; i < f->n; ++i)
@@ -271,6 +282,7 @@ int main(int argc, char** argv) {
     checks[k](&f);
     printf("%s: %lu of %lu entries match\n", names[k], (unsigned long)(f.checked - f.failed), (unsigned long)f.checked);
     if (f.failed > 0 || f.checked == 0) status = 1;
+    release(&f);
   }
   return status;
 }
