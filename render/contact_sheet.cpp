@@ -33,8 +33,19 @@ void fill(Rgba8Image& img, int x0, int y0, int w, int h, const std::uint8_t rgb[
 }
 
 const std::uint8_t* colour(Moment m) {
-  static const std::uint8_t onTime[3] = {90, 90, 90}, catchUp[3] = {255, 150, 0}, late[3] = {220, 20, 20};
-  return m == Moment::Late ? late : m == Moment::CatchUp ? catchUp : onTime;
+  static const std::uint8_t onTime[3] = {90, 90, 90}, waiting[3] = {70, 170, 80}, catchUp[3] = {255, 150, 0},
+                            late[3] = {220, 20, 20};
+  switch (m) {
+    case Moment::OnTime:
+      return onTime;
+    case Moment::Waiting:
+      return waiting;
+    case Moment::CatchUp:
+      return catchUp;
+    case Moment::Late:
+      return late;
+  }
+  return onTime;
 }
 
 // What each colour of the sheet means, as the legend says it.
@@ -42,6 +53,8 @@ const char* meaning(Moment m) {
   switch (m) {
     case Moment::OnTime:
       return "on time: the lightmap shows the frame due";
+    case Moment::Waiting:
+      return "waiting: no frame yet, the GS shows nothing";
     case Moment::CatchUp:
       return "catch-up: blending toward a frame that came late";
     case Moment::Late:
@@ -96,7 +109,17 @@ int legend(Rgba8Image* sheet, int x0, int y0, int width,
 }  // namespace
 
 const char* toString(Moment m) {
-  return m == Moment::Late ? "late" : m == Moment::CatchUp ? "catch-up" : "on time";
+  switch (m) {
+    case Moment::OnTime:
+      return "on time";
+    case Moment::Waiting:
+      return "waiting";
+    case Moment::CatchUp:
+      return "catch-up";
+    case Moment::Late:
+      return "late";
+  }
+  return "";
 }
 
 void faultColour(const std::string& kind, std::uint8_t rgb[3]) {
@@ -148,9 +171,14 @@ Rgba8Image contactSheet(const std::vector<SheetTile>& tiles, const SheetRun& run
   const int width = std::max(columns * cellW + kGap, kMinWidth);
   const int inner = width - 2 * kGap;
 
-  // The legend: every colour the sheet uses, the fault kinds in order of first appearance.
+  // The legend: every colour the sheet uses (waiting only when a tile or the strip shows it: most
+  // sheets start on a first frame), the fault kinds in order of first appearance.
+  const bool waits =
+      std::find(run.states.begin(), run.states.end(), Moment::Waiting) != run.states.end() ||
+      std::any_of(tiles.begin(), tiles.end(), [](const SheetTile& t) { return t.moment == Moment::Waiting; });
   std::vector<std::pair<std::array<std::uint8_t, 3>, std::string>> entries;
-  for (Moment m : {Moment::OnTime, Moment::Late, Moment::CatchUp}) {
+  for (Moment m : {Moment::OnTime, Moment::Waiting, Moment::Late, Moment::CatchUp}) {
+    if (m == Moment::Waiting && !waits) continue;
     const std::uint8_t* c = colour(m);
     entries.push_back({{c[0], c[1], c[2]}, meaning(m)});
   }

@@ -1,6 +1,7 @@
 // The day on one page: the rendered frames as thumbnails in a grid, each framed by what the
 // lightmap was doing since the previous one (red: late, the frame due had not arrived; orange:
-// catching up, blending toward a frame that came late; grey: on time) and labelled with its
+// catching up, blending toward a frame that came late; green: waiting, the GS has no frame yet, so
+// the picture is black; grey: on time) and labelled with its
 // simulated time, that state and the drive faults in its interval (stall, read error, ...). Under
 // the grid a strip over the whole run, one column per slice of vsyncs, in the same colours, with a
 // white tick at every thumbnail's time; under it the drive's faults on the same time axis; last a
@@ -16,9 +17,15 @@
 
 namespace vbim::render {
 
-enum class Moment : std::uint8_t { OnTime, CatchUp, Late };
+// In order of precedence: a tile or a strip column shows the greatest over its vsyncs.
+enum class Moment : std::uint8_t {
+  OnTime,   // the lightmap shows the frame due
+  Waiting,  // no frame has arrived yet and none is due (the start of a run, the drive spinning up)
+  CatchUp,  // blending toward a frame that arrived after it was due
+  Late,     // the frame due has not arrived (it may be the first: nothing shown and late)
+};
 
-const char* toString(Moment m);  // "on time", "catch-up", "late"
+const char* toString(Moment m);  // "on time", "waiting", "catch-up", "late"
 
 struct SheetTile {
   std::int64_t vsync = 0;

@@ -97,8 +97,11 @@ std::int64_t lastVsync(const player::RunDir& run) {
   return run.timeline.empty() ? run.frames.back().vsync : run.timeline.rbegin()->first;
 }
 
+// Late wins over waiting: a first frame that is due and has not come is late (a stall at spin-up).
 Moment momentOf(const player::TimelineRow& r) {
-  return r.behind ? Moment::Late : r.catchUp ? Moment::CatchUp : Moment::OnTime;
+  if (r.behind) return Moment::Late;
+  if (r.catchUp) return Moment::CatchUp;
+  return r.targetSeq < 0 ? Moment::Waiting : Moment::OnTime;  // target_seq -1: the GS has no frame
 }
 
 }  // namespace
@@ -220,10 +223,16 @@ RunRenderResult renderRun(const player::RunDir& run, const RunRenderRequest& req
                           {"sky_irradiance", light.skyIrradiance},
                           {"triangles", renderer.stats().trianglesDrawn}});
     if (i % tileStep == 0 || i + 1 == n) {
+      // Late and catch-up anywhere since the previous tile; waiting only when this tile's picture is
+      // itself black (a tile after the first frame came says what the picture shows).
       Moment worst = Moment::OnTime;
       for (auto it = run.timeline.upper_bound(previousTileVsync); it != run.timeline.end() && it->first <= f.vsync;
-           ++it)
-        worst = std::max(worst, momentOf(it->second));
+           ++it) {
+        const Moment m = momentOf(it->second);
+        if (m != Moment::Waiting) worst = std::max(worst, m);
+      }
+      if (worst == Moment::OnTime && row != run.timeline.end() && momentOf(row->second) == Moment::Waiting)
+        worst = Moment::Waiting;
       // The drive's faults since the previous tile (for the first: since the start).
       std::vector<std::string> faults;
       for (const player::FaultSpan& span : run.faults) {

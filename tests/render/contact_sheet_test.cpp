@@ -113,5 +113,49 @@ TEST(ContactSheet, TilesCarryTimeAndStateAndALegendNamesEveryColour) {
   EXPECT_EQ(contactSheet(tiles, run, 3, thumb).pixels, sheet.pixels);
 }
 
+// A tile before the first frame has arrived (the GS shows nothing: a black picture) says "waiting"
+// in its own colour, with a legend entry; a sheet with no such moment has no such entry.
+TEST(ContactSheet, ATileBeforeTheFirstFrameIsWaitingNotOnTime) {
+  const std::array<std::uint8_t, 3> green{70, 170, 80};
+  std::vector<SheetTile> tiles;
+  tiles.push_back(SheetTile{0, 0.0, solid(120, 54, 0), Moment::Waiting, {}});
+  tiles.push_back(SheetTile{60, 1.0, solid(120, 54, 40), Moment::OnTime, {}});
+  SheetRun run;
+  run.states.assign(120, Moment::OnTime);
+  for (int v = 0; v < 30; ++v) run.states[v] = Moment::Waiting;
+  run.seconds = 2.0;
+  const int thumb = 120;
+  const Rgba8Image sheet = contactSheet(tiles, run, 2, thumb);
+  EXPECT_STREQ(toString(Moment::Waiting), "waiting");
+
+  const int labelY = 4 + 54 + 6 + 2, cellW = thumb + 6 + 4;
+  expectText(sheet, 4, labelY, "t=0.0 s", kText);
+  expectText(sheet, 4 + textWidth("t=0.0 s  ") + 1, labelY, "waiting", green.data());
+  expectText(sheet, 4 + cellW + textWidth("t=1.0 s  ") + 1, labelY, "on time", kText);
+  // The first tile's border is green, the second's grey.
+  const std::uint8_t* first = sheet.row(4 + 1) + (4 + 1) * 4;
+  const std::uint8_t* second = sheet.row(4 + 1) + (4 + cellW + 1) * 4;
+  EXPECT_EQ((std::array<std::uint8_t, 3>{first[0], first[1], first[2]}), green);
+  EXPECT_EQ((std::array<std::uint8_t, 3>{second[0], second[1], second[2]}), (std::array<std::uint8_t, 3>{90, 90, 90}));
+  // The strip's first quarter (30 of 120 vsyncs) is green; the legend has a swatch and says what it means.
+  const int gridBottom = 4 + (54 + 6 + 2 * kTextLineHeight + 2 + 4);
+  EXPECT_GE(countColour(sheet, gridBottom, gridBottom + 14, green), 14u * ((sheet.width - 8) / 4 - 2));
+  const int legendTop = gridBottom + 14 + 2 + kTextLineHeight + 4;
+  EXPECT_GE(countColour(sheet, legendTop, sheet.height, green), 12u * 7u);
+  // The second entry, after "on time", wrapped as the legend flows (swatch 12, gap 4, entries 18 apart).
+  const std::string waiting = "waiting: no frame yet, the GS shows nothing";
+  int x = 4 + 12 + 4 + textWidth("on time: the lightmap shows the frame due") + 18, y = legendTop;
+  if (x + 12 + 4 + textWidth(waiting) > sheet.width - 4) {
+    x = 4;
+    y += kTextLineHeight + 2;
+  }
+  expectText(sheet, x + 12 + 4, y, waiting, kText);
+
+  // No waiting anywhere: no green at all.
+  tiles[0].moment = Moment::OnTime;
+  run.states.assign(120, Moment::OnTime);
+  EXPECT_EQ(countColour(contactSheet(tiles, run, 2, thumb), 0, sheet.height, green), 0u);
+}
+
 }  // namespace
 }  // namespace vbim::render

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 
@@ -44,7 +45,8 @@ RunRenderRequest smallRequest() {
 
 // A run directory as `vbim play --every 60` writes it: frames at vsync 0, 60, 120, and a timeline
 // with a stall between 60 and 120; from vsync `branchAt` on, the timeline shows variant `branchTo`.
-fs::path fakeRun(int branchAt = 1000, int branchTo = 1) {
+// Before vsync `firstFrameAt` no frame has arrived nor is due (due_seq and target_seq -1).
+fs::path fakeRun(int branchAt = 1000, int branchTo = 1, int firstFrameAt = 0) {
   const fs::path run = freshDir("run");
   fs::create_directories(run / "frames");
   for (int k = 0; k < 3; ++k) {
@@ -59,8 +61,9 @@ fs::path fakeRun(int branchAt = 1000, int branchTo = 1) {
        "sky_lag,ring_banks,gs_busy_ticks\n";
   for (int v = 0; v <= 120; ++v) {
     const bool behind = v > 70 && v < 90, catchUp = v >= 90 && v < 100;
-    t << v << "," << v / 60.0 << ",0," << 10 + v / 60 << "," << 10 + v / 60 << "," << (v >= branchAt ? branchTo : 0)
-      << ",0,0," << behind << "," << catchUp << ",0,-1,0,0,0,0,0\n";
+    const int seq = v < firstFrameAt ? -1 : 10 + v / 60;
+    t << v << "," << v / 60.0 << ",0," << seq << "," << seq << "," << (v >= branchAt ? branchTo : 0) << ",0,0,"
+      << behind << "," << catchUp << ",0,-1,0,0,0,0,0\n";
   }
   return run;
 }
@@ -89,6 +92,26 @@ TEST(RenderRun, WritesFramesSheetVideoAndSummary) {
   EXPECT_EQ(border[1], 20);
   const std::uint8_t* firstBorder = sheet.row(5) + (4 + 1) * 4;
   EXPECT_EQ(firstBorder[0], 90) << "the first tile is on time";
+  fs::remove_all(run);
+  fs::remove_all(out);
+}
+
+// Before the first frame has arrived the GS shows nothing: the first tile is black and framed and
+// labelled "waiting", not "on time" (issue #33: the demo's first tile, during its spin-up stall); the
+// next tile, whose picture shows a frame, is on time although its interval began waiting.
+TEST(RenderRun, TilesBeforeTheFirstFrameAreWaiting) {
+  const fs::path run = fakeRun(1000, 1, 30);
+  const fs::path out = freshDir("waiting");
+  renderRun(readRunDir(run), smallRequest(), out, nullptr);
+  const Rgba8Image sheet = imageio::readRgba8(out / "contact_sheet.png");
+  const auto borderAt = [&](int tile) {
+    const std::uint8_t* p = sheet.row(5) + (4 + tile * (48 + 6 + 4) + 1) * 4;
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  EXPECT_EQ(borderAt(0), (std::array<int, 3>{70, 170, 80})) << "the first tile is waiting";
+  EXPECT_EQ(borderAt(1), (std::array<int, 3>{90, 90, 90})) << "the second tile shows a frame, on time";
+  EXPECT_EQ(borderAt(2), (std::array<int, 3>{220, 20, 20})) << "the third covers the stall";
+  // Without that start the first tile is on time (WritesFramesSheetVideoAndSummary), never waiting.
   fs::remove_all(run);
   fs::remove_all(out);
 }
