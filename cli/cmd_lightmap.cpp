@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "cli/command.hpp"
+#include "cli/common_options.hpp"
 #include "cli/host_threads.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/option_checks.hpp"
@@ -96,12 +97,14 @@ void addLightmap(CLI::App& app) {
   cmd->add_option("--format", o->files.format,
                   "png, exr, both (png and exr), or tif (lightmaps as GeoTIFF with the DEM's georeferencing, sky "
                   "domes as exr)")
-      ->default_val("png");
+      ->default_val("png")
+      ->check(oneOf("--format", {"png", "exr", "both", "tif"}));
   cmd->add_option("--debug", o->files.debug,
                   "Extra layers: horizons, sky (factor K), shadow (sun mask), nl (N.L of the key light), or all");
   cmd->add_option("--layers-format", o->files.layersFormat,
                   "Float debug layers as exr, or tif (GeoTIFF with the DEM's georeferencing)")
-      ->default_val("exr");
+      ->default_val("exr")
+      ->check(oneOf("--layers-format", {"exr", "tif"}));
   addThreadsOption(*cmd, o->files.threads, "Host threads that compute the lighting");
   cmd->add_option("-o,--out", o->out, "Output directory (complete or absent)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing non-empty output directory");

@@ -35,12 +35,15 @@ void addPlay(CLI::App& app) {
   cmd->add_option("--faults", r->faults, "Fault plan (TOML; docs/fault-plans.md)")->check(inputFile());
   cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();
   cmd->add_option("--duration", r->duration, "Simulated time to play (e.g. 60s)")->capture_default_str();
-  cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late");
+  cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late")
+      ->check(catchupPolicy());
   cmd->add_option("--every", r->every, "Write the lightmap and sky every N vsyncs (0: never)")
       ->check(nonNegativeInteger())
       ->capture_default_str();
   cmd->add_option("--at", r->at, "Write the images at these times (12.5s,30s,...)")->delimiter(',');
-  cmd->add_option("--format", r->format, "Image format: png or exr")->capture_default_str();
+  cmd->add_option("--format", r->format, "Image format: png or exr")
+      ->check(oneOf("--format", {"png", "exr"}))
+      ->capture_default_str();
   cmd->add_option(
          "--png-level", r->pngLevel,
          "PNG compression (zlib's level): 0 stores the pixels (fastest, ~2.5x the bytes), 1 to 9 compress (1: about "

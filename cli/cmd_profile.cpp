@@ -191,6 +191,7 @@ void addProfile(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--policy", r->policies, "Catch-up policies: blend-through, hard-skip, play-late")
       ->delimiter(',')
+      ->check(catchupPolicy())
       ->capture_default_str();
   cmd->add_option("--seed", r->seed, "Seed of every random draw of the model")->capture_default_str();
   cmd->add_option("--duration", r->duration, "Simulated time of each sweep run")->capture_default_str();

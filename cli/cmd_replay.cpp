@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/common_options.hpp"
 #include "cli/option_checks.hpp"
 #include "runs/replay_run.hpp"
 
@@ -37,11 +38,14 @@ void addReplay(CLI::App& app) {
                   "Simulated time to present (e.g. 60s); without it, the vsyncs the log's end row gives (play "
                   "writes one), else 60s")
       ->each([r](const std::string&) { r->durationGiven = true; });
-  cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late");
+  cmd->add_option("--policy", r->policy, "Catch-up policy: blend-through (default), hard-skip or play-late")
+      ->check(catchupPolicy());
   cmd->add_option("--every", r->every, "Write the lightmap and sky every N vsyncs (0: never)")
       ->check(nonNegativeInteger())
       ->capture_default_str();
-  cmd->add_option("--format", r->format, "Image format: png or exr")->capture_default_str();
+  cmd->add_option("--format", r->format, "Image format: png or exr")
+      ->check(oneOf("--format", {"png", "exr"}))
+      ->capture_default_str();
   cmd->add_option("--alpha", r->alpha, "Alpha of the pictures: opaque (255) or gs (the texels as in VRAM)")
       ->check(CLI::IsMember({"opaque", "gs"}))
       ->capture_default_str();

@@ -8,6 +8,9 @@
 #include <system_error>
 #include <vector>
 
+#include "gs/params.hpp"
+#include "runtime/error.hpp"
+
 namespace vbim::cli {
 
 namespace {
@@ -52,6 +55,24 @@ std::string size(std::uintmax_t bytes) {
 }
 
 }  // namespace
+
+CLI::Validator oneOf(const std::string& option, std::vector<std::string> values) {
+  std::string set, words;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    set += (i ? "," : "") + values[i];
+    words += (i == 0 ? "" : i + 1 == values.size() ? " or " : ", ") + values[i];
+  }
+  return {[option, values = std::move(values), words](std::string& value) {
+            if (std::find(values.begin(), values.end(), value) != values.end()) return std::string();
+            // vbim::Error, not CLI11's "NAME: text": the message the library's own check gives.
+            throw Error(option + " '" + value + "': expected " + words);
+          },
+          "{" + set + "}", "one of"};
+}
+
+CLI::Validator catchupPolicy() {
+  return oneOf("--policy", std::vector<std::string>(gs::kCatchupPolicies.begin(), gs::kCatchupPolicies.end()));
+}
 
 void addCommonOptions(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) {

@@ -13,6 +13,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -29,6 +30,14 @@ Verbosity verbosity();
 // The program's standard output even under --quiet (which silences std::cout): for output the user
 // asked for by name, such as a --json summary.
 std::ostream& requestedOut();
+
+// A value from a fixed set, for an option named `option` ("--format"): --help shows the set
+// ({png,exr}) and the shell completions offer it (cli/shell_completion.hpp reads the same
+// description, as it reads CLI::IsMember's); another value is bad input, refused before any work
+// with the message the command's own check gives: "--format 'gif': expected png or exr".
+CLI::Validator oneOf(const std::string& option, std::vector<std::string> values);
+// --policy: one of gs::kCatchupPolicies (play, replay; profile's list, each item).
+CLI::Validator catchupPolicy();
 
 // Under --verbose, after a command that wrote `out` (a directory or a file) finished: one line per
 // file written, with its size, on stderr. Nothing otherwise.

@@ -14,8 +14,9 @@ PACKAGES=(
   libssl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
-  # `man -l` checks the generated man page (tests/cli/habits_test.cpp, scripts/check-install.sh)
-  man-db
+  # `man -l` checks the generated man page (tests/cli/habits_test.cpp, scripts/check-install.sh);
+  # the generated completions are loaded in real shells by the same test
+  man-db bash-completion zsh
   # media around the model: images, encoding, the comparison decoders, ffprobe
   libopenimageio-dev libpng-dev libopenexr-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg

@@ -179,7 +179,7 @@ TEST(LightmapCli, BadInputGivesAClearMessageAndNonZeroExit) {
   expectFailure("lightmap --size 16 --debug nonsense", "unknown layer 'nonsense'", out);
   expectFailure("lightmap --size 16 --sky-directions 12", "lighting.sky_directions = 12 must be 8, 16 or 32", out);
   expectFailure("lightmap --size 16 --sun-elevation 95", "lighting.sun_elevation_deg = 95 is outside [-90, 90]", out);
-  expectFailure("lightmap --size 16 --layers-format png", "--layers-format must be exr or tif", out);
+  expectFailure("lightmap --size 16 --layers-format png", "--layers-format 'png': expected exr or tif", out);
   expectFailure("lightmap --terrain " + hf.string() + " --bounce-albedo " + colour.string(),
                 "cli_colour.png: colour map is", out);
   const fs::path toml = scratch("bad.toml");
