@@ -18,6 +18,7 @@
 
 #include "cli/command.hpp"
 #include "cli/common_options.hpp"
+#include "cli/exit_status.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/stdin_input.hpp"
@@ -123,7 +124,7 @@ int runApp(CLI::App& app, int argc, char** argv) {
   // A first word that is neither an option nor a subcommand gets a plain answer.
   if (argc > 1 && argv[1][0] != '-' && subcommandNamed(app, argv[1]) == nullptr) {
     std::cerr << "vbim: " << unknownCommand(app, argv[1]) << "; see 'vbim --help'\n";
-    return 2;
+    return kExitBadInput;
   }
   const std::string prefix = prefixFor(app, argc, argv);
   const std::string seeHelp =
@@ -131,7 +132,7 @@ int runApp(CLI::App& app, int argc, char** argv) {
   // An unknown option is named first: CLI11 would complain of a missing --out when --outt was meant.
   if (const auto unknown = unknownOption(app, argc, argv)) {
     std::cerr << prefix << *unknown << "; " << seeHelp << "\n";
-    return 2;
+    return kExitBadInput;
   }
   try {
     app.parse(argc, argv);
@@ -139,7 +140,7 @@ int runApp(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() != 0) {
       std::cerr << prefix << nameStdin(e.what()) << "; " << seeHelp << "\n";
-      return 2;
+      return kExitBadInput;
     }
     return app.exit(e);  // --help, --version
   } catch (const Exit& e) {
@@ -148,21 +149,21 @@ int runApp(CLI::App& app, int argc, char** argv) {
   } catch (const Error& e) {
     // The project's own errors name the input and what was expected: bad input.
     std::cerr << prefix << nameStdin(e.what()) << "\n";
-    return 2;
+    return kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::cerr << prefix << "out of memory (the input or the options ask for more than this machine has)\n";
-    return 1;
+    return kExitFailure;
   } catch (const std::filesystem::filesystem_error& e) {
     std::cerr << prefix << nameStdin(e.path1().string()) << ": " << e.code().message() << "\n";
-    return 1;
+    return kExitFailure;
   } catch (const std::system_error& e) {
     std::cerr << prefix << "system error: " << e.code().message() << "\n";
-    return 1;
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << prefix << "internal error (" << e.what() << "); please report it with the command line\n";
-    return 1;
+    return kExitFailure;
   }
-  return 0;
+  return kExitDone;
 }
 
 }  // namespace vbim::cli

@@ -5,14 +5,13 @@
 #include <csignal>
 
 #include "cli/command.hpp"
+#include "cli/exit_status.hpp"
 
 namespace vbim::cli {
 
 namespace {
 
 volatile std::sig_atomic_t gSignal = 0;
-
-constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
 extern "C" void onSignal(int sig) {
   gSignal = sig;
@@ -22,14 +21,14 @@ extern "C" void onSignal(int sig) {
 void setMask(int how) {
   sigset_t set;
   sigemptyset(&set);
-  for (const int sig : kSignals) sigaddset(&set, sig);
+  for (const StopSignal& s : kStopSignals) sigaddset(&set, s.number);
   sigprocmask(how, &set, nullptr);
 }
 
 }  // namespace
 
 void installInterruptHandlers() {
-  for (const int sig : kSignals) std::signal(sig, onSignal);
+  for (const StopSignal& s : kStopSignals) std::signal(s.number, onSignal);
   // Signals held back by blockInterruptSignals() (across the exec into vbim-full) arrive now, at
   // the handler.
   setMask(SIG_UNBLOCK);
@@ -42,8 +41,9 @@ void blockInterruptSignals() {
 void checkInterrupted() {
   if (gSignal != 0) {
     const int sig = gSignal;
-    throw Exit(128 + sig, sig == SIGINT ? "interrupted (Ctrl-C); temporary files removed, outputs left as they were"
-                                        : "stopped by a signal; temporary files removed, outputs left as they were");
+    throw Exit(exitForSignal(sig), sig == SIGINT
+                                       ? "interrupted (Ctrl-C); temporary files removed, outputs left as they were"
+                                       : "stopped by a signal; temporary files removed, outputs left as they were");
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "cli/app_tree.hpp"
 #include "cli/command.hpp"
+#include "cli/exit_status.hpp"
 
 namespace vbim::cli {
 
@@ -73,14 +74,38 @@ std::string manPage(CLI::App& app) {
     }
     if (!cmd->get_footer().empty()) m << ".PP\n.nf\n" << roffLines(cmd->get_footer()) << ".fi\n";
   }
+  // From the codes the program ends with (cli/exit_status.hpp).
   m << ".SH \"EXIT STATUS\"\n"
-    << ".TP\n0\ndone; every output is complete\n"
-    << ".TP\n2\nbad usage or bad input (an unknown option, a number out of range, a missing file, a config or "
-       "stream that fails validation, an output that exists without \\-\\-force)\n"
-    << ".TP\n1\na failure while running (an output that cannot be written, out of memory)\n"
-    << ".TP\n130\ninterrupted (Ctrl\\-C); temporary files removed\n"
-    << ".SH \"SEE ALSO\"\nThe documentation installed in share/doc/vbim (cli.md: the command line; player.md: "
-       "the outputs of a run).\n";
+    << ".TP\n"
+    << kExitDone << "\ndone: every output is complete (and a \\-\\-check or \\-\\-compare found no difference)\n"
+    << ".TP\n"
+    << kExitFailure
+    << "\na failure while running (an output that cannot be written, out of memory), or a difference found by "
+       "\\fBvbim vectors \\-\\-check\\fR or \\fBvbim replay \\-\\-compare\\fR\n"
+    << ".TP\n"
+    << kExitBadInput
+    << "\nbad usage or bad input, refused before any work (an unknown option, a number out of range, a missing file, "
+       "a config or stream that fails validation, an output that exists without \\-\\-force)\n";
+  for (const StopSignal& s : kStopSignals) {
+    m << ".TP\n"
+      << exitForSignal(s.number) << "\nstopped by " << roff(s.name)
+      << ": temporary files removed, outputs left as they were (128 + the signal's number)\n";
+  }
+  m << ".SH ENVIRONMENT\n"
+    << ".TP\n\\fBVBIM_PROGRESS\\fR=1\nprogress lines on stderr even when it is not a terminal, at most one every 5 s\n"
+    << ".TP\n\\fBSOURCE_DATE_EPOCH\\fR\nthe date \\fBvbim author \\-\\-iso\\fR records in a disc image (default: "
+       "2000\\-01\\-01 "
+       "00:00 UTC, so that images are reproducible)\n"
+    << ".SH FILES\n"
+    << ".TP\n\\fI.NAME.tmp\\-PID\\fR\n"
+       "an output being written, hidden beside NAME and renamed to it when complete; removed on an error or a "
+       "signal, and by the next command that writes into the same directory once process PID is gone\n"
+    << ".TP\n\\fIshare/bash\\-completion/completions/vbim\\fR, \\fIshare/zsh/site\\-functions/_vbim\\fR\n"
+       "the bash and zsh completions, generated with this page from the same option definitions\n"
+    << ".SH \"SEE ALSO\"\n"
+    << "\\fBvbim help\\fR \\fICOMMAND\\fR; the documentation installed in \\fIshare/doc/vbim\\fR: "
+       "\\fIREADME.md\\fR, \\fIcli.md\\fR (the command line), \\fIplayer.md\\fR and \\fIrun\\-files.md\\fR "
+       "(the outputs of a run, with units), \\fIfault\\-plans.md\\fR, \\fIporting.md\\fR.\n";
   return m.str();
 }
 
