@@ -334,7 +334,7 @@ TEST(CliHabits, ManPageAndCompletionsNameEveryCommandAndOption) {
                           "render", "profile", "version"}) {
     ASSERT_TRUE(has(list.output, std::string("  ") + cmd + " ")) << cmd;
     EXPECT_TRUE(has(man, std::string(".SS \"vbim ") + cmd)) << cmd;
-    EXPECT_TRUE(has(bash, std::string("    ") + cmd + ") opts=\"")) << cmd;
+    EXPECT_TRUE(has(bash, std::string("    ") + cmd + ")\n      opts=\"")) << cmd;
     EXPECT_TRUE(has(zsh, std::string("    ") + cmd + ")\n")) << cmd;
     // Every long option the command's --help shows.
     const std::string help = run(std::string(cmd) + " --help").output;
@@ -359,6 +359,153 @@ TEST(CliHabits, ManPageAndCompletionsNameEveryCommandAndOption) {
   // man reads the page without a warning.
   const Result page = vbim::testing::runCommand("MANWIDTH=80 man -l " + (d / "man").string() + " 2>&1 >/dev/null");
   EXPECT_EQ(page.output, "");
+  fs::remove_all(d);
+}
+
+// The bash completion as bash-completion loads it (from completions/vbim under
+// BASH_COMPLETION_USER_DIR, as `cmake --install` puts it in share/bash-completion/completions), run
+// in bash with COMP_WORDS as bash fills it at a Tab: commands, options, and the values of every
+// option with a fixed set (the checks --help shows: CLI11's IsMember, cli::oneOf), a list's next
+// item after a comma, and nothing (not a file name) after an option that takes a number.
+TEST(CliHabits, BashCompletesCommandsOptionsAndValues) {
+  const std::string loader = "/usr/share/bash-completion/bash_completion";
+  ASSERT_TRUE(fs::exists(loader)) << loader << " is missing: install bash-completion (scripts/setup.sh)";
+  const fs::path d = scratch("bash");
+  fs::create_directories(d / "completions");
+  ASSERT_EQ(
+      vbim::testing::runProgram(VBIM_FULL_BINARY, "--generate bash " + (d / "completions" / "vbim").string()).status,
+      0);
+  std::ofstream(d / "zz-only-file") << "";  // what a file name completion would offer
+  std::ofstream(d / "complete.sh") << "source " << loader << R"(
+_completion_loader vbim
+complete -p vbim
+t() {
+  COMP_WORDS=("$@"); COMP_CWORD=$((${#COMP_WORDS[@]} - 1)); COMP_LINE="$*"; COMP_POINT=${#COMP_LINE}
+  COMPREPLY=()
+  _vbim 2>/dev/null
+  echo "[$*] ${COMPREPLY[*]}"
+}
+t vbim pla
+t vbim help ren
+t vbim play x --fau
+t vbim decode x --format ''
+t vbim decode x --idct l
+t vbim play x --policy h
+t vbim replay x --format e
+t vbim profile x --policy blend-through,p
+t vbim play x --trace-detail ''
+t vbim lightmap --layers-format ''
+t vbim config --format g
+t vbim decode x --format = y
+t vbim play x --seed z
+t vbim play x --faults z
+t vbim render --width z
+)";
+  const Result r = vbim::testing::runCommand("cd " + d.string() + " && BASH_COMPLETION_USER_DIR=" + d.string() +
+                                             " bash --norc --noprofile complete.sh");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // The loader registered it (it lists complete's options in its own order).
+  const auto registered = r.output.find(" -F _vbim vbim\n");
+  ASSERT_NE(registered, std::string::npos) << r.output;
+  const std::string expected =
+      "[vbim pla] play\n"
+      "[vbim help ren] render\n"
+      "[vbim play x --fau] --faults\n"
+      "[vbim decode x --format ] png exr yuv rgba\n"
+      "[vbim decode x --idct l] libmpeg2\n"
+      "[vbim play x --policy h] hard-skip\n"
+      "[vbim replay x --format e] exr\n"
+      "[vbim profile x --policy blend-through,p] blend-through,play-late\n"
+      "[vbim play x --trace-detail ] coalesced full ipu\n"
+      "[vbim lightmap --layers-format ] exr tif\n"
+      "[vbim config --format g] gif\n"
+      "[vbim decode x --format = y] yuv\n"
+      "[vbim play x --seed z] \n"
+      "[vbim play x --faults z] zz-only-file\n"
+      "[vbim render --width z] \n";
+  EXPECT_EQ(r.output.substr(registered + 15), expected);
+  fs::remove_all(d);
+}
+
+// The zsh completion in an interactive zsh on a pseudo-terminal (zpty), a Tab typed after each line:
+// installed in $fpath (share/zsh/site-functions/_vbim) or sourced after compinit. A unique match is
+// inserted whole, so the line after the Tab shows what was offered.
+TEST(CliHabits, ZshCompletesCommandsOptionsAndValues) {
+  ASSERT_EQ(vbim::testing::runCommand("command -v zsh").status, 0) << "zsh is missing: install it (scripts/setup.sh)";
+  const fs::path d = scratch("zsh");
+  ASSERT_EQ(vbim::testing::runProgram(VBIM_FULL_BINARY, "--generate zsh " + (d / "_vbim").string()).status, 0);
+  std::ofstream(d / "zz-only-file") << "";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"vbim pla", "vbim play "},
+      {"vbim play --fau", "vbim play --faults "},
+      {"vbim decode x --idct l", "vbim decode x --idct libmpeg2 "},
+      {"vbim play x --policy h", "vbim play x --policy hard-skip "},
+      {"vbim play x --trace-detail f", "vbim play x --trace-detail full "},
+      {"vbim decode x --format y", "vbim decode x --format yuv "},
+      {"vbim lightmap --format t", "vbim lightmap --format tif "},
+      {"vbim profile x --policy blend-through,p", "vbim profile x --policy blend-through,play-late,"},
+      {"vbim play x --seed z", "vbim play x --seed z"},  // a number: no file name
+      {"vbim play x --faults z", "vbim play x --faults zz-only-file "},
+  };
+  std::string lines, expected;
+  for (const auto& [typed, completed] : cases) {
+    lines += " '" + typed + "'";
+    expected += "[" + completed + "]\n";
+  }
+  for (const char* mode : {"fpath", "source"}) {
+    const fs::path out = d / (std::string(mode) + ".txt");
+    const Result r = vbim::testing::runCommand("cd " + d.string() + " && zsh -f " + std::string(VBIM_SOURCE_DIR) +
+                                               "/tests/cli/complete_in_zsh.zsh " + mode + " " + (d / "_vbim").string() +
+                                               " " + out.string() + lines);
+    EXPECT_EQ(r.status, 0) << mode << "\n" << r.output;
+    EXPECT_EQ(slurp(out), expected) << mode;
+  }
+  fs::remove_all(d);
+}
+
+// The man page's EXIT STATUS lists the codes the program ends with (cli/exit_status.hpp), each of
+// which a command here does end with, and man and groff read the page without a warning.
+TEST(CliHabits, ManPageListsTheRealExitStatusesAndRendersCleanly) {
+  const fs::path d = scratch("manpage");
+  ASSERT_EQ(vbim::testing::runProgram(VBIM_FULL_BINARY, "--generate man " + (d / "vbim.1").string()).status, 0);
+  const std::string man = slurp(d / "vbim.1");
+  const auto section = [&man](const std::string& name) {
+    const auto at = man.find(".SH " + name + "\n");
+    if (at == std::string::npos) return std::string();
+    const auto end = man.find("\n.SH ", at + 1);
+    return man.substr(at, end == std::string::npos ? std::string::npos : end - at);
+  };
+  // ".TP\nCODE\n" per status, in order.
+  const std::string exit = section("\"EXIT STATUS\"");
+  ASSERT_FALSE(exit.empty()) << man;
+  std::vector<int> codes;
+  for (auto at = exit.find(".TP\n"); at != std::string::npos; at = exit.find(".TP\n", at + 1))
+    codes.push_back(std::stoi(exit.substr(at + 4)));
+  EXPECT_EQ(codes, (std::vector<int>{0, 1, 2, 130, 143, 129})) << exit;
+  EXPECT_TRUE(has(exit, "SIGINT (Ctrl\\-C)")) << exit;
+  for (const char* name : {"ENVIRONMENT", "FILES", "\"SEE ALSO\""}) EXPECT_FALSE(section(name).empty()) << name;
+  EXPECT_TRUE(has(section("ENVIRONMENT"), "VBIM_PROGRESS")) << man;
+
+  // The program does end with them: 0, 2 (an unknown option), 129 (SIGHUP) here; 1 in
+  // replay_cli_test and port_reference_cli_test (a difference found), 130 and 143 in
+  // conventions_test (InterruptsAtRandomMomentsLeaveNothingBehind).
+  EXPECT_EQ(run("version").status, 0);
+  EXPECT_EQ(run("play " + kSample + " --bogus").status, 2);
+  const Result hup = vbim::testing::runCommand(
+      kVbim + " play " + kSample + " --duration 86400s --no-trace -o " + (d / "hup").string() + " 2>" +
+      (d / "hup.log").string() +
+      " & pid=$!; for i in $(seq 600); do c=$(awk '/^SigCgt/{print $2}' /proc/$pid/status 2>/dev/null); "
+      "[ -n \"$c\" ] && [ $(( 0x$c & 1 )) -ne 0 ] && break; sleep 0.05; done; "  // SIGHUP's handler is in
+      "sleep 0.5; kill -HUP $pid; wait $pid; echo status=$?");
+  EXPECT_TRUE(has(hup.output, "status=129")) << hup.output << slurp(d / "hup.log");
+  EXPECT_TRUE(has(slurp(d / "hup.log"), "stopped by a signal; temporary files removed")) << slurp(d / "hup.log");
+
+  // man and groff: not one warning, at 80 columns as in a terminal.
+  const Result page = vbim::testing::runCommand("MANWIDTH=80 man -l " + (d / "vbim.1").string() + " 2>&1 >/dev/null");
+  EXPECT_EQ(page.output, "");
+  const Result groff = vbim::testing::runCommand("groff -ww -z -man " + (d / "vbim.1").string());
+  EXPECT_EQ(groff.status, 0) << groff.output;
+  EXPECT_EQ(groff.output, "");
   fs::remove_all(d);
 }
 
