@@ -29,6 +29,14 @@ int runFullTool(char** argv) {
   }
   const std::filesystem::path full = self.parent_path() / "vbim-full";
   vbim::cli::blockInterruptSignals();  // until vbim-full's handlers are in (cli/interrupt.hpp)
+  // A signal caught before the block set a flag in this image, which the exec would forget: vbim-full
+  // would run the whole command after a Ctrl-C. Nothing is written yet, so stop here.
+  try {
+    vbim::cli::checkInterrupted();
+  } catch (const vbim::cli::Exit& e) {
+    std::cerr << "vbim " << argv[1] << ": " << e.what() << "\n";
+    return e.code();
+  }
   execv(full.c_str(), argv);
   const int err = errno;
   vbim::cli::installInterruptHandlers();
