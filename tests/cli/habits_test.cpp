@@ -463,6 +463,25 @@ TEST(CliHabits, ZshCompletesCommandsOptionsAndValues) {
   fs::remove_all(d);
 }
 
+// The progress line on a terminal (`script` gives vbim one) shows the rate and the time left once
+// the run has gone half a second (issue #33: it showed `N/600 s` only), as docs/cli.md promises.
+TEST(CliHabits, ProgressShowsRateAndTimeLeft) {
+  ASSERT_EQ(vbim::testing::runCommand("command -v script").status, 0) << "no `script` (util-linux)";
+  const fs::path d = scratch("progress");
+  const Result r = vbim::testing::runCommand("script -qec '" + kVbim + " play " + kSample +
+                                             " --duration 5000s --no-trace -o " + (d / "run").string() + "' /dev/null");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // "\rvbim play [###...] 1200/5000 s  1.02e+03 s/s, 4 s left": a redrawn line with both.
+  const auto rate = r.output.find(" s/s, ");
+  ASSERT_NE(rate, std::string::npos) << r.output;
+  const auto line = r.output.rfind("\rvbim play [", rate);
+  ASSERT_NE(line, std::string::npos) << r.output;
+  const std::string shown = r.output.substr(line + 1, r.output.find('\r', rate) - line - 1);
+  EXPECT_TRUE(has(shown, "/5000 s  ")) << shown;
+  EXPECT_TRUE(has(shown, " left")) << shown;
+  fs::remove_all(d);
+}
+
 // The man page's EXIT STATUS lists the codes the program ends with (cli/exit_status.hpp), each of
 // which a command here does end with, and man and groff read the page without a warning.
 TEST(CliHabits, ManPageListsTheRealExitStatusesAndRendersCleanly) {
