@@ -2,9 +2,10 @@
 # The corruption harness (issue #16): damaged copies of the sample streams (tests/streams/corruption/
 # corrupt_stream.cpp: bit flips, zeroed runs, truncation, dropped/duplicated/reordered sectors,
 # sectors lost at ring-bank boundaries, mangled pack/PES/sequence/descriptor headers, damage in the
-# sky stream) through `vbim info`, `vbim info --json`, `vbim decode` and `vbim play`. Every run must end
-# with exit 0 (play: stats.json written, concealment counted there; info --json: valid UTF-8 JSON on
-# stdout, also with exit 2), or exit 1/2 with a message on stderr; never
+# sky stream) through `vbim info`, `vbim info --json`, `vbim decode`, `vbim play` and `vbim play --json`.
+# Every run must end with exit 0 (play: stats.json written, concealment counted there; info --json
+# and play --json: valid UTF-8 JSON on stdout, also with exit 2), or exit 1/2 with a message on
+# stderr; never
 # a signal, a hang (timeout), std::terminate or a sanitizer report.
 #
 #   scripts/corruption-check.sh BUILD_DIR [SEEDS_PER_KIND] [VALGRIND_SEEDS]
@@ -54,7 +55,7 @@ echo "corruption-check: $n damaged streams in $work"
 
 # One stream through the three commands; prints a line per failure.
 check_one() {
-  local s="$1" vbim="$2" wrap="${3:-}" cmds="${4:-info json decode play}" base rc log
+  local s="$1" vbim="$2" wrap="${3:-}" cmds="${4:-info json decode play playjson}" base rc log
   base="${s%.vbim}"
   for cmd in $cmds; do
     log="$base.$cmd.log"
@@ -64,6 +65,8 @@ check_one() {
       json) timeout 120 $wrap "$vbim" info --json "$s" >"$base.json" 2>"$log" || rc=$? ;;
       decode) timeout 120 $wrap "$vbim" decode "$s" --format yuv --force --out "$base.decoded" >"$log" 2>&1 || rc=$? ;;
       play) timeout 300 $wrap "$vbim" play "$s" --duration 4s --force --out "$base.played" >"$log" 2>&1 || rc=$? ;;
+      # The --json summary alone (no --out): the document is all of stdout.
+      playjson) timeout 300 $wrap "$vbim" play "$s" --duration 4s --json >"$base.json" 2>"$log" || rc=$? ;;
     esac
     local why=""
     if [ "$rc" = 124 ]; then why="timed out"
@@ -72,7 +75,8 @@ check_one() {
     elif grep -q "internal error" "$log"; then why="internal error"
     elif [ "$rc" != 0 ] && [ ! -s "$log" ]; then why="exit $rc without a message"
     elif [ "$cmd" = play ] && [ "$rc" = 0 ] && [ ! -s "$base.played/stats.json" ]; then why="no stats.json"
-    elif [ "$cmd" = json ] && [ -s "$base.json" ] &&
+    elif [ "$cmd" = playjson ] && [ "$rc" = 0 ] && [ ! -s "$base.json" ]; then why="exit 0 without the JSON summary"
+    elif { [ "$cmd" = json ] || [ "$cmd" = playjson ]; } && [ -s "$base.json" ] &&
       ! python3 -c 'import json, sys; json.load(open(sys.argv[1], encoding="utf-8"))' "$base.json" 2>>"$log"; then
       why="invalid JSON (or not UTF-8) on stdout"
     fi
@@ -88,7 +92,7 @@ export -f check_one
 start=$(date +%s)
 failures=$(find "$work" -name '*.vbim' -print0 | sort -z |
   xargs -0 -P "$(nproc)" -I{} bash -c 'check_one "$1" "$2"' _ {} "$vbim")
-echo "corruption-check: $n streams x (info, info --json, decode, play) in $(( $(date +%s) - start )) s"
+echo "corruption-check: $n streams x (info, info --json, decode, play, play --json) in $(( $(date +%s) - start )) s"
 if [ "$vgSeeds" -gt 0 ]; then
   [ -x build/cli/vbim ] || { echo "corruption-check: build/cli/vbim (Release) is missing for valgrind" >&2; exit 2; }
   start=$(date +%s)
