@@ -9,6 +9,7 @@
 #include "cli/command.hpp"
 #include "cli/common_options.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/progress.hpp"
 #include "runs/replay_run.hpp"
 
 namespace vbim::cli {
@@ -61,9 +62,16 @@ void addReplay(CLI::App& app) {
       "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --frames port-frames/ --compare "
       "run/ --out replayed/\n");
   cmd->callback([r] {
+    Progress bar("vbim replay", "vsyncs");
+    // Every second of the replay: the progress line, and where Ctrl-C stops it (it ran to the end).
+    r->progress = [&bar](std::int64_t done, std::int64_t total) {
+      bar.show(static_cast<double>(done), static_cast<double>(total));
+    };
     const runs::ReplayResult result = exitOneOnRunFailure([&] {
       return runs::replayRun(*r, [](const std::string& warning) { std::cerr << "warning: " << warning << "\n"; });
     });
+    r->progress = nullptr;
+    bar.finish();
     std::cout << result.report;
     if (result.differs)
       throw Exit(1, "the replay differs from " + *result.differs + " (the first difference is above)");

@@ -1,6 +1,7 @@
 #include "runs/replay_run.hpp"
 
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -74,11 +75,22 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
   std::filesystem::create_directories(dir.path("frames"));
   std::int64_t rows = 0;
   std::string difference;  // the first vsync whose hash differs from --compare's, explained
+  // What the progress callback threw (Ctrl-C), rethrown as it was: the scheduler would wrap it as a
+  // failed process.
+  std::exception_ptr stopped;
   replay->setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
     hashes << hashesLine(row);
     timeline << replayTimelineLine(row, *replay);
     notes.add(row);
     ++rows;
+    if (r.progress && rows % 60 == 0) {
+      try {
+        r.progress(rows, o.vsyncs.value_or(0));
+      } catch (...) {
+        stopped = std::current_exception();
+        throw;
+      }
+    }
     if (expected && difference.empty()) difference = hashDifference(*expected, row, notes);
     if (r.every <= 0 || row.vsync % r.every != 0) return;
     char name[64];
@@ -91,7 +103,12 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
       writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), copy, format);
     }
   });
-  replay->run();
+  try {
+    replay->run();
+  } catch (...) {
+    if (stopped) std::rethrow_exception(stopped);
+    throw;
+  }
   hashes.close();
   timeline.close();
   if (!hashes) throw RunFailure(dir.path("hashes.txt").string() + ": cannot write");

@@ -28,6 +28,9 @@ struct ReplayRequest {
   std::string alpha = "opaque";
   bool force = false;
   std::string out;
+  // Called every 60 vsyncs with the vsyncs presented and the total (0 when only --duration says
+  // it): the command's progress line, and where Ctrl-C stops it (cli/interrupt.hpp).
+  std::function<void(std::int64_t, std::int64_t)> progress;
 };
 
 struct ReplayResult {
