@@ -448,6 +448,15 @@ void idctSamples(IdctKind kind, const std::int16_t* coeffs, std::uint8_t* out) {
   for (int i = 0; i < 64; ++i) out[i] = static_cast<std::uint8_t>(std::clamp<int>(r[i], 0, 255));
 }
 
+void nonIntraResidual(IdctKind kind, const WalkedBlock& block, std::int16_t* out) {
+  const int dc = block.dequantised[0];
+  if (kind != IdctKind::Exact && block.firstOnly() && nonIntraDcShortcut(dc)) {
+    for (int i = 0; i < 64; ++i) out[i] = static_cast<std::int16_t>(nonIntraDcResidual(dc));
+    return;
+  }
+  idctResult(kind, block.dequantised.data(), out);
+}
+
 FrameStore assembleIntraPicture(const WalkedPicture& picture, IdctKind kind) {
   FrameStore fs;
   fs.reset(picture.mbWidth, picture.mbHeight);

@@ -42,6 +42,9 @@ struct WalkedBlock {
   std::array<std::int16_t, 64> quantised{};
   // §7.4: the inverse quantisation, saturation to [-2048, 2047] and (MPEG-2) mismatch control.
   std::array<std::int16_t, 64> dequantised{};
+  // A non-intra block whose only coded coefficient is the first in scan order (the decoders' DC
+  // shortcut, ipu/idct_libmpeg2.hpp).
+  bool firstOnly() const { return !intra && ac.size() == 1 && ac[0].run == 0; }
 };
 
 // macroblock_type flags as ipu/inter_vlc.hpp's kMb* (quant 1, forward 2, backward 4, pattern 8, intra 16).
@@ -107,6 +110,10 @@ bool walkIntraPicture(std::span<const std::uint8_t> bytes, WalkedPicture& out, s
 void idctResult(IdctKind kind, const std::int16_t* coeffs, std::int16_t* out);
 // An intra block's samples as IDEC writes them: idctResult clamped to 0..255.
 void idctSamples(IdctKind kind, const std::int16_t* coeffs, std::uint8_t* out);
+// A non-intra block's residual, which the decoder adds to the prediction: idctResult, or for a
+// firstOnly() block with Pcsx2 or Libmpeg2 the decoders' shortcut, (F[0][0] + 4) >> 3 everywhere,
+// where it applies (nonIntraDcShortcut), as the decoder's add kernels do (ipu/kernels.cpp).
+void nonIntraResidual(IdctKind kind, const WalkedBlock& block, std::int16_t* out);
 
 // Every block's idctSamples placed where the picture's macroblock puts it (field DCT included).
 FrameStore assembleIntraPicture(const WalkedPicture& picture, IdctKind kind);

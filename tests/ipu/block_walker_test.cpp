@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <span>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "ipu/idct_libmpeg2.hpp"
 #include "ipu/inter_vlc.hpp"
 #include "ipu/ipu_commands.hpp"
+#include "ipu/kernels.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "ipu/quant_tables.hpp"
 #include "tests/ipu/support/field_picture_writer.hpp"
@@ -335,6 +337,71 @@ TEST(BlockWalker, DequantisesNonIntraBlocksWithTheNonIntraTerm) {
     }
   }
   EXPECT_GT(blocks, 0);
+}
+
+// A non-intra block's residual (nonIntraResidual: what idct.txt lists) is what the model's add
+// kernel adds to a prediction, for every IDCT kind, the decoders' shortcut for a block coded with
+// its first coefficient alone included.
+TEST(BlockWalker, NonIntraResidualIsWhatTheAddKernelAdds) {
+  EncodeOptions o;
+  o.width = 96;
+  o.height = 64;
+  o.frames = 7;
+  o.gopSize = 6;
+  o.bFrames = 2;
+  o.quantiser = 3;
+  o.content = Content::kPan;
+  const std::vector<std::uint8_t> es = testing::encodeIntra(o);
+  int blocks = 0;
+  int firstOnly = 0;
+  for (int index = 0;; ++index) {
+    WalkedPicture pic;
+    std::string error;
+    if (!walkPicture(es, pic, error, index)) break;
+    for (const WalkedMacroblock& mb : pic.macroblocks) {
+      for (const WalkedBlock& b : mb.blocks) {
+        if (!b.coded || b.intra) continue;
+        ++blocks;
+        firstOnly += b.firstOnly() ? 1 : 0;
+        for (const IdctKind kind : kAllIdctKinds) {
+          std::int16_t residual[64];
+          nonIntraResidual(kind, b, residual);
+          std::uint8_t dst[64];
+          std::fill(std::begin(dst), std::end(dst), std::uint8_t{128});
+          const unsigned rowMask = 0xFFu | (b.firstOnly() ? kIdctFirstOnly : 0u);
+          scalarKernels().idctOf(kind).add(b.dequantised.data(), rowMask, 0xFFu, dst, 8);
+          for (int i = 0; i < 64; ++i) {
+            ASSERT_EQ(dst[i], std::clamp(128 + residual[i], 0, 255)) << idctKindName(kind) << " sample " << i;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(blocks, 0);
+  EXPECT_GT(firstOnly, 0) << "no block coded with its first coefficient alone";
+  // Every first-only block a stream can hold: F[0][0] = dc with mismatch control's F[7][7]. The
+  // shortcut gives the full transform's values for each of them (so idct.txt's result, the IDCT of
+  // `in`, is what the decoder adds, and a port may take either path).
+  for (int dc = -2048; dc <= 2047; ++dc) {
+    WalkedBlock b;
+    b.intra = false;
+    b.ac.push_back(RunLevel{0, 1, false});
+    b.dequantised[0] = static_cast<std::int16_t>(dc);
+    if ((dc & 1) == 0) b.dequantised[63] = 1;  // §7.4.4: an even sum toggles F[7][7]
+    for (const IdctKind kind : kAllIdctKinds) {
+      std::int16_t residual[64];
+      nonIntraResidual(kind, b, residual);
+      std::int16_t full[64];
+      idctResult(kind, b.dequantised.data(), full);
+      ASSERT_TRUE(std::equal(residual, residual + 64, full)) << idctKindName(kind) << " dc " << dc;
+      std::uint8_t dst[64];
+      std::fill(std::begin(dst), std::end(dst), std::uint8_t{128});
+      scalarKernels().idctOf(kind).add(b.dequantised.data(), 0xFFu | kIdctFirstOnly, 0xFFu, dst, 8);
+      for (int i = 0; i < 64; ++i) {
+        ASSERT_EQ(dst[i], std::clamp(128 + residual[i], 0, 255)) << idctKindName(kind) << " dc " << dc;
+      }
+    }
+  }
 }
 
 // The EE's reads of a P macroblock, in libmpeg's order (_mpeg12_dec_mb): VDEC of the address
