@@ -1,6 +1,8 @@
 #include "ipu/bdec_flow.hpp"
 
 #include <algorithm>
+#include <initializer_list>
+#include <span>
 
 #include "ipu/bit_reader.hpp"
 #include "ipu/ipu_commands.hpp"
@@ -9,17 +11,24 @@
 namespace vbim::ipu {
 namespace {
 
-// FDEC reads per header, as libmpeg.c reads them in a release build (fields it reads together are
-// one read): its _seq_header 8 fields and 2 load flags, _ext_seq 8, _gop_header 1, _pic_header 3
-// (+2 with a forward f_code, +2 with a backward one) and extra_bit_picture, _ext_pic_cod 16.
-constexpr int kStartCodeFdec = 2;  // _MPEG_NextStartCode's peek, then GetBits(32)
-constexpr int kSequenceHeaderFdec = 10;
-constexpr int kSequenceExtensionFdec = 8;
-constexpr int kGopFdec = 1;
-constexpr int kPictureHeaderFdec = 4;
-constexpr int kPictureCodingExtensionFdec = 16;
-constexpr int kOtherExtensionFdec = 3;
-constexpr int kQuantMatrixExtensionFdec = 4;  // the four load flags
+// The FDEC reads of each header as libmpeg.c reads them in a release build (fields it reads
+// together are one read), each an FDEC with FB = its width (_MPEG_GetBits(n) of libmpeg_core.c
+// issues FDEC | n): _MPEG_NextStartCode's peek then GetBits(32); _seq_header's 8 fields (its two
+// load flags follow, each before its matrix); _gop_header's 27 bits in one; _pic_header's
+// temporal_reference, picture_coding_type, vbv_delay (+ full_pel and f_code forward, + backward)
+// and extra_bit_picture; the extension's id; _ext_seq 8; _ext_pic_cod 15 (_MPEG_SetIDCP and
+// _MPEG_SetQSTIVFAS are 1 and 3 of them; chroma_420_type and progressive_frame one GetBits(2)).
+constexpr int kStartCodeWidths[] = {0, 32};
+constexpr int kSequenceHeaderWidths[] = {12, 12, 4, 4, 18, 1, 10, 1};
+constexpr int kGopWidths[] = {27};
+constexpr int kPictureHeaderWidths[] = {10, 3, 16};
+constexpr int kVectorCodeWidths[] = {1, 3};  // full_pel_*_vector, *_f_code
+constexpr int kSequenceExtensionWidths[] = {8, 1, 2, 2, 2, 22, 2, 5};
+constexpr int kPictureCodingExtensionWidths[] = {4, 4, 4, 4, 2, 2, 1, 1, 1, 1, 1, 1, 1, 2, 1};
+// Other extensions: 3 reads; their widths for the sequence display (without colour description)
+// and copyright extensions, FB = 0 for the rest.
+constexpr int kSequenceDisplayWidths[] = {3, 1, 29};
+constexpr int kCopyrightWidths[] = {32, 32, 20};
 
 // _MPEG_SetDefQM: the EE suspends the IPU (BCLR), writes both default matrices into the FIFO with
 // a SETIQ each, and resumes (BCLR with the saved bit pointer).
@@ -36,10 +45,15 @@ void defaultMatrices(IpuCommandCounts& c, std::vector<std::uint32_t>* words) {
     words->insert(words->end(), {bclrWord(0), setiqWord(0, false), setiqWord(0, true), bclrWord(0)});
 }
 
-// Appends `n` FDEC words (FB = 0) and counts them.
-void fdecs(IpuCommandCounts& c, int n, std::vector<std::uint32_t>* words) {
-  c.fdec += n;
-  if (words != nullptr) words->insert(words->end(), static_cast<std::size_t>(n), fdecWord(0));
+// Appends an FDEC word per width (FB = the width) and counts them.
+void fdecs(IpuCommandCounts& c, std::span<const int> widths, std::vector<std::uint32_t>* words) {
+  c.fdec += static_cast<std::int64_t>(widths.size());
+  if (words == nullptr) return;
+  for (const int w : widths) words->push_back(fdecWord(w));
+}
+
+void fdecs(IpuCommandCounts& c, std::initializer_list<int> widths, std::vector<std::uint32_t>* words) {
+  fdecs(c, std::span<const int>(widths.begin(), widths.size()), words);
 }
 
 void setiq(IpuCommandCounts& c, bool nonIntra, std::vector<std::uint32_t>* words) {
@@ -76,14 +90,15 @@ IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32
       break;
     }
     BitReader br(d + pos + 4, d + next);
-    fdecs(c, kStartCodeFdec, words);
-    if (code == 0xB3) {  // sequence header: a matrix loaded with SETIQ from the stream, or defaults
-      fdecs(c, kSequenceHeaderFdec, words);
+    fdecs(c, kStartCodeWidths, words);
+    if (code == 0xB3) {  // sequence header: each matrix after its load flag, from the stream or defaults
+      fdecs(c, kSequenceHeaderWidths, words);
       skipBits(br, 62);
       const bool intra = br.readBit();
       if (intra) skipBits(br, 64 * 8);
       const bool nonIntra = br.readBit();
       for (const bool nonIntraMatrix : {false, true}) {
+        fdecs(c, {1}, words);
         if (nonIntraMatrix ? nonIntra : intra) {
           setiq(c, nonIntraMatrix, words);
         } else {
@@ -91,26 +106,35 @@ IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32
         }
       }
     } else if (code == 0xB8) {
-      fdecs(c, kGopFdec, words);
+      fdecs(c, kGopWidths, words);
     } else if (code == 0x00) {
       const int type = static_cast<int>((br.peek(13)) & 7);
-      fdecs(c, kPictureHeaderFdec + (type == 2 || type == 3 ? 2 : 0) + (type == 3 ? 2 : 0), words);
+      fdecs(c, kPictureHeaderWidths, words);
+      if (type == 2 || type == 3) fdecs(c, kVectorCodeWidths, words);
+      if (type == 3) fdecs(c, kVectorCodeWidths, words);
+      fdecs(c, {1}, words);  // extra_bit_picture
     } else if (code == 0xB5) {
       const int id = static_cast<int>(br.read(4));
-      fdecs(c, 1, words);
+      fdecs(c, {4}, words);
       if (id == 1) {
-        fdecs(c, kSequenceExtensionFdec, words);
+        fdecs(c, kSequenceExtensionWidths, words);
       } else if (id == 8) {
-        fdecs(c, kPictureCodingExtensionFdec, words);
+        fdecs(c, kPictureCodingExtensionWidths, words);
       } else if (id == 3) {  // quant matrix extension: the intra and non-intra matrices are the IPU's
-        fdecs(c, kQuantMatrixExtensionFdec, words);
         const bool intra = br.readBit();
         if (intra) skipBits(br, 64 * 8);
         const bool nonIntra = br.readBit();
+        fdecs(c, {1}, words);
         if (intra) setiq(c, false, words);
+        fdecs(c, {1}, words);
         if (nonIntra) setiq(c, true, words);
+        fdecs(c, {1, 1}, words);  // the chroma matrices' flags (4:2:2 and 4:4:4 only)
+      } else if (id == 2) {
+        fdecs(c, kSequenceDisplayWidths, words);
+      } else if (id == 4) {
+        fdecs(c, kCopyrightWidths, words);
       } else {
-        fdecs(c, kOtherExtensionFdec, words);
+        fdecs(c, {0, 0, 0}, words);  // three reads of widths not modelled
       }
     }
     pos = next;

@@ -44,14 +44,19 @@ struct FlowMacroblock {
   std::uint8_t averaged = 0;
   std::uint32_t address = 0;   // in the picture (the macroblock trace's), skipped ones included
   std::uint32_t bdecWord = 0;  // the BDEC command word, for the command log (set by IpuUnit when it records)
+  // Its VDEC and FDEC words in issue order, FlowPicture::macroblockWords[wordsBegin, + wordCount),
+  // for the command log (set by IpuUnit when it records; 0 words: logged from the counts, FB = 0).
+  std::uint32_t wordsBegin = 0;
+  std::uint32_t wordCount = 0;
 };
 
 struct FlowPicture {
-  std::uint32_t inQwords = 0;               // the picture's bytes, in qwords (toIPU)
-  std::uint32_t headerQwords = 0;           // read before the first slice
-  IpuCommandCounts header;                  // the headers' commands (FDEC, SETIQ, and BCLR of SetDefQM)
-  std::vector<std::uint32_t> headerWords;   // the same, in the order the EE issues them (ipu/ipu_commands.hpp)
-  std::vector<FlowMacroblock> macroblocks;  // in decode order
+  std::uint32_t inQwords = 0;                  // the picture's bytes, in qwords (toIPU)
+  std::uint32_t headerQwords = 0;              // read before the first slice
+  IpuCommandCounts header;                     // the headers' commands (FDEC, SETIQ, and BCLR of SetDefQM)
+  std::vector<std::uint32_t> headerWords;      // the same, in the order the EE issues them (ipu/ipu_commands.hpp)
+  std::vector<FlowMacroblock> macroblocks;     // in decode order
+  std::vector<std::uint32_t> macroblockWords;  // the macroblocks' VDEC/FDEC words (FlowMacroblock::wordsBegin)
 };
 
 // FDEC reads of one slice header (libmpeg _mpeg12_slice: the start-code peek and skip, the
@@ -60,10 +65,11 @@ inline constexpr int kSliceHeaderFdec = 4;
 
 // The header commands of `bytes` before the first slice (start codes, sequence header and
 // extension, GOP, picture header and extensions; SETIQ per quantiser matrix, as libmpeg reads them).
-// With `words`, also their command words in issue order: per start code 2 FDECs then the header's
-// reads, SETIQ (IQM = 0 intra, 1 non-intra) per matrix the stream loads, and for a default matrix
-// _MPEG_SetDefQM's BCLR, SETIQ intra, SETIQ non-intra, BCLR. FB is 0 throughout: the flow counts
-// libmpeg's reads, not their widths.
+// With `words`, also their command words in issue order: per start code 2 FDECs (its peek, FB = 0,
+// and its 32 bits) then the header's reads with FB = each read's width, SETIQ (IQM = 0 intra, 1
+// non-intra) after the load flag of each matrix the stream loads, and for a default matrix
+// _MPEG_SetDefQM's BCLR, SETIQ intra, SETIQ non-intra, BCLR. The peeks libmpeg adds when its 32-bit
+// copy of IPU_TOP runs dry are not among them (the flow charges one FDEC per read).
 IpuCommandCounts headerCommands(std::span<const std::uint8_t> bytes, std::uint32_t& headerBytes,
                                 std::vector<std::uint32_t>* words = nullptr);
 

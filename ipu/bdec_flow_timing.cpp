@@ -123,7 +123,13 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
     }
     if (!m.skipped) {
       const Tick begin = e;
-      if (t.recordCommands) {
+      if (t.recordCommands && m.wordCount > 0) {
+        at = begin;
+        for (std::uint32_t k = m.wordsBegin; k < m.wordsBegin + m.wordCount; ++k) {
+          const std::uint32_t w = f.macroblockWords[k];
+          issue(w, opcodeOf(w) == IpuOpcode::kVdec ? vdec : fdec);
+        }
+      } else if (t.recordCommands) {
         at = begin;
         const int sliceFdec = m.sliceStart ? std::min<int>(m.fdec, kSliceHeaderFdec) : 0;
         for (int k = 0; k < sliceFdec; ++k) issue(fdecWord(0), fdec);

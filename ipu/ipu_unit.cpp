@@ -5,6 +5,7 @@
 #include <cstring>
 #include <utility>
 
+#include "ipu/block_walker.hpp"
 #include "ipu/start_code.hpp"
 
 namespace vbim::ipu {
@@ -221,25 +222,66 @@ void IpuUnit::planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, c
   }
 }
 
-// BDEC path: each macroblock's BDEC word. QSC is its slice's quantiser_scale_code (a macroblock's
-// own, when it has one, is not in the flow); DCR = 1 for an intra macroblock after a slice start or
-// a macroblock that was not intra (ISO/IEC 13818-2 §7.2.1: the DC predictors reset there); DT = 0
-// (the flow does not carry dct_type); MBI = intra.
+// BDEC path: each macroblock's words as libmpeg issues them (ee/mpeg/src/libmpeg.c _mpeg12_slice,
+// _mpeg12_dec_mb; libmpeg_core.c _MPEG_BDEC), from a walk of the picture (ipu/block_walker.hpp):
+// its VDEC and FDEC reads with FB = each FDEC's width, and BDEC with FB = 0 (the EE has skipped
+// the header with its FDECs), QSC = the quantiser_scale_code in force (the macroblock's own with
+// the quant flag), DT = its dct_type, DCR = 1 after a slice start, a skipped or a non-intra
+// macroblock (libmpeg's m_fDCRst, §7.2.1), MBI = intra. A picture the walk cannot follow (a
+// damaged one the decoder concealed) keeps the counts' words: FDEC and VDEC with FB = 0, BDEC with
+// its slice's QSC and DT = 0.
 void IpuUnit::planFlowWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec) const {
+  FlowPicture& f = cmd.flowWork;
+  cmd.flowTiming.recordCommands = true;
+  std::vector<WalkedMacroblock> walked;
+  bool followed = true;
+  for (int index = 0;; ++index) {
+    WalkedPicture pic;
+    std::string error;
+    if (!walkPicture(bytes, pic, error, index, &dec.sequence())) {
+      followed = index > 0 && error.rfind("no slice of picture", 0) == 0;
+      break;
+    }
+    for (WalkedMacroblock& mb : pic.macroblocks) walked.push_back(std::move(mb));
+  }
+  std::size_t next = 0;
+  for (const FlowMacroblock& m : f.macroblocks) {
+    if (m.skipped) continue;
+    followed = followed && next < walked.size() && walked[next].address == static_cast<int>(m.address);
+    ++next;
+  }
+  if (followed && next == walked.size()) {
+    f.macroblockWords.clear();
+    std::size_t k = 0;
+    bool reset = true;  // libmpeg's m_fDCRst
+    for (FlowMacroblock& m : f.macroblocks) {
+      if (m.skipped) {
+        reset = true;
+        continue;
+      }
+      const WalkedMacroblock& w = walked[k++];
+      if (w.sliceStart) reset = true;
+      m.wordsBegin = static_cast<std::uint32_t>(f.macroblockWords.size());
+      m.wordCount = static_cast<std::uint32_t>(w.eeWords.size());
+      f.macroblockWords.insert(f.macroblockWords.end(), w.eeWords.begin(), w.eeWords.end());
+      if (m.bdec) m.bdecWord = bdecWord(0, w.quantiserScaleCode, w.fieldDct, reset, w.intra);
+      reset = !w.intra;
+    }
+    return;
+  }
   const FrameStore& fs = dec.frame();
   const std::vector<SliceStart> slices = sliceStarts(bytes, dec.sequence(), dec.picture(), fs.mbWidth, fs.mbHeight);
   int qsc = 0;
   bool lastIntra = false;
-  for (FlowMacroblock& m : cmd.flowWork.macroblocks) {
+  for (FlowMacroblock& m : f.macroblocks) {
     if (m.sliceStart) {
       for (const SliceStart& s : slices) {
         if (s.address == m.address) qsc = s.qsc;
       }
     }
-    if (m.bdec) m.bdecWord = bdecWord(0, qsc, false, m.intra && (m.sliceStart || !lastIntra), m.intra);
+    if (m.bdec) m.bdecWord = bdecWord(0, qsc, false, m.sliceStart || !lastIntra, m.intra);
     lastIntra = !m.skipped && m.intra;
   }
-  cmd.flowTiming.recordCommands = true;
 }
 
 // The planned words with their times, now that the command's schedule is final.

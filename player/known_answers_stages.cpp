@@ -33,9 +33,10 @@ constexpr int kFirstMacroblocks = 2;
 constexpr int kBusyMacroblocks = 2;
 
 struct ChosenPicture {
-  std::string prefix;  // STREAM/lightmap|sky/frame=F
+  std::string prefix;  // STREAM/lightmap|sky/frame=F, and /field=top|bottom for a field picture
   ipu::WalkedPicture walked;
-  ipu::FrameStore decoded;  // the decoder's picture (checked equal to the walk's assembly)
+  bool intraFrame = false;  // an intra frame picture: `decoded` holds it (checked equal to the walk's assembly)
+  ipu::FrameStore decoded;
   std::vector<int> chosen;  // indices into walked.macroblocks
 };
 
@@ -55,31 +56,68 @@ std::string hexBytes(const std::uint8_t* p, std::size_t n) {
   return s;
 }
 
-// Walks `bytes` and decodes it with `idct`: the two must give the same picture (the walk is what
-// the vectors show, the decode is what the model computes).
-ChosenPicture walkChecked(const std::string& prefix, const std::vector<std::uint8_t>& bytes, ipu::IdctKind idct) {
+// Walks the first picture of `bytes` and decodes them with `idct`; the two must agree (the walk is
+// what the vectors show, the decode is what the model computes): an intra frame picture's walk,
+// assembled, is the decoded picture; any other picture's (P, B, a field) macroblocks are the
+// decoder's, with the same bits each.
+// `opening`: the stream's first picture, whose sequence header a later picture's bytes may lack.
+ChosenPicture walkChecked(const std::string& prefix, const std::vector<std::uint8_t>& bytes, ipu::IdctKind idct,
+                          const std::vector<std::uint8_t>* opening = nullptr) {
   ChosenPicture c;
   c.prefix = prefix;
-  std::string error;
-  if (!ipu::walkIntraPicture(bytes, c.walked, error)) throw ConfigError(prefix + ": " + error);
   ipu::DecoderOptions options;
   options.idct = idct;
   options.freshStorePerDecode = true;
+  options.recordMacroblocks = true;
   ipu::Decoder dec(options);
+  if (opening != nullptr) dec.decode(*opening);
+  const ipu::SequenceHeader* sequence = dec.hasSequence() ? &dec.sequence() : nullptr;
+  std::string error;
+  if (!ipu::walkPicture(bytes, c.walked, error, 0, sequence)) throw ConfigError(prefix + ": " + error);
+  if (c.walked.pictureStructure != 3) c.prefix += c.walked.pictureStructure == 1 ? "/field=top" : "/field=bottom";
+  c.intraFrame = c.walked.codingType == 1 && c.walked.pictureStructure == 3;
   const ipu::PictureReport r = dec.decode(bytes);
-  const ipu::FrameStore assembled = ipu::assembleIntraPicture(c.walked, idct);
-  const ipu::FrameStore& f = dec.frame();
-  if (!r.clean() || f.y != assembled.y || f.cb != assembled.cb || f.cr != assembled.cr) {
-    throw ConfigError(prefix + ": the block walk and the decoder disagree (" + r.describe() + ")");
+  if (c.intraFrame) {
+    const ipu::FrameStore assembled = ipu::assembleIntraPicture(c.walked, idct);
+    const ipu::FrameStore& f = dec.frame();
+    if (!r.clean() || f.y != assembled.y || f.cb != assembled.cb || f.cr != assembled.cr) {
+      throw ConfigError(prefix + ": the block walk and the decoder disagree (" + r.describe() + ")");
+    }
+    c.decoded = f;
+    return c;
   }
-  c.decoded = f;
+  // Every picture the bytes hold (both fields of a frame) against the decoder's trace.
+  std::vector<ipu::WalkedMacroblock> all = c.walked.macroblocks;
+  for (int index = 1;; ++index) {
+    ipu::WalkedPicture more;
+    if (!ipu::walkPicture(bytes, more, error, index, sequence)) break;
+    all.insert(all.end(), more.macroblocks.begin(), more.macroblocks.end());
+  }
+  const std::vector<ipu::MacroblockBits>& trace = dec.macroblockTrace();
+  for (std::size_t i = 0; i < std::max(all.size(), trace.size()); ++i) {
+    if (i >= all.size() || i >= trace.size() || static_cast<std::uint32_t>(all[i].address) != trace[i].address ||
+        all[i].bits != trace[i].bits) {
+      throw ConfigError(prefix + ": the block walk and the decoder disagree at macroblock " + std::to_string(i) +
+                        " of the picture (" + r.describe() + ")");
+    }
+  }
   return c;
+}
+
+// The first `n` macroblocks of a P or B picture with coded non-intra blocks.
+std::vector<int> firstCodedNonIntra(const ipu::WalkedPicture& p, int n) {
+  std::vector<int> out;
+  for (std::size_t m = 0; m < p.macroblocks.size() && static_cast<int>(out.size()) < n; ++m) {
+    if (!p.macroblocks[m].intra && p.macroblocks[m].codedBlockPattern != 0) out.push_back(static_cast<int>(m));
+  }
+  return out;
 }
 
 std::vector<ChosenPicture> choosePictures(const std::vector<VectorStream>& streams, ipu::IdctKind idct) {
   std::vector<ChosenPicture> out;
   std::vector<std::uint8_t> busiest;  // the largest intra lightmap picture's bytes
   std::string busiestPrefix;
+  std::vector<std::uint8_t> busiestOpening;  // its stream's first picture
   for (const VectorStream& s : streams) {
     const StreamPictures sp = picturesOf(s);
     for (const auto& [streamId, name] : {std::pair<int, const char*>{0xE0, "lightmap"}, {0xE1, "sky"}}) {
@@ -94,18 +132,37 @@ std::vector<ChosenPicture> choosePictures(const std::vector<VectorStream>& strea
       }
       out.push_back(std::move(c));
       if (id != 0xE0) continue;
+      // The first P and the first B lightmap picture with coded non-intra blocks: the first of their
+      // macroblocks that have them. A picture
+      // after a GOP's first carries no sequence header: the opening picture's is in force.
+      ipu::Decoder opening;
+      opening.decode(first->second);
+      bool havePredicted[2] = {false, false};
       for (const auto& [key, data] : sp.pictures) {
         std::string error;
         ipu::WalkedPicture probe;
-        if (key.first != id || data.size() <= busiest.size()) continue;
-        if (!ipu::walkIntraPicture(data, probe, error)) continue;  // a P or B picture
-        busiestPrefix = s.label + "/" + name + "/frame=" + std::to_string(key.second);
-        busiest = data;
+        if (key.first != id ||
+            !ipu::walkPicture(data, probe, error, 0, opening.hasSequence() ? &opening.sequence() : nullptr)) {
+          continue;
+        }
+        const std::string at = s.label + "/" + name + "/frame=" + std::to_string(key.second);
+        if (probe.codingType == 1 && probe.pictureStructure == 3 && data.size() > busiest.size()) {
+          busiestPrefix = at;
+          busiest = data;
+          busiestOpening = first->second;
+        }
+        // The first of each type with a coded non-intra block (a still or flat picture has none).
+        if (probe.codingType == 1 || havePredicted[probe.codingType - 2]) continue;
+        if (firstCodedNonIntra(probe, 1).empty()) continue;
+        havePredicted[probe.codingType - 2] = true;
+        ChosenPicture p = walkChecked(at, data, idct, &first->second);
+        p.chosen = firstCodedNonIntra(p.walked, kFirstMacroblocks);
+        if (!p.chosen.empty()) out.push_back(std::move(p));
       }
     }
   }
   if (!busiest.empty()) {
-    ChosenPicture c = walkChecked(busiestPrefix, busiest, idct);
+    ChosenPicture c = walkChecked(busiestPrefix, busiest, idct, &busiestOpening);
     std::vector<int> order(c.walked.macroblocks.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
@@ -172,13 +229,17 @@ void ieee1180Block(Ieee1180Random& rng, int lo, int hi, int sign, std::int16_t* 
   }
 }
 
-void addIdctEntry(std::string& t, const std::string& key, const std::int16_t* coeffs, ipu::IdctKind idct) {
+// An intra block's entries end with the samples IDEC writes; a non-intra block's result is its
+// residual, which the EE adds to the prediction (BDEC writes it as signed 16-bit samples).
+void addIdctEntry(std::string& t, const std::string& key, const std::int16_t* coeffs, ipu::IdctKind idct,
+                  bool intra = true) {
   std::int16_t result[64];
   ipu::idctResult(idct, coeffs, result);
-  std::int16_t pixels[64];
-  for (int i = 0; i < 64; ++i) pixels[i] = static_cast<std::int16_t>(std::clamp<int>(result[i], 0, 255));
   t += key + "/in " + joinInts(coeffs, 64) + "\n";
   t += key + "/result " + joinInts(result, 64) + "\n";
+  if (!intra) return;
+  std::int16_t pixels[64];
+  for (int i = 0; i < 64; ++i) pixels[i] = static_cast<std::int16_t>(std::clamp<int>(result[i], 0, 255));
   t += key + "/pixels " + joinInts(pixels, 64) + "\n";
 }
 
@@ -241,29 +302,42 @@ VectorFile vlcVectors(const std::vector<VectorStream>& streams) {
   std::string t =
       "# vbim known answers: the VLC and run/level stage of IDEC for chosen blocks (ipu/block_walker.hpp)\n"
       "# Blocks: every block of the first 2 macroblocks of each stream's first lightmap and sky picture, and the\n"
-      "#   2 macroblocks with the most bits of the largest intra lightmap picture. mb=M: macroblock address\n"
-      "#   (row x macroblocks per row + column); block=B: 0-3 luma (top left, top right, bottom left, bottom\n"
-      "#   right), 4 Cb, 5 Cr.\n"
-      "# KEY vlc/STREAM/lightmap|sky/frame=F/mb=M  VALUE quantiser_scale_code=Q,dct_type=frame|field\n"
-      "# KEY .../mb=M/block=B/runlevel  VALUE dc_size=S dc_differential=D, then each AC coefficient as RUN:LEVEL\n"
-      "#   (esc:RUN:LEVEL when escape-coded), then eob\n"
+      "#   2 macroblocks with the most bits of the largest intra lightmap picture; of a stream with P and B\n"
+      "#   pictures (BDEC), also the first 2 macroblocks with coded non-intra blocks of the first P and the first\n"
+      "#   B lightmap picture that have some. mb=M: macroblock address (row x macroblocks per row + column; a\n"
+      "#   field picture, /field=top|bottom after frame=F, counts its own rows); block=B: 0-3 luma (top left,\n"
+      "#   top right, bottom left, bottom right), 4 Cb, 5 Cr; a non-intra macroblock lists its coded blocks.\n"
+      "# KEY vlc/STREAM/lightmap|sky/frame=F/mb=M  VALUE quantiser_scale_code=Q,dct_type=frame|field; in a P or B\n"
+      "#   picture then ,macroblock_type=T (the sum of quant 1, motion_forward 2, motion_backward 4, pattern 8,\n"
+      "#   intra 16),coded_block_pattern=C (bit 5 block 0 .. bit 0 block 5)\n"
+      "# KEY .../mb=M/block=B/runlevel  VALUE intra: dc_size=S dc_differential=D, then each AC coefficient as\n"
+      "#   RUN:LEVEL (esc:RUN:LEVEL when escape-coded), then eob; non-intra: each coefficient as RUN:LEVEL from\n"
+      "#   scan position 0 (a first code '1s' is 0:1 or 0:-1), then eob\n"
       "# KEY .../mb=M/block=B/quantised  VALUE the 64 quantised coefficients QF[v][u] in natural (raster) order,\n"
-      "#   comma-separated: QF[0][0] is the predicted DC (predictor + differential), the others the levels\n";
+      "#   comma-separated: an intra QF[0][0] is the predicted DC (predictor + differential), the others the\n"
+      "#   levels\n";
   // The walk does not depend on the IDCT; the default decodes the pictures it is checked against.
   for (const ChosenPicture& c : choosePictures(streams, ipu::kDefaultIdct)) {
     for (const int m : c.chosen) {
       const ipu::WalkedMacroblock& mb = c.walked.macroblocks[static_cast<std::size_t>(m)];
       const std::string key = "vlc/" + blockKey(c, mb);
       t += key + " quantiser_scale_code=" + std::to_string(mb.quantiserScaleCode) +
-           ",dct_type=" + (mb.fieldDct ? "field" : "frame") + "\n";
+           ",dct_type=" + (mb.fieldDct ? "field" : "frame");
+      if (c.walked.codingType != 1) {
+        t += ",macroblock_type=" + std::to_string(mb.type) +
+             ",coded_block_pattern=" + std::to_string(mb.codedBlockPattern);
+      }
+      t += "\n";
       for (int b = 0; b < 6; ++b) {
         const ipu::WalkedBlock& blk = mb.blocks[static_cast<std::size_t>(b)];
-        std::string rl =
-            "dc_size=" + std::to_string(blk.dcSize) + " dc_differential=" + std::to_string(blk.dcDifferential);
+        if (!blk.coded) continue;
+        std::string rl = blk.intra ? "dc_size=" + std::to_string(blk.dcSize) +
+                                         " dc_differential=" + std::to_string(blk.dcDifferential) + " "
+                                   : "";
         for (const ipu::RunLevel& p : blk.ac) {
-          rl += std::string(" ") + (p.escape ? "esc:" : "") + std::to_string(p.run) + ":" + std::to_string(p.level);
+          rl += std::string(p.escape ? "esc:" : "") + std::to_string(p.run) + ":" + std::to_string(p.level) + " ";
         }
-        rl += " eob";
+        rl += "eob";
         t += key + "/block=" + std::to_string(b) + "/runlevel " + rl + "\n";
         t += key + "/block=" + std::to_string(b) + "/quantised " + joinInts(blk.quantised.data(), 64) + "\n";
       }
@@ -277,9 +351,11 @@ VectorFile idctVectors(const std::vector<VectorStream>& streams, ipu::IdctKind i
       "# vbim known answers: the IDCT stage of IDEC (ipu/block_walker.hpp idctResult, ipu/idct_libmpeg2.hpp)\n"
       "# KEY idct/STREAM/lightmap|sky/frame=F/mb=M/block=B/in  VALUE the 64 dequantised coefficients F[v][u]\n"
       "#   (natural order, comma-separated; saturated to -2048..2047, MPEG-2 mismatch control applied): the\n"
-      "#   blocks of vlc.txt\n"
-      "# KEY .../result  VALUE the IDCT's 64 results (raster order) before any clip\n"
-      "# KEY .../pixels  VALUE the 64 samples IDEC writes for an intra block: result clamped to 0..255\n"
+      "#   blocks of vlc.txt; a non-intra block's with the non-intra matrix and (2 QF + sign(QF)) (§7.4.2.3)\n"
+      "# KEY .../result  VALUE the IDCT's 64 results (raster order) before any clip; of a non-intra block, the\n"
+      "#   residual BDEC writes (signed 16-bit) and the EE adds to the prediction, clamping the sum to 0..255\n"
+      "# KEY .../pixels  VALUE the 64 samples IDEC writes for an intra block: result clamped to 0..255 (intra\n"
+      "#   blocks only)\n"
       "# KEY idct/ieee1180/-LO..HI/sign=S/K/...  the same for random blocks of IEEE 1180-1990: pixels\n"
       "#   uniform in [-LO, HI] times S from its generator (randx = randx * 1103515245 + 12345, 32 bits;\n"
       "#   value (randx & 0x7ffffffe) * (LO + HI + 1) / 0x7fffffff - LO, in integers), forward transformed\n"
@@ -290,8 +366,10 @@ VectorFile idctVectors(const std::vector<VectorStream>& streams, ipu::IdctKind i
     for (const int m : c.chosen) {
       const ipu::WalkedMacroblock& mb = c.walked.macroblocks[static_cast<std::size_t>(m)];
       for (int b = 0; b < 6; ++b) {
-        addIdctEntry(t, "idct/" + blockKey(c, mb) + "/block=" + std::to_string(b),
-                     mb.blocks[static_cast<std::size_t>(b)].dequantised.data(), idct);
+        const ipu::WalkedBlock& blk = mb.blocks[static_cast<std::size_t>(b)];
+        if (!blk.coded) continue;
+        addIdctEntry(t, "idct/" + blockKey(c, mb) + "/block=" + std::to_string(b), blk.dequantised.data(), idct,
+                     blk.intra);
       }
     }
   }
@@ -339,7 +417,8 @@ VectorFile cscVectors(const std::vector<VectorStream>& streams, ipu::IdctKind id
   std::string t =
       "# vbim known answers: the CSC stage per macroblock (ipu/csc.hpp)\n"
       "# KEY csc/STREAM/lightmap|sky/frame=F/mb=M/ycbcr  VALUE the macroblock IDEC decoded (the macroblocks of\n"
-      "#   vlc.txt): 384 bytes in hex, Y 16 rows of 16, then Cb 8 rows of 8, then Cr 8 rows of 8\n"
+      "#   vlc.txt's intra frame pictures; the CSC does not depend on how a picture was coded): 384 bytes in hex, Y 16 "
+      "rows of 16, then Cb 8 rows of 8, then Cr 8 rows of 8\n"
       "# KEY csc/synthetic/NAME/ycbcr  the same for made-up macroblocks: ramps, range ends, the SETTH edges\n"
       "# KEY .../OUTPUT  VALUE the CSC output in hex, 16 rows of 16 pixels top to bottom (the macroblock's\n"
       "#   order in the fromIPU FIFO): rgb32 (OFM 0: R G B A bytes), rgb16 (OFM 1, DTE 0), rgb16_dither\n"
@@ -348,6 +427,7 @@ VectorFile cscVectors(const std::vector<VectorStream>& streams, ipu::IdctKind id
       "#   multiple of 16, so its position in the picture gives the same index).\n" +
       idctHeaderLine(idct) + "#   (the YCbCr of the stream macroblocks is its output)\n";
   for (const ChosenPicture& c : choosePictures(streams, idct)) {
+    if (!c.intraFrame) continue;  // the CSC converts whole frames: the intra pictures' macroblocks show it
     for (const int m : c.chosen) {
       const ipu::WalkedMacroblock& mb = c.walked.macroblocks[static_cast<std::size_t>(m)];
       addCscEntry(t, "csc/" + blockKey(c, mb), macroblockOf(c.decoded, mb.mbX, mb.mbY));

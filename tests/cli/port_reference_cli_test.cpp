@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/support/run_command.hpp"
 
@@ -50,6 +52,53 @@ TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
   const Result check = run("vectors --check tests/vectors");
   EXPECT_EQ(check.code, 0) << check.output;
   fs::remove_all(out);
+}
+
+// A stream with P and B pictures: vlc.txt and idct.txt add non-intra macroblocks of its first P and
+// first B picture (their coded blocks: run/level from scan position 0, the residual without
+// pixels), and --check scores them.
+TEST(PortReference, VectorsOfAGopStreamCoverNonIntraBlocks) {
+  const fs::path dir = scratch("gop_vectors");
+  fs::create_directories(dir);
+  const std::string stream = (dir / "gop.vbim").string();
+  const Result a =
+      run("author --synthetic clear,overcast --synthetic-frames 8 --synthetic-size 64x64 --synthetic-sky-size 32x16 "
+          "--q 2 --gop 4 --b-frames 1 --out " +
+          stream);
+  ASSERT_EQ(a.code, 0) << a.output;
+  const Result r = run("vectors --stream " + stream + " --out " + (dir / "v").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string vlc = readAll(dir / "v/vlc.txt");
+  const std::string idct = readAll(dir / "v/idct.txt");
+  // The macroblock lines of P and B pictures: vlc/gop/lightmap/frame=F/mb=M VALUE,macroblock_type=T,...
+  std::vector<std::string> keys;
+  std::istringstream lines(vlc);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#' || line.find(",macroblock_type=") == std::string::npos) continue;
+    keys.push_back(line.substr(0, line.find(' ')));
+  }
+  ASSERT_GE(keys.size(), 2u) << vlc;
+  const std::string& key = keys.front();
+  const std::string idctKey = "idct" + key.substr(3);
+  EXPECT_NE(idct.find(idctKey + "/block="), std::string::npos) << idctKey;
+  // The non-intra blocks have in and result, no pixels.
+  const std::size_t in = idct.find(idctKey + "/block=");
+  const std::string block = idct.substr(in, idct.find("/in ", in) - in);
+  EXPECT_NE(idct.find(block + "/result "), std::string::npos);
+  EXPECT_EQ(idct.find(block + "/pixels "), std::string::npos);
+  const Result check = run("vectors --stream " + stream + " --check " + (dir / "v").string());
+  EXPECT_EQ(check.code, 0) << check.output;
+  // A port whose non-intra run/level differs fails vlc.txt at that entry.
+  std::string changed = vlc;
+  const std::size_t rl = changed.find(key + "/block=");
+  ASSERT_NE(rl, std::string::npos);
+  const std::size_t value = changed.find(' ', rl) + 1;
+  changed.insert(value, "0:7 ");
+  std::ofstream(dir / "v/vlc.txt", std::ios::binary | std::ios::trunc) << changed;
+  const Result fail = run("vectors --stream " + stream + " --check " + (dir / "v").string() + " --only vlc");
+  EXPECT_EQ(fail.code, 1) << fail.output;
+  EXPECT_NE(fail.output.find(key + "/block="), std::string::npos) << fail.output;
+  fs::remove_all(dir);
 }
 
 // The default streams (the samples) do not depend on the directory vbim is run from.

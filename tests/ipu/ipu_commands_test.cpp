@@ -276,5 +276,53 @@ TEST(IpuCommandLog, GopStreamFollowsTheBdecFlow) {
   EXPECT_TRUE(sawP);
 }
 
+// The BDEC flow's words carry their fields as libmpeg writes them (ee/mpeg/src/libmpeg.c,
+// libmpeg_core.c): the headers' FDECs with FB = each read's width, a macroblock's FDECs with its
+// fields' widths, BDEC with FB = 0, the quantiser_scale_code in force and DT = its dct_type.
+TEST(IpuCommandLog, BdecFlowWordsCarryWidthsAndDctType) {
+  testing::EncodeOptions o;
+  o.width = 96;
+  o.height = 64;
+  o.frames = 4;
+  o.gopSize = 4;
+  o.bFrames = 1;
+  o.quantiser = 3;
+  o.interlacedDct = true;
+  o.interlacedMe = true;
+  o.content = testing::Content::kInterlaced;
+  const std::vector<Bytes> pics = testing::encodePictures(o);
+  const std::vector<TimedPicture> r = logged(pics, DecodePath::kBdec);
+  ASSERT_EQ(r.size(), pics.size() + 1);
+  // The first picture's words open with BCLR, the sequence header's start code (its peek and 32
+  // bits) and its eight fields (_seq_header), then the intra matrix's load flag.
+  const std::vector<IssuedCommand>& first = r[0].issued;
+  const std::vector<std::uint32_t> opening{bclrWord(0),  fdecWord(0),  fdecWord(32), fdecWord(12),
+                                           fdecWord(12), fdecWord(4),  fdecWord(4),  fdecWord(18),
+                                           fdecWord(1),  fdecWord(10), fdecWord(1),  fdecWord(1)};
+  ASSERT_GT(first.size(), opening.size());
+  for (std::size_t k = 0; k < opening.size(); ++k) EXPECT_EQ(first[k].word, opening[k]) << k;
+  int fieldDct = 0;
+  int frameDct = 0;
+  int motionTypeReads = 0;
+  for (std::size_t i = 0; i + 1 < r.size(); ++i) {
+    for (std::size_t k = 0; k < r[i].issued.size(); ++k) {
+      const std::uint32_t w = r[i].issued[k].word;
+      if (opcodeOf(w) == IpuOpcode::kBdec) {
+        EXPECT_EQ(w & 63, 0u) << "BDEC's FB";
+        EXPECT_NE((w >> 16) & 31, 0u) << "BDEC's QSC";
+        ((w >> 25) & 1 ? fieldDct : frameDct) += 1;
+      }
+      // After the macroblock_type VDEC of a motion-compensated macroblock: its 2-bit motion type.
+      if (w == vdecWord(0, VdecTable::kMacroblockType) && k + 1 < r[i].issued.size() &&
+          r[i].issued[k + 1].word == fdecWord(2)) {
+        ++motionTypeReads;
+      }
+    }
+  }
+  EXPECT_GT(fieldDct, 0) << "no BDEC with DT = 1 in an interlaced stream";
+  EXPECT_GT(frameDct, 0);
+  EXPECT_GT(motionTypeReads, 0);
+}
+
 }  // namespace
 }  // namespace vbim::ipu

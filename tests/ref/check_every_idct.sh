@@ -12,6 +12,13 @@ for idct in pcsx2 libmpeg2 exact; do
   grep -q "^# IDCT: $idct " "$work/$idct/idct.txt"
   "$check" "$work/$idct"
 done
+# A stream with P and B pictures: its vectors add non-intra blocks (the IDCT of their residuals).
+"$vbim" author --synthetic clear --synthetic-frames 6 --synthetic-size 64x64 --synthetic-sky-size 32x16 \
+  --q 2 --gop 4 --b-frames 1 --out "$work/gop.vbim" >/dev/null
+"$vbim" vectors --stream "$work/gop.vbim" --out "$work/gop" >/dev/null
+grep -q '^vlc/.*,macroblock_type=' "$work/gop/vlc.txt"
+grep -q '^idct/gop/lightmap/.*/result ' "$work/gop/idct.txt"
+"$check" "$work/gop"
 # One value changed per file: the last digit of its first answer line (not a setup, input or source).
 for file in frame_hash blend idct csc draw; do
   rm -rf "$work/bad" && cp -r "$work/pcsx2" "$work/bad"

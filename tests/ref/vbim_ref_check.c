@@ -172,7 +172,8 @@ static void check_blend(vfile* f) {
   }
 }
 
-/* idct.txt: every `in` through the IDCT the header names. */
+/* idct.txt: every `in` through the IDCT the header names (with the P and B pictures of a GOP
+   stream, non-intra blocks too). */
 static void check_idct(vfile* f) {
   size_t i;
   void (*idct)(const int16_t*, int16_t*) = NULL;
@@ -201,9 +202,10 @@ static void check_idct(vfile* f) {
     sprintf(key, "%.*s/result", (int)(strlen(f->e[i].key) - 3), f->e[i].key);
     to_ints(out, 64, got);
     expect(f, key, find(f, key), got);
+    /* Intra blocks only: a non-intra block's result is a residual the EE adds to its prediction. */
     sprintf(key, "%.*s/pixels", (int)(strlen(f->e[i].key) - 3), f->e[i].key);
     to_ints(px16, 64, got);
-    expect(f, key, find(f, key), got);
+    if (find(f, key)) expect(f, key, find(f, key), got);
   }
 }
 

@@ -40,6 +40,7 @@ std::string EncodeOptions::describe() const {
   if (nonLinearQuant) s += " non_linear_quant";
   if (dcPrecision) s += " dc" + std::to_string(8 + dcPrecision);
   if (customMatrix) s += " custom_matrix";
+  if (customInterMatrix) s += " custom_inter_matrix";
   if (interlacedDct) s += " field_dct";
   if (interlacedMe) s += " field_me";
   if (gopSize > 1) s += " gop" + std::to_string(gopSize) + "b" + std::to_string(bFrames);
@@ -159,6 +160,11 @@ std::vector<std::uint8_t> encodeIntra(const EncodeOptions& o, const std::vector<
     matrix = static_cast<std::uint16_t*>(av_malloc(64 * sizeof(std::uint16_t)));
     for (int i = 0; i < 64; ++i) matrix[i] = static_cast<std::uint16_t>(i == 0 ? 8 : 9 + ((i * 37) % 50));
     c->intra_matrix = matrix;  // freed by avcodec_free_context
+  }
+  if (o.customInterMatrix) {
+    auto* inter = static_cast<std::uint16_t*>(av_malloc(64 * sizeof(std::uint16_t)));
+    for (int i = 0; i < 64; ++i) inter[i] = static_cast<std::uint16_t>(12 + ((i * 29) % 40));
+    c->inter_matrix = inter;  // freed by avcodec_free_context
   }
   if (!o.mpeg1) {
     if (o.intraVlc) check(av_opt_set_int(c->priv_data, "intra_vlc", 1, 0), "intra_vlc");

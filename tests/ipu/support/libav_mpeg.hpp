@@ -29,7 +29,8 @@ struct EncodeOptions {
   bool nonLinearQuant = false;
   int dcPrecision = 0;  // 0..3 = 8..11 bits
   bool customMatrix = false;
-  bool interlacedDct = false;  // field DCT decisions (progressive_sequence = 0)
+  bool customInterMatrix = false;  // a non-intra matrix of its own too (P and B pictures)
+  bool interlacedDct = false;      // field DCT decisions (progressive_sequence = 0)
   Content content = Content::kSmooth;
   std::uint32_t seed = 1;
   std::string describe() const;
