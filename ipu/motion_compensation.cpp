@@ -19,14 +19,6 @@ struct SourcePlane {
   int rows;
 };
 
-// Predicts a block of `rows` rows whose top-left sample is (px, py) half samples in the source's
-// coordinates (already inside the plane), with the kernel for its width and half-sample case.
-inline void predictBlock(const McPredictFn (&fns)[4], const SourcePlane& s, int px, int py, std::uint8_t* dst,
-                         std::ptrdiff_t dstStride, int rows) {
-  const std::uint8_t* a = s.base + static_cast<std::ptrdiff_t>(py >> 1) * s.stride + (px >> 1);
-  fns[((py & 1) << 1) | (px & 1)](dst, dstStride, a, s.stride, rows);
-}
-
 // Keeps a position (half samples) of a block of `size` samples inside [0, 2 * (extent - size)].
 bool bound(int& pos, int extent, int size) {
   const int hi = 2 * (extent - size);
@@ -92,19 +84,30 @@ PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& ref
     const bool cx = bound(px, ly.width, 16);
     const bool cy = bound(py, ly.rows, h);
     result.clamped = result.clamped || cx || cy;
-    const auto& fns = mc.predict[op.average ? 1 : 0];
-    predictBlock(fns[1], ly, px, py, dy, dyStride, h);
     // Chroma: the (bounded) luma vector halved toward zero (§7.6.3.7), at half the position.
     const int mvx = px - 2 * x0;
     const int mvy = py - 2 * y0;
     const SourcePlane lc = planeOf(ref->cb, ref->chromaStride, ref->mbHeight * 8, ref->chromaStride, op.srcField);
-    const SourcePlane lr = planeOf(ref->cr, ref->chromaStride, ref->mbHeight * 8, ref->chromaStride, op.srcField);
     int qx = x0 + mvx / 2;
     int qy = y0 + mvy / 2;
     bound(qx, lc.width, 8);
     bound(qy, lc.rows, h / 2);
-    predictBlock(fns[0], lc, qx, qy, dcb, dcStride, h / 2);
-    predictBlock(fns[0], lr, qx, qy, dcr, dcStride, h / 2);
+    // Cr has Cb's geometry: the same offsets into its plane.
+    const std::ptrdiff_t lumaAt = static_cast<std::ptrdiff_t>(py >> 1) * ly.stride + (px >> 1);
+    const std::ptrdiff_t chromaAt =
+        (lc.base - ref->cb.data()) + static_cast<std::ptrdiff_t>(qy >> 1) * lc.stride + (qx >> 1);
+    const McBlock b{dy,
+                    dcb,
+                    dcr,
+                    dyStride,
+                    dcStride,
+                    ly.base + lumaAt,
+                    ref->cb.data() + chromaAt,
+                    ref->cr.data() + chromaAt,
+                    ly.stride,
+                    lc.stride,
+                    h};
+    mc.block[op.average ? 1 : 0][((py & 1) << 1) | (px & 1)][((qy & 1) << 1) | (qx & 1)](b);
   }
   return result;
 }
