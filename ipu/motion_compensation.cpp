@@ -33,6 +33,14 @@ SourcePlane planeOf(const std::vector<std::uint8_t>& plane, int stride, int rows
           rows / 2};
 }
 
+// Zeroes a block's 64 coefficients with eight 16-byte stores.
+inline void clearBlock(std::int16_t* blk) {
+  using Row = std::int16_t[8];
+  static constexpr Row kZero{};
+#pragma GCC unroll 8
+  for (int r = 0; r < 8; ++r) std::memcpy(blk + std::ptrdiff_t{8} * r, kZero, sizeof kZero);
+}
+
 }  // namespace
 
 PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& refs, const PictureParams& pp,
@@ -119,34 +127,28 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
   const std::ptrdiff_t down = mb.fieldDct ? stride : 8 * stride;
   const std::ptrdiff_t lumaStride = mb.fieldDct ? 2 * stride : stride;
   const std::size_t c = static_cast<std::size_t>(mb.mbY) * 8 * pp.cStride + static_cast<std::size_t>(mb.mbX) * 8;
-  // The coded blocks by the pattern's set bits (bit 5 is block 0), and below the rows to clear by
-  // the mask's set bits: a branch per bit would be a coin toss on busy P and B pictures.
+  // Each block's destination and stride from a table, not a branch on the block number.
+  std::uint8_t* const dsts[6] = {y, y + 8, y + down, y + down + 8, pp.cb + c, pp.cr + c};
+  const int strides[6] = {static_cast<int>(lumaStride),
+                          static_cast<int>(lumaStride),
+                          static_cast<int>(lumaStride),
+                          static_cast<int>(lumaStride),
+                          pp.cStride,
+                          pp.cStride};
+  // The intra kernel, or the kind's add kernel (kIdctFirstOnly lets Pcsx2 and Libmpeg2 take their
+  // decoders' shortcut for a block whose only coded coefficient is the first, ipu/idct_libmpeg2.hpp).
+  const IdctFn idct = intra ? pp.idct : pp.idctAdd;
+  // The coded blocks by the pattern's set bits (bit 5 is block 0): a branch per bit would be a
+  // coin toss on busy P and B pictures.
   for (unsigned pattern = intra ? 0x3Fu : mb.pattern & 0x3Fu; pattern != 0;) {
     const int b = std::countl_zero(pattern) - 26;
     pattern &= ~(32u >> b);
-    std::uint8_t* dst;
-    std::ptrdiff_t ds;
-    if (b < 4) {
-      dst = y + std::ptrdiff_t{8} * (b & 1) + down * (b >> 1);
-      ds = lumaStride;
-    } else {
-      dst = (b == 4 ? pp.cb : pp.cr) + c;
-      ds = pp.cStride;
-    }
     std::int16_t* blk = mb.block[b];
-    if (intra) {
-      pp.idct(blk, mb.rowMask[b], mb.colMask[b], dst, static_cast<int>(ds));
-    } else {
-      // The kind's add kernel; kIdctFirstOnly lets Pcsx2 and Libmpeg2 take their decoders' shortcut
-      // for a block whose only coded coefficient is the first (ipu/idct_libmpeg2.hpp).
-      pp.idctAdd(blk, mb.rowMask[b], mb.colMask[b], dst, static_cast<int>(ds));
-    }
-    // The rows the masks name, and the mismatch toggle (kIdctToggleOnly is not a row bit): 16-byte
-    // stores; a 128-byte memset became `rep stos`, whose start-up cost showed at ~3 % of a decode.
-    for (unsigned rows = mb.rowMask[b] & 0xFFu; rows != 0; rows &= rows - 1) {
-      std::memset(blk + std::ptrdiff_t{8} * std::countr_zero(rows), 0, 16);
-    }
-    blk[63] = 0;
+    idct(blk, mb.rowMask[b], mb.colMask[b], dsts[b], strides[b]);
+    // All eight rows (the mismatch toggle is in row 7), eight 16-byte stores without a branch: a
+    // loop over the mask's rows mispredicted its count on busy pictures, and a 128-byte memset
+    // became `rep stos`, whose start-up cost showed at ~3 % of a decode.
+    clearBlock(blk);
   }
 }
 
