@@ -353,7 +353,12 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned col
   for (int r = 0; r < R; ++r) {
     const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
     std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
-    if (!(rows & (1u << r))) {
+    if constexpr (Add && R <= 4) {
+      // Residual blocks of 2 or 4 rows (most coded blocks of P and B pictures): every row through
+      // the pass, without a branch on which rows are zero or hold x0 alone (the pass gives 0 and
+      // x0 * 8 there, as below); on busy pictures those branches were coin tosses.
+      mpeg2Row<Pcsx2>(row, out);
+    } else if (!(rows & (1u << r))) {
       hn::StoreU(hn::Zero(d), d, out);
       if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
     } else if (cols == 1 || onlyFirst(row)) {
