@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "ipu/clear_block.hpp"
 #include "ipu/inter_vlc.hpp"
 #include "ipu/kernels.hpp"
 
@@ -31,14 +32,6 @@ SourcePlane planeOf(const std::vector<std::uint8_t>& plane, int stride, int rows
   if (field < 0) return {plane.data(), stride, width, rows};
   return {plane.data() + static_cast<std::ptrdiff_t>(field) * stride, 2 * static_cast<std::ptrdiff_t>(stride), width,
           rows / 2};
-}
-
-// Zeroes a block's 64 coefficients with eight 16-byte stores.
-inline void clearBlock(std::int16_t* blk) {
-  using Row = std::int16_t[8];
-  static constexpr Row kZero{};
-#pragma GCC unroll 8
-  for (int r = 0; r < 8; ++r) std::memcpy(blk + std::ptrdiff_t{8} * r, kZero, sizeof kZero);
 }
 
 }  // namespace
@@ -145,9 +138,6 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
     pattern &= ~(32u >> b);
     std::int16_t* blk = mb.block[b];
     idct(blk, mb.rowMask[b], mb.colMask[b], dsts[b], strides[b]);
-    // All eight rows (the mismatch toggle is in row 7), eight 16-byte stores without a branch: a
-    // loop over the mask's rows mispredicted its count on busy pictures, and a 128-byte memset
-    // became `rep stos`, whose start-up cost showed at ~3 % of a decode.
     clearBlock(blk);
   }
 }
