@@ -351,24 +351,28 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned col
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
   const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][toggle ? (block[63] < 0 ? 1 : 0) : 2];
-  for (int r = 0; r < R; ++r) {
-    const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
-    std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
-    if constexpr (Add && R <= 4) {
-      // Residual blocks of 2 or 4 rows (most coded blocks of P and B pictures): every row through
-      // the pass, without a branch on which rows are zero or hold x0 alone (the pass gives 0 and
-      // x0 * 8 there, as below); on busy pictures those branches were coin tosses.
-      mpeg2Row<Pcsx2>(row, out);
-    } else if (!(rows & (1u << r))) {
-      hn::StoreU(hn::Zero(d), d, out);
-      if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
-    } else if (cols == 1 || onlyFirst(row)) {
-      // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
-      const auto v = hn::Set(d, static_cast<std::int16_t>(row[0] * 8));
-      hn::StoreU(v, d, out);
-      if (N < 8) hn::StoreU(v, d, out + N);
-    } else {
-      mpeg2Row<Pcsx2>(row, out);
+  if constexpr (Add && R <= 4) {
+    // Residual blocks of 2 or 4 rows (most coded blocks of P and B pictures): every row through
+    // the pass, without a branch on which rows are zero or hold x0 alone (the pass gives 0 and
+    // x0 * 8 there, as below); on busy pictures those branches were coin tosses.
+    for (int r = 0; r < R; ++r) {
+      mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
+    }
+  } else {
+    for (int r = 0; r < R; ++r) {
+      const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
+      std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
+      if (!(rows & (1u << r))) {
+        hn::StoreU(hn::Zero(d), d, out);
+        if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
+      } else if (cols == 1 || onlyFirst(row)) {
+        // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
+        const auto v = hn::Set(d, static_cast<std::int16_t>(row[0] * 8));
+        hn::StoreU(v, d, out);
+        if (N < 8) hn::StoreU(v, d, out + N);
+      } else {
+        mpeg2Row<Pcsx2>(row, out);
+      }
     }
   }
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
