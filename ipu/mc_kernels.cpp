@@ -33,12 +33,37 @@ constexpr void fill(McPredictFn (&out)[4]) {
   out[3] = predictScalar<Average, Width, 3>;
 }
 
+template <bool Average, int LumaCase, int ChromaCase>
+void blockScalar(const McBlock& b) {
+  predictScalar<Average, 16, LumaCase>(b.dy, b.dyStride, b.sy, b.syStride, b.rows);
+  predictScalar<Average, 8, ChromaCase>(b.dcb, b.dcStride, b.scb, b.scStride, b.rows / 2);
+  predictScalar<Average, 8, ChromaCase>(b.dcr, b.dcStride, b.scr, b.scStride, b.rows / 2);
+}
+
+template <bool Average, int LumaCase>
+constexpr void fillBlock(McBlockFn (&out)[4]) {
+  out[0] = blockScalar<Average, LumaCase, 0>;
+  out[1] = blockScalar<Average, LumaCase, 1>;
+  out[2] = blockScalar<Average, LumaCase, 2>;
+  out[3] = blockScalar<Average, LumaCase, 3>;
+}
+
+template <bool Average>
+constexpr void fillBlocks(McBlockFn (&out)[4][4]) {
+  fillBlock<Average, 0>(out[0]);
+  fillBlock<Average, 1>(out[1]);
+  fillBlock<Average, 2>(out[2]);
+  fillBlock<Average, 3>(out[3]);
+}
+
 McKernels makeScalar() {
   McKernels k{};
   fill<false, 8>(k.predict[0][0]);
   fill<false, 16>(k.predict[0][1]);
   fill<true, 8>(k.predict[1][0]);
   fill<true, 16>(k.predict[1][1]);
+  fillBlocks<false>(k.block[0]);
+  fillBlocks<true>(k.block[1]);
   k.name = "scalar";
   return k;
 }

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "ipu/clear_block.hpp"
 #include "ipu/inter_vlc.hpp"
 #include "ipu/kernels.hpp"
 
@@ -18,14 +19,6 @@ struct SourcePlane {
   int width;
   int rows;
 };
-
-// Predicts a block of `rows` rows whose top-left sample is (px, py) half samples in the source's
-// coordinates (already inside the plane), with the kernel for its width and half-sample case.
-inline void predictBlock(const McPredictFn (&fns)[4], const SourcePlane& s, int px, int py, std::uint8_t* dst,
-                         std::ptrdiff_t dstStride, int rows) {
-  const std::uint8_t* a = s.base + static_cast<std::ptrdiff_t>(py >> 1) * s.stride + (px >> 1);
-  fns[((py & 1) << 1) | (px & 1)](dst, dstStride, a, s.stride, rows);
-}
 
 // Keeps a position (half samples) of a block of `size` samples inside [0, 2 * (extent - size)].
 bool bound(int& pos, int extent, int size) {
@@ -92,19 +85,30 @@ PredictionResult predictMacroblock(const Macroblock& mb, const ReferenceSet& ref
     const bool cx = bound(px, ly.width, 16);
     const bool cy = bound(py, ly.rows, h);
     result.clamped = result.clamped || cx || cy;
-    const auto& fns = mc.predict[op.average ? 1 : 0];
-    predictBlock(fns[1], ly, px, py, dy, dyStride, h);
     // Chroma: the (bounded) luma vector halved toward zero (§7.6.3.7), at half the position.
     const int mvx = px - 2 * x0;
     const int mvy = py - 2 * y0;
     const SourcePlane lc = planeOf(ref->cb, ref->chromaStride, ref->mbHeight * 8, ref->chromaStride, op.srcField);
-    const SourcePlane lr = planeOf(ref->cr, ref->chromaStride, ref->mbHeight * 8, ref->chromaStride, op.srcField);
     int qx = x0 + mvx / 2;
     int qy = y0 + mvy / 2;
     bound(qx, lc.width, 8);
     bound(qy, lc.rows, h / 2);
-    predictBlock(fns[0], lc, qx, qy, dcb, dcStride, h / 2);
-    predictBlock(fns[0], lr, qx, qy, dcr, dcStride, h / 2);
+    // Cr has Cb's geometry: the same offsets into its plane.
+    const std::ptrdiff_t lumaAt = static_cast<std::ptrdiff_t>(py >> 1) * ly.stride + (px >> 1);
+    const std::ptrdiff_t chromaAt =
+        (lc.base - ref->cb.data()) + static_cast<std::ptrdiff_t>(qy >> 1) * lc.stride + (qx >> 1);
+    const McBlock b{dy,
+                    dcb,
+                    dcr,
+                    dyStride,
+                    dcStride,
+                    ly.base + lumaAt,
+                    ref->cb.data() + chromaAt,
+                    ref->cr.data() + chromaAt,
+                    ly.stride,
+                    lc.stride,
+                    h};
+    mc.block[op.average ? 1 : 0][((py & 1) << 1) | (px & 1)][((qy & 1) << 1) | (qx & 1)](b);
   }
   return result;
 }
@@ -116,34 +120,25 @@ void reconstructBlocks(Macroblock& mb, const PictureParams& pp) {
   const std::ptrdiff_t down = mb.fieldDct ? stride : 8 * stride;
   const std::ptrdiff_t lumaStride = mb.fieldDct ? 2 * stride : stride;
   const std::size_t c = static_cast<std::size_t>(mb.mbY) * 8 * pp.cStride + static_cast<std::size_t>(mb.mbX) * 8;
-  // The coded blocks by the pattern's set bits (bit 5 is block 0), and below the rows to clear by
-  // the mask's set bits: a branch per bit would be a coin toss on busy P and B pictures.
+  // Each block's destination and stride from a table, not a branch on the block number.
+  std::uint8_t* const dsts[6] = {y, y + 8, y + down, y + down + 8, pp.cb + c, pp.cr + c};
+  const int strides[6] = {static_cast<int>(lumaStride),
+                          static_cast<int>(lumaStride),
+                          static_cast<int>(lumaStride),
+                          static_cast<int>(lumaStride),
+                          pp.cStride,
+                          pp.cStride};
+  // The intra kernel, or the kind's add kernel (kIdctFirstOnly lets Pcsx2 and Libmpeg2 take their
+  // decoders' shortcut for a block whose only coded coefficient is the first, ipu/idct_libmpeg2.hpp).
+  const IdctFn idct = intra ? pp.idct : pp.idctAdd;
+  // The coded blocks by the pattern's set bits (bit 5 is block 0): a branch per bit would be a
+  // coin toss on busy P and B pictures.
   for (unsigned pattern = intra ? 0x3Fu : mb.pattern & 0x3Fu; pattern != 0;) {
     const int b = std::countl_zero(pattern) - 26;
     pattern &= ~(32u >> b);
-    std::uint8_t* dst;
-    std::ptrdiff_t ds;
-    if (b < 4) {
-      dst = y + std::ptrdiff_t{8} * (b & 1) + down * (b >> 1);
-      ds = lumaStride;
-    } else {
-      dst = (b == 4 ? pp.cb : pp.cr) + c;
-      ds = pp.cStride;
-    }
     std::int16_t* blk = mb.block[b];
-    if (intra) {
-      pp.idct(blk, mb.rowMask[b], mb.colMask[b], dst, static_cast<int>(ds));
-    } else {
-      // The kind's add kernel; kIdctFirstOnly lets Pcsx2 and Libmpeg2 take their decoders' shortcut
-      // for a block whose only coded coefficient is the first (ipu/idct_libmpeg2.hpp).
-      pp.idctAdd(blk, mb.rowMask[b], mb.colMask[b], dst, static_cast<int>(ds));
-    }
-    // The rows the masks name, and the mismatch toggle (kIdctToggleOnly is not a row bit): 16-byte
-    // stores; a 128-byte memset became `rep stos`, whose start-up cost showed at ~3 % of a decode.
-    for (unsigned rows = mb.rowMask[b] & 0xFFu; rows != 0; rows &= rows - 1) {
-      std::memset(blk + std::ptrdiff_t{8} * std::countr_zero(rows), 0, 16);
-    }
-    blk[63] = 0;
+    idct(blk, mb.rowMask[b], mb.colMask[b], dsts[b], strides[b]);
+    clearBlock(blk);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "ipu/bit_reader.hpp"
+#include "ipu/clear_block.hpp"
 #include "ipu/idct.hpp"
 #include "ipu/quant_tables.hpp"
 #include "ipu/slice_syntax.hpp"
@@ -237,9 +238,7 @@ void SliceDecoder::storeBlock(int b, std::uint8_t* dst, int stride) {
   } else {
     pp_.idct(blk, rowMask, mb_.colMask[b], dst, stride);
   }
-  for (int r = 0; r < 8; ++r)
-    if (rowMask & (1u << r)) std::memset(blk + static_cast<std::ptrdiff_t>(8 * r), 0, 16);
-  blk[63] = 0;  // the mismatch toggle (kIdctToggleOnly) is not in the row mask
+  clearBlock(blk);
 }
 
 void SliceDecoder::reconstruct(int mbX, int mbY, bool fieldDct) {

@@ -73,10 +73,10 @@ struct Mpeg2Tables {
   alignas(64) std::int32_t rotated[8]{};  // -1 in lanes 1, 2, 5, 6: the 181/256 step applies
   alignas(64) std::int32_t negated[8]{};  // -1 in lanes 5, 6: that step's result is subtracted
   alignas(16) std::uint8_t pairs[16]{};   // the row's bytes reordered to x0 x4 x2 x6 x1 x7 x3 x5
-  // [libmpeg2 0.5.1's form][F[7][7] = -1]: the row pass of row 7 when the mismatch toggle is its
-  // only coefficient, as mpeg2Row computes it (same steps, in constexpr integers), so the kernel
-  // need not load row 7 the parser has just written.
-  alignas(64) std::int32_t toggleRow[2][2][8]{};
+  // [libmpeg2 0.5.1's form][F[7][7] = +1, -1, no toggle]: the row pass of row 7 when the mismatch
+  // toggle is its only coefficient, as mpeg2Row computes it (same steps, in constexpr integers), so
+  // the kernel need not load row 7 the parser has just written; zeros when there is no toggle.
+  alignas(64) std::int32_t toggleRow[2][3][8]{};
   constexpr Mpeg2Tables() {
     constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
     // a0, a1, a2, a3 as factors of x0, x4, x2, x6; lanes 4..7 mirror 3..0.
@@ -341,28 +341,38 @@ HWY_INLINE bool onlyFirst(const std::int16_t* row) {
 }
 
 // The whole transform; with Add the result is added to dst, else it replaces it (both clamped).
-// T7 (R < 8): F[7][7] = +-1 is the only coefficient of row 7 and column 7 (mismatch control): row 7
-// goes through the row pass on its own and into the column pass's odd part, not R = 8.
+// T7 (R < 8): row 7 goes into the column pass's odd part from its precomputed row pass: that of
+// F[7][7] = +-1 alone in row 7 and column 7 (mismatch control) with `toggle`, else zeros.
 template <bool Pcsx2, bool Add, int R, bool T7>
-HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned cols, std::uint8_t* dst, int stride) {
+HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned cols, bool toggle, std::uint8_t* dst,
+                          int stride) {
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
-  const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][block[63] < 0 ? 1 : 0];
-  for (int r = 0; r < R; ++r) {
-    const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
-    std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
-    if (!(rows & (1u << r))) {
-      hn::StoreU(hn::Zero(d), d, out);
-      if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
-    } else if (cols == 1 || onlyFirst(row)) {
-      // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
-      const auto v = hn::Set(d, static_cast<std::int16_t>(row[0] * 8));
-      hn::StoreU(v, d, out);
-      if (N < 8) hn::StoreU(v, d, out + N);
-    } else {
-      mpeg2Row<Pcsx2>(row, out);
+  const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][toggle ? (block[63] < 0 ? 1 : 0) : 2];
+  if constexpr (Add && R <= 4) {
+    // Residual blocks of 2 or 4 rows (most coded blocks of P and B pictures): every row through
+    // the pass, without a branch on which rows are zero or hold x0 alone (the pass gives 0 and
+    // x0 * 8 there, as below); on busy pictures those branches were coin tosses.
+    for (int r = 0; r < R; ++r) {
+      mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
+    }
+  } else {
+    for (int r = 0; r < R; ++r) {
+      const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
+      std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
+      if (!(rows & (1u << r))) {
+        hn::StoreU(hn::Zero(d), d, out);
+        if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
+      } else if (cols == 1 || onlyFirst(row)) {
+        // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
+        const auto v = hn::Set(d, static_cast<std::int16_t>(row[0] * 8));
+        hn::StoreU(v, d, out);
+        if (N < 8) hn::StoreU(v, d, out + N);
+      } else {
+        mpeg2Row<Pcsx2>(row, out);
+      }
     }
   }
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
@@ -396,16 +406,15 @@ HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned 
   }
   // The toggle alone in row 7 is part of both transforms: row 7 goes through the row pass, on its
   // own (T7) unless other rows reach row 4 or beyond. The other rows have nothing in column 7.
+  // Blocks of 2 and 4 rows always take the T7 form (a zero row 7 without the toggle): whether the
+  // toggle is there follows the parity of the coefficients' sum, a coin toss for a branch.
+  const bool toggle = (rowMask & kIdctToggleOnly) != 0;
   const unsigned rows = rowMask & 0xFF;
   const unsigned cols = colMask & 0xFF;
-  if (rowMask & kIdctToggleOnly) {
-    if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, true>(block, rows, cols, dst, stride);
-    if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, true>(block, rows, cols, dst, stride);
-    return mpeg2Rows<Pcsx2, Add, 8, false>(block, rows | 0x80u, cols | 0x80u, dst, stride);
-  }
-  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, false>(block, rows, cols, dst, stride);
-  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, false>(block, rows, cols, dst, stride);
-  mpeg2Rows<Pcsx2, Add, 8, false>(block, rows, cols, dst, stride);
+  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, true>(block, rows, cols, toggle, dst, stride);
+  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, true>(block, rows, cols, toggle, dst, stride);
+  const unsigned seven = toggle ? 0x80u : 0u;
+  mpeg2Rows<Pcsx2, Add, 8, false>(block, rows | seven, cols | seven, false, dst, stride);
 }
 
 void idctPcsx2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {

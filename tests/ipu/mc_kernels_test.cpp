@@ -73,6 +73,83 @@ TEST(IpuMcKernels, PredictMatchesScalar) {
   });
 }
 
+// The three-plane kernels (luma and both chroma blocks of one prediction in one call, Cb and Cr
+// together in the Highway versions) against the scalar reference and against the per-plane
+// kernels: every averaging mode and pair of luma and chroma half-sample cases, frame and field
+// strides, full and half heights.
+TEST(IpuMcKernels, BlockMatchesPlanes) {
+  forEachTarget([](const McKernels& simd) {
+    const McKernels& ref = scalarMcKernels();
+    std::mt19937 rng(2929);
+    constexpr int kStrideY = 96;
+    constexpr int kStrideC = 48;
+    constexpr int kLinesY = 64;
+    constexpr int kLinesC = 32;
+    auto randomPlane = [&](std::size_t n) {
+      std::vector<std::uint8_t> p(n);
+      for (auto& v : p) v = static_cast<std::uint8_t>(rng() % 3 == 0 ? (rng() & 1) * 255 : rng());
+      return p;
+    };
+    int cases = 0;
+    for (int trial = 0; trial < 100; ++trial) {
+      const auto srcY = randomPlane(std::size_t{kStrideY} * kLinesY);
+      const auto srcCb = randomPlane(std::size_t{kStrideC} * kLinesC);
+      const auto srcCr = randomPlane(std::size_t{kStrideC} * kLinesC);
+      const auto startY = randomPlane(srcY.size());
+      const auto startCb = randomPlane(srcCb.size());
+      const auto startCr = randomPlane(srcCr.size());
+      for (int average = 0; average < 2; ++average) {
+        for (int cy = 0; cy < 4; ++cy) {
+          for (int cc = 0; cc < 4; ++cc) {
+            for (const int field : {1, 2}) {
+              const int rows = 16 >> (rng() % 2);  // 16 or 8 luma rows (field or 16x8 halves)
+              const std::ptrdiff_t sy = std::ptrdiff_t{kStrideY} * field;
+              const std::ptrdiff_t sc = std::ptrdiff_t{kStrideC} * field;
+              const int linesY = kLinesY / field;
+              const int linesC = kLinesC / field;
+              const int xy = static_cast<int>(rng() % static_cast<unsigned>(kStrideY - 16 - (cy & 1) + 1));
+              const int yy = static_cast<int>(rng() % static_cast<unsigned>(linesY - rows - (cy >> 1) + 1));
+              const int xc = static_cast<int>(rng() % static_cast<unsigned>(kStrideC - 8 - (cc & 1) + 1));
+              const int yc = static_cast<int>(rng() % static_cast<unsigned>(linesC - rows / 2 - (cc >> 1) + 1));
+              const int dxy = static_cast<int>(rng() % (kStrideY - 16 + 1));
+              const int dyy = static_cast<int>(rng() % static_cast<unsigned>(linesY - rows + 1));
+              const int dxc = static_cast<int>(rng() % (kStrideC - 8 + 1));
+              const int dyc = static_cast<int>(rng() % static_cast<unsigned>(linesC - rows / 2 + 1));
+              const std::ptrdiff_t srcAtY = (field - 1) * (rng() % 2) * kStrideY + yy * sy + xy;
+              const std::ptrdiff_t srcAtC = (field - 1) * (rng() % 2) * kStrideC + yc * sc + xc;
+              // Expected: the scalar per-plane kernels.
+              auto y0 = startY, cb0 = startCb, cr0 = startCr;
+              ref.predict[average][1][cy](y0.data() + dyy * sy + dxy, sy, srcY.data() + srcAtY, sy, rows);
+              ref.predict[average][0][cc](cb0.data() + dyc * sc + dxc, sc, srcCb.data() + srcAtC, sc, rows / 2);
+              ref.predict[average][0][cc](cr0.data() + dyc * sc + dxc, sc, srcCr.data() + srcAtC, sc, rows / 2);
+              for (const McKernels* k : {&ref, &simd}) {
+                auto y1 = startY, cb1 = startCb, cr1 = startCr;
+                const McBlock b{y1.data() + dyy * sy + dxy,
+                                cb1.data() + dyc * sc + dxc,
+                                cr1.data() + dyc * sc + dxc,
+                                sy,
+                                sc,
+                                srcY.data() + srcAtY,
+                                srcCb.data() + srcAtC,
+                                srcCr.data() + srcAtC,
+                                sy,
+                                sc,
+                                rows};
+                k->block[average][cy][cc](b);
+                ASSERT_EQ(y0, y1) << k->name << " average " << average << " cases " << cy << cc << " trial " << trial;
+                ASSERT_EQ(cb0, cb1) << k->name << " average " << average << " cases " << cy << cc << " trial " << trial;
+                ASSERT_EQ(cr0, cr1) << k->name << " average " << average << " cases " << cy << cc << " trial " << trial;
+                ++cases;
+              }
+            }
+          }
+        }
+      }
+    }
+    EXPECT_EQ(cases, 100 * 2 * 4 * 4 * 2 * 2);
+  });
+}
+
 // The four-sample case over every pair of sums it can see: a block whose rows hold all values of
 // (a, b) and (c, d) through two rows per pair.
 TEST(IpuMcKernels, FourSampleRoundingExhaustiveOverPairs) {
