@@ -21,9 +21,9 @@
 #include "cli/exit_status.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/stdin_input.hpp"
 #include "cli/suggest.hpp"
 #include "runtime/error.hpp"
+#include "streams/disc/standard_input.hpp"
 
 namespace vbim::cli {
 
@@ -139,22 +139,22 @@ int runApp(CLI::App& app, int argc, char** argv) {
     for (const CLI::App* sub : app.get_subcommands()) listWritten(*sub);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() != 0) {
-      std::cerr << prefix << nameStdin(e.what()) << "; " << seeHelp << "\n";
+      std::cerr << prefix << streams::nameStandardInput(e.what()) << "; " << seeHelp << "\n";
       return kExitBadInput;
     }
     return app.exit(e);  // --help, --version
   } catch (const Exit& e) {
-    std::cerr << prefix << nameStdin(e.what()) << "\n";
+    std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";
     return e.code();
   } catch (const Error& e) {
     // The project's own errors name the input and what was expected: bad input.
-    std::cerr << prefix << nameStdin(e.what()) << "\n";
+    std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::cerr << prefix << "out of memory (the input or the options ask for more than this machine has)\n";
     return kExitFailure;
   } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << prefix << nameStdin(e.path1().string()) << ": " << e.code().message() << "\n";
+    std::cerr << prefix << streams::nameStandardInput(e.path1().string()) << ": " << e.code().message() << "\n";
     return kExitFailure;
   } catch (const std::system_error& e) {
     std::cerr << prefix << "system error: " << e.code().message() << "\n";

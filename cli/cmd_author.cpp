@@ -2,7 +2,6 @@
 // one VBIM stream file.
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 #include <utility>
 
 #include "cli/author_terrain.hpp"
@@ -12,6 +11,7 @@
 #include "runs/output_dir.hpp"
 #include "streams/authoring/encode_options.hpp"
 #include "streams/authoring/frame_stream.hpp"
+#include "streams/authoring/sequence_options.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "streams/disc/iso_writer.hpp"
 
@@ -46,8 +46,7 @@ void addEncodeOptions(CLI::App* cmd, EncodeOptions& o) {
 }
 
 struct AuthorOptions {
-  std::string frames, sky, name = "default";
-  std::vector<std::string> variants, variantSkies;
+  SequenceOptions sequences;  // --frames, --sky, --name, --variant, --variant-sky
   EncodeOptions encode;
   std::string input = "auto";
   std::string synthetic;
@@ -70,73 +69,31 @@ void writeDiscImage(const AuthorOptions& o) {
   }
 }
 
-// NAME=VALUE options, in order of first appearance.
-std::vector<std::pair<std::string, std::string>> parsePairs(const std::vector<std::string>& in, const char* what) {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const std::string& s : in) {
-    const std::size_t eq = s.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
-      throw Exit(2, std::string(what) + " '" + s + "': expected NAME=PATTERN");
-    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
-  }
-  return out;
-}
-
-// --frames/--sky and each --variant with its --variant-sky, in stream order.
-ImageSequences imageSequences(const AuthorOptions& o, InputEncoding enc) {
-  ImageSequences in;
-  in.input = enc;
-  in.variants.push_back(SequenceVariant{o.name, o.frames, o.sky});
-  const auto skies = parsePairs(o.variantSkies, "--variant-sky");
-  for (const auto& [name, pattern] : parsePairs(o.variants, "--variant")) {
-    SequenceVariant v{name, pattern, {}};
-    for (const auto& [skyName, skyPattern] : skies)
-      if (skyName == name) v.skies = skyPattern;
-    in.variants.push_back(std::move(v));
-  }
-  for (const auto& [skyName, skyPattern] : skies) {
-    bool known = false;
-    for (const SequenceVariant& v : in.variants) known |= v.name == skyName;
-    if (!known) throw Exit(2, "--variant-sky " + skyName + "=...: no --variant named '" + skyName + "'");
-  }
-  return in;
-}
-
 // Image sequences or the synthetic day (streams/authoring/frame_stream.hpp).
 void runAuthor(const AuthorOptions& o) {
   const AuthorSettings settings = streamSettings(o.encode);
   const ToneMapping tone = toneMapping(o.encode);
-  InputEncoding enc = InputEncoding::Auto;
-  if (o.input == "linear") {
-    enc = InputEncoding::Linear;
-  } else if (o.input == "encoded") {
-    enc = InputEncoding::Encoded;
-  } else if (o.input != "auto") {
-    throw Exit(2, "--input '" + o.input + "': expected auto, linear or encoded");
-  }
+  const InputEncoding enc = inputEncoding(o.input);
   Progress progress("vbim author", "frames");
   const auto show = [&](const FrameAuthorProgress& p) {
     progress.show(static_cast<double>(p.done), static_cast<double>(p.total), p.label);
   };
   FrameStream stream;
   if (!o.synthetic.empty()) {
-    if (!o.frames.empty() || !o.variants.empty())
+    if (!o.sequences.frames.empty() || !o.sequences.variants.empty())
       throw Exit(2, "--synthetic replaces --frames and --variant; give one or the other");
     SyntheticDay day;
     day.frames = o.syntheticFrames;
     parseSize(o.syntheticSize, day.width, day.height, "--synthetic-size");
     parseSize(o.syntheticSkySize, day.skyWidth, day.skyHeight, "--synthetic-sky-size");
-    std::vector<std::string> weathers;
-    std::stringstream list(o.synthetic);
-    for (std::string w; std::getline(list, w, ',');) weathers.push_back(w);
-    stream = authorSyntheticStream(day, weathers, settings, tone, show);
+    stream = authorSyntheticStream(day, weatherList(o.synthetic), settings, tone, show);
   } else {
-    if (o.frames.empty()) {
+    if (o.sequences.frames.empty()) {
       throw Exit(2,
                  "give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
                  "--synthetic");
     }
-    stream = authorImageSequences(imageSequences(o, enc), settings, tone, show);
+    stream = authorImageSequences(imageSequences(o.sequences, enc), settings, tone, show);
   }
   progress.finish();
   writeStreamFile(o.out, stream.bytes);
@@ -149,11 +106,13 @@ void runAuthor(const AuthorOptions& o) {
 void addAuthor(CLI::App& app) {
   auto* cmd = app.add_subcommand(kAuthorCommand.name, kAuthorCommand.summary);
   auto o = std::make_shared<AuthorOptions>();
-  cmd->add_option("--frames", o->frames, "Lightmap frames, e.g. 'dir/lightmap_%04d.exr' (any OpenImageIO format)");
-  cmd->add_option("--sky", o->sky, "Sky dome frames, e.g. 'dir/sky_%04d.exr' (same numbering as --frames)");
-  cmd->add_option("--name", o->name, "Variant name of --frames/--sky")->capture_default_str();
-  cmd->add_option("--variant", o->variants, "Another variant (weather): NAME=LIGHTMAP_PATTERN; repeatable");
-  cmd->add_option("--variant-sky", o->variantSkies, "Sky frames of a --variant: NAME=SKY_PATTERN; repeatable");
+  cmd->add_option("--frames", o->sequences.frames,
+                  "Lightmap frames, e.g. 'dir/lightmap_%04d.exr' (any OpenImageIO format)");
+  cmd->add_option("--sky", o->sequences.sky, "Sky dome frames, e.g. 'dir/sky_%04d.exr' (same numbering as --frames)");
+  cmd->add_option("--name", o->sequences.name, "Variant name of --frames/--sky")->capture_default_str();
+  cmd->add_option("--variant", o->sequences.variants, "Another variant (weather): NAME=LIGHTMAP_PATTERN; repeatable");
+  cmd->add_option("--variant-sky", o->sequences.variantSkies,
+                  "Sky frames of a --variant: NAME=SKY_PATTERN; repeatable");
   addEncodeOptions(cmd, o->encode);
   cmd->add_option("--input", o->input, "auto (float files linear, integer files encoded), linear, encoded")
       ->capture_default_str();
@@ -188,7 +147,8 @@ void addAuthor(CLI::App& app) {
       return;
     }
     // Technique A renders its own frames: the image-sequence and synthetic options do not apply.
-    if (!o->frames.empty() || !o->sky.empty() || !o->variants.empty() || !o->variantSkies.empty() ||
+    const SequenceOptions& seq = o->sequences;
+    if (!seq.frames.empty() || !seq.sky.empty() || !seq.variants.empty() || !seq.variantSkies.empty() ||
         !o->synthetic.empty()) {
       throw Exit(2, technique +
                         " selects Technique A, which renders its own frames; it excludes --frames, --sky, "

@@ -1,7 +1,7 @@
 // vbim config: prints the platform config with every default and its source, or checks a config
 // file (and optionally a fault plan) the way `vbim play` will read them: the same key ranges, the
-// same relations between keys, and the same GS checks (gs::checkConsole) for the stream given with
-// --stream, or for the smallest lightmap when none is given (a config no stream can play).
+// same relations between keys, and the same GS checks (runs/console_check.hpp) for the stream given
+// with --stream, or for the smallest lightmap when none is given (a config no stream can play).
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -11,14 +11,10 @@
 #include "config/fault_plan_toml.hpp"
 #include "config/option_values.hpp"
 #include "config/params_toml.hpp"
-#include "ee/stream_probe.hpp"
-#include "gs/draw_checks.hpp"
-#include "gs/error.hpp"
 #include "gs/setup_listing.hpp"
-#include "gs/tiled_blender.hpp"
-#include "iop/error.hpp"
 #include "iop/fault_plan.hpp"
 #include "player/platform_config.hpp"
+#include "runs/console_check.hpp"
 #include "streams/disc/stream_disc.hpp"
 
 namespace vbim::cli {
@@ -44,42 +40,10 @@ std::optional<streams::StreamDisc> openGivenStream(const ConfigOptions& o) {
   return streams::openStreamDisc(o.stream, o.file);
 }
 
-// The pictures the presenters of a run blend: the lightmap and, if the stream has one, the sky.
-// Without a stream, the smallest lightmap a stream can have (one 32x32 page) and no sky.
-struct Presented {
-  gs::PictureSize lightmap{gs::kTileHeight, gs::kTileHeight};
-  std::optional<gs::PictureSize> sky;
-};
-
-Presented presentedSizes(const streams::StreamDisc* disc) {
-  if (disc == nullptr) return {};
-  const ee::ProbedStream probed = ee::probeStream(*disc->disc, disc->file);
-  const auto size = [&](int index) {
-    const streams::StreamEntry& e = probed.descriptor.streams[static_cast<std::size_t>(index)];
-    return gs::PictureSize{e.width, e.height};
-  };
-  Presented p;
-  if (probed.lightmapIndex >= 0) p.lightmap = size(probed.lightmapIndex);
-  if (probed.skyIndex >= 0) p.sky = size(probed.skyIndex);
-  return p;
-}
-
-// The GS checks `vbim play` makes when it builds the presenters (gs::checkConsole); returns the VRAM
-// plan they make.
-gs::VramLayout checkPresenters(const ConfigOptions& o, const Presented& p, const player::PlatformConfig& params) {
-  try {
-    const gs::SkyTexture sky = p.sky ? gs::SkyTexture{p.sky->width, p.sky->height} : gs::SkyTexture{};
-    return gs::checkConsole(params.gs, p.lightmap.width, p.lightmap.height, sky);
-  } catch (const gs::GsError& e) {
-    throw Exit(2, config::gsConfigMessage(e, o.check));
-  }
-}
-
 void runConfig(const ConfigOptions& o) {
   player::PlatformConfig params;
   ParamTable table;
   player::describeParams(table, params);
-  Presented presented;
   std::optional<gs::VramLayout> vram;  // checked with --check or --stream (--gs-setup needs --stream)
   if (!o.check.empty()) {
     config::applyTomlFile(table, o.check);
@@ -87,8 +51,8 @@ void runConfig(const ConfigOptions& o) {
   }
   const std::optional<streams::StreamDisc> given = openGivenStream(o);
   const streams::StreamDisc* disc = given ? &*given : nullptr;
-  presented = presentedSizes(disc);
-  if (!o.check.empty() || disc != nullptr) vram = checkPresenters(o, presented, params);
+  const runs::PresentedSizes presented = runs::presentedSizes(disc);
+  if (!o.check.empty() || disc != nullptr) vram = runs::checkPresenters(presented, params, o.check);
   // A check that passes is one line (on stdout), unless a config or the GS setup is asked for too:
   // then the line goes to stderr, before it.
   const bool checking = !o.check.empty() || !o.stream.empty() || !o.faults.empty();

@@ -10,11 +10,11 @@
 #include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
-#include "cli/stdin_input.hpp"
 #include "runs/output_dir.hpp"
 #include "streams/decode/decode_input.hpp"
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
+#include "streams/disc/standard_input.hpp"
 
 namespace vbim::cli {
 namespace {
@@ -39,7 +39,7 @@ void run(const Options& o) {
   options.idct = ipu::idctKindByName(o.idct).value_or(ipu::kDefaultIdct);
   if (!o.stream.empty()) options.streamId = streams::parseStreamId(o.stream);
   const streams::DecodeInput in = streams::readDecodeInput(o.input, o.file);
-  const std::string name = nameStdin(in.name);
+  const std::string name = streams::nameStandardInput(in.name);
   runs::OutputDir dir(o.outDir, o.force);
   streams::FrameFileWriter writer(dir.directory(), streams::frameFileFormatNamed(o.format),
                                   ipu::CscThresholds{o.th0, o.th1});

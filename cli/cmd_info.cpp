@@ -6,7 +6,7 @@
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/stdin_input.hpp"
+#include "streams/disc/standard_input.hpp"
 #include "streams/info/stream_info.hpp"
 
 namespace vbim::cli {
@@ -42,9 +42,9 @@ void addInfo(CLI::App& app) {
         std::cerr << "vbim info: warning: " << info.shown
                   << ": text in the stream is not UTF-8; its bytes are replaced by U+FFFD in the JSON\n";
       }
-      std::cout << nameStdin(text) << "\n";
+      std::cout << streams::nameStandardInput(text) << "\n";
     } else {
-      std::cout << nameStdin(streams::infoText(info));
+      std::cout << streams::nameStandardInput(streams::infoText(info));
     }
     const auto& errors = info.scan.errors;
     if (!errors.empty()) {

@@ -1,5 +1,5 @@
 // vbim lightmap: Technique A frames (lightmaps + sky domes) from a heightfield, as image files
-// (lighting/lightmap_files.hpp).
+// (lighting/lightmap_inputs.hpp, lighting/lightmap_files.hpp).
 #include <cstdio>
 #include <memory>
 #include <utility>
@@ -10,13 +10,9 @@
 #include "cli/lighting_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
-#include "config/params_toml.hpp"
-#include "lighting/day_cycle.hpp"
-#include "lighting/image_files.hpp"
 #include "lighting/lightmap_files.hpp"
-#include "lighting/terrain_file.hpp"
+#include "lighting/lightmap_inputs.hpp"
 #include "runs/output_dir.hpp"
-#include "runtime/param_table.hpp"
 
 namespace vbim::cli {
 
@@ -34,34 +30,21 @@ struct LightmapOptions {
 
 void run(LightmapOptions& o, const LightingOverrides& given) {
   checkLightmapRequest(o.files);
-  DayCycleParams params;
-  if (!o.config.empty()) {
-    ParamTable table;
-    describeParams(table, params);
-    config::applyTomlFile(table, o.config);
-  }
-  applyGivenLightingOptions(given, params);
-  validateParams(params);  // before any heavy work or output
-  FloatImage cloudTexture;
-  if (!o.terrain.cloudTexture.empty()) {
-    cloudTexture = lighting::readDensityMap(o.terrain.cloudTexture);
-    params.clouds.enabled = true;
-  }
-  o.terrain.procedural.cellSize = o.terrain.cellSize;
-  TerrainFile terrain = loadTerrainAsIs(o.terrain);
-  for (const std::string& note : terrain.notes)
+  LightmapInputs in = lightmapInputs(o.terrain, o.config,
+                                     [&given](DayCycleParams& params) { applyGivenLightingOptions(given, params); });
+  for (const std::string& note : in.terrain.notes)
     std::printf("vbim lightmap: %s: %s\n", o.terrain.heightfield.c_str(), note.c_str());
 
   runs::OutputDir dir(o.out, o.force);
   Progress progress("vbim lightmap", "frames");
   const LightmapFiles written =
-      writeLightmapFiles(o.files, std::move(terrain), params, std::move(cloudTexture), dir.directory(),
+      writeLightmapFiles(o.files, std::move(in.terrain), in.params, std::move(in.cloudTexture), dir.directory(),
                          [&](int done, int total) { progress.show(done, total); });
   progress.finish();
   dir.commit();
   std::printf("vbim lightmap: %d frames (%dx%d lightmaps, %lldx%lld sky domes) in %s\n", written.frames, written.width,
-              written.height, static_cast<long long>(params.skyWidth), static_cast<long long>(params.skyWidth / 2),
-              o.out.c_str());
+              written.height, static_cast<long long>(in.params.skyWidth),
+              static_cast<long long>(in.params.skyWidth / 2), o.out.c_str());
 }
 
 }  // namespace

@@ -10,8 +10,8 @@
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
-#include "cli/stdin_input.hpp"
 #include "runs/play_run.hpp"
+#include "streams/disc/standard_input.hpp"
 
 namespace vbim::cli {
 
@@ -74,7 +74,7 @@ void addPlay(CLI::App& app) {
       "  vbim play streams/samples/day_clear.vbim --duration 20s\n"
       "  vbim play streams/samples/day_clear.vbim --faults plan.toml --seed 7 --duration 60s --every 60 --out run/\n");
   cmd->callback([r] {
-    if (isStdin(r->disc)) r->discLabel = "<stdin>";  // the summary and stats.json
+    if (streams::isStandardInput(r->disc)) r->discLabel = "<stdin>";  // the summary and stats.json
     Progress bar("vbim play", "s");
     const runs::PlayResult result = exitOneOnRunFailure([&] {
       return runs::playRun(*r, [&bar](double played, double total) {

@@ -1,8 +1,8 @@
 // vbim profile: sweeps over ring size, stream (several discs, or one re-encoded at several
 // quantisers / bitrates), fault plans and catch-up policy; searches the longest drive stall each
 // ring size survives; writes sweep.csv, stall.csv, profile.json and plots/*.png and *.svg into --out
-// (complete or absent). docs/player.md, "Profiling". --plan: a sweep plan (cli/profile_plan.hpp).
-#include <algorithm>
+// (complete or absent): runs::profileRun (runs/profile_run.hpp). docs/player.md, "Profiling".
+// --plan: a sweep plan (cli/profile_plan.hpp).
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -11,20 +11,12 @@
 #include "cli/common_options.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/profile_json.hpp"
 #include "cli/profile_plan.hpp"
-#include "config/fault_plan_toml.hpp"
-#include "config/option_values.hpp"
-#include "config/platform_config_toml.hpp"
-#include "gs/error.hpp"
-#include "gs/simd/blend_simd.hpp"
-#include "ipu/simd/simd_kernels.hpp"
+#include "cli/progress.hpp"
 #include "player/report.hpp"
-#include "runs/output_dir.hpp"
-#include "streams/disc/stream_disc.hpp"
+#include "runs/profile_json.hpp"
+#include "runs/profile_run.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
-#include "sweep/outputs/reencoded_streams.hpp"
-#include "sweep/profile_sweep.hpp"
 
 namespace vbim::cli {
 
@@ -32,100 +24,37 @@ namespace {
 
 using namespace vbim::sweep;
 
-struct ProfileRequest {
-  std::vector<std::string> discs;
-  std::string file;  // the stream on each disc image (--file), or empty: its only VBIM stream
-  std::string config;
-  std::vector<std::string> faults;
-  std::vector<std::string> rings{"4:8", "4:16", "4:32", "4:64", "5:160"};
-  std::vector<int> qscales;
-  std::vector<std::int64_t> bitrates;
-  std::vector<std::string> policies{"blend-through"};
-  std::uint64_t seed = 1;
-  std::string duration = "20s";
-  std::string stallAt = "3s";
-  std::string maxStall = "20s";
-  std::string resolution = "50ms";
-  std::string settle = "5s";
-  std::string popThreshold = "auto";
-  bool search = true;
-  bool force = false;
-  bool json = false;  // the summary as JSON on stdout, instead of the lines (cli/profile_json.hpp)
-  std::string out;
+// Each line counts n/N over every sweep run and stall search, with the host time left at the rate
+// so far (the same count plan mode's progress line shows; host time is never hashed).
+class Count {
+ public:
+  void start(std::size_t total) {
+    total_ = total;
+    started_ = std::chrono::steady_clock::now();
+  }
+  std::string next() {
+    ++done_;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    return "[" + std::to_string(done_) + "/" + std::to_string(total_) + ", " +
+           fixed(secondsLeft(elapsed, done_, total_), 0) + " s left] ";
+  }
+
+ private:
+  std::size_t total_ = 0, done_ = 0;
+  std::chrono::steady_clock::time_point started_;
 };
 
-std::string stem(const std::string& path) {
-  return std::filesystem::path(path).stem().string();
-}
-
-// A disc as given: a bare stream file or the stream on an ISO 9660 image, labelled by its name.
-std::shared_ptr<Stream> discStream(const std::string& path, const std::string& file) {
-  streams::StreamDisc opened = streams::openStreamDisc(path, file);
-  auto s = std::make_shared<Stream>();
-  s->label = stem(path);
-  s->disc = std::move(opened.disc);
-  s->file = opened.file;
-  return s;
-}
-
-void runProfile(const ProfileRequest& r) {
+void runProfile(const runs::ProfileRequest& r, const runs::Reencoder& reencode) {
   const auto wall0 = std::chrono::steady_clock::now();  // host time: stdout only
-  // An existing, non-empty --out is refused before the sweep, not after it.
-  runs::OutputDir dir(r.out, r.force);
-  // Streams: every disc as given, then the first one re-encoded at each quantiser and bitrate.
-  std::vector<std::shared_ptr<Stream>> streams;
-  for (const std::string& d : r.discs) streams.push_back(discStream(d, r.file));
-  for (auto& s : reencodedStreams(*streams[0], r.discs[0], r.qscales, r.bitrates)) streams.push_back(std::move(s));
-
-  player::PlatformConfig base;
-  if (!r.config.empty()) base = config::loadPlatformFile(r.config);
-  std::vector<RingSize> rings;
-  for (const std::string& s : r.rings) rings.push_back(parseRingSize(s));
-  sortRings(rings);
-  std::vector<std::string> policies;
-  for (const std::string& p : r.policies) policies.push_back(config::catchupPolicy(p));
-  // Fault plans: "none" first, then each file (parsed against the first stream's disc).
-  std::vector<std::pair<std::string, iop::FaultPlan>> plans{{"none", iop::FaultPlan{}}};
-  for (const std::string& f : r.faults) plans.emplace_back(stem(f), config::loadFaultPlan(f, streams[0]->disc.get()));
-  const Tick duration = config::parseTime("--duration", r.duration);
-  if (duration <= 0) throw Exit(2, "--duration must be positive");
-  StallSearch search;
-  search.stallAt = config::parseTime("--stall-at", r.stallAt);
-  search.maxStall = config::parseTime("--max-stall", r.maxStall);
-  search.resolution = config::parseTime("--resolution", r.resolution);
-  search.settle = config::parseTime("--settle", r.settle);
-  search.popThreshold = parsePopThreshold(r.popThreshold);
-  checkStallSearch(search);
-
-  SweepPlan plan;
-  for (const auto& s : streams) plan.streams.push_back(s.get());
-  plan.base = base;
-  plan.plans = std::move(plans);
-  plan.policies = policies;
-  plan.rings = rings;
-  plan.seed = r.seed;
-  plan.duration = duration;
-  plan.searchStalls = r.search;
-  plan.search = search;
-  plan.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
-  // Each line counts n/N over every sweep run and stall search, with the host time left at the
-  // rate so far (the same count plan mode's progress line shows; host time is never hashed).
-  const std::size_t shape = plan.streams.size() * plan.policies.size() * plan.rings.size();
-  const std::size_t total = shape * plan.plans.size() + (plan.searchStalls ? shape * 2 : 0);
-  const auto started = std::chrono::steady_clock::now();
-  auto count = [total, started, done = std::size_t{0}]() mutable {
-    ++done;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - std::min(done, total));
-    return "[" + std::to_string(done) + "/" + std::to_string(total) + ", " + fixed(left, 0) + " s left] ";
-  };
+  auto count = std::make_shared<Count>();
   // With --json the lines are in the document at the end, not on stdout.
   std::ostream nowhere(nullptr);
   std::ostream& lines = r.json ? nowhere : std::cout;
-  SweepObserver progress;
-  progress.onRun = [&count, &lines](const SweepRun& run) {
+  runs::ProfileObserver progress;
+  progress.onStart = [count](std::size_t total) { count->start(total); };
+  progress.sweep.onRun = [count, &lines](const SweepRun& run) {
     checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
-    lines << count() << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax
+    lines << count->next() << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax
           << "  faults " << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate
           << ", pop max " << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
     // A run that stopped showing frames is flagged on its line and warned about on stderr.
@@ -138,40 +67,29 @@ void runProfile(const ProfileRequest& r) {
                 << run.policy << ": " << player::healthWarning(h) << "\n";
     }
   };
-  progress.onStall = [&count, &lines](const StallRow& row) {
+  progress.sweep.onStall = [count, &lines](const StallRow& row) {
     checkInterrupted();
-    lines << count() << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
+    lines << count->next() << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
           << row.policy << "  " << toString(row.criterion) << ": "
           << (row.result.longest ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
                                  : std::string("fails without a stall"))
           << " (" << row.result.runs << " runs)\n";
   };
-  ProfileData data;
-  try {
-    data = runSweep(plan, progress);
-  } catch (const gs::GsError& e) {
-    throw Exit(2, config::gsConfigMessage(e, r.config));
-  }
-
-  const std::vector<std::string> written = writeProfileOutputs(data, dir.directory());
-  dir.commit();
+  const runs::ProfileResult result = runs::profileRun(r, reencode, progress);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (r.json) {
-    std::vector<std::string> paths;
-    paths.reserve(written.size());
-    for (const std::string& w : written) paths.push_back((dir.finalPath() / w).string());
-    requestedOut() << profileSummaryJson(data, wall, paths);
+    requestedOut() << runs::profileSummaryJson(result.data, wall, result.written);
     return;
   }
-  std::cout << "profiled " << data.sweep.size() << " sweep runs and " << data.stalls.size() << " stall searches in "
-            << fixed(wall, 1) << " s of host time\nOpen:\n";
-  for (const std::string& w : written) std::cout << "  " << (dir.finalPath() / w).string() << "\n";
+  std::cout << "profiled " << result.data.sweep.size() << " sweep runs and " << result.data.stalls.size()
+            << " stall searches in " << fixed(wall, 1) << " s of host time\nOpen:\n";
+  for (const std::string& w : result.written) std::cout << "  " << w << "\n";
 }
 
 }  // namespace
 
-void addProfile(CLI::App& app) {
-  auto r = std::make_shared<ProfileRequest>();
+void addProfile(CLI::App& app, const ProfileEncoders& encoders) {
+  auto r = std::make_shared<runs::ProfileRequest>();
   auto plan = std::make_shared<PlanRequest>();
   auto* cmd = app.add_subcommand(kProfileCommand.name, kProfileCommand.summary);
   cmd->add_option("disc", r->discs,
@@ -217,17 +135,17 @@ void addProfile(CLI::App& app) {
       "  vbim profile streams/samples/day_clear.vbim --faults examples/fault-plans/stall.toml --policy "
       "blend-through,hard-skip --out prof/\n"
       "  vbim profile --plan examples/sweeps/survivable-stall.toml --jobs 2 --out study/\n");
-  cmd->callback([r, plan] {
+  cmd->callback([r, plan, encoders] {
     if (planMode(*plan)) {
       if (!r->discs.empty()) throw Exit(2, "a sweep plan names its streams: give --plan or stream files, not both");
       plan->out = r->out;
       plan->force = r->force;
       plan->json = r->json;
-      return runPlan(*plan);
+      return runPlan(*plan, encoders.transcode);
     }
-    if (r->discs.empty()) throw Exit(2, "no stream file given (or --plan sweep.toml)");
-    if (r->out.empty()) throw Exit(2, "--out is required");
-    runProfile(*r);
+    // `vbim` has no encoder (FFmpeg): vbim-full re-encodes (cli/main.cpp).
+    if (runs::reencodes(*r) && !encoders.reencode) throw HandOverToFull{};
+    runProfile(*r, encoders.reencode);
   });
 }
 

@@ -1,10 +1,11 @@
 // Shared by the vbim subcommands: each cmd_*.cpp registers one subcommand on the app.
 //
-// Two programs: `vbim` holds the commands that play and inspect (play, info, decode, config) and
-// links only the model and small libraries, so playback stays small (issue #7: under 64 MB); the
-// commands that author, render and plot (demo, author, lightmap, render, profile) need
-// OpenImageIO, FFmpeg and Mesa and live in `vbim-full` (which has every command), installed
-// beside it. `vbim` hands those commands over by exec, so users always type `vbim ...`.
+// Two programs: `vbim` holds the commands that play, inspect and profile (play, info, decode, config,
+// vectors, replay, profile) and links only the model and small libraries (PLplot for the figures), so
+// playback stays small (issue #7: under 64 MB) and starts without loading media libraries (issue
+// #31); the commands that author and render (demo, author, lightmap, render) need OpenImageIO, FFmpeg
+// and Mesa and live in `vbim-full` (which has every command), installed beside it, as does a profile
+// that re-encodes. `vbim` hands those over by exec, so users always type `vbim ...`.
 #pragma once
 
 #include <array>
@@ -31,6 +32,11 @@ class Exit : public std::runtime_error {
  private:
   int code_;
 };
+
+// Thrown by a command `vbim` cannot run itself (a sweep that re-encodes needs FFmpeg): cli/main.cpp
+// catches it and hands the whole command line to vbim-full. Not a std::exception, so that runApp's
+// error handling lets it through.
+struct HandOverToFull {};
 
 // Runs a library call; a failure while it ran (runs::RunFailure: an output that cannot be written)
 // ends the command with exit 1, where every other vbim::Error is bad input (exit 2, runApp).
@@ -62,9 +68,8 @@ inline constexpr CommandInfo kRenderCommand{
     "render", "Render the frames of a play run with OSMesa (pictures, contact sheet, video)"};
 inline constexpr CommandInfo kProfileCommand{
     "profile", "Sweep ring size, bitrate, faults and policy; find the longest survivable stall"};
-// The commands only `vbim-full` has.
-inline constexpr std::array kFullOnlyCommands{kDemoCommand, kAuthorCommand, kLightmapCommand, kRenderCommand,
-                                              kProfileCommand};
+// The commands only `vbim-full` has (`vbim profile` runs in both; vbim-full re-encodes).
+inline constexpr std::array kFullOnlyCommands{kDemoCommand, kAuthorCommand, kLightmapCommand, kRenderCommand};
 
 // The tool's name, description and version (both programs).
 void configureApp(CLI::App& app);
@@ -76,12 +81,12 @@ void prepareApp(CLI::App& app);
 int runApp(CLI::App& app, int argc, char** argv);
 // argv with `vbim help CMD ...` turned into `vbim CMD ... --help` (null-terminated, for exec too).
 std::vector<char*> helpAsOption(int argc, char** argv);
-// The commands both programs have: play, info, decode, config, vectors, replay.
+// The commands both programs have: play, info, decode, config, vectors, replay (and profile, which
+// each program adds with its encoders: cli/profile_plan.hpp).
 void addCoreCommands(CLI::App& app);
 
 void addDemo(CLI::App& app);
 void addPlay(CLI::App& app);
-void addProfile(CLI::App& app);
 void addAuthor(CLI::App& app);
 void addInfo(CLI::App& app);
 void addDecode(CLI::App& app);

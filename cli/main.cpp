@@ -1,8 +1,9 @@
 // vbim: the command-line tool. Thin: parses arguments, wires files to the model.
 //
-// This program links the model and small libraries only (so `vbim play` stays small); the commands
-// that need OpenImageIO, FFmpeg or Mesa are run by `vbim-full`, beside this program, with the same
-// arguments (see cli/command.hpp).
+// This program links the model and small libraries only (so `vbim play` stays small and every
+// command here starts without loading media libraries); the commands that need OpenImageIO, FFmpeg
+// or Mesa, and a `vbim profile` that re-encodes, are run by `vbim-full`, beside this program, with the
+// same arguments (see cli/command.hpp).
 #include <unistd.h>
 
 #include <cerrno>
@@ -15,6 +16,7 @@
 
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/profile_plan.hpp"
 
 namespace {
 
@@ -65,10 +67,15 @@ int main(int argc, char** argv) {
     CLI::App app;
     vbim::cli::configureApp(app);
     vbim::cli::addCoreCommands(app);
+    vbim::cli::addProfile(app, {});  // no encoder: a profile that re-encodes is handed over below
     // Listed in --help like the others; never parsed here (handed over above).
     for (const vbim::cli::CommandInfo& c : vbim::cli::kFullOnlyCommands)
       app.add_subcommand(c.name, c.summary)->group("Subcommands run by vbim-full");
-    return vbim::cli::runApp(app, argc, argv);
+    try {
+      return vbim::cli::runApp(app, argc, argv);
+    } catch (const vbim::cli::HandOverToFull&) {
+      return runFullTool(argv);  // nothing written yet: vbim-full starts the command again
+    }
   } catch (...) {
     std::cerr << "vbim: internal error\n";
     return 1;

@@ -5,6 +5,8 @@
 
 #include "cli/command.hpp"
 #include "cli/generate_docs.hpp"
+#include "cli/profile_plan.hpp"
+#include "sweep/outputs/reencoded_streams.hpp"
 
 int main(int argc, char** argv) {
   try {
@@ -12,7 +14,7 @@ int main(int argc, char** argv) {
     vbim::cli::configureApp(app);
     vbim::cli::addDemo(app);
     vbim::cli::addCoreCommands(app);
-    vbim::cli::addProfile(app);
+    vbim::cli::addProfile(app, {&vbim::sweep::reencodedStreams, &vbim::sweep::transcodePlanStream});
     vbim::cli::addAuthor(app);
     vbim::cli::addLightmap(app);
     vbim::cli::addRender(app);

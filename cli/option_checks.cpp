@@ -10,6 +10,8 @@
 #include <string>
 #include <system_error>
 
+#include "streams/disc/standard_input.hpp"
+
 namespace vbim::cli {
 
 namespace fs = std::filesystem;
@@ -84,6 +86,19 @@ const CLI::Validator& inputFile() {
 
 const CLI::Validator& inputDirectory() {
   static const CLI::Validator v([](std::string& s) { return fileProblem(s, true); }, "", "input directory");
+  return v;
+}
+
+const CLI::Validator& stdinAsFile() {
+  static const CLI::Validator v(
+      [](std::string& s) {
+        if (s != "-") return std::string();
+        std::string path;
+        std::string problem = streams::readStandardInput(path);
+        if (problem.empty()) s = path;
+        return problem;
+      },
+      "", "stdin");
   return v;
 }
 

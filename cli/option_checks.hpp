@@ -17,6 +17,10 @@ namespace vbim::cli {
 const CLI::Validator& inputFile();
 // An input directory: exists and is a directory.
 const CLI::Validator& inputDirectory();
+// A transform for an input option: "-" becomes the path of standard input's bytes
+// (streams/disc/standard_input.hpp: read on first use, once per process), any other value is left as
+// it is. Register it before the option's check(inputFile()).
+const CLI::Validator& stdinAsFile();
 // A count, seed or size that cannot be negative (text of digits only, fits in 64 bits).
 const CLI::Validator& nonNegativeInteger();
 

@@ -11,15 +11,13 @@
 
 #include "cli/command.hpp"
 #include "cli/common_options.hpp"
-#include "cli/profile_json.hpp"
 #include "cli/progress.hpp"
 #include "config/sweep_plan_toml.hpp"
-#include "player/report.hpp"
 #include "runs/output_dir.hpp"
+#include "runs/profile_json.hpp"
 #include "sweep/outputs/plan_host.hpp"
+#include "sweep/outputs/plan_modes.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
-#include "sweep/outputs/study.hpp"
-#include "sweep/outputs/table.hpp"
 
 namespace vbim::cli {
 
@@ -48,9 +46,9 @@ std::string clock(double seconds) {
 }
 
 // Runs `cases` with progress on stderr (n/N, failures, time left): redrawn on a terminal, or one
-// line every few seconds when --progress asks for it elsewhere.
-std::vector<CaseRecord> runWithProgress(const LoadedPlan& p, const std::vector<PlanCase>& cases, unsigned jobs,
-                                        bool forceProgress) {
+// line every few seconds when --progress asks for it elsewhere; then the records' warnings.
+std::vector<CaseRecord> runCases(const LoadedPlan& p, const std::vector<PlanCase>& cases, unsigned jobs,
+                                 bool forceProgress, const sweep::StreamTranscoder& transcode) {
   Progress bar("vbim profile", "cases", forceProgress);
   const auto start = std::chrono::steady_clock::now();  // host time: the progress line only
   auto lastShown = start;
@@ -63,45 +61,23 @@ std::vector<CaseRecord> runWithProgress(const LoadedPlan& p, const std::vector<P
     const double elapsed = std::chrono::duration<double>(now - start).count();
     if (!terminal && done < cases.size() && now - lastShown < std::chrono::seconds(5)) return;
     lastShown = now;
-    const double left = elapsed / static_cast<double>(done) * static_cast<double>(cases.size() - done);
     bar.show(static_cast<double>(done), static_cast<double>(cases.size()),
-             std::to_string(failed) + " failed, " + clock(left) + " left");
+             std::to_string(failed) + " failed, " + clock(secondsLeft(elapsed, done, cases.size())) + " left");
   };
-  std::vector<CaseRecord> records = sweep::runPlanCasesOf(p, cases, jobs, onDone);
+  std::vector<CaseRecord> records = sweep::runPlanCasesOf(p, cases, jobs, onDone, transcode);
   bar.finish();
   return records;
 }
 
-void reportFailures(const std::vector<CaseRecord>& records) {
-  std::size_t failed = 0;
-  for (const CaseRecord& r : records) {
-    if (r.ok) continue;
-    if (++failed <= 5) std::cerr << "vbim profile: case " << r.number << " failed: " << r.error << "\n";
-  }
-  if (failed > 5) std::cerr << "vbim profile: ... and " << failed - 5 << " more failed cases (see the table)\n";
-  // Runs that stopped showing frames are findings, not failures: counted once, listed in the table.
-  std::size_t stuck = 0, starved = 0;
-  for (const CaseRecord& r : records) {
-    if (!r.ok) continue;
-    const std::string verdict = player::runHealth(r.result.lightmap, r.result.totals).verdict;
-    stuck += verdict == "stuck" ? 1 : 0;
-    starved += verdict == "starved" ? 1 : 0;
-  }
-  if (stuck + starved > 0) {
-    std::cerr << "vbim profile: warning: " << stuck << " stuck and " << starved << " starved of " << records.size()
-              << " cases: the display stopped for their last 5 s or more (the health column of cases.csv; "
-                 "docs/player.md, \"Stuck and starved runs\")\n";
-  }
+void warn(const std::vector<CaseRecord>& records) {
+  for (const std::string& w : sweep::caseWarnings(records)) std::cerr << "vbim profile: " << w << "\n";
 }
 
 // Writes the outputs; prints the summary lines and the files (and returns them, for --json).
-PlanSummary writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, runs::OutputDir& dir, bool json) {
-  const std::vector<std::string> written = sweep::writeSweepOutputs(p.spec, p.cases, records, dir.directory());
+sweep::PlanSummary writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records, runs::OutputDir& dir,
+                            bool json) {
+  sweep::PlanSummary s = sweep::writePlanOutputs(p, records, dir.directory(), dir.finalPath());
   dir.commit();
-  PlanSummary s;
-  s.lines = sweep::summaryLines(p.spec, p.cases, records);
-  s.cases = records.size();
-  for (const std::string& w : written) s.written.push_back((dir.finalPath() / w).string());
   if (json) return s;
   for (const std::string& line : s.lines) std::cout << line << "\n";
   std::cout << "Open:\n";
@@ -109,18 +85,18 @@ PlanSummary writeAll(const LoadedPlan& p, const std::vector<CaseRecord>& records
   return s;
 }
 
-void runLocal(const PlanRequest& r, const LoadedPlan& p) {
+void runLocal(const PlanRequest& r, const LoadedPlan& p, const sweep::StreamTranscoder& transcode) {
   runs::OutputDir dir(r.out, r.force);  // an existing --out is refused before the sweep, not after it
   const unsigned jobs = jobsFor(r);
   const auto wall0 = std::chrono::steady_clock::now();
-  const std::vector<CaseRecord> records = runWithProgress(p, p.cases, jobs, r.progress);
-  reportFailures(records);
+  const std::vector<CaseRecord> records = runCases(p, p.cases, jobs, r.progress, transcode);
+  warn(records);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  PlanSummary summary = writeAll(p, records, dir, r.json);
+  sweep::PlanSummary summary = writeAll(p, records, dir, r.json);
   if (r.json) {
     summary.jobs = jobs;
     summary.wallSeconds = wall;
-    requestedOut() << planSummaryJson(summary);
+    requestedOut() << runs::planSummaryJson(summary);
     return;
   }
   std::cout << "ran " << p.cases.size() << " cases with " << jobs << " job(s) in " << sweep::fixed(wall, 1)
@@ -128,19 +104,16 @@ void runLocal(const PlanRequest& r, const LoadedPlan& p) {
 }
 
 // One shard into --out/shard-K-of-N/ (complete or absent; no other shard's files touched).
-void runShard(const PlanRequest& r, const LoadedPlan& p) {
-  const auto [k, n] = sweep::parseShard(r.shard);
-  const auto [first, last] = sweep::shardRange(p.cases.size(), k, n);
-  runs::OutputDir dir(fs::path(r.out) / sweep::shardName(k, n), r.force);
-  const std::vector<PlanCase> mine(p.cases.begin() + static_cast<std::ptrdiff_t>(first),
-                                   p.cases.begin() + static_cast<std::ptrdiff_t>(last));
-  const unsigned jobs = jobsFor(r);
-  const std::vector<CaseRecord> records = runWithProgress(p, mine, jobs, r.progress);
-  reportFailures(records);
-  const std::size_t failed = sweep::writeShard(p, k, n, records, dir.directory());
+void runShard(const PlanRequest& r, const LoadedPlan& p, const sweep::StreamTranscoder& transcode) {
+  const sweep::Shard shard = sweep::selectShard(p, r.shard);
+  runs::OutputDir dir(fs::path(r.out) / shard.name, r.force);
+  const std::vector<CaseRecord> records = runCases(p, shard.cases, jobsFor(r), r.progress, transcode);
+  warn(records);
+  const std::size_t failed = sweep::writeShard(p, shard.k, shard.n, records, dir.directory());
   dir.commit();
-  std::cout << "shard " << k << "/" << n << ": cases " << first << ".." << (last == first ? first : last - 1) << ", "
-            << failed << " failed -> " << dir.finalPath().string() << "\n";
+  std::cout << "shard " << shard.k << "/" << shard.n << ": cases " << shard.first << ".."
+            << (shard.last == shard.first ? shard.first : shard.last - 1) << ", " << failed << " failed -> "
+            << dir.finalPath().string() << "\n";
 }
 
 // --merge DIR: every shard-K-of-N of one N, all of this plan; the outputs a local run writes.
@@ -154,34 +127,26 @@ void runMerge(const PlanRequest& r, const LoadedPlan& p) {
   for (const std::string& f : m.failedShards)
     std::cerr << "vbim profile: shard " << f << ": kept in the table with status failed\n";
   runs::OutputDir dir(r.out, r.force);
-  PlanSummary summary = writeAll(p, m.records, dir, r.json);
+  sweep::PlanSummary summary = writeAll(p, m.records, dir, r.json);
   if (r.json) {
     summary.shards = static_cast<std::size_t>(m.shards);
-    requestedOut() << planSummaryJson(summary);
+    requestedOut() << runs::planSummaryJson(summary);
     return;
   }
   std::cout << "merged " << m.shards << " shards, " << m.records.size() << " cases\n";
 }
 
-std::string selfPath() {
-  std::error_code ec;
-  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string("vbim") : p.string();
-}
-
 // --emit-slurm DIR: a job array with one task per shard, its time and memory from a measured
 // per-case cost (the slowest of up to three cases spread over the plan, run here).
-void emitSlurm(const PlanRequest& r, const LoadedPlan& p) {
+void emitSlurm(const PlanRequest& r, const LoadedPlan& p, const sweep::StreamTranscoder& transcode) {
   runs::OutputDir dir(r.emitSlurm, r.force);
-  const auto [perCase, rssMb] =
-      sweep::measureCaseCost(p, [&](const PlanCase& c) { runWithProgress(p, {c}, 1, false); });
-  const sweep::SlurmRequest request{r.shards, r.partition, r.account, r.cpusPerTask};
-  const sweep::SlurmJob job = sweep::sizeSlurmJob(request, p.cases.size(), perCase, rssMb);
   const fs::path finalDir = fs::absolute(dir.finalPath());
-  sweep::writeSlurmJob(request, job, p, r.plan, selfPath(), dir.directory(), finalDir);
+  const sweep::SlurmRequest request{r.shards, r.partition, r.account, r.cpusPerTask};
+  const sweep::EmittedSlurm e = sweep::emitSlurmJob(p, r.plan, request, sweep::thisProgram(), dir.directory(), finalDir,
+                                                    [&](const PlanCase& c) { runCases(p, {c}, 1, false, transcode); });
   dir.commit();
-  std::cout << "wrote " << (finalDir / "sweep.sbatch").string() << ": " << job.shards << " array tasks, --time "
-            << sweep::hms(job.seconds) << ", --mem " << job.memMb << "M (measured " << sweep::fixed(perCase, 3)
+  std::cout << "wrote " << (finalDir / "sweep.sbatch").string() << ": " << e.job.shards << " array tasks, --time "
+            << sweep::hms(e.job.seconds) << ", --mem " << e.job.memMb << "M (measured " << sweep::fixed(e.perCase, 3)
             << " s per case)\n"
             << "submit: sbatch " << (finalDir / "sweep.sbatch").string() << "\nthen:   vbim profile --plan " << r.plan
             << " --merge " << (finalDir / "shards").string() << " --out RESULTS\n";
@@ -207,7 +172,7 @@ bool planMode(const PlanRequest& r) {
   return !r.plan.empty() || !r.merge.empty() || !r.emitSlurm.empty() || !r.shard.empty();
 }
 
-void runPlan(const PlanRequest& r) {
+void runPlan(const PlanRequest& r, const sweep::StreamTranscoder& transcode) {
   if (r.plan.empty()) throw Exit(2, "--shard, --merge and --emit-slurm need --plan (the sweep plan)");
   const int modes = (r.shard.empty() ? 0 : 1) + (r.merge.empty() ? 0 : 1) + (r.emitSlurm.empty() ? 0 : 1);
   if (modes > 1) throw Exit(2, "give one of --shard, --merge and --emit-slurm");
@@ -216,10 +181,13 @@ void runPlan(const PlanRequest& r) {
     throw Exit(2, "--json summarises a plan run here or merged (--merge), not --shard or --emit-slurm");
   }
   const LoadedPlan p = sweep::loadedPlan(config::loadSweepPlan(r.plan), r.plan);
-  if (!r.emitSlurm.empty()) return emitSlurm(r, p);
+  // `vbim` has no encoder (FFmpeg): vbim-full runs a plan that re-encodes (cli/main.cpp). A merge
+  // re-encodes nothing.
+  if (r.merge.empty() && sweep::reencodes(p.spec) && !transcode) throw HandOverToFull{};
+  if (!r.emitSlurm.empty()) return emitSlurm(r, p, transcode);
   if (!r.merge.empty()) return runMerge(r, p);
-  if (!r.shard.empty()) return runShard(r, p);
-  runLocal(r, p);
+  if (!r.shard.empty()) return runShard(r, p, transcode);
+  runLocal(r, p, transcode);
 }
 
 }  // namespace vbim::cli

@@ -1,13 +1,27 @@
 // `vbim profile --plan sweep.toml`: a sweep plan run on this machine (--jobs), one shard of it
 // (--shard K/N), shards joined (--merge DIR) or a Slurm job array written for it (--emit-slurm DIR).
-// docs/sweeps.md.
+// docs/sweeps.md. The modes are calls into sweep/outputs/ (study.hpp, plan_modes.hpp); this file
+// parses their options, shows progress and prints.
 #pragma once
 
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "runs/profile_run.hpp"
+#include "sweep/outputs/study.hpp"
+
 namespace vbim::cli {
+
+// What `vbim profile` re-encodes streams with: FFmpeg's (sweep/outputs/reencoded_streams.hpp) in
+// vbim-full; none in vbim, which hands a sweep that re-encodes to vbim-full (HandOverToFull).
+struct ProfileEncoders {
+  runs::Reencoder reencode;           // --qscale, --bitrate
+  sweep::StreamTranscoder transcode;  // a plan's qscales, bitrates, gops
+};
+
+// Registers `vbim profile` (cli/cmd_profile.cpp).
+void addProfile(CLI::App& app, const ProfileEncoders& encoders);
 
 struct PlanRequest {
   std::string plan;
@@ -29,6 +43,7 @@ struct PlanRequest {
 void addPlanOptions(CLI::App& cmd, PlanRequest& r);
 // True when any plan mode was asked for.
 bool planMode(const PlanRequest& r);
-void runPlan(const PlanRequest& r);
+// Runs the mode asked for; a plan that re-encodes without `transcode` is handed to vbim-full.
+void runPlan(const PlanRequest& r, const sweep::StreamTranscoder& transcode);
 
 }  // namespace vbim::cli

@@ -10,12 +10,19 @@
 // lighting::TechniqueAProgressFn) that the command forwards here.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <string>
 #include <string_view>
 
 namespace vbim::cli {
+
+// Host seconds left for `total` steps at the rate of `done` in `elapsed` seconds (0 when done is 0).
+inline double secondsLeft(double elapsed, std::size_t done, std::size_t total) {
+  if (done == 0) return 0;
+  return elapsed / static_cast<double>(done) * static_cast<double>(total - std::min(done, total));
+}
 
 class Progress {
  public:

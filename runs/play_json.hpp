@@ -1,4 +1,4 @@
-// The --json summaries of `vbim play` (here, made by playRun) and `vbim profile` (cli/profile_json.hpp) (docs/cli.md,
+// The --json summaries of `vbim play` (here, made by playRun) and `vbim profile` (runs/profile_json.hpp) (docs/cli.md,
 // "JSON summaries"): the facts their text summaries print, as one JSON document on stdout. Text from the inputs (a
 // disc's path, a file name read from a disc image) that is not UTF-8 has its bytes replaced by U+FFFD, as `vbim info
 // --json` does, and a warning says so on stderr: the document is always valid JSON.

@@ -32,4 +32,14 @@ std::vector<std::shared_ptr<Stream>> reencodedStreams(const Stream& first, const
   return out;
 }
 
+std::vector<std::uint8_t> transcodePlanStream(const StreamSpec& s, std::vector<Yuv420Image>* sources) {
+  streams::EncoderSettings e;
+  if (s.bitrate > 0) e.bitrate = s.bitrate;
+  if (s.qscale > 0) e.qscale = s.qscale;
+  e.gop = s.gop;
+  e.bFrames = s.bFrames;
+  e.openGop = s.openGop;
+  return streams::transcodeStream(s.path, e, sources);
+}
+
 }  // namespace vbim::sweep

@@ -1,5 +1,7 @@
-// `vbim profile --qscale/--bitrate`: the first disc's stream re-encoded at other settings
-// (streams/authoring/transcode.hpp), held in memory, labelled `<stem>_q<Q>` and `<stem>_<K>kbps`.
+// Re-encoded streams (streams/authoring/transcode.hpp, FFmpeg), in a library of their own so that a
+// program without FFmpeg (`vbim`) can run every sweep that re-encodes nothing:
+// `vbim profile --qscale/--bitrate`'s, the first disc's stream re-encoded at other settings, held in
+// memory, labelled `<stem>_q<Q>` and `<stem>_<K>kbps`; and a sweep plan's re-encoded streams.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "runtime/image.hpp"
+#include "sweep/plan.hpp"
 #include "sweep/profile_run.hpp"
 
 namespace vbim::sweep {
@@ -17,5 +21,9 @@ namespace vbim::sweep {
 std::vector<std::shared_ptr<Stream>> reencodedStreams(const Stream& first, const std::string& path,
                                                       const std::vector<int>& qscales,
                                                       const std::vector<std::int64_t>& bitrates);
+
+// A sweep plan's re-encoded stream (sweep/outputs/study.hpp's StreamTranscoder): the file of `s` at
+// its quantiser or bitrate and GOP structure; `sources`, when given, receives the frames encoded.
+std::vector<std::uint8_t> transcodePlanStream(const StreamSpec& s, std::vector<Yuv420Image>* sources);
 
 }  // namespace vbim::sweep

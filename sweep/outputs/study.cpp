@@ -12,7 +12,6 @@
 
 #include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"
-#include "streams/authoring/transcode.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
 #include "sweep/outputs/stream_quality.hpp"
 #include "sweep/outputs/table.hpp"
@@ -48,7 +47,12 @@ LoadedPlan loadedPlan(SweepPlanSpec spec, const std::string& path) {
   return p;
 }
 
-PlanStreams::PlanStreams(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases)
+bool reencodes(const SweepPlanSpec& plan) {
+  return std::any_of(plan.streams.begin(), plan.streams.end(), [](const StreamSpec& s) { return s.reencoded(); });
+}
+
+PlanStreams::PlanStreams(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases,
+                         const StreamTranscoder& transcode)
     : plan_(plan), memory_(plan.streams.size()) {
   std::vector<bool> needed(plan.streams.size(), false);
   for (const PlanCase& c : cases) needed[c.stream] = true;
@@ -57,15 +61,10 @@ PlanStreams::PlanStreams(const SweepPlanSpec& plan, const std::vector<PlanCase>&
     const StreamSpec& s = plan.streams[i];
     bareStream(s.path);  // the file is a stream: checked once, before any case runs
     if (!s.reencoded()) continue;
-    streams::EncoderSettings e;
-    if (s.bitrate > 0) e.bitrate = s.bitrate;
-    if (s.qscale > 0) e.qscale = s.qscale;
-    e.gop = s.gop;
-    e.bFrames = s.bFrames;
-    e.openGop = s.openGop;
+    if (!transcode) throw Error(s.label + ": a re-encoded stream, and this program has no encoder (run vbim-full)");
     const bool measure = hasMeasure(plan, Measure::Coding);
     std::vector<Yuv420Image> sources;
-    std::vector<std::uint8_t> bytes = streams::transcodeStream(s.path, e, measure ? &sources : nullptr);
+    std::vector<std::uint8_t> bytes = transcode(s, measure ? &sources : nullptr);
     std::optional<StreamQuality> quality;
     if (measure) quality = measureStreamQuality(bytes, s.label + " (re-encoded in memory)", sources);
     memory_[i] = memoryStream(s.label, std::move(bytes));
@@ -81,8 +80,9 @@ std::shared_ptr<Stream> PlanStreams::open(std::size_t stream) const {
 }
 
 std::vector<CaseRecord> runPlanCasesOf(const LoadedPlan& p, const std::vector<PlanCase>& cases, unsigned jobs,
-                                       const std::function<void(const CaseRecord&)>& onDone) {
-  const PlanStreams streams(p.spec, cases);
+                                       const std::function<void(const CaseRecord&)>& onDone,
+                                       const StreamTranscoder& transcode) {
+  const PlanStreams streams(p.spec, cases, transcode);
   RunOptions options;
   options.jobs = jobs;
   options.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "runtime/error.hpp"
+#include "runtime/image.hpp"
 #include "sweep/runner.hpp"
 
 namespace vbim::sweep {
@@ -31,12 +32,22 @@ LoadedPlan loadedPlan(SweepPlanSpec spec, const std::string& path);
 // FNV-1a over `text`, as 16 hex digits.
 std::string planDigest(const std::string& text);
 
+// Re-encodes the stream file of `s` at its settings (qscale or bitrate, GOP structure), filling
+// `sources`, when given, with the frames the encoder took (sweep/outputs/reencoded_streams.hpp has
+// the one through FFmpeg; programs without FFmpeg pass none).
+using StreamTranscoder =
+    std::function<std::vector<std::uint8_t>(const StreamSpec& s, std::vector<Yuv420Image>* sources)>;
+
+// True when a stream of the plan is re-encoded (a StreamTranscoder is needed).
+bool reencodes(const SweepPlanSpec& plan);
+
 // The plan's streams: files opened per case (a file handle is not shared between threads), the
-// re-encoded ones made once, before the cases run, and read from memory by all. Throws
-// iop::DiscError or streams::AuthoringError for a stream that cannot be used.
+// re-encoded ones made once by `transcode`, before the cases run, and read from memory by all. Throws
+// iop::DiscError or streams::AuthoringError for a stream that cannot be used, vbim::Error for a
+// re-encoded one without a `transcode`.
 class PlanStreams {
  public:
-  PlanStreams(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases);
+  PlanStreams(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases, const StreamTranscoder& transcode);
   std::shared_ptr<Stream> open(std::size_t stream) const;
 
  private:
@@ -44,10 +55,11 @@ class PlanStreams {
   std::vector<std::shared_ptr<Stream>> memory_;
 };
 
-// Runs `cases` of the plan with `jobs` host threads and the SIMD kernels; `onDone` sees each record
-// as it ends (one thread at a time, see sweep/runner.hpp).
+// Runs `cases` of the plan with `jobs` host threads and the SIMD kernels, its re-encoded streams made
+// by `transcode`; `onDone` sees each record as it ends (one thread at a time, see sweep/runner.hpp).
 std::vector<CaseRecord> runPlanCasesOf(const LoadedPlan& p, const std::vector<PlanCase>& cases, unsigned jobs,
-                                       const std::function<void(const CaseRecord&)>& onDone);
+                                       const std::function<void(const CaseRecord&)>& onDone,
+                                       const StreamTranscoder& transcode);
 
 // "K/N" with 1 <= K <= N (throws vbim::Error otherwise).
 std::pair<std::size_t, std::size_t> parseShard(const std::string& text);

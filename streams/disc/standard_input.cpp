@@ -1,4 +1,4 @@
-#include "cli/stdin_input.hpp"
+#include "streams/disc/standard_input.hpp"
 
 #include <sys/mman.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-namespace vbim::cli {
+namespace vbim::streams {
 
 namespace {
 
@@ -26,17 +26,6 @@ bool writeAll(int fd, const char* data, ssize_t n) {
     n -= w;
   }
   return true;
-}
-
-// Standard input copied into a memfd; "" on success, else what went wrong.
-std::string readStdin() {
-  if (!stdinFile().empty()) return "'-' (standard input) can be read only once";
-  std::string problem;
-  const int fd = copyIntoMemoryFile(STDIN_FILENO, kStdinLimitBytes, problem);
-  if (fd < 0) return problem;
-  // The descriptor stays open for the whole process: its /proc path is the file.
-  stdinFile() = "/proc/self/fd/" + std::to_string(fd);
-  return {};
 }
 
 }  // namespace
@@ -70,23 +59,22 @@ int copyIntoMemoryFile(int fd, std::uint64_t limit, std::string& problem) {
   }
 }
 
-const CLI::Validator& stdinAsFile() {
-  static const CLI::Validator v(
-      [](std::string& s) {
-        if (s != "-") return std::string();
-        std::string problem = readStdin();
-        if (problem.empty()) s = stdinFile();
-        return problem;
-      },
-      "", "stdin");
-  return v;
+std::string readStandardInput(std::string& path) {
+  if (!stdinFile().empty()) return "'-' (standard input) can be read only once";
+  std::string problem;
+  const int fd = copyIntoMemoryFile(STDIN_FILENO, kStdinLimitBytes, problem);
+  if (fd < 0) return problem;
+  // The descriptor stays open for the whole process: its /proc path is the file.
+  stdinFile() = "/proc/self/fd/" + std::to_string(fd);
+  path = stdinFile();
+  return {};
 }
 
-bool isStdin(const std::string& path) {
+bool isStandardInput(const std::string& path) {
   return !stdinFile().empty() && path == stdinFile();
 }
 
-std::string nameStdin(std::string text) {
+std::string nameStandardInput(std::string text) {
   const std::string& path = stdinFile();
   if (path.empty()) return text;
   for (auto at = text.find(path); at != std::string::npos; at = text.find(path, at + 7)) {
@@ -95,4 +83,4 @@ std::string nameStdin(std::string text) {
   return text;
 }
 
-}  // namespace vbim::cli
+}  // namespace vbim::streams

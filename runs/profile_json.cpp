@@ -1,16 +1,15 @@
-#include "cli/profile_json.hpp"
+#include "runs/profile_json.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "player/report.hpp"
 #include "runs/play_json.hpp"
 
-namespace vbim::cli {
+namespace vbim::runs {
 
 namespace {
 
 using Json = nlohmann::ordered_json;
-using runs::jsonText;
 
 Json ring(const sweep::RingSize& r) {
   return Json{{"banks", r.bankmax}, {"sectors", r.bufmax}};
@@ -56,7 +55,7 @@ std::string profileSummaryJson(const sweep::ProfileData& data, double wallSecond
   return jsonText(j, "profile");
 }
 
-std::string planSummaryJson(const PlanSummary& s) {
+std::string planSummaryJson(const sweep::PlanSummary& s) {
   Json j;
   j["cases"] = s.cases;
   if (s.shards > 0) {
@@ -70,4 +69,4 @@ std::string planSummaryJson(const PlanSummary& s) {
   return jsonText(j, "profile");
 }
 
-}  // namespace vbim::cli
+}  // namespace vbim::runs

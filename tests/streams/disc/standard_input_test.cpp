@@ -1,6 +1,6 @@
-// cli/stdin_input: standard input is held in a memory file up to a limit, and refused beyond it
+// streams/disc/standard_input: standard input is held in a memory file up to a limit, and refused beyond it
 // (issue #33: an endless stdin must end with a message, not fill the machine).
-#include "cli/stdin_input.hpp"
+#include "streams/disc/standard_input.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -36,10 +36,10 @@ struct FedPipe {
   }
 };
 
-TEST(StdinInput, HoldsEveryByteUpToTheLimit) {
+TEST(StandardInput, HoldsEveryByteUpToTheLimit) {
   FedPipe pipe(200'000);
   std::string problem;
-  const int fd = vbim::cli::copyIntoMemoryFile(pipe.fds[0], 200'000, problem);
+  const int fd = vbim::streams::copyIntoMemoryFile(pipe.fds[0], 200'000, problem);
   ASSERT_GE(fd, 0) << problem;
   struct stat st {};
   ASSERT_EQ(::fstat(fd, &st), 0);
@@ -47,16 +47,16 @@ TEST(StdinInput, HoldsEveryByteUpToTheLimit) {
   ::close(fd);
 }
 
-TEST(StdinInput, RefusesMoreThanTheLimitWithAMessage) {
+TEST(StandardInput, RefusesMoreThanTheLimitWithAMessage) {
   ::signal(SIGPIPE, SIG_IGN);  // the feeding thread writes on after the reader stops
   FedPipe pipe(200'001);
   std::string problem;
-  EXPECT_EQ(vbim::cli::copyIntoMemoryFile(pipe.fds[0], 200'000, problem), -1);
+  EXPECT_EQ(vbim::streams::copyIntoMemoryFile(pipe.fds[0], 200'000, problem), -1);
   EXPECT_NE(problem.find("<stdin>: more than 200000 bytes"), std::string::npos) << problem;
 }
 
-TEST(StdinInput, TheLimitIsADualLayerDvd) {
-  EXPECT_EQ(vbim::cli::kStdinLimitBytes, 8'547'991'552ULL);
+TEST(StandardInput, TheLimitIsADualLayerDvd) {
+  EXPECT_EQ(vbim::streams::kStdinLimitBytes, 8'547'991'552ULL);
 }
 
 }  // namespace

@@ -7,14 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include <CLI/CLI.hpp>
-
-namespace vbim::cli {
-
-// A transform for an input option: "-" becomes the path of standard input's bytes (read on first
-// use; once per process: a second "-" is refused), any other value is left as it is. Register it
-// before the option's check(inputFile()).
-const CLI::Validator& stdinAsFile();
+namespace vbim::streams {
 
 // The most standard input may hold: a dual-layer DVD (DVD-9, ECMA-267) holds 4,173,824 sectors of
 // 2,048 bytes, the largest disc a stream comes from. More is refused, not held in memory: `vbim info -
@@ -25,10 +18,14 @@ inline constexpr std::uint64_t kStdinLimitBytes = 4'173'824ULL * 2048;
 // returns its descriptor; or -1 with `problem` saying why (naming "<stdin>").
 int copyIntoMemoryFile(int fd, std::uint64_t limit, std::string& problem);
 
-// True when `path` is where stdinAsFile() put standard input.
-bool isStdin(const std::string& path);
+// Reads standard input into a memory file (once per process: a second call is refused) and sets
+// `path` to where it can be opened; returns "" on success, else what went wrong.
+std::string readStandardInput(std::string& path);
+
+// True when `path` is where readStandardInput() put standard input.
+bool isStandardInput(const std::string& path);
 
 // `text` with the path of standard input's bytes written as "<stdin>" (messages, summaries).
-std::string nameStdin(std::string text);
+std::string nameStandardInput(std::string text);
 
-}  // namespace vbim::cli
+}  // namespace vbim::streams
