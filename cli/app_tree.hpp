@@ -34,8 +34,9 @@ inline std::vector<std::string> optionNames(const CLI::Option& opt) {
   return names;
 }
 
+// A flag takes none: CLI11 gives it a type size of 1 like any option, and expects no item.
 inline bool takesValue(const CLI::Option& opt) {
-  return opt.get_type_size_max() > 0;
+  return opt.get_expected_max() > 0;
 }
 
 // The first line of a description (--help may wrap a summary; a man page and a menu want one line).

@@ -388,6 +388,7 @@ t() {
 t vbim pla
 t vbim help ren
 t vbim play x --fau
+t vbim play x --force --js
 t vbim decode x --format ''
 t vbim decode x --idct l
 t vbim play x --policy h
@@ -411,6 +412,7 @@ t vbim render --width z
       "[vbim pla] play\n"
       "[vbim help ren] render\n"
       "[vbim play x --fau] --faults\n"
+      "[vbim play x --force --js] --json\n"
       "[vbim decode x --format ] png exr yuv rgba\n"
       "[vbim decode x --idct l] libmpeg2\n"
       "[vbim play x --policy h] hard-skip\n"
@@ -438,6 +440,7 @@ TEST(CliHabits, ZshCompletesCommandsOptionsAndValues) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"vbim pla", "vbim play "},
       {"vbim play --fau", "vbim play --faults "},
+      {"vbim play --force --js", "vbim play --force --json "},  // a flag takes no value
       {"vbim decode x --idct l", "vbim decode x --idct libmpeg2 "},
       {"vbim play x --policy h", "vbim play x --policy hard-skip "},
       {"vbim play x --trace-detail f", "vbim play x --trace-detail full "},
