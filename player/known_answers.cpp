@@ -95,7 +95,8 @@ VectorFile blendVectors() {
       "# ALPHA_1 = (A Cs, B Cd, C FIX, D Cd): Cv = (((Cs - Cd) * FIX) >> 7) + Cd, then COLCLAMP\n"
       "# KEY blend/cs=CS,cd=CD,fix=FIX,colclamp=clamp|wrap  VALUE Cv (one colour channel)\n"
       "# KEY blend_steps/cs=CS,cd=CD,fix=FIX,colclamp=clamp  VALUE Cd after 1, 2, ... vsyncs of blending\n"
-      "#   toward the same Cs, until it stops changing (at most 24 steps)\n";
+      "#   toward the same Cs, until it stops changing: the list ends with the first value equal to the one\n"
+      "#   before it (CD for the first), that value included, or after 24 values\n";
   const int channel[] = {0, 1, 100, 127, 128, 200, 255};
   const int fixes[] = {0, 1, 0x20, 0x40, 0x80, 0xC0, 0xFF};
   for (gs::ColClamp c : {gs::ColClamp::Clamp, gs::ColClamp::Wrap}) {
