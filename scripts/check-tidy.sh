@@ -42,7 +42,7 @@ fi
 mapfile -t files < <(CHANGED="$changed" python3 - "$build" "$PWD" "$all" <<'PY'
 import glob, json, os, re, sys
 build, root, check_all = sys.argv[1], os.path.realpath(sys.argv[2]), sys.argv[3] == "1"
-dirs = ("runtime", "iop", "ee", "ipu", "gs", "player", "sweep", "runs", "streams", "config", "cli", "lighting", "render",
+dirs = ("runtime", "iop", "ee", "ipu", "gs", "player", "sweep", "streams", "config", "cli", "lighting", "render",
         "imageio", "plots", "bench")
 sources = []
 for entry in json.load(open(os.path.join(build, "compile_commands.json"))):
