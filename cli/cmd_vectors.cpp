@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli/command.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/samples.hpp"
 #include "player/known_answers.hpp"
@@ -89,6 +90,7 @@ void run(const VectorsRequest& r) {
   }
   if (!r.out.empty()) runs::refuseExistingOutputDir(runs::outputPath(r.out), r.force);
   const std::vector<player::VectorFile> files = generate(r);
+  checkInterrupted();  // a Ctrl-C while the vectors were computed stops here: nothing written yet
   if (!r.out.empty()) {
     runs::OutputDir dir(r.out, r.force);
     std::size_t entries = 0;
