@@ -42,8 +42,8 @@ fi
 mapfile -t files < <(CHANGED="$changed" python3 - "$build" "$PWD" "$all" <<'PY'
 import glob, json, os, re, sys
 build, root, check_all = sys.argv[1], os.path.realpath(sys.argv[2]), sys.argv[3] == "1"
-dirs = ("runtime", "iop", "ee", "ipu", "gs", "player", "sweep", "streams", "config", "cli", "lighting", "render",
-        "imageio", "plots", "bench")
+dirs = ("runtime", "iop", "ee", "ipu", "gs", "player", "sweep", "streams", "config", "runs", "cli", "lighting",
+        "render", "imageio", "plots", "bench")
 sources = []
 for entry in json.load(open(os.path.join(build, "compile_commands.json"))):
     path = os.path.realpath(os.path.join(entry["directory"], entry["file"]))
@@ -51,7 +51,7 @@ for entry in json.load(open(os.path.join(build, "compile_commands.json"))):
     if rel.split(os.sep)[0] in dirs and rel.endswith(".cpp") and rel not in sources:
         sources.append(rel)
 changed = set(filter(None, os.environ["CHANGED"].split("\n")))
-everything = {".clang-tidy", "bench/.clang-tidy", "CMakeLists.txt"}
+everything = {".clang-tidy", "bench/.clang-tidy", "CMakeLists.txt", "scripts/check-tidy.sh"}
 if check_all or changed & everything or any(c.startswith("cmake/") for c in changed):
     print("\n".join(sources))
     sys.exit(0)
