@@ -14,6 +14,9 @@ if [ "${VBIM_SANITIZE:-0}" = 1 ]; then
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   # Mesa's own leaks only (see the file); ours are never suppressed.
   export LSAN_OPTIONS="suppressions=$PWD/../scripts/lsan.supp:print_suppressions=0"
+  # Soak tests (many repetitions of one scenario at random moments) make a quarter of their
+  # repetitions here: the Release suite runs them whole (tests/support/soak.hpp).
+  export VBIM_TEST_SOAK_SCALE=4
 else
   scripts/build.sh build
   cd build
