@@ -340,6 +340,33 @@ HWY_INLINE bool onlyFirst(const std::int16_t* row) {
   return ((lo & kNotX0) | hi) == 0;
 }
 
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+// Four output rows of 8 results in 32-bit lanes, added to dst (Add) and stored clamped to 0..255:
+// two packssdw, one packuswb and one dword permute for the four rows, where a one-row DemoteTo
+// takes three narrowing steps and a mask per row. Exact: a result is an int32 >> 17, so with a
+// sample added it is within int16 before the clamp.
+template <bool Add>
+HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, std::ptrdiff_t stride) {
+  __m256i r[4];
+  for (int y = 0; y < 4; ++y) {
+    r[y] = v[y].raw;
+    if constexpr (Add) {
+      const __m128i px = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p + y * stride));
+      r[y] = _mm256_add_epi32(r[y], _mm256_cvtepu8_epi32(px));
+    }
+  }
+  // Dwords (4 samples) in the order a0 b0 c0 d0 | a1 b1 c1 d1, then rows a, b | c, d.
+  const __m256i bytes = _mm256_packus_epi16(_mm256_packs_epi32(r[0], r[1]), _mm256_packs_epi32(r[2], r[3]));
+  const __m256i rows = _mm256_permutevar8x32_epi32(bytes, _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7));
+  const __m128i ab = _mm256_castsi256_si128(rows);
+  const __m128i cd = _mm256_extracti128_si256(rows, 1);
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p), ab);
+  _mm_storeh_pd(reinterpret_cast<double*>(p + stride), _mm_castsi128_pd(ab));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 2 * stride), cd);
+  _mm_storeh_pd(reinterpret_cast<double*>(p + 3 * stride), _mm_castsi128_pd(cd));
+}
+#endif
+
 // The whole transform; with Add the result is added to dst, else it replaces it (both clamped).
 // T7 (R < 8): row 7 goes into the column pass's odd part from its precomputed row pass: that of
 // F[7][7] = +-1 alone in row 7 and column 7 (mismatch control) with `toggle`, else zeros.
@@ -375,6 +402,16 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned col
       }
     }
   }
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+  if constexpr (sizeof(hn::Vec<decltype(d)>) == 32) {
+    // All 8 columns in one vector per row.
+    hn::Vec<decltype(d)> res[8];
+    mpeg2Columns<Pcsx2, R, T7>(d, t, t7, 0, res);
+    store4Rows<Add>(res, dst, stride);
+    store4Rows<Add>(res + 4, dst + 4 * static_cast<std::ptrdiff_t>(stride), stride);
+    return;
+  }
+#endif
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
     hn::Vec<decltype(d)> res[8];
     mpeg2Columns<Pcsx2, R, T7>(d, t, t7, c0, res);
