@@ -1,7 +1,5 @@
 #include "ipu/simd/simd_kernels.hpp"
 
-#include <array>
-#include <bit>
 #include <cstddef>
 #include <cstring>
 
@@ -330,16 +328,6 @@ HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7,
   out[7] = hn::ShiftRight<17>(hn::Sub(a0, b0));
 }
 
-// True if x1..x7 of the row are zero: bytes 2..15 of the row, tested as two 64-bit words.
-HWY_INLINE bool onlyFirst(const std::int16_t* row) {
-  constexpr std::uint64_t kNotX0 =
-      std::bit_cast<std::uint64_t>(std::array<std::uint8_t, 8>{0, 0, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
-  std::uint64_t lo, hi;
-  std::memcpy(&lo, row, 8);
-  std::memcpy(&hi, row + 4, 8);
-  return ((lo & kNotX0) | hi) == 0;
-}
-
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
 // Four output rows of 8 results in 32-bit lanes, added to dst (Add) and stored clamped to 0..255:
 // two packssdw, one packuswb and one dword permute for the four rows, where a one-row DemoteTo
@@ -371,36 +359,17 @@ HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, s
 // T7 (R < 8): row 7 goes into the column pass's odd part from its precomputed row pass: that of
 // F[7][7] = +-1 alone in row 7 and column 7 (mismatch control) with `toggle`, else zeros.
 template <bool Pcsx2, bool Add, int R, bool T7>
-HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned cols, bool toggle, std::uint8_t* dst,
-                          int stride) {
+HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
   const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][toggle ? (block[63] < 0 ? 1 : 0) : 2];
-  if constexpr (Add && R <= 4) {
-    // Residual blocks of 2 or 4 rows (most coded blocks of P and B pictures): every row through
-    // the pass, without a branch on which rows are zero or hold x0 alone (the pass gives 0 and
-    // x0 * 8 there, as below); on busy pictures those branches were coin tosses.
-    for (int r = 0; r < R; ++r) {
-      mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
-    }
-  } else {
-    for (int r = 0; r < R; ++r) {
-      const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
-      std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
-      if (!(rows & (1u << r))) {
-        hn::StoreU(hn::Zero(d), d, out);
-        if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
-      } else if (cols == 1 || onlyFirst(row)) {
-        // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
-        const auto v = hn::Set(d, static_cast<std::int16_t>(row[0] * 8));
-        hn::StoreU(v, d, out);
-        if (N < 8) hn::StoreU(v, d, out + N);
-      } else {
-        mpeg2Row<Pcsx2>(row, out);
-      }
-    }
+  // Every row through the pass, without a branch on which rows are zero or hold x0 alone (the pass
+  // gives 0 and x0 * 8 there): on busy pictures those branches were coin tosses, for the residual
+  // blocks of P and B pictures and the 8-row intra blocks alike.
+  for (int r = 0; r < R; ++r) {
+    mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
   }
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
   if constexpr (sizeof(hn::Vec<decltype(d)>) == 32) {
@@ -446,12 +415,13 @@ HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned 
   // Blocks of 2 and 4 rows always take the T7 form (a zero row 7 without the toggle): whether the
   // toggle is there follows the parity of the coefficients' sum, a coin toss for a branch.
   const bool toggle = (rowMask & kIdctToggleOnly) != 0;
+  // (The column mask does not choose a form: every row goes through the whole row pass.)
+  (void)colMask;
   const unsigned rows = rowMask & 0xFF;
-  const unsigned cols = colMask & 0xFF;
-  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, true>(block, rows, cols, toggle, dst, stride);
-  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, true>(block, rows, cols, toggle, dst, stride);
-  const unsigned seven = toggle ? 0x80u : 0u;
-  mpeg2Rows<Pcsx2, Add, 8, false>(block, rows | seven, cols | seven, false, dst, stride);
+  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, true>(block, toggle, dst, stride);
+  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, true>(block, toggle, dst, stride);
+  // Eight rows: F[7][7] (with the toggle) is in the block and goes through the row pass with row 7.
+  mpeg2Rows<Pcsx2, Add, 8, false>(block, false, dst, stride);
 }
 
 void idctPcsx2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
