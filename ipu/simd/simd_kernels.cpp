@@ -1,7 +1,5 @@
 #include "ipu/simd/simd_kernels.hpp"
 
-#include <array>
-#include <bit>
 #include <cstddef>
 #include <cstring>
 
@@ -330,51 +328,59 @@ HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7,
   out[7] = hn::ShiftRight<17>(hn::Sub(a0, b0));
 }
 
-// True if x1..x7 of the row are zero: bytes 2..15 of the row, tested as two 64-bit words.
-HWY_INLINE bool onlyFirst(const std::int16_t* row) {
-  constexpr std::uint64_t kNotX0 =
-      std::bit_cast<std::uint64_t>(std::array<std::uint8_t, 8>{0, 0, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
-  std::uint64_t lo, hi;
-  std::memcpy(&lo, row, 8);
-  std::memcpy(&hi, row + 4, 8);
-  return ((lo & kNotX0) | hi) == 0;
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+// Four output rows of 8 results in 32-bit lanes, added to dst (Add) and stored clamped to 0..255:
+// two packssdw, one packuswb and one dword permute for the four rows, where a one-row DemoteTo
+// takes three narrowing steps and a mask per row. Exact: a result is an int32 >> 17, so with a
+// sample added it is within int16 before the clamp.
+template <bool Add>
+HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, std::ptrdiff_t stride) {
+  __m256i r[4];
+  for (int y = 0; y < 4; ++y) {
+    r[y] = v[y].raw;
+    if constexpr (Add) {
+      const __m128i px = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p + y * stride));
+      r[y] = _mm256_add_epi32(r[y], _mm256_cvtepu8_epi32(px));
+    }
+  }
+  // Dwords (4 samples) in the order a0 b0 c0 d0 | a1 b1 c1 d1, then rows a, b | c, d.
+  const __m256i bytes = _mm256_packus_epi16(_mm256_packs_epi32(r[0], r[1]), _mm256_packs_epi32(r[2], r[3]));
+  const __m256i rows = _mm256_permutevar8x32_epi32(bytes, _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7));
+  const __m128i ab = _mm256_castsi256_si128(rows);
+  const __m128i cd = _mm256_extracti128_si256(rows, 1);
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p), ab);
+  _mm_storeh_pd(reinterpret_cast<double*>(p + stride), _mm_castsi128_pd(ab));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 2 * stride), cd);
+  _mm_storeh_pd(reinterpret_cast<double*>(p + 3 * stride), _mm_castsi128_pd(cd));
 }
+#endif
 
 // The whole transform; with Add the result is added to dst, else it replaces it (both clamped).
 // T7 (R < 8): row 7 goes into the column pass's odd part from its precomputed row pass: that of
 // F[7][7] = +-1 alone in row 7 and column 7 (mismatch control) with `toggle`, else zeros.
 template <bool Pcsx2, bool Add, int R, bool T7>
-HWY_INLINE void mpeg2Rows(const std::int16_t* block, unsigned rows, unsigned cols, bool toggle, std::uint8_t* dst,
-                          int stride) {
+HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* dst, int stride) {
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
   const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][toggle ? (block[63] < 0 ? 1 : 0) : 2];
-  if constexpr (Add && R <= 4) {
-    // Residual blocks of 2 or 4 rows (most coded blocks of P and B pictures): every row through
-    // the pass, without a branch on which rows are zero or hold x0 alone (the pass gives 0 and
-    // x0 * 8 there, as below); on busy pictures those branches were coin tosses.
-    for (int r = 0; r < R; ++r) {
-      mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
-    }
-  } else {
-    for (int r = 0; r < R; ++r) {
-      const std::int16_t* row = block + static_cast<std::ptrdiff_t>(8 * r);
-      std::int32_t* out = t + static_cast<std::ptrdiff_t>(8 * r);
-      if (!(rows & (1u << r))) {
-        hn::StoreU(hn::Zero(d), d, out);
-        if (N < 8) hn::StoreU(hn::Zero(d), d, out + N);
-      } else if (cols == 1 || onlyFirst(row)) {
-        // Only x0 in the row: the pass gives x0 * 8 in each output (the bias is below 2^shift).
-        const auto v = hn::Set(d, static_cast<std::int16_t>(row[0] * 8));
-        hn::StoreU(v, d, out);
-        if (N < 8) hn::StoreU(v, d, out + N);
-      } else {
-        mpeg2Row<Pcsx2>(row, out);
-      }
-    }
+  // Every row through the pass, without a branch on which rows are zero or hold x0 alone (the pass
+  // gives 0 and x0 * 8 there): on busy pictures those branches were coin tosses, for the residual
+  // blocks of P and B pictures and the 8-row intra blocks alike.
+  for (int r = 0; r < R; ++r) {
+    mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
   }
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+  if constexpr (sizeof(hn::Vec<decltype(d)>) == 32) {
+    // All 8 columns in one vector per row.
+    hn::Vec<decltype(d)> res[8];
+    mpeg2Columns<Pcsx2, R, T7>(d, t, t7, 0, res);
+    store4Rows<Add>(res, dst, stride);
+    store4Rows<Add>(res + 4, dst + 4 * static_cast<std::ptrdiff_t>(stride), stride);
+    return;
+  }
+#endif
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
     hn::Vec<decltype(d)> res[8];
     mpeg2Columns<Pcsx2, R, T7>(d, t, t7, c0, res);
@@ -409,12 +415,13 @@ HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned 
   // Blocks of 2 and 4 rows always take the T7 form (a zero row 7 without the toggle): whether the
   // toggle is there follows the parity of the coefficients' sum, a coin toss for a branch.
   const bool toggle = (rowMask & kIdctToggleOnly) != 0;
+  // (The column mask does not choose a form: every row goes through the whole row pass.)
+  (void)colMask;
   const unsigned rows = rowMask & 0xFF;
-  const unsigned cols = colMask & 0xFF;
-  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, true>(block, rows, cols, toggle, dst, stride);
-  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, true>(block, rows, cols, toggle, dst, stride);
-  const unsigned seven = toggle ? 0x80u : 0u;
-  mpeg2Rows<Pcsx2, Add, 8, false>(block, rows | seven, cols | seven, false, dst, stride);
+  if (rows <= 0x3) return mpeg2Rows<Pcsx2, Add, 2, true>(block, toggle, dst, stride);
+  if (rows <= 0xF) return mpeg2Rows<Pcsx2, Add, 4, true>(block, toggle, dst, stride);
+  // Eight rows: F[7][7] (with the toggle) is in the block and goes through the row pass with row 7.
+  mpeg2Rows<Pcsx2, Add, 8, false>(block, false, dst, stride);
 }
 
 void idctPcsx2CopyImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
