@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -29,9 +30,7 @@ Result run(const std::string& args) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vbim_port_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
+  return vbim::testing::scratchPath("port_test_" + name);
 }
 
 std::string readAll(const fs::path& p) {

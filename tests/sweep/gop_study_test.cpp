@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -34,7 +35,7 @@ std::string slurp(const fs::path& p) {
 }
 
 fs::path scratch(const std::string& name) {
-  return fs::path(::testing::TempDir()) / ("vbim_gop_study_" + std::to_string(getpid()) + "_" + name);
+  return vbim::testing::scratchPath("gop_study_" + name);
 }
 
 // CSV fields, with "quoted, fields" kept whole.

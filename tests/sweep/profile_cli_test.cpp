@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -32,7 +33,7 @@ std::string slurp(const fs::path& p) {
 }
 
 fs::path scratch(const std::string& name) {
-  return fs::path(::testing::TempDir()) / ("vbim_profile_" + std::to_string(getpid()) + "_" + name);
+  return vbim::testing::scratchPath("profile_" + name);
 }
 
 const std::string kSmall = " --ring 4:8,4:64 --duration 8s --max-stall 12s --resolution 250ms --settle 4s";

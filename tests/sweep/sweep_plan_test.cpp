@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +39,7 @@ std::string slurp(const fs::path& p) {
 }
 
 fs::path scratch(const std::string& name) {
-  return fs::path(::testing::TempDir()) / ("vbim_sweep_" + std::to_string(getpid()) + "_" + name);
+  return vbim::testing::scratchPath("sweep_" + name);
 }
 
 // Every file under `dir`, relative, with its bytes.
