@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -29,10 +30,7 @@ const std::string kStream = "streams/samples/day_clear.vbim";
 class Replay : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vbim_replay_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = vbim::testing::testScratchDir("replay_test");
     const Result p = run("play " + kStream + " --duration 20s --no-trace --out " + (dir_ / "play").string());
     ASSERT_EQ(p.status, 0) << p.output;
   }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -25,12 +26,7 @@ Result run(const std::string& args) {
 
 class ReplayFrames : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vbim_replay_frames_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = vbim::testing::testScratchDir("replay_frames_test"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Plays `stream` with `args`, and decodes both its streams to DIR/frames as a port would dump them.

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <string>
 
+#include <gtest/gtest.h>
+
 namespace vbim::testing {
 
 // TMPDIR/vbim_<what>_<pid>, with whatever an earlier run left there removed; not made.
@@ -24,6 +26,11 @@ inline std::filesystem::path scratchDir(const std::string& what) {
   const std::filesystem::path p = scratchPath(what);
   std::filesystem::create_directories(p);
   return p;
+}
+
+// The running test's own: scratchDir("<what>_<test name>"), for a fixture's SetUp.
+inline std::filesystem::path testScratchDir(const std::string& what) {
+  return scratchDir(what + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
 }
 
 }  // namespace vbim::testing
