@@ -2,93 +2,30 @@
 // file (and optionally a fault plan) the way `vbim play` will read them: the same key ranges, the
 // same relations between keys, and the same GS checks (runs/console_check.hpp) for the stream given
 // with --stream, or for the smallest lightmap when none is given (a config no stream can play).
+// The config, the checks and the GS setup are runs::configRun (runs/config_run.hpp).
 #include <iostream>
 #include <memory>
-#include <optional>
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
-#include "config/fault_plan_toml.hpp"
-#include "config/option_values.hpp"
-#include "config/params_toml.hpp"
-#include "gs/setup_listing.hpp"
-#include "iop/fault_plan.hpp"
-#include "player/platform_config.hpp"
-#include "runs/console_check.hpp"
-#include "streams/disc/stream_disc.hpp"
+#include "runs/config_run.hpp"
 
 namespace vbim::cli {
 
 namespace {
 
-struct ConfigOptions {
-  bool defaults = false;
-  bool markdown = false;
-  bool gsSetup = false;
-  bool effective = false;           // with --check: print the effective config too
-  std::string format = "markdown";  // --gs-setup's: markdown, gif or c
-  std::string check;
-  std::string faults;
-  std::string stream;
-  std::string file;
-};
-
-// The stream given with --stream, opened once: its frame sizes for the GS checks, and the disc a
-// fault plan's file names are looked up on. Empty without --stream.
-std::optional<streams::StreamDisc> openGivenStream(const ConfigOptions& o) {
-  if (o.stream.empty()) return std::nullopt;
-  return streams::openStreamDisc(o.stream, o.file);
-}
-
-void runConfig(const ConfigOptions& o) {
-  player::PlatformConfig params;
-  ParamTable table;
-  player::describeParams(table, params);
-  std::optional<gs::VramLayout> vram;  // checked with --check or --stream (--gs-setup needs --stream)
-  if (!o.check.empty()) {
-    config::applyTomlFile(table, o.check);
-    player::validate(params);
-  }
-  const std::optional<streams::StreamDisc> given = openGivenStream(o);
-  const streams::StreamDisc* disc = given ? &*given : nullptr;
-  const runs::PresentedSizes presented = runs::presentedSizes(disc);
-  if (!o.check.empty() || disc != nullptr) vram = runs::checkPresenters(presented, params, o.check);
+void runConfig(const runs::ConfigRequest& r) {
+  const runs::ConfigResult result = runs::configRun(r);
   // A check that passes is one line (on stdout), unless a config or the GS setup is asked for too:
   // then the line goes to stderr, before it.
-  const bool checking = !o.check.empty() || !o.stream.empty() || !o.faults.empty();
-  const bool printing = !checking || o.gsSetup || o.markdown || o.defaults || o.effective;
-  std::ostream& verdict = printing ? std::cerr : std::cout;
-  if (!o.faults.empty()) {
-    // With --stream, entries that name a file (file = "\\DATA\\DAY.VBI;1") are looked up on that
-    // disc and LBAs checked against its size, as play does.
-    const iop::FaultPlan plan = config::loadFaultPlan(o.faults, disc != nullptr ? disc->disc.get() : nullptr);
-    verdict << o.faults << ": " << plan.faults.size() << " fault(s), valid\n";
-  }
-  if (!o.check.empty() || !o.stream.empty()) {
-    verdict << (o.check.empty() ? std::string("the default platform config") : o.check)
-            << (o.stream.empty() ? "" : " with " + o.stream) << ": valid";
-    if (printing) verdict << "; the " << (o.gsSetup ? "GS setup" : "effective config") << " follows";
-    verdict << "\n";
-  }
-  if (!printing) return;
-  if (o.gsSetup && o.format != "markdown") {
-    gs::writeGsPackets(std::cout, params.gs, *vram, presented.lightmap, presented.sky,
-                       o.format == "c" ? gs::PacketFormat::C : gs::PacketFormat::Gif, o.stream);
-  } else if (o.gsSetup) {
-    gs::writeGsSetup(std::cout, params.gs, *vram, presented.lightmap, presented.sky);
-  } else if (o.markdown) {
-    table.writeMarkdown(std::cout);
-  } else {
-    std::cout << "# vbim platform config: every timing constant, its default and its source.\n"
-              << "# Pass a copy to `vbim play --config FILE`; keys left out keep their defaults.\n\n";
-    table.writeToml(std::cout);
-  }
+  (result.document.empty() ? std::cout : std::cerr) << result.verdict;
+  std::cout << result.document;
 }
 
 }  // namespace
 
 void addConfig(CLI::App& app) {
-  auto opts = std::make_shared<ConfigOptions>();
+  auto opts = std::make_shared<runs::ConfigRequest>();
   auto* cmd = app.add_subcommand(
       "config", "Print the platform config (every timing constant, with sources), or check a config / fault plan");
   cmd->add_flag("--defaults", opts->defaults, "Print the defaults as TOML (the default action)");

@@ -32,7 +32,7 @@ Verbosity verbosity();
 std::ostream& requestedOut();
 
 // A value from a fixed set, for an option named `option` ("--format"): --help shows the set
-// ({png,exr}) and the shell completions offer it (cli/shell_completion.hpp reads the same
+// ({png,exr}) and the shell completions offer it (cli/app_doc.cpp reads the same
 // description, as it reads CLI::IsMember's); another value is bad input, refused before any work
 // with the message the command's own check gives: "--format 'gif': expected png or exr".
 CLI::Validator oneOf(const std::string& option, std::vector<std::string> values);

@@ -1,6 +1,7 @@
 // The exit statuses of every vbim command, in one place: runApp (cli/app.cpp) and the signal
-// handling (cli/interrupt.cpp) end with them, and the man page's EXIT STATUS (cli/man_page.cpp)
-// lists them from here, so the page cannot drift from what the program does (docs/cli.md).
+// handling (cli/interrupt.cpp) end with them, and the man page's EXIT STATUS (help/man_page.cpp,
+// given them by cli/app_doc.cpp) lists them from here, so the page cannot drift from what the
+// program does (docs/cli.md).
 #pragma once
 
 #include <csignal>

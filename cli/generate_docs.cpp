@@ -4,9 +4,10 @@
 #include <fstream>
 #include <iostream>
 
+#include "cli/app_doc.hpp"
 #include "cli/command.hpp"
-#include "cli/man_page.hpp"
-#include "cli/shell_completion.hpp"
+#include "help/man_page.hpp"
+#include "help/shell_completion.hpp"
 
 namespace vbim::cli {
 
@@ -39,9 +40,9 @@ int runGenerate(CLI::App& app, const std::string& kind, const std::string& file)
 }
 
 std::string generateDocs(CLI::App& app, const std::string& kind) {
-  if (kind == "man") return manPage(app);
-  if (kind == "bash") return bashCompletion(app);
-  if (kind == "zsh") return zshCompletion(app);
+  if (kind == "man") return help::manPage(programDoc(app));
+  if (kind == "bash") return help::bashCompletion(programDoc(app));
+  if (kind == "zsh") return help::zshCompletion(programDoc(app));
   throw Exit(2, "--generate '" + kind + "': expected man, bash or zsh");
 }
 

@@ -12,7 +12,11 @@ function(vbim_test name)
   # Listing the tests starts the program (and its libraries: OpenImageIO under ASan takes seconds);
   # CMake's default 5 s discovery time-out failed a sanitizer suite on a loaded machine.
   gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 120
-                       WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} PROPERTIES ENVIRONMENT "VBIM_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+                       WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} PROPERTIES ENVIRONMENT "VBIM_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+                       # Test files under this build tree's test-scratch/ (made by the fixture in tests/CMakeLists.txt,
+                       # tests/support/scratch.hpp), not /tmp, where another tree's tests or a clean-up could meet them.
+                       ENVIRONMENT_MODIFICATION "TMPDIR=set:${PROJECT_BINARY_DIR}/test-scratch"
+                       FIXTURES_REQUIRED vbim_test_scratch)
 endfunction()
 
 # vbim_bench(<name> SOURCES <files...> LIBS <targets...>)

@@ -7,58 +7,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "config/params_toml.hpp"
 #include "imageio/error.hpp"
 #include "imageio/image_reader.hpp"
 #include "imageio/png_writer.hpp"
 #include "imageio/rgba8.hpp"
-#include "lighting/authoring/technique_a_record.hpp"
-#include "lighting/error.hpp"
+#include "lighting/authoring/technique_a_stream.hpp"
 #include "render/contact_sheet.hpp"
 #include "render/error.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_lighting.hpp"
 #include "render/video_writer.hpp"
-#include "runtime/param_table.hpp"
 #include "streams/authoring/error.hpp"
 
 namespace vbim::render {
-
-RunRenderRequest::RunRenderRequest() {
-  terrain.cellSize = 20.0;
-  terrain.procedural.cellSize = 20.0;
-  terrain.procedural.size = 256;
-  day.frames = 24;
-  day.startHour = 0;
-  day.endHour = 24;
-  day.skyWidth = 128;
-}
-
-void loadLightingConfig(const std::string& path, lighting::DayCycleParams& day) {
-  ParamTable table;
-  lighting::describeParams(table, day);
-  try {
-    config::applyTomlFile(table, path);
-  } catch (const ConfigError& e) {
-    throw RenderError(e.what());
-  }
-}
-
-void applyAuthoring(const std::string& text, const std::string& origin, RunRenderRequest& req) {
-  lighting::AuthoringRecord r;
-  try {
-    r = lighting::parseAuthoringRecord(text, origin);
-  } catch (const lighting::LightingError& e) {
-    throw RenderError(e.what());
-  }
-  req.terrain = r.terrain;
-  req.proceduralSizeFromLightmap = false;
-  req.day = r.variants.front().params;
-  req.variantDays.clear();
-  for (const lighting::WeatherVariant& v : r.variants) req.variantDays.push_back(v.params);
-  req.loopFrame = static_cast<int>(r.loopFrame);
-  req.settingsFrom = origin;
-}
 
 namespace {
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 #include <filesystem>
 #include <string>
@@ -17,9 +18,7 @@ Result run(const std::string& args) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vbim_cli_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
+  return vbim::testing::scratchPath("cli_test_" + name);
 }
 
 std::string readAll(const fs::path& p) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -24,12 +25,7 @@ const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day
 
 class ConfigCheckCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vbim_config_check_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = vbim::testing::testScratchDir("config_check_cli"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   std::string config(const std::string& text) const {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 #include "tests/support/soak.hpp"
 
 namespace {
@@ -25,9 +26,7 @@ Result run(const std::string& args) {
 const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
 
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vbim_conventions_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
+  return vbim::testing::scratchPath("conventions_" + name);
 }
 
 std::string slurp(const fs::path& p) {

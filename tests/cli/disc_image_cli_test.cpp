@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -24,9 +25,7 @@ const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day
 class DiscImageCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vbim_disc_image_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    dir_ = vbim::testing::testScratchDir("disc_image_cli");
     fs::create_directories(dir_ / "root" / "DATA");
     // A level file before the stream, so the stream lies well away from where a bare one would.
     std::ofstream(dir_ / "root" / "DATA" / "AAA.BIN") << std::string(3 << 20, '\0');

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -35,10 +36,7 @@ Result runToFile(const std::string& args, const fs::path& out) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vbim_habits_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return vbim::testing::scratchDir("habits_" + name);
 }
 
 std::string slurp(const fs::path& p) {

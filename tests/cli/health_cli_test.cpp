@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -20,12 +21,7 @@ const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day
 
 class HealthCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vbim_health_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = vbim::testing::testScratchDir("health_cli"); }
   void TearDown() override { fs::remove_all(dir_); }
   std::string file(const std::string& name, const std::string& text) const {
     EXPECT_TRUE(writeTextFile(dir_ / name, text));

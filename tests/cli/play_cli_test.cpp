@@ -16,6 +16,7 @@
 #include "player/frame_hash.hpp"
 #include "runtime/image.hpp"
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
@@ -25,9 +26,7 @@ using vbim::testing::runCommand;
 const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim";
 
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vbim_play_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
+  return vbim::testing::scratchPath("play_cli_" + name);
 }
 
 vbim::testing::CommandResult play(const std::string& args) {

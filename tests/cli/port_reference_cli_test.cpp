@@ -12,26 +12,21 @@
 #include <vector>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;
-};
+using Result = vbim::testing::CommandResult;
 
+// From the source tree: the tests name the samples by their paths in it.
 Result run(const std::string& args) {
-  const vbim::testing::CommandResult r =
-      vbim::testing::runCommand("cd " VBIM_SOURCE_DIR " && " + std::string(VBIM_BINARY) + " " + args);
-  return {r.status, r.output};
+  return vbim::testing::runProgram(VBIM_BINARY, args, VBIM_SOURCE_DIR);
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vbim_port_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
+  return vbim::testing::scratchPath("port_test_" + name);
 }
 
 std::string readAll(const fs::path& p) {
@@ -44,13 +39,13 @@ const char* const kVectorFiles[] = {"frame_hash.txt", "blend.txt", "cdstread.txt
 TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
   const fs::path out = scratch("vectors");
   const Result r = run("vectors --out " + out.string());
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   for (const char* f : kVectorFiles) {
     EXPECT_EQ(readAll(out / f), readAll(fs::path(VBIM_SOURCE_DIR) / "tests/vectors" / f))
         << f << " differs: regenerate with `vbim vectors --out tests/vectors --force` if the change is intended";
   }
   const Result check = run("vectors --check tests/vectors");
-  EXPECT_EQ(check.code, 0) << check.output;
+  EXPECT_EQ(check.status, 0) << check.output;
   fs::remove_all(out);
 }
 
@@ -65,9 +60,9 @@ TEST(PortReference, VectorsOfAGopStreamCoverNonIntraBlocks) {
       run("author --synthetic clear,overcast --synthetic-frames 8 --synthetic-size 64x64 --synthetic-sky-size 32x16 "
           "--q 2 --gop 4 --b-frames 1 --out " +
           stream);
-  ASSERT_EQ(a.code, 0) << a.output;
+  ASSERT_EQ(a.status, 0) << a.output;
   const Result r = run("vectors --stream " + stream + " --out " + (dir / "v").string());
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   const std::string vlc = readAll(dir / "v/vlc.txt");
   const std::string idct = readAll(dir / "v/idct.txt");
   // The macroblock lines of P and B pictures: vlc/gop/lightmap/frame=F/mb=M VALUE,macroblock_type=T,...
@@ -87,7 +82,7 @@ TEST(PortReference, VectorsOfAGopStreamCoverNonIntraBlocks) {
   EXPECT_NE(idct.find(block + "/result "), std::string::npos);
   EXPECT_EQ(idct.find(block + "/pixels "), std::string::npos);
   const Result check = run("vectors --stream " + stream + " --check " + (dir / "v").string());
-  EXPECT_EQ(check.code, 0) << check.output;
+  EXPECT_EQ(check.status, 0) << check.output;
   // A port whose non-intra run/level differs fails vlc.txt at that entry.
   std::string changed = vlc;
   const std::size_t rl = changed.find(key + "/block=");
@@ -96,7 +91,7 @@ TEST(PortReference, VectorsOfAGopStreamCoverNonIntraBlocks) {
   changed.insert(value, "0:7 ");
   std::ofstream(dir / "v/vlc.txt", std::ios::binary | std::ios::trunc) << changed;
   const Result fail = run("vectors --stream " + stream + " --check " + (dir / "v").string() + " --only vlc");
-  EXPECT_EQ(fail.code, 1) << fail.output;
+  EXPECT_EQ(fail.status, 1) << fail.output;
   EXPECT_NE(fail.output.find(key + "/block="), std::string::npos) << fail.output;
   fs::remove_all(dir);
 }
@@ -153,14 +148,14 @@ TEST(PortReference, CheckNamesTheFirstDifference) {
   const std::string found = ipu.substr(at + key.size(), 16);
   std::ofstream(dir / "ipu.txt", std::ios::binary) << ipu;
   const Result r = run("vectors --check " + dir.string());
-  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("ipu.txt: entry 'ipu/day_clear/lightmap/frame=0/rgb32/raster': expected '" + expected +
                           "', found '" + found + "'"),
             std::string::npos)
       << r.output;
   fs::remove(dir / "blend.txt");
   const Result missing = run("vectors --check " + dir.string());
-  EXPECT_EQ(missing.code, 1);  // ipu.txt still differs
+  EXPECT_EQ(missing.status, 1);  // ipu.txt still differs
   EXPECT_NE(missing.output.find("blend.txt: no such file, absent"), std::string::npos) << missing.output;
   fs::remove_all(dir);
 }
@@ -174,7 +169,7 @@ TEST(PortReference, CheckScoresEachStageAndSkipsAbsentOnes) {
   fs::remove(dir / "draw.txt");
   fs::remove(dir / "cdstread.txt");
   const Result absent = run("vectors --check " + dir.string());
-  EXPECT_EQ(absent.code, 0) << absent.output;
+  EXPECT_EQ(absent.status, 0) << absent.output;
   EXPECT_NE(absent.output.find("the 6 vector files present"), std::string::npos) << absent.output;
   EXPECT_NE(absent.output.find("draw.txt: no such file, absent (52 entries not checked)"), std::string::npos)
       << absent.output;
@@ -201,7 +196,7 @@ TEST(PortReference, CheckScoresEachStageAndSkipsAbsentOnes) {
   csc[digit] = csc[digit] == 'f' ? 'e' : 'f';
   std::ofstream(dir / "csc.txt", std::ios::binary) << csc;
   const Result fail = run("vectors --check " + dir.string());
-  EXPECT_EQ(fail.code, 1) << fail.output;
+  EXPECT_EQ(fail.status, 1) << fail.output;
   EXPECT_NE(fail.output.find("idct.txt: 275 of 276 match, 1 differ (fail)"), std::string::npos) << fail.output;
   EXPECT_NE(fail.output.find("entry 'idct/ieee1180/-5..5/sign=+1/0/result': element 3 of 64: expected '" + element +
                              "', found '" + changed + "'"),
@@ -212,16 +207,16 @@ TEST(PortReference, CheckScoresEachStageAndSkipsAbsentOnes) {
 
   // --only by stage names: the failing stages left out, the check passes.
   const Result some = run("vectors --check " + dir.string() + " --only vlc,ipu --only blend");
-  EXPECT_EQ(some.code, 0) << some.output;
+  EXPECT_EQ(some.status, 0) << some.output;
   EXPECT_NE(some.output.find("vlc.txt: 130 of 130 match (pass)"), std::string::npos) << some.output;
   EXPECT_NE(some.output.find("idct.txt: no entry selected"), std::string::npos) << some.output;
-  EXPECT_EQ(run("vectors --check " + dir.string() + " --only idct").code, 1);
+  EXPECT_EQ(run("vectors --check " + dir.string() + " --only idct").status, 1);
   // A stage name and a key pattern together.
-  EXPECT_EQ(run("vectors --check " + dir.string() + " --only vlc --only 'idct/saturating/*'").code, 0);
+  EXPECT_EQ(run("vectors --check " + dir.string() + " --only vlc --only 'idct/saturating/*'").status, 0);
   // Nothing present: not a pass.
   for (const char* f : kVectorFiles) fs::remove(dir / f);
   const Result none = run("vectors --check " + dir.string());
-  EXPECT_EQ(none.code, 1) << none.output;
+  EXPECT_EQ(none.status, 1) << none.output;
   fs::remove_all(dir);
 }
 
@@ -240,19 +235,19 @@ TEST(PortReference, CheckScoresAPartialBringUpAndOnlySelectsWhatItHas) {
   ipu[at + key.size()] = ipu[at + key.size()] == '0' ? '1' : '0';
   std::ofstream(dir / "ipu.txt", std::ios::binary) << ipu;
   const Result all = run("vectors --check " + dir.string());
-  EXPECT_EQ(all.code, 1) << all.output;
+  EXPECT_EQ(all.status, 1) << all.output;
   EXPECT_NE(all.output.find("frame_hash.txt: 10 of 10 match"), std::string::npos) << all.output;
   EXPECT_NE(all.output.find("blend.txt: 707 of 707 match"), std::string::npos) << all.output;
   EXPECT_NE(all.output.find("cdstread.txt: no such file"), std::string::npos) << all.output;
   EXPECT_NE(all.output.find("1 differ"), std::string::npos) << all.output;
   EXPECT_NE(all.output.find("entry 'ipu/day_clear/lightmap/frame=1/rgb32_th/raster'"), std::string::npos) << all.output;
   const Result some = run("vectors --check " + dir.string() + " --only 'ipu/*/rgb32/*' --only 'blend/*'");
-  EXPECT_EQ(some.code, 0) << some.output;
+  EXPECT_EQ(some.status, 0) << some.output;
   EXPECT_NE(some.output.find("blend.txt: 686 of 686 match"), std::string::npos) << some.output;
   EXPECT_NE(some.output.find("cdstread.txt: no entry selected"), std::string::npos) << some.output;
   const Result wrong = run("vectors --check " + dir.string() + " --only 'ipu/*/rgb32_th/*'");
-  EXPECT_EQ(wrong.code, 1) << wrong.output;
-  EXPECT_EQ(run("vectors --check " + dir.string() + " --only 'no/such/*'").code, 2);
+  EXPECT_EQ(wrong.status, 1) << wrong.output;
+  EXPECT_EQ(run("vectors --check " + dir.string() + " --only 'no/such/*'").status, 2);
   fs::remove_all(dir);
 }
 
@@ -266,12 +261,12 @@ void expectReplayMatchesPlay(const std::string& stream, const std::string& extra
   }
   const Result p = run("play " + stream + " --faults " + (dir / "stall.toml").string() + " " + extra +
                        " --duration 30s --no-trace --out " + (dir / "play").string());
-  ASSERT_EQ(p.code, 0) << p.output;
+  ASSERT_EQ(p.status, 0) << p.output;
   EXPECT_NE(p.output.find("1 loop wrap(s)"), std::string::npos) << p.output;
   // No --duration: the end row of arrivals.csv gives the run's length.
   const Result r = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() + " --out " +
                        (dir / "replay").string());
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   const std::string played = readAll(dir / "play/hashes.txt");
   EXPECT_GT(played.size(), 1000u);
   EXPECT_EQ(readAll(dir / "replay/hashes.txt"), played) << stream;
@@ -293,10 +288,10 @@ TEST(PortReference, ReplayEndsWherePlaysArrivalsEnd) {
   fs::create_directories(dir);
   const std::string stream = "streams/samples/day_clear.vbim";
   const Result p = run("play " + stream + " --duration 5s --no-trace --out " + (dir / "play").string());
-  ASSERT_EQ(p.code, 0) << p.output;
+  ASSERT_EQ(p.status, 0) << p.output;
   const Result r = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() + " --out " +
                        (dir / "replay").string());
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
   const std::string played = readAll(dir / "play/hashes.txt");
   const std::string replayed = readAll(dir / "replay/hashes.txt");
   const auto rows = std::count(played.begin(), played.end(), '\n');
@@ -309,7 +304,7 @@ TEST(PortReference, ReplayEndsWherePlaysArrivalsEnd) {
   // --duration, when given, wins over the end row.
   const Result longer = run("replay " + stream + " --arrivals " + (dir / "play/arrivals.csv").string() +
                             " --duration 6s --out " + (dir / "longer").string());
-  ASSERT_EQ(longer.code, 0) << longer.output;
+  ASSERT_EQ(longer.status, 0) << longer.output;
   const std::string longer6s = readAll(dir / "longer/hashes.txt");
   EXPECT_EQ(std::count(longer6s.begin(), longer6s.end(), '\n'), 360);
   EXPECT_TRUE(longer6s.starts_with(played));
@@ -322,19 +317,19 @@ TEST(PortReference, ReplayNamesABadArrivalLine) {
   std::ofstream(dir / "a.csv") << "vsync,stream,frame\n3,lightmap:0,1\n4,moon:0,2\n";
   const Result r = run("replay streams/samples/day_clear.vbim --arrivals " + (dir / "a.csv").string() + " --out " +
                        (dir / "out").string());
-  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("a.csv:3: stream 'moon:0'"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
   // The end row: a number of vsyncs, no frame, and nothing after it.
   std::ofstream(dir / "b.csv") << "vsync,stream,frame\n3,lightmap:0,1\n300,end,7\n";
   const Result frame = run("replay streams/samples/day_clear.vbim --arrivals " + (dir / "b.csv").string() + " --out " +
                            (dir / "out").string());
-  EXPECT_EQ(frame.code, 2);
+  EXPECT_EQ(frame.status, 2);
   EXPECT_NE(frame.output.find("b.csv:3: end row '300,end,7' with a frame"), std::string::npos) << frame.output;
   std::ofstream(dir / "c.csv") << "vsync,stream,frame\n300,end,\n3,lightmap:0,1\n";
   const Result after = run("replay streams/samples/day_clear.vbim --arrivals " + (dir / "c.csv").string() + " --out " +
                            (dir / "out").string());
-  EXPECT_EQ(after.code, 2);
+  EXPECT_EQ(after.status, 2);
   EXPECT_NE(after.output.find("c.csv:3: '3,lightmap:0,1' after the end row"), std::string::npos) << after.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
   fs::remove_all(dir);

@@ -12,20 +12,17 @@
 #include <vector>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;
-};
+using Result = vbim::testing::CommandResult;
 
+// From the source tree: the tests name the samples by their paths in it.
 Result run(const std::string& args) {
-  const vbim::testing::CommandResult r =
-      vbim::testing::runCommand("cd " VBIM_SOURCE_DIR " && " + std::string(VBIM_BINARY) + " " + args);
-  return {r.status, r.output};
+  return vbim::testing::runProgram(VBIM_BINARY, args, VBIM_SOURCE_DIR);
 }
 
 const std::string kStream = "streams/samples/day_clear.vbim";
@@ -33,12 +30,9 @@ const std::string kStream = "streams/samples/day_clear.vbim";
 class Replay : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vbim_replay_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = vbim::testing::testScratchDir("replay_test");
     const Result p = run("play " + kStream + " --duration 20s --no-trace --out " + (dir_ / "play").string());
-    ASSERT_EQ(p.code, 0) << p.output;
+    ASSERT_EQ(p.status, 0) << p.output;
   }
   void TearDown() override { fs::remove_all(dir_); }
   // play's arrivals.csv with the vsync of frames `from`..`to` (both streams) moved by `by`.
@@ -72,7 +66,7 @@ TEST_F(Replay, FramesDelayedBy250VsyncsAreShownLateAndTheFirstDifferenceIsNamed)
   const fs::path log = delayed(5, 8, 250);
   const Result r = run("replay " + kStream + " --arrivals " + log.string() + " --compare " + (dir_ / "play").string() +
                        " --out " + (dir_ / "replay").string());
-  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(r.status, 1) << r.output;
   // Frame 5 of day_clear (1 frame a game second, frame 0 due at 0.5 s) is due at vsync 330: there
   // play starts blending toward it, the delayed replay still shows frame 4.
   EXPECT_NE(r.output.find("first difference at vsync 330 (5.505500 s)"), std::string::npos) << r.output;
@@ -115,7 +109,7 @@ TEST_F(Replay, CompareAcceptsARunDirectoryOrAHashesFileAndExitsZeroWhenEqual) {
   const std::string log = (dir_ / "play/arrivals.csv").string();
   const Result dir = run("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "play").string() +
                          " --out " + (dir_ / "a").string());
-  EXPECT_EQ(dir.code, 0) << dir.output;
+  EXPECT_EQ(dir.status, 0) << dir.output;
   EXPECT_NE(dir.output.find("every hash equals"), std::string::npos) << dir.output;
   EXPECT_NE(dir.output.find("0 arrival(s) late or never shown"), std::string::npos) << dir.output;
   // A port's hashes.txt: its own times are not compared; one wrong hash is named with its line.
@@ -131,7 +125,7 @@ TEST_F(Replay, CompareAcceptsARunDirectoryOrAHashesFileAndExitsZeroWhenEqual) {
   }
   const Result port = run("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "port.txt").string() +
                           " --out " + (dir_ / "b").string());
-  EXPECT_EQ(port.code, 1) << port.output;
+  EXPECT_EQ(port.status, 1) << port.output;
   EXPECT_NE(port.output.find("first difference at vsync 700"), std::string::npos) << port.output;
   EXPECT_NE(port.output.find("port.txt:701 "), std::string::npos) << port.output;
   EXPECT_NE(port.output.find("lightmap: frame 11 due, target frame 11"), std::string::npos) << port.output;
@@ -139,7 +133,7 @@ TEST_F(Replay, CompareAcceptsARunDirectoryOrAHashesFileAndExitsZeroWhenEqual) {
   std::ofstream(dir_ / "bad.txt") << "0 0.0 0123456789abcdef\n2 0.1 0123456789abcdef\n";
   const Result bad = run("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "bad.txt").string() +
                          " --out " + (dir_ / "c").string());
-  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("bad.txt:2: vsync '2' where vsync 1 belongs"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir_ / "c"));
 }
@@ -152,7 +146,7 @@ TEST_F(Replay, MalformedLogsAreRefusedOrWarnedWithTheirLine) {
   std::ofstream(dir_ / "twice.csv") << text;
   const Result twice =
       run("replay " + kStream + " --arrivals " + (dir_ / "twice.csv").string() + " --out " + (dir_ / "t").string());
-  EXPECT_EQ(twice.code, 2) << twice.output;
+  EXPECT_EQ(twice.status, 2) << twice.output;
   EXPECT_NE(twice.output.find("twice.csv:" + std::to_string(a.size()) + ": " + a[5].substr(a[5].find(',') + 1, 10)),
             std::string::npos)
       << twice.output;
@@ -166,7 +160,7 @@ TEST_F(Replay, MalformedLogsAreRefusedOrWarnedWithTheirLine) {
   std::ofstream(dir_ / "gap.csv") << text;
   const Result gap =
       run("replay " + kStream + " --arrivals " + (dir_ / "gap.csv").string() + " --out " + (dir_ / "g").string());
-  EXPECT_EQ(gap.code, 0) << gap.output;
+  EXPECT_EQ(gap.status, 0) << gap.output;
   EXPECT_NE(gap.output.find("warning: "), std::string::npos) << gap.output;
   EXPECT_NE(gap.output.find("lightmap frame 5 never arrives (the log goes on at frame 6)"), std::string::npos)
       << gap.output;

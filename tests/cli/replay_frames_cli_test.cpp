@@ -11,45 +11,32 @@
 #include <string>
 
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;
-};
+using Result = vbim::testing::CommandResult;
 
+// From the source tree: the tests name the samples by their paths in it.
 Result run(const std::string& args) {
-  const vbim::testing::CommandResult r =
-      vbim::testing::runCommand("cd " VBIM_SOURCE_DIR " && " + std::string(VBIM_BINARY) + " " + args);
-  return {r.status, r.output};
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(f), {}};
+  return vbim::testing::runProgram(VBIM_BINARY, args, VBIM_SOURCE_DIR);
 }
 
 class ReplayFrames : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vbim_replay_frames_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = vbim::testing::testScratchDir("replay_frames_test"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Plays `stream` with `args`, and decodes both its streams to DIR/frames as a port would dump them.
   void playAndDecode(const std::string& stream, const std::string& args) {
     const Result p = run("play " + stream + " " + args + " --no-trace --out " + (dir_ / "play").string());
-    ASSERT_EQ(p.code, 0) << p.output;
+    ASSERT_EQ(p.status, 0) << p.output;
     for (const auto& [id, name] : {std::pair{"0xE0", "lightmap"}, std::pair{"0xE1", "sky"}}) {
       const Result d =
           run("decode " + stream + " --format rgba --stream-id " + id + " --out " + (dir_ / "frames" / name).string());
-      ASSERT_EQ(d.code, 0) << d.output;
+      ASSERT_EQ(d.status, 0) << d.output;
     }
   }
   Result replay(const std::string& stream, const std::string& out, const std::string& extra) {
@@ -58,16 +45,16 @@ class ReplayFrames : public ::testing::Test {
   }
   void expectSameHashesWithAndWithoutFrames(const std::string& stream) {
     const Result own = replay(stream, "own", "");
-    ASSERT_EQ(own.code, 0) << own.output;
+    ASSERT_EQ(own.status, 0) << own.output;
     const Result port =
         replay(stream, "port", "--frames " + (dir_ / "frames").string() + " --compare " + (dir_ / "play").string());
-    ASSERT_EQ(port.code, 0) << port.output;
+    ASSERT_EQ(port.status, 0) << port.output;
     EXPECT_NE(port.output.find("with the frames of " + (dir_ / "frames").string()), std::string::npos) << port.output;
     EXPECT_NE(port.output.find("every hash equals"), std::string::npos) << port.output;
-    const std::string hashes = slurp(dir_ / "port/hashes.txt");
+    const std::string hashes = vbim::testing::readFileBytes(dir_ / "port/hashes.txt");
     EXPECT_FALSE(hashes.empty());
-    EXPECT_EQ(hashes, slurp(dir_ / "own/hashes.txt"));
-    EXPECT_EQ(hashes, slurp(dir_ / "play/hashes.txt"));
+    EXPECT_EQ(hashes, vbim::testing::readFileBytes(dir_ / "own/hashes.txt"));
+    EXPECT_EQ(hashes, vbim::testing::readFileBytes(dir_ / "play/hashes.txt"));
   }
   fs::path dir_;
 };
@@ -81,7 +68,7 @@ TEST_F(ReplayFrames, FramesDecodedByVbimReproduceTheHashesAcrossALoopWrap) {
 // A branch to the second variant: its pictures are numbered after the first variant's.
 TEST_F(ReplayFrames, FramesDecodedByVbimReproduceTheHashesAcrossABranch) {
   playAndDecode("streams/samples/day_weather.vbim", "--duration 20s --branch 8s=1");
-  const std::string arrivals = slurp(dir_ / "play/arrivals.csv");
+  const std::string arrivals = vbim::testing::readFileBytes(dir_ / "play/arrivals.csv");
   ASSERT_NE(arrivals.find("lightmap:1,"), std::string::npos) << arrivals;
   expectSameHashesWithAndWithoutFrames("streams/samples/day_weather.vbim");
 }
@@ -94,7 +81,7 @@ TEST_F(ReplayFrames, FramesDecodedByVbimReproduceTheHashesOfAGopStream) {
       run("author --synthetic clear,overcast --synthetic-frames 16 --synthetic-size 128x128 --synthetic-sky-size 64x32 "
           "--gop 6 --b-frames 2 --loop 4 --out " +
           stream);
-  ASSERT_EQ(a.code, 0) << a.output;
+  ASSERT_EQ(a.status, 0) << a.output;
   playAndDecode(stream, "--duration 40s --branch 9s=1");
   expectSameHashesWithAndWithoutFrames(stream);
 }
@@ -111,7 +98,7 @@ TEST_F(ReplayFrames, AChangedFrameGivesTheFirstDifferingVsync) {
   }
   const Result r = replay("streams/samples/day_clear.vbim", "changed",
                           "--frames " + (dir_ / "frames").string() + " --compare " + (dir_ / "play").string());
-  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("first difference at vsync 210 (3.503500 s)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("lightmap: frame 3 due, target frame 3"), std::string::npos) << r.output;
 }
@@ -121,7 +108,7 @@ TEST_F(ReplayFrames, AMissingOrShortFrameIsNamedWithWhatWasExpected) {
   const fs::path sky2 = dir_ / "frames/sky/frame_00002.rgba";
   fs::remove(sky2);
   Result r = replay("streams/samples/day_clear.vbim", "missing", "--frames " + (dir_ / "frames").string());
-  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find(sky2.string() + ": missing: the sky picture 2 (variant 0, timeline frame 2)"),
             std::string::npos)
       << r.output;
@@ -130,7 +117,7 @@ TEST_F(ReplayFrames, AMissingOrShortFrameIsNamedWithWhatWasExpected) {
   const fs::path lm0 = dir_ / "frames/lightmap/frame_00000.rgba";
   fs::resize_file(lm0, 262143);
   r = replay("streams/samples/day_clear.vbim", "short", "--frames " + (dir_ / "frames").string());
-  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find(lm0.string() + ": 262143 bytes: the lightmap picture 0"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("expected 256x256 RGB32, 262144 bytes"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "short"));

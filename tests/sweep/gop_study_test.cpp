@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -26,15 +27,8 @@ Result run(const std::string& args) {
   return vbim::testing::runProgram(VBIM_CLI, args);
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 fs::path scratch(const std::string& name) {
-  return fs::path(::testing::TempDir()) / ("vbim_gop_study_" + std::to_string(getpid()) + "_" + name);
+  return vbim::testing::scratchPath("gop_study_" + name);
 }
 
 // CSV fields, with "quoted, fields" kept whole.
@@ -123,7 +117,7 @@ TEST_F(GopStudy, EqualQualityRowsNeedLessBitrateThanIntraOnly) {
     EXPECT_TRUE(fs::exists(two / f)) << f;
 
   std::vector<std::string> header;
-  const auto table = rows(slurp(two / "equal_quality.csv"), &header);
+  const auto table = rows(vbim::testing::readFileBytes(two / "equal_quality.csv"), &header);
   const std::vector<std::string> expected{"group",
                                           "structure",
                                           "gop",
@@ -163,13 +157,13 @@ TEST_F(GopStudy, EqualQualityRowsNeedLessBitrateThanIntraOnly) {
     EXPECT_FALSE(row.at("longest_stall_s").empty());
   }
   EXPECT_EQ(table[2].at("b_frames"), "2");
-  const std::string md = slurp(two / "equal_quality.md");
+  const std::string md = vbim::testing::readFileBytes(two / "equal_quality.md");
   EXPECT_NE(md.find("| GOP structure | stream | q | PSNR mean (dB) |"), std::string::npos) << md;
   EXPECT_NE(md.find("| GOP 12, 2 B |"), std::string::npos) << md;
 
   // Every case carries its coding and busy-share columns.
   std::vector<std::string> caseHeader;
-  const auto cases = rows(slurp(two / "cases.csv"), &caseHeader);
+  const auto cases = rows(vbim::testing::readFileBytes(two / "cases.csv"), &caseHeader);
   ASSERT_EQ(cases.size(), 1u + 3u * 3u);  // the source as is, then 3 quantisers x 3 GOP structures
   for (const char* c : {"qscale", "gop", "b_frames", "bitrate_bps", "sectors_per_frame", "psnr_mean_db", "psnr_min_db",
                         "ipu_busy_share", "ee_busy_share"})
@@ -181,7 +175,8 @@ TEST_F(GopStudy, EqualQualityRowsNeedLessBitrateThanIntraOnly) {
   const Result r1 = run("profile --plan " + (*dir_ / "study.toml").string() + " --jobs 1 --out " + one.string());
   ASSERT_EQ(r1.status, 0) << r1.output;
   for (const char* f : {"cases.csv", "cases.jsonl", "equal_quality.csv", "equal_quality.md"})
-    EXPECT_TRUE(slurp(one / f) == slurp(two / f)) << f << " differs between --jobs 1 and 2";
+    EXPECT_TRUE(vbim::testing::readFileBytes(one / f) == vbim::testing::readFileBytes(two / f))
+        << f << " differs between --jobs 1 and 2";
 }
 
 TEST_F(GopStudy, BadGopsAndEqualQualityNameFileLineAndKey) {

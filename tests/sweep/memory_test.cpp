@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "streams/authoring/bench_stream.hpp"
+#include "tests/support/scratch.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define VBIM_ASAN 1
@@ -33,9 +34,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch() {
-  const fs::path d = fs::path(::testing::TempDir()) / ("vbim_memory_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
+  return vbim::testing::scratchDir("memory");
 }
 
 void writeFile(const fs::path& p, const std::vector<std::uint8_t>& bytes) {

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -24,15 +25,8 @@ Result run(const std::string& args) {
   return vbim::testing::runProgram(VBIM_CLI, args);
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 fs::path scratch(const std::string& name) {
-  return fs::path(::testing::TempDir()) / ("vbim_profile_" + std::to_string(getpid()) + "_" + name);
+  return vbim::testing::scratchPath("profile_" + name);
 }
 
 const std::string kSmall = " --ring 4:8,4:64 --duration 8s --max-stall 12s --resolution 250ms --settle 4s";
@@ -62,10 +56,12 @@ TEST(ProfileCli, WritesTablesAndPlotsDeterministically) {
         "plots/lag_pop_day_clear_none_hard-skip.png", "plots/lag_pop_day_clear_none_hard-skip.svg"}) {
     ASSERT_TRUE(fs::exists(a / f)) << f << "\n" << ra.output;
     EXPECT_GT(fs::file_size(a / f), 100u) << f;
-    EXPECT_EQ(slurp(a / f), slurp(b / f)) << f << " differs between two identical runs";
+    EXPECT_EQ(vbim::testing::readFileBytes(a / f), vbim::testing::readFileBytes(b / f))
+        << f << " differs between two identical runs";
   }
   // 2 rings x 2 policies x 1 fault plan; 2 rings x 2 policies x 2 criteria.
-  const std::string sweep = slurp(a / "sweep.csv"), stall = slurp(a / "stall.csv");
+  const std::string sweep = vbim::testing::readFileBytes(a / "sweep.csv"),
+                    stall = vbim::testing::readFileBytes(a / "stall.csv");
   EXPECT_EQ(std::count(sweep.begin(), sweep.end(), '\n'), 1 + 4);
   EXPECT_EQ(std::count(stall.begin(), stall.end(), '\n'), 1 + 8);
   EXPECT_NE(ra.output.find("Open:"), std::string::npos);

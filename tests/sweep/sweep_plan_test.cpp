@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 #include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,22 +31,15 @@ Result run(const std::string& args) {
   return vbim::testing::runProgram(VBIM_CLI, args);
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 fs::path scratch(const std::string& name) {
-  return fs::path(::testing::TempDir()) / ("vbim_sweep_" + std::to_string(getpid()) + "_" + name);
+  return vbim::testing::scratchPath("sweep_" + name);
 }
 
 // Every file under `dir`, relative, with its bytes.
 std::map<std::string, std::string> tree(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = slurp(e.path());
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = vbim::testing::readFileBytes(e.path());
   }
   return files;
 }
@@ -77,9 +71,9 @@ TEST(SweepPlan, TableIsTheSameBytesAtAnyJobCount) {
        {"cases.csv", "cases.jsonl", "summary.csv", "summary.txt", "plots/probability_1.png", "plots/probability_1.svg"})
     EXPECT_TRUE(fs::exists(one / f)) << f;
   expectSameTree(one, two);
-  const std::string csv = slurp(one / "cases.csv");
+  const std::string csv = vbim::testing::readFileBytes(one / "cases.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 64);
-  const std::string jsonl = slurp(one / "cases.jsonl");
+  const std::string jsonl = vbim::testing::readFileBytes(one / "cases.jsonl");
   EXPECT_EQ(std::count(jsonl.begin(), jsonl.end(), '\n'), 64);
   // The draws differ (seeded per template and draw), and some stalls make a late frame, some not.
   std::istringstream in(csv);
@@ -132,8 +126,8 @@ TEST(SweepPlan, ShardsMergeIntoExactlyTheLocalRun) {
   expectSameTree(local, merged);
   // Shards of another plan are refused.
   const fs::path other = scratch("other.toml");
-  std::ofstream(other) << slurp(kPlan) << "\n# edited\n";
-  std::string text = slurp(other);
+  std::ofstream(other) << vbim::testing::readFileBytes(kPlan) << "\n# edited\n";
+  std::string text = vbim::testing::readFileBytes(other);
   const std::string stream = "../../../streams/samples/day_clear.vbim";
   text.replace(text.find(stream), stream.size(), kSample);
   std::ofstream(other, std::ios::trunc) << text;
@@ -148,7 +142,7 @@ TEST(SweepPlan, SummaryIsTheWilsonIntervalOfTheTable) {
   const fs::path out = scratch("summary");
   ASSERT_EQ(run("profile --plan " + kPlan + " --out " + out.string()).status, 0);
   // Count late frames per (bufmax, policy) from the table.
-  std::istringstream cases(slurp(out / "cases.csv"));
+  std::istringstream cases(vbim::testing::readFileBytes(out / "cases.csv"));
   std::string line;
   std::getline(cases, line);
   const std::vector<std::string> h = fields(line);
@@ -162,7 +156,7 @@ TEST(SweepPlan, SummaryIsTheWilsonIntervalOfTheTable) {
     c.first += std::stoi(f[col("frames_late")]) > 0 ? 1 : 0;
     c.second += 1;
   }
-  std::istringstream summary(slurp(out / "summary.csv"));
+  std::istringstream summary(vbim::testing::readFileBytes(out / "summary.csv"));
   std::getline(summary, line);
   const std::vector<std::string> sh = fields(line);
   const auto scol = [&](const std::string& name) {
@@ -202,7 +196,7 @@ TEST(SweepPlan, StuckAndStarvedCasesAreMarkedAndCounted) {
   const Result r = run("profile --plan " + (dir / "plan.toml").string() + " --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("vbim profile: warning: 1 stuck and 1 starved of 3 cases"), std::string::npos) << r.output;
-  std::istringstream cases(slurp(dir / "out" / "cases.csv"));
+  std::istringstream cases(vbim::testing::readFileBytes(dir / "out" / "cases.csv"));
   std::string line;
   std::getline(cases, line);
   const std::vector<std::string> h = fields(line);
@@ -226,8 +220,8 @@ TEST(SweepPlan, EmitSlurmWritesAJobArray) {
   const Result r = run("profile --plan " + kPlan + " --emit-slurm " + out.string() +
                        " --shards 4 --account lab42 --cpus-per-task 2");
   ASSERT_EQ(r.status, 0) << r.output;
-  const std::string script = slurp(out / "sweep.sbatch");
-  EXPECT_EQ(slurp(out / "plan.toml"), slurp(kPlan));
+  const std::string script = vbim::testing::readFileBytes(out / "sweep.sbatch");
+  EXPECT_EQ(vbim::testing::readFileBytes(out / "plan.toml"), vbim::testing::readFileBytes(kPlan));
   for (const char* want : {"#SBATCH --array=1-4\n", "#SBATCH --cpus-per-task=2\n", "#SBATCH --time=", "#SBATCH --mem=",
                            "#SBATCH --account=lab42\n", "##SBATCH --partition=", "--shard \"$SLURM_ARRAY_TASK_ID/4\""})
     EXPECT_NE(script.find(want), std::string::npos) << want << "\n" << script;

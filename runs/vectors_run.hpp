@@ -1,0 +1,45 @@
+// `vbim vectors` as library calls: the known-answer vectors (player/known_answers.hpp) of stream
+// files, written into an output directory, or a port's captured files scored against them, every
+// selected entry of every file with the first differences and where in the value (docs/porting.md,
+// "Known-answer vectors"). Not model code (it reads and writes files); the simulated clock's cost
+// is none.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ipu/kernels.hpp"
+#include "player/known_answers.hpp"
+
+namespace vbim::runs {
+
+// The vectors of the stream files at `paths`, each named by its stem. A file that cannot be opened
+// is a vbim::Error "<label><path>: cannot open the stream file" (`label` is "--stream " when the
+// user named the files, "" for the defaults).
+std::vector<player::VectorFile> streamVectors(const std::vector<std::string>& paths, const std::string& label,
+                                              ipu::IdctKind idct);
+
+// Writes every file into `out` (complete or absent, runs/output_dir.hpp) and returns their lines.
+// Throws RunFailure (runs/error.hpp) when a file cannot be written.
+std::size_t writeVectors(const std::vector<player::VectorFile>& files, const std::string& out, bool force);
+
+// A port's directory scored against the vectors.
+struct VectorsCheck {
+  std::string report;       // a line per vector file, then up to three of its differences
+  std::size_t present = 0;  // vector files found in the directory (with a selected entry)
+  std::size_t checked = 0;  // entries selected in the files present
+  std::size_t matched = 0;  // ... equal in the port's files
+  bool passed = true;       // every present file passes
+  bool anySelected = true;  // when present == 0: false if `only` selects no entry of any file
+};
+
+// `only` (vbim vectors --only): a value of stage names (the files' names without .txt, alone or
+// comma-separated) selects whole files; any other value is a key pattern (player::scoreVectors).
+// Empty: every entry. A file the directory does not have is named absent, not failed: the port has
+// not reached that stage yet.
+VectorsCheck checkVectors(const std::vector<player::VectorFile>& files, const std::filesystem::path& dir,
+                          const std::vector<std::string>& only);
+
+}  // namespace vbim::runs

@@ -1,0 +1,109 @@
+// A port's vector files scored against the vectors (runs/vectors_run.hpp), on small hand-made
+// files: what each kind of difference counts as, what --only selects, and the written directory.
+#include "runs/vectors_run.hpp"
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "runtime/error.hpp"
+#include "tests/support/run_command.hpp"
+#include "tests/support/scratch.hpp"
+
+namespace vbim::runs {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<player::VectorFile> kVectors{
+    {"vlc.txt", "# header\nvlc/a/mb=0 q=1\nvlc/a/mb=1 q=2\nvlc/b/mb=0 q=3\n"},
+    {"csc.txt", "# header\ncsc/a/rgb32 0a,0b,0c,0d\n"},
+};
+
+fs::path portWith(const std::string& test, const std::string& vlc, const std::string& csc) {
+  const fs::path d = vbim::testing::scratchDir("vectors_run_" + test);
+  if (!vlc.empty()) std::ofstream(d / "vlc.txt") << vlc;
+  if (!csc.empty()) std::ofstream(d / "csc.txt") << csc;
+  return d;
+}
+
+TEST(CheckVectors, EqualFilesPass) {
+  const fs::path d = portWith("equal", kVectors[0].text, kVectors[1].text);
+  const VectorsCheck c = checkVectors(kVectors, d, {});
+  EXPECT_TRUE(c.passed);
+  EXPECT_EQ(c.present, 2u);
+  EXPECT_EQ(c.checked, 4u);
+  EXPECT_EQ(c.matched, 4u);
+  EXPECT_EQ(c.report, "  vlc.txt: 3 of 3 match (pass)\n  csc.txt: 1 of 1 match (pass)\n");
+  fs::remove_all(d);
+}
+
+TEST(CheckVectors, DifferencesAreCountedAndTheFirstNamedWithWhereInTheValue) {
+  const fs::path d =
+      portWith("differ", "vlc/a/mb=0 q=9\nvlc/b/mb=0 q=3\nvlc/c/mb=0 q=1\n", "csc/a/rgb32 0a,0b,ff,0d\n");
+  const VectorsCheck c = checkVectors(kVectors, d, {});
+  EXPECT_FALSE(c.passed);
+  EXPECT_EQ(c.present, 2u);
+  EXPECT_EQ(c.matched, 1u);
+  EXPECT_NE(c.report.find("  vlc.txt: 1 of 3 match, 1 differ, 1 missing, 1 not in the vectors (fail)\n"),
+            std::string::npos)
+      << c.report;
+  EXPECT_NE(c.report.find("    " + (d / "vlc.txt").string() + ": entry 'vlc/a/mb=0': expected 'q=1', found 'q=9'\n"),
+            std::string::npos)
+      << c.report;
+  EXPECT_NE(c.report.find("element 2 of 4: expected '0c', found 'ff'"), std::string::npos) << c.report;
+  fs::remove_all(d);
+}
+
+TEST(CheckVectors, AnAbsentFileIsNamedNotFailed) {
+  const fs::path d = portWith("absent", kVectors[0].text, "");
+  const VectorsCheck c = checkVectors(kVectors, d, {});
+  EXPECT_TRUE(c.passed);
+  EXPECT_EQ(c.present, 1u);
+  EXPECT_NE(c.report.find("  csc.txt: no such file, absent (1 entries not checked)\n"), std::string::npos) << c.report;
+  fs::remove_all(d);
+}
+
+TEST(CheckVectors, OnlySelectsStagesOrKeys) {
+  const fs::path d = portWith("only", "vlc/a/mb=0 q=1\nvlc/a/mb=1 q=2\nvlc/b/mb=0 q=7\n", kVectors[1].text);
+  // A stage name selects its whole file: the differing vlc/b entry is outside csc.
+  const VectorsCheck stage = checkVectors(kVectors, d, {"csc"});
+  EXPECT_TRUE(stage.passed);
+  EXPECT_EQ(stage.checked, 1u);
+  EXPECT_NE(stage.report.find("  vlc.txt: no entry selected\n"), std::string::npos) << stage.report;
+  // A key pattern selects entries in any file.
+  const VectorsCheck keys = checkVectors(kVectors, d, {"vlc/a/*"});
+  EXPECT_TRUE(keys.passed);
+  EXPECT_EQ(keys.checked, 2u);
+  EXPECT_FALSE(checkVectors(kVectors, d, {"vlc/b/*"}).passed);
+  // Stages alone or comma-separated; something that is no stage is a pattern.
+  EXPECT_EQ(checkVectors(kVectors, d, {"vlc,csc"}).checked, 4u);
+  const VectorsCheck none = checkVectors(kVectors, d, {"nothing/*"});
+  EXPECT_EQ(none.present, 0u);
+  EXPECT_FALSE(none.anySelected);
+  fs::remove_all(d);
+}
+
+TEST(WriteVectors, WritesEveryFileAndCountsItsLines) {
+  const fs::path out = vbim::testing::scratchPath("vectors_run_write");
+  EXPECT_EQ(writeVectors(kVectors, out.string(), false), 6u);
+  EXPECT_EQ(vbim::testing::readFileBytes(out / "vlc.txt"), kVectors[0].text);
+  EXPECT_EQ(vbim::testing::readFileBytes(out / "csc.txt"), kVectors[1].text);
+  // An existing output is refused without force.
+  EXPECT_THROW(writeVectors(kVectors, out.string(), false), Error);
+  fs::remove_all(out);
+}
+
+TEST(StreamVectors, AStreamThatCannotBeOpenedIsNamedWithItsOption) {
+  try {
+    streamVectors({"/nonexistent/day.vbim"}, "--stream ", ipu::kDefaultIdct);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--stream /nonexistent/day.vbim: cannot open the stream file");
+  }
+}
+
+}  // namespace
+}  // namespace vbim::runs
