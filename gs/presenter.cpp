@@ -110,8 +110,11 @@ bool Presenter::sameSourceAsTwin() {
   if (twin_->targetGeneration_ != sameSeenTwin_ || targetGeneration_ != sameSeenOwn_) {
     sameSeenTwin_ = twin_->targetGeneration_;
     sameSeenOwn_ = targetGeneration_;
+    // Other frames are taken to differ without looking (a frame repeated under another number is
+    // only not shared): half the comparisons, since the two take each new frame one after the other.
     sameSeen_ =
-        t.image == target_.image || (t.image->sameSize(*target_.image) && t.image->pixels == target_.image->pixels);
+        t.seq == target_.seq && t.variant == target_.variant &&
+        (t.image == target_.image || (t.image->sameSize(*target_.image) && t.image->pixels == target_.image->pixels));
   }
   return sameSeen_;
 }
