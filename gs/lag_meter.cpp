@@ -16,10 +16,12 @@ LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b, const BlendKer
   return s;
 }
 
-TiledDifference::TiledDifference(const Presenter& run, const Presenter& reference, CompareRectFn compare)
+TiledDifference::TiledDifference(const Presenter& run, const Presenter& reference, CompareRectFn compare,
+                                 TwinTiles* equal)
     : run_(run),
       ref_(reference),
       compare_(compare),
+      equal_(equal),
       tilesX_(run.blender().tilesX()),
       tilesY_(run.blender().tilesY()),
       tiles_(static_cast<std::size_t>(tilesX_) * tilesY_) {
@@ -27,6 +29,10 @@ TiledDifference::TiledDifference(const Presenter& run, const Presenter& referenc
     throw GsError("lag between lightmaps of different sizes: " + std::to_string(run.lightmap().width) + "x" +
                   std::to_string(run.lightmap().height) + " and " + std::to_string(reference.lightmap().width) + "x" +
                   std::to_string(reference.lightmap().height));
+  }
+  if (equal_ != nullptr && equal_->size() != tiles_.size()) {
+    throw GsError("lag: the equal-tile facts are for " + std::to_string(equal_->size()) +
+                  " tiles, the lightmaps have " + std::to_string(tiles_.size()));
   }
 }
 
@@ -43,9 +49,14 @@ ByteDifference TiledDifference::update() {
     for (int tx = 0; tx < tilesX_; ++tx) {
       const std::size_t i = static_cast<std::size_t>(ty) * tilesX_ + tx;
       if (first_ || runChanges[i] != runSeen_[i] || refChanges[i] != refSeen_[i]) {
-        const std::size_t left = static_cast<std::size_t>(tx) * kTileWidth * 4;  // bytes into the row
-        const std::size_t bytes = static_cast<std::size_t>(std::min(kTileWidth, a.width - tx * kTileWidth)) * 4;
-        tiles_[i] = compare_(a.row(y0) + left, stride, b.row(y0) + left, stride, bytes, rows);
+        if (equal_ != nullptr && equal_->equalAt(i, runChanges[i], refChanges[i])) {
+          tiles_[i] = ByteDifference{};  // the same bytes: no difference
+        } else {
+          const std::size_t left = static_cast<std::size_t>(tx) * kTileWidth * 4;  // bytes into the row
+          const std::size_t bytes = static_cast<std::size_t>(std::min(kTileWidth, a.width - tx * kTileWidth)) * 4;
+          tiles_[i] = compare_(a.row(y0) + left, stride, b.row(y0) + left, stride, bytes, rows);
+          if (equal_ != nullptr && tiles_[i].max == 0) equal_->setEqual(i, runChanges[i], refChanges[i]);
+        }
       }
       total.max = std::max(total.max, tiles_[i].max);
       total.sum += tiles_[i].sum;

@@ -9,6 +9,7 @@
 
 #include "gs/image_compare.hpp"
 #include "gs/presenter.hpp"
+#include "gs/twin_tiles.hpp"
 
 namespace vbim::gs {
 
@@ -29,8 +30,10 @@ LagSample compareImages(const Rgba8Image& a, const Rgba8Image& b, const BlendKer
 // vsync where neither lightmap changed, few once they converge.
 class TiledDifference {
  public:
-  // Throws GsError for lightmaps of different sizes.
-  TiledDifference(const Presenter& run, const Presenter& reference, CompareRectFn compare);
+  // Throws GsError for lightmaps of different sizes. With `equal` (the tiles known equal, kept with
+  // the reference's blender: TiledBlender::Twin), a moved tile known equal is not compared, and a
+  // compared tile found equal is added to it.
+  TiledDifference(const Presenter& run, const Presenter& reference, CompareRectFn compare, TwinTiles* equal = nullptr);
   // The difference of the two lightmaps as they are now.
   ByteDifference update();
 
@@ -38,6 +41,7 @@ class TiledDifference {
   const Presenter& run_;
   const Presenter& ref_;
   CompareRectFn compare_;
+  TwinTiles* equal_;
   int tilesX_;
   int tilesY_;
   std::vector<std::uint64_t> runSeen_;  // each blender's tileChanges() at the last update

@@ -89,6 +89,36 @@ BlendDraw Presenter::blendDraw(int y0, int y1) const {
   return blendDrawFor(vram_, params_, surface, lightmap_.width, lightmap_.height, y0, y1);
 }
 
+void Presenter::followTwin(const Presenter& twin, TwinTiles& equal, bool runSide) {
+  if (!twin.lightmap_.sameSize(lightmap_) || equal.size() != blender_.tileChanges().size()) {
+    throw GsError("a presenter can follow only a twin of its own size (" + std::to_string(lightmap_.width) + "x" +
+                  std::to_string(lightmap_.height) + "), not " + std::to_string(twin.lightmap_.width) + "x" +
+                  std::to_string(twin.lightmap_.height));
+  }
+  twin_ = &twin;
+  twinTiles_ = &equal;
+  twinRunSide_ = runSide;
+  blender_.recordBlends();
+}
+
+// The twin's last blend was from its current target, and that target holds the bytes of this
+// presenter's (compared once per pair of targets: a frame's image does not change once decoded).
+bool Presenter::sameSourceAsTwin() {
+  if (twin_ == nullptr || sixteen_ || !target_.image) return false;
+  const Target& t = twin_->target_;
+  if (!t.image || twin_->blender_.lastSourceId() != sourceIdOf(t)) return false;
+  if (twin_->targetGeneration_ != sameSeenTwin_ || targetGeneration_ != sameSeenOwn_) {
+    sameSeenTwin_ = twin_->targetGeneration_;
+    sameSeenOwn_ = targetGeneration_;
+    // Other frames are taken to differ without looking (a frame repeated under another number is
+    // only not shared): half the comparisons, since the two take each new frame one after the other.
+    sameSeen_ =
+        t.seq == target_.seq && t.variant == target_.variant &&
+        (t.image == target_.image || (t.image->sameSize(*target_.image) && t.image->pixels == target_.image->pixels));
+  }
+  return sameSeen_;
+}
+
 void Presenter::scheduleBranch(Tick at, int variant) {
   const auto& s = source_.streams();
   if (variant < 0 || variant >= static_cast<int>(s.size())) {
@@ -133,6 +163,7 @@ void Presenter::takeTarget(const ReadyFrame& f, Tick scheduleT0, VsyncRecord& re
     if (params_.loop && f.seq / stream_.frameCount > target_.seq / stream_.frameCount) ++counters_.loopWraps;
   }
   target_ = Target{f.seq, f.variant, f.readyAt > dueTime(stream_, scheduleT0, f.seq), f.image};
+  ++targetGeneration_;
   ++counters_.framesShown;
   if (target_.late) ++counters_.framesLate;
   rec.targetSeq = f.seq;
@@ -216,8 +247,7 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
     rec.gsWait = sched_.now() - asked;
   }
   const Tick start = sched_.now();
-  const std::uint64_t id =
-      (static_cast<std::uint64_t>(target_.seq) << 16) ^ static_cast<std::uint64_t>(target_.variant);
+  const std::uint64_t id = sourceIdOf(target_);
   Tracer* tr = opt_.tracer != nullptr && opt_.tracer->enabled() ? opt_.tracer : nullptr;
   // In strip mode a vsync is 2 x strips spans of about a microsecond (32 for a 512x512 lightmap:
   // 700 MB of trace.json per simulated hour). Unless the trace keeps full detail they share one
@@ -248,10 +278,16 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
     const Tick t = sched_.now();
     co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));
     if (tr != nullptr) tr->span(track_, t, sched_.now(), blendLabel);
-    const TiledBlender::Result r = blender_.blend(lightmap_, source, spec, id, y0, y1);
+    TiledBlender::Twin twin;
+    if (twin_ != nullptr) {
+      twin = TiledBlender::Twin{&twin_->blender_, &twin_->lightmap_, twinTiles_, twinRunSide_, sameSourceAsTwin()};
+    }
+    const TiledBlender::Result r =
+        blender_.blend(lightmap_, source, spec, id, y0, y1, twin_ != nullptr ? &twin : nullptr);
     rec.pop = std::max(rec.pop, r.pop);
     counters_.tilesBlended += r.tilesBlended;
     counters_.tilesSkipped += r.tilesSkipped;
+    counters_.tilesCopied += r.tilesCopied;
   }
   rec.gsBusy = sched_.now() - start;
   counters_.gsBusy += rec.gsBusy;

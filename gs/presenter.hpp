@@ -78,6 +78,7 @@ struct PresenterCounters {
   std::int64_t uploadSetupQwords = 0;  // their GIFtags and register writes
   std::int64_t tilesBlended = 0;       // host work (convergence-aware mode skips the rest)
   std::int64_t tilesSkipped = 0;
+  std::int64_t tilesCopied = 0;  // taken from a twin instead of blended (followTwin)
   Tick gsBusy = 0;
   Tick slip = 0;   // play-late: how far the schedule has slipped
   int maxPop = 0;  // largest pop, not counting the first frame copied into the empty lightmap
@@ -123,6 +124,13 @@ class Presenter {
   const Rgba8Image& lightmap() const { return lightmap_; }
   // The blender that writes the lightmap (nothing else does): its tileChanges() say which tiles moved.
   const TiledBlender& blender() const { return blender_; }
+  // A run and its fault-free reference (issue #31; the player) follow each other: each records its
+  // blends, and whichever blends a tile second copies the other's where the other made the blend it
+  // is about to make from the same bytes (same source bytes and spec: TiledBlender::Twin), with the
+  // facts of which tiles are equal in `equal` (runSide: this presenter's counts are its run side).
+  // Same bytes, records and hash as blending; host time only. Call on both before either runs; the
+  // twin must outlive this presenter's run.
+  void followTwin(const Presenter& twin, TwinTiles& equal, bool runSide);
   // With PresenterOptions::hashChain: the frame hash's chain after the lightmap's header and bytes.
   const HashChain& hashChain() { return blender_.hashChain(lightmap_); }
   // The console's VRAM plan: this presenter's own (the lightmap's), or the one it was given (the sky's).
@@ -156,6 +164,10 @@ class Presenter {
   void takeTarget(const ReadyFrame& f, Tick scheduleT0, VsyncRecord& rec);
   void checkFrame(const ReadyFrame& f) const;
   void trace(const VsyncRecord& rec);
+  static std::uint64_t sourceIdOf(const Target& t) {
+    return (static_cast<std::uint64_t>(t.seq) << 16) ^ static_cast<std::uint64_t>(t.variant);
+  }
+  bool sameSourceAsTwin();
 
   Scheduler& sched_;
   FrameSource& source_;
@@ -175,7 +187,16 @@ class Presenter {
   Rgba8Image staging16_;  // the 16-bit path: the target as its PSMCT16 staging texture
   TiledBlender blender_;
   Target target_;
+  std::uint64_t targetGeneration_ = 0;  // moves with every new target
   bool filled_ = false;
+  // followTwin: the twin, the tile facts, and whether the two targets hold the same bytes, as last
+  // found for the two targets' generations.
+  const Presenter* twin_ = nullptr;
+  TwinTiles* twinTiles_ = nullptr;
+  bool twinRunSide_ = false;
+  std::uint64_t sameSeenTwin_ = ~std::uint64_t{0};
+  std::uint64_t sameSeenOwn_ = ~std::uint64_t{0};
+  bool sameSeen_ = false;
   int variant_ = 0;
   std::vector<Branch> branches_;
   PresenterCounters counters_;

@@ -7,6 +7,19 @@
 
 namespace vbim::player {
 
+namespace {
+
+// The run's presenter and the reference's follow each other (gs::Presenter::followTwin): whichever
+// blends a tile second copies the other's; returns the tile facts they share with the lag.
+std::unique_ptr<gs::TwinTiles> twins(gs::Presenter& run, gs::Presenter& reference) {
+  auto tiles = std::make_unique<gs::TwinTiles>(run.blender().tileChanges().size());
+  run.followTwin(reference, *tiles, /*runSide=*/true);
+  reference.followTwin(run, *tiles, /*runSide=*/false);
+  return tiles;
+}
+
+}  // namespace
+
 Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions options)
     : options_(std::move(options)), stream_(ee::probeStream(disc, file)), tracer_(options_.trace) {
   validate(options_.config);
@@ -22,9 +35,15 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
     ref_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, nullptr, options_.seed, options_.kernels,
                                       nullptr, "ref.");
     const gs::BlendKernels& k = options_.kernels.blend != nullptr ? *options_.kernels.blend : gs::scalarKernels();
-    lagDiff_ = std::make_unique<gs::TiledDifference>(main_->lightmap(), ref_->lightmap(), k.compareRect);
+    if (options_.shareReference) {
+      lagTiles_ = twins(main_->lightmap(), ref_->lightmap());
+      if (main_->sky() != nullptr) skyLagTiles_ = twins(*main_->sky(), *ref_->sky());
+    }
+    lagDiff_ =
+        std::make_unique<gs::TiledDifference>(main_->lightmap(), ref_->lightmap(), k.compareRect, lagTiles_.get());
     if (main_->sky() != nullptr) {
-      skyLagDiff_ = std::make_unique<gs::TiledDifference>(*main_->sky(), *ref_->sky(), k.compareRect);
+      skyLagDiff_ =
+          std::make_unique<gs::TiledDifference>(*main_->sky(), *ref_->sky(), k.compareRect, skyLagTiles_.get());
     }
   }
   for (const Branch& b : options_.branches) {

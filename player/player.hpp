@@ -13,6 +13,7 @@
 
 #include "ee/stream_probe.hpp"
 #include "gs/lag_meter.hpp"
+#include "gs/twin_tiles.hpp"
 #include "iop/fault_plan.hpp"
 #include "iop/sector_source.hpp"
 #include "player/frame_hash.hpp"
@@ -37,6 +38,10 @@ struct PlayerOptions {
   Kernels kernels;                 // SIMD kernels (null: scalar references; same bytes either way)
   bool trace = true;               // keep busy spans and counters for trace.json / signals.vcd
   bool reference = true;           // measure lag against a fault-free reference (only if faults exist)
+  // The reference takes the run's host work where it is the same (issue #31): a tile the run blended
+  // from the same bytes toward the same source with the same spec is copied, and tiles known equal
+  // are not compared (gs/twin_tiles.hpp). false: the reference does all its own work. Same bytes.
+  bool shareReference = true;
 };
 
 // What happened at one vsync, over the whole output (lightmap + sky).
@@ -122,7 +127,10 @@ class Player {
   Tracer tracer_;
   std::unique_ptr<Pipeline> main_;
   std::unique_ptr<Pipeline> ref_;
-  // The lag of the lightmap and of the sky against the reference (with ref_ only).
+  // The lag of the lightmap and of the sky against the reference (with ref_ only), and the tiles of
+  // each known equal in the two (with shareReference).
+  std::unique_ptr<gs::TwinTiles> lagTiles_;
+  std::unique_ptr<gs::TwinTiles> skyLagTiles_;
   std::unique_ptr<gs::TiledDifference> lagDiff_;
   std::unique_ptr<gs::TiledDifference> skyLagDiff_;
   Tracer::CounterId lagCounter_ = 0;

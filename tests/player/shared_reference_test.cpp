@@ -1,0 +1,170 @@
+// The reference pipeline shares the run's host work (issue #31, PlayerOptions::shareReference): a
+// tile one of the two blended from the same bytes toward the same source with the same spec is
+// copied by the other, and tiles known equal are not compared for the lag. Fault plays with and
+// without the sharing must give the same rows (hash, lag, sky lag, presenter records) at every vsync
+// and the same lightmaps and skies of both pipelines, over several fault plans, seeds, catch-up
+// policies, upload modes, kernels and a branch; and the sharing must actually take place.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "config/fault_plan_toml.hpp"
+#include "gs/simd/blend_simd.hpp"
+#include "player/scenario.hpp"
+#include "tests/player/sample_path.hpp"
+
+namespace vbim::player {
+namespace {
+
+struct Case {
+  const char* sample = "day_clear.vbim";
+  const char* faults = "";
+  std::uint64_t seed = 1;
+  bool simd = true;
+  bool strips = false;
+  bool aware = true;
+  std::string policy = "blend-through";
+  int catchupFix = 0;
+  Tick branchAt = -1;
+  Tick duration = fromMs(40'000);
+  // Play-late slips the run's schedule for good after the stall, so the two never blend the same
+  // bytes toward the same frame again: nothing to share, the bytes must still agree.
+  bool expectShared = true;
+};
+
+struct Outcome {
+  std::vector<VsyncRow> rows;
+  Rgba8Image lightmap, sky, refLightmap, refSky;
+  std::int64_t copied = 0;  // tiles copied by either pipeline's presenters
+};
+
+Outcome play(const Case& c, bool share) {
+  Scenario sc = Scenario::bareFile(testing::samplePath(c.sample)).seed(c.seed).trace(false).policy(c.policy);
+  if (c.simd) sc.kernels(Kernels{&gs::simd::kernels(), nullptr, nullptr});
+  sc.options().config.gs.convergence_aware = c.aware;
+  sc.options().config.gs.catchup_fix = c.catchupFix;
+  if (c.strips) sc.options().config.gs.upload_mode = "strips";
+  sc.options().shareReference = share;
+  sc.faults(config::parseFaultPlan(c.faults, "<faults>", &sc.disc()));
+  if (c.branchAt >= 0) sc.branch(c.branchAt, 1);
+  auto run = sc.start(c.duration);
+  run->runToEnd();
+  Player& p = run->player();
+  EXPECT_TRUE(p.hasReference());
+  Outcome o;
+  o.rows = run->rows();
+  o.lightmap = p.lightmap();
+  o.sky = *p.sky();
+  o.refLightmap = p.reference()->lightmap().lightmap();
+  o.refSky = p.reference()->sky()->lightmap();
+  for (Pipeline* pl : {&p.pipeline(), p.reference()}) {
+    o.copied += pl->lightmap().counters().tilesCopied + pl->sky()->counters().tilesCopied;
+  }
+  return o;
+}
+
+void expectSameRecord(const gs::VsyncRecord& a, const gs::VsyncRecord& b, std::int64_t n) {
+  EXPECT_EQ(a.at, b.at) << "vsync " << n;
+  EXPECT_EQ(a.targetSeq, b.targetSeq) << "vsync " << n;
+  EXPECT_EQ(a.variant, b.variant) << "vsync " << n;
+  EXPECT_EQ(a.fix, b.fix) << "vsync " << n;
+  EXPECT_EQ(a.pop, b.pop) << "vsync " << n;
+  EXPECT_EQ(a.snapped, b.snapped) << "vsync " << n;
+  EXPECT_EQ(a.gsBusy, b.gsBusy) << "vsync " << n;
+}
+
+void expectSameBytes(const Case& c) {
+  const Outcome shared = play(c, true);
+  const Outcome own = play(c, false);
+  ASSERT_EQ(shared.rows.size(), own.rows.size());
+  int lagged = 0;
+  for (std::size_t i = 0; i < own.rows.size(); ++i) {
+    const VsyncRow& a = shared.rows[i];
+    const VsyncRow& b = own.rows[i];
+    ASSERT_EQ(a.hash, b.hash) << "vsync " << b.vsync;
+    ASSERT_EQ(a.lag, b.lag) << "vsync " << b.vsync;
+    ASSERT_EQ(a.skyLag, b.skyLag) << "vsync " << b.vsync;
+    ASSERT_EQ(a.ringBanks, b.ringBanks) << "vsync " << b.vsync;
+    expectSameRecord(a.lightmap, b.lightmap, b.vsync);
+    ASSERT_TRUE(a.sky && b.sky);
+    expectSameRecord(*a.sky, *b.sky, b.vsync);
+    if (b.lag != 0) ++lagged;
+  }
+  EXPECT_EQ(shared.lightmap.pixels, own.lightmap.pixels);
+  EXPECT_EQ(shared.sky.pixels, own.sky.pixels);
+  EXPECT_EQ(shared.refLightmap.pixels, own.refLightmap.pixels);
+  EXPECT_EQ(shared.refSky.pixels, own.refSky.pixels);
+  EXPECT_GT(lagged, 10) << "the faults should make the run differ from the reference";
+  EXPECT_EQ(own.copied, 0);
+  if (!c.aware) {
+    EXPECT_EQ(shared.copied, 0) << "without the convergence shortcut there is nothing recorded to share";
+  } else if (c.expectShared) {
+    EXPECT_GT(shared.copied, 1000) << "the pipelines should share most blends while in step";
+  }
+}
+
+constexpr const char* kStalls =
+    "[[fault]]\nkind='stall'\nat='200ms'\nduration='4s'\n"
+    "[[fault]]\nkind='random_stall'\nfrom='0s'\nduration='40s'\nmean_interval='6s'\nstall='3s'\n";
+constexpr const char* kStallsAndReadError =
+    "[[fault]]\nkind='stall'\nat='200ms'\nduration='6s'\n"
+    "[[fault]]\nkind='read_error'\nlba=2090\nattempts=300\n"
+    "[[fault]]\nkind='random_stall'\nfrom='0s'\nduration='40s'\nmean_interval='5s'\nstall='2s'\n";
+constexpr const char* kLongStall = "[[fault]]\nkind='stall'\nat='200ms'\nduration='8s'\n";
+
+TEST(SharedReference, SameBytesAsUnsharedAcrossSeeds) {
+  for (const std::uint64_t seed : {1, 2, 5}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Case c;
+    c.faults = kStallsAndReadError;
+    c.seed = seed;
+    expectSameBytes(c);
+  }
+}
+
+TEST(SharedReference, SameBytesScalarKernelsOtherSample) {
+  Case c;
+  c.sample = "day_weather.vbim";
+  c.faults = kStalls;
+  c.simd = false;
+  expectSameBytes(c);
+}
+
+TEST(SharedReference, SameBytesInStripsWithCatchUpFix) {
+  Case c;
+  c.faults = kStalls;
+  c.strips = true;
+  c.catchupFix = 96;
+  expectSameBytes(c);
+}
+
+TEST(SharedReference, SameBytesForEachCatchUpPolicy) {
+  for (const char* policy : {"hard-skip", "play-late"}) {
+    SCOPED_TRACE(policy);
+    Case c;
+    c.faults = kLongStall;
+    c.policy = policy;
+    c.expectShared = std::string(policy) != "play-late";
+    expectSameBytes(c);
+  }
+}
+
+TEST(SharedReference, SameBytesWithABranch) {
+  Case c;
+  c.sample = "day_weather.vbim";
+  c.faults = kStallsAndReadError;
+  c.branchAt = fromMs(14'000);
+  c.seed = 3;
+  expectSameBytes(c);
+}
+
+TEST(SharedReference, SameBytesWithoutTheConvergenceShortcut) {
+  Case c;
+  c.faults = kStalls;
+  c.aware = false;
+  expectSameBytes(c);
+}
+
+}  // namespace
+}  // namespace vbim::player
