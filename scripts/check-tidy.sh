@@ -43,7 +43,7 @@ mapfile -t files < <(CHANGED="$changed" python3 - "$build" "$PWD" "$all" <<'PY'
 import glob, json, os, re, sys
 build, root, check_all = sys.argv[1], os.path.realpath(sys.argv[2]), sys.argv[3] == "1"
 dirs = ("runtime", "iop", "ee", "ipu", "gs", "player", "sweep", "streams", "config", "runs", "cli", "lighting",
-        "render", "imageio", "plots", "bench")
+        "render", "help", "imageio", "plots", "bench")
 sources = []
 for entry in json.load(open(os.path.join(build, "compile_commands.json"))):
     path = os.path.realpath(os.path.join(entry["directory"], entry["file"]))
