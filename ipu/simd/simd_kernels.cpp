@@ -348,10 +348,12 @@ HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, s
   const __m256i rows = _mm256_permutevar8x32_epi32(bytes, _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7));
   const __m128i ab = _mm256_castsi256_si128(rows);
   const __m128i cd = _mm256_extracti128_si256(rows, 1);
+  // The high halves through movq as well: _mm_storeh_pd stores through a double*, which UBSan
+  // rightly calls a misaligned store (rows start at any byte).
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), ab);
-  _mm_storeh_pd(reinterpret_cast<double*>(p + stride), _mm_castsi128_pd(ab));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + stride), _mm_unpackhi_epi64(ab, ab));
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 2 * stride), cd);
-  _mm_storeh_pd(reinterpret_cast<double*>(p + 3 * stride), _mm_castsi128_pd(cd));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 3 * stride), _mm_unpackhi_epi64(cd, cd));
 }
 #endif
 
