@@ -1,9 +1,11 @@
 // `vbim info`'s text and the scan behind both of its forms.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 
 #include "runtime/error.hpp"
 #include "streams/disc/stream_disc.hpp"
@@ -163,6 +165,24 @@ void authoringText(std::string& out, const std::optional<nlohmann::ordered_json>
   }
 }
 
+// For a file that is MPEG video `vbim decode` reads, but no program stream in 2048-byte packs (the
+// sector layout `vbim info` describes): what it is and how to see it here. Empty for anything else.
+std::string otherMpegHint(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::array<char, 5> b{};
+  if (!f.read(b.data(), b.size())) return {};
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(b[i]); };
+  if (byte(0) != 0 || byte(1) != 0 || byte(2) != 1) return {};
+  const std::string remux =
+      "; `vbim decode` reads it as it is, and `vbim info` once it is remuxed into 2048-byte "
+      "packs (`ffmpeg -i IN -c copy -f vob OUT.vob`)";
+  if (byte(3) == 0xB3) return " (it is an MPEG video elementary stream)" + remux;
+  // ISO/IEC 11172-1 2.4.3.2: an MPEG-1 pack header's fifth byte starts with the bits '0010'.
+  if (byte(3) == 0xBA && (byte(4) >> 4) == 0x2)
+    return " (it is an MPEG-1 system stream, as `ffmpeg -f mpeg` writes)" + remux;
+  return {};
+}
+
 }  // namespace
 
 StreamInfo inspectStream(const std::string& path, const std::string& file, bool perPicture) {
@@ -195,7 +215,8 @@ StreamInfo inspectStream(const std::string& path, const std::string& file, bool 
   const StreamScan& scan = info.scan;
   if (scan.pictures.empty() && scan.stats.badSectors == scan.stats.sectors) {
     throw Error(info.shown + ": not an MPEG-2 program stream with 2048-byte packs: " +
-                (scan.errors.empty() ? std::string("empty file") : scan.errors.front().describe()));
+                (scan.errors.empty() ? std::string("empty file") : scan.errors.front().describe()) +
+                (on ? std::string() : otherMpegHint(path)));
   }
   info.fpsGuessed = !scan.descriptor;
   info.fps = info.fpsGuessed ? 25.0 : scan.descriptor->gameFps.value();

@@ -203,6 +203,35 @@ TEST(StreamsCliBadInput, InfoRejectsAWrongFormatFileAndNamesIt) {
   EXPECT_NE(missing.out.find("nothing.vbim"), std::string::npos) << missing.out;
 }
 
+// MPEG that `vbim decode` reads but `vbim info` does not (no 2048-byte packs): the error says what
+// the file is and how to remux it, and the remuxed file is described.
+TEST(StreamsCliBadInput, InfoNamesElementaryAndMpeg1SystemStreamsAndHowToRemuxThem) {
+  TempDir dir;
+  const std::string source = "-f lavfi -i testsrc=size=64x64:rate=25 -t 0.4 -c:v mpeg2video -g 4 -bf 2 ";
+  const fs::path es = dir / "clip.m2v";
+  const fs::path system = dir / "clip.mpg";
+  const fs::path vob = dir / "clip.vob";
+  ASSERT_EQ(run("ffmpeg -nostdin -loglevel error -y " + source + "-f mpeg2video " + es.string()).status, 0);
+  ASSERT_EQ(run("ffmpeg -nostdin -loglevel error -y " + source + "-f mpeg " + system.string()).status, 0);
+  for (const auto& [file, kind] : {std::pair{es, "elementary stream"}, std::pair{system, "MPEG-1 system stream"}}) {
+    const Outcome r = run(vbim() + " info " + file.string());
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find(file.string()), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(kind), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("-f vob"), std::string::npos) << r.out;
+    EXPECT_EQ(run(vbim() + " decode " + file.string() + " --format yuv --out " + (dir / "frames").string() + " --force")
+                  .status,
+              0);
+  }
+  ASSERT_EQ(run("ffmpeg -nostdin -loglevel quiet -y -i " + es.string() + " -c copy -f vob " + vob.string()).status, 0);
+  const Outcome remuxed = run(vbim() + " info --json " + vob.string());
+  ASSERT_EQ(remuxed.status, 0) << remuxed.out;
+  EXPECT_EQ(nlohmann::json::parse(remuxed.out)["streams"][0]["pictures"], 10) << remuxed.out;
+  // Damage that is no MPEG keeps the plain message.
+  test::writeFile(dir / "x.bin", std::vector<std::uint8_t>(5000, 0x00));
+  EXPECT_EQ(run(vbim() + " info " + (dir / "x.bin").string()).out.find("remux"), std::string::npos);
+}
+
 // Each case: files to create (name -> WxH), arguments, words the message must contain.
 struct BadCase {
   const char* name;
