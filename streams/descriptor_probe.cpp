@@ -34,7 +34,8 @@ ProbedDescriptor probeDescriptor(std::int64_t sectors, const ReadStreamSector& r
   }
   if (!demux.descriptor()) {
     throw StreamProbeError(where + ": not a VBIM stream: no playback descriptor in the first " + std::to_string(limit) +
-                           " sectors (expected private_stream_2 descriptor packs at sector 0)");
+                           " sectors (expected private_stream_2 descriptor packs at sector 0; `vbim author` writes "
+                           "them, `vbim decode` reads MPEG video without them)");
   }
   ProbedDescriptor p;
   p.descriptor = *demux.descriptor();

@@ -204,7 +204,7 @@ TEST(StreamsCliBadInput, InfoRejectsAWrongFormatFileAndNamesIt) {
 }
 
 // MPEG that `vbim decode` reads but `vbim info` does not (no 2048-byte packs): the error says what
-// the file is and how to remux it, and the remuxed file is described.
+// the file is and how to remux it, the remuxed file is described, and play says what it lacks.
 TEST(StreamsCliBadInput, InfoNamesElementaryAndMpeg1SystemStreamsAndHowToRemuxThem) {
   TempDir dir;
   const std::string source = "-f lavfi -i testsrc=size=64x64:rate=25 -t 0.4 -c:v mpeg2video -g 4 -bf 2 ";
@@ -227,6 +227,11 @@ TEST(StreamsCliBadInput, InfoNamesElementaryAndMpeg1SystemStreamsAndHowToRemuxTh
   const Outcome remuxed = run(vbim() + " info --json " + vob.string());
   ASSERT_EQ(remuxed.status, 0) << remuxed.out;
   EXPECT_EQ(nlohmann::json::parse(remuxed.out)["streams"][0]["pictures"], 10) << remuxed.out;
+  // No playback descriptor: play refuses it and says what writes one; nothing is left behind.
+  const Outcome play = run(vbim() + " play " + vob.string() + " --out " + (dir / "run").string());
+  EXPECT_EQ(play.status, 2) << play.out;
+  EXPECT_NE(play.out.find("`vbim author` writes"), std::string::npos) << play.out;
+  EXPECT_FALSE(fs::exists(dir / "run"));
   // Damage that is no MPEG keeps the plain message.
   test::writeFile(dir / "x.bin", std::vector<std::uint8_t>(5000, 0x00));
   EXPECT_EQ(run(vbim() + " info " + (dir / "x.bin").string()).out.find("remux"), std::string::npos);
