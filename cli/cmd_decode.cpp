@@ -63,6 +63,9 @@ void run(const Options& o) {
             << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
             << o.format;
   if (s.issues) std::cout << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
+  if (s.skippedPictures)
+    std::cout << ", " << s.skippedPictures << (s.skippedPictures == 1 ? " picture" : " pictures")
+              << " skipped (cannot be decoded)";
   std::cout << "\n";
 }
 

@@ -12,6 +12,8 @@
 namespace vbim::streams {
 namespace {
 
+constexpr int kListedSkips = 20;  // skipped pictures named one by one; the rest are counted
+
 VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::string& name,
                               std::optional<std::uint8_t> streamId) {
   switch (detectStreamForm(file)) {
@@ -53,9 +55,25 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
   DecodeSummary summary;
   if (video.streamId) summary.streamLabel = " (video stream " + hexId(*video.streamId) + ")";
   const std::string source = name + summary.streamLabel;
+  std::string firstSkipped;  // why the first picture that could not be decoded was skipped
   for (const ipu::AccessUnit& au : ipu::splitAccessUnits(video.bytes)) {
     const auto bytes = std::span(video.bytes).subspan(au.offset, au.size);
     const ipu::PictureReport r = pool ? decoder.decode(bytes, *pool) : decoder.decode(bytes);
+    summary.issues += r.issueCount;
+    if (r.undecodable) {
+      // A picture header the decoder cannot use (damaged, or a sequence it does not support): the
+      // picture is skipped and the decode goes on, as libmpeg2 and libavcodec do; the pictures that
+      // predict from it use the reference before it (ipu/README.md, "Bad input").
+      const ipu::IssueKind k = r.issues.empty() ? ipu::IssueKind::kBadHeader : r.issues.back().kind;
+      const std::string why =
+          source + ": byte " + std::to_string(video.fileOffsetOf(au.offset)) + ": cannot decode: " + ipu::issueName(k);
+      if (firstSkipped.empty()) firstSkipped = why;
+      if (summary.skippedPictures < kListedSkips) diagnostics(why + "; picture skipped");
+      if (summary.skippedPictures == kListedSkips)
+        diagnostics("... more pictures that cannot be decoded are skipped and counted, not listed");
+      ++summary.skippedPictures;
+      continue;
+    }
     for (const ipu::DecodeIssue& is : r.issues) {
       std::string line = source + ": byte " + std::to_string(video.fileOffsetOf(au.offset + is.byteOffset));
       if (is.mbX >= 0) {
@@ -66,12 +84,6 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
     }
     if (r.issueCount > r.issues.size())
       diagnostics("... and " + std::to_string(r.issueCount - r.issues.size()) + " more issues in this picture");
-    summary.issues += r.issueCount;
-    if (r.undecodable) {
-      const ipu::IssueKind k = r.issues.empty() ? ipu::IssueKind::kBadHeader : r.issues.back().kind;
-      throw Error(source + ": byte " + std::to_string(video.fileOffsetOf(au.offset)) +
-                  ": cannot decode: " + ipu::issueName(k));
-    }
     summary.concealedMacroblocks += r.macroblocksConcealed;
     // Frames leave in display order (§6.1.1.11): B frames at once, I and P frames when the next
     // one is complete, the last at the end.
@@ -79,6 +91,7 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
   }
   while (decoder.flushDisplay()) frames(summary.frames++, decoder);
   if (summary.frames == 0) {
+    if (!firstSkipped.empty()) throw Error(firstSkipped);
     if (!decoder.hasSequence()) throw Error(source + ": no sequence header: nothing can be decoded");
     throw Error(source + ": no picture could be decoded");
   }

@@ -32,6 +32,7 @@ struct DecodeSummary {
   std::string streamLabel;  // " (video stream 0xE0)" for a program stream, empty otherwise
   std::size_t issues = 0;   // decode issues over all pictures
   long concealedMacroblocks = 0;
+  int skippedPictures = 0;  // pictures the decoder could not use at all (each an issue; no frame)
 };
 
 // Called with each frame in display order (numbered from 0) while the decoder holds it as its
@@ -41,8 +42,9 @@ using FrameSink = std::function<void(int frame, const ipu::Decoder& decoder)>;
 // found while decoding (with their file byte offset and macroblock).
 using DiagnosticSink = std::function<void(const std::string& line)>;
 
-// Decodes every picture of `file` (named `name` in messages). Throws Error when the file is
-// not an MPEG stream, holds no such video stream, or a picture stops the decoder.
+// Decodes every picture of `file` (named `name` in messages). A picture the decoder cannot use (its
+// header damaged, or a format it does not decode) is reported, skipped and counted. Throws Error
+// when the file is not an MPEG stream, holds no such video stream, or no picture could be decoded.
 DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string& name, const DecodeOptions& options,
                            const FrameSink& frames, const DiagnosticSink& diagnostics);
 

@@ -45,7 +45,9 @@ Decoded decode(const Bytes& file, DecodeOptions options = {}) {
       file, "in.mpg", options,
       [&](int frame, const ipu::Decoder& dec) {
         EXPECT_EQ(frame, static_cast<int>(d.frames.size()));
-        ipu::copyToYuv420(dec.frame(), dec.width(), dec.height(), yuv);
+        // The frame due for display, as FrameFileWriter takes it (frame() is the one decoded last).
+        ASSERT_NE(dec.displayFrame(), nullptr);
+        ipu::copyToYuv420(*dec.displayFrame(), dec.displayWidth(), dec.displayHeight(), yuv);
         Bytes b = yuv.y;
         append(b, yuv.cb);
         append(b, yuv.cr);
@@ -159,6 +161,51 @@ TEST(StreamsDecode, RefusesWhatIsNotAVideoStream) {
     if (noSequence[i] == 0 && noSequence[i + 1] == 0 && noSequence[i + 2] == 1 && noSequence[i + 3] == 0xB3)
       noSequence[i + 3] = 0xB2;
   EXPECT_EQ(message(noSequence), "in.mpg: byte 0: cannot decode: no sequence header before the picture");
+}
+
+// The picture coding extensions of `file` (00 00 01 B5, extension id 8), in order.
+std::vector<std::size_t> codingExtensions(const Bytes& file) {
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i + 4 < file.size(); ++i)
+    if (file[i] == 0 && file[i + 1] == 0 && file[i + 2] == 1 && file[i + 3] == 0xB5 && (file[i + 4] >> 4) == 8)
+      at.push_back(i);
+  return at;
+}
+
+TEST(StreamsDecode, APictureThatCannotBeDecodedIsSkippedAndTheRestDecoded) {
+  const Bytes whole = encode(false, 4);
+  const Decoded good = decode(whole);
+  ASSERT_EQ(good.frames.size(), 4u);
+  for (std::size_t i = 1; i < 4; ++i) ASSERT_NE(good.frames[i - 1], good.frames[i]) << "the content must move";
+  Bytes damaged = whole;
+  const std::vector<std::size_t> ext = codingExtensions(damaged);
+  ASSERT_EQ(ext.size(), 4u);
+  damaged[ext[1] + 3] = 0xB2;  // picture 1 loses its coding extension (user data instead)
+  const Decoded d = decode(damaged);
+  EXPECT_EQ(d.summary.skippedPictures, 1);
+  EXPECT_GE(d.summary.issues, 1u);
+  ASSERT_EQ(d.frames.size(), 3u);
+  // Intra pictures: the others decode exactly as in the whole stream.
+  EXPECT_EQ(d.frames[0], good.frames[0]);
+  EXPECT_EQ(d.frames[1], good.frames[2]);
+  EXPECT_EQ(d.frames[2], good.frames[3]);
+  const std::string text = joined(d.lines);
+  EXPECT_NE(text.find("cannot decode: MPEG-2 picture without a picture coding extension; picture skipped"),
+            std::string::npos)
+      << text;
+
+  // Many such pictures: the first 20 are named, the rest counted.
+  Bytes many = encode(false, 24);
+  const std::vector<std::size_t> all = codingExtensions(many);
+  ASSERT_EQ(all.size(), 24u);
+  for (std::size_t i = 1; i < all.size(); ++i) many[all[i] + 3] = 0xB2;
+  const Decoded m = decode(many);
+  EXPECT_EQ(m.summary.skippedPictures, 23);
+  EXPECT_EQ(m.frames.size(), 1u);
+  std::size_t named = 0;
+  for (const std::string& l : m.lines) named += l.find("; picture skipped") != std::string::npos;
+  EXPECT_EQ(named, 20u) << joined(m.lines);
+  EXPECT_NE(joined(m.lines).find("counted, not listed"), std::string::npos);
 }
 
 TEST(StreamsDecode, WritesFramesAsFiles) {
