@@ -90,7 +90,7 @@ void runProfile(const runs::ProfileRequest& r, const runs::Reencoder& reencode) 
 
 void addProfile(CLI::App& app, const ProfileEncoders& encoders) {
   auto r = std::make_shared<runs::ProfileRequest>();
-  auto plan = std::make_shared<PlanRequest>();
+  auto plan = std::make_shared<PlanOptions>();
   auto* cmd = app.add_subcommand(kProfileCommand.name, kProfileCommand.summary);
   cmd->add_option("disc", r->discs,
                   "VBIM stream file(s) or ISO 9660 disc images; several discs are one sweep axis (not with --plan)")
@@ -136,11 +136,11 @@ void addProfile(CLI::App& app, const ProfileEncoders& encoders) {
       "blend-through,hard-skip --out prof/\n"
       "  vbim profile --plan examples/sweeps/survivable-stall.toml --jobs 2 --out study/\n");
   cmd->callback([r, plan, encoders] {
-    if (planMode(*plan)) {
+    if (runs::planMode(plan->request)) {
       if (!r->discs.empty()) throw Exit(2, "a sweep plan names its streams: give --plan or stream files, not both");
-      plan->out = r->out;
-      plan->force = r->force;
-      plan->json = r->json;
+      plan->request.out = r->out;
+      plan->request.force = r->force;
+      plan->request.json = r->json;
       return runPlan(*plan, encoders.transcode);
     }
     // `vbim` has no encoder (FFmpeg): vbim-full re-encodes (cli/main.cpp).
