@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/random_interrupts.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/scratch.hpp"
 #include "tests/support/soak.hpp"
@@ -51,93 +52,47 @@ TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
 }
 
 // Ctrl-C or SIGTERM at any moment of `vbim vectors`, writing (--out) or scoring (--check), four
-// runs at a time, as tests/cli/conventions_test.cpp's InterruptsAtRandomMomentsLeaveNothingBehind
+// runs at a time (tests/support/random_interrupts.hpp), as CliConventions.InterruptsAtRandomMoments...
 // does for play, decode and author: each run ends complete (exit 0: its directory in place, or the
 // check's verdict) or stopped (exit 130 or 143 with the message, no directory), and nothing else is
-// left beside the outputs. The runs inherit both signals ignored from the launching shell (a signal
-// before vbim's handlers are in is lost: the run completes); the moments are spread over 1.2 times
-// each mode's own time, measured uninterrupted four at a time.
+// left beside the outputs.
 TEST(PortReference, VectorsInterruptedAtRandomMomentsLeaveNothingBehind) {
   const fs::path dir = scratch("vectors_interrupts");
+  const fs::path committed = dir / "committed";  // the vectors --check scores
   fs::create_directories(dir);
+  ASSERT_EQ(run("vectors --out " + committed.string()).status, 0);
   // 80 in the Release suite; fewer in the sanitizer suite (tests/support/soak.hpp).
   const int wanted = vbim::testing::soakRepetitions(80, 16);
-  const std::string script = R"(export D VBIM
-$VBIM vectors --out $D/committed >/dev/null || { echo "vectors --out failed uninterrupted"; exit 1; }
-args_of() {
+  const std::vector<vbim::testing::InterruptedRun> runs = vbim::testing::runWithRandomInterrupts(dir, VBIM_BINARY, R"(
   case $(($1 % 2)) in
     0) echo "vectors --out $D/r$1" ;;
-    1) echo "vectors --check $D/committed" ;;
-  esac
-}
-ms() { echo $(( $(date +%s%N) / 1000000 )); }
-for k in 0 1; do
-  t0=$(ms)
-  for j in 0 2 4 6; do $VBIM $(args_of $((900 + k + j))) >/dev/null 2>&1 & done
-  for j in 0 2 4 6; do wait -n || { echo "mode $k failed uninterrupted"; exit 1; }; done
-  echo $(( $(ms) - t0 )) >$D/time$k
-  rm -rf $D/r9*
-done
-one() {
-  i=$1
-  sig=INT; [ $((i / 2 % 2)) -eq 1 ] && sig=TERM
-  trap '' INT TERM
-  $VBIM $(args_of $i) >$D/log$i 2>&1 &
-  pid=$!
-  t=$(cat $D/time$((i % 2)))
-  delay=$(( (RANDOM * 32768 + RANDOM) % (t * 6 / 5 + 1) ))
-  sleep $((delay / 1000)).$(printf '%03d' $((delay % 1000)))
-  kill -$sig $pid 2>/dev/null
-  wait $pid
-  echo "$i $? $sig" >>$D/status
-}
-export -f one args_of
-seq )" + std::to_string(wanted) +
-                             R"( | xargs -P 4 -I{} bash -c 'one {}'
-rm -f $D/time0 $D/time1
-)";
-  std::ofstream(dir / "interrupt.sh") << script;
-  const Result r = vbim::testing::runCommand("D=" + dir.string() + " VBIM=" + std::string(VBIM_BINARY) + " bash " +
-                                             (dir / "interrupt.sh").string());
-  fs::remove(dir / "interrupt.sh");
-  ASSERT_EQ(r.status, 0) << r.output;
-  std::ifstream status(dir / "status");
-  int runs = 0, complete = 0, byInt = 0, byTerm = 0;
-  int i = 0, rc = 0;
-  for (std::string sig; status >> i >> rc >> sig; ++runs) {
-    const std::string log = readAll(dir / ("log" + std::to_string(i)));
-    const fs::path out = dir / ("r" + std::to_string(i));
-    const bool writes = i % 2 == 0;
-    if (rc == 0) {
+    1) echo "vectors --check )" + committed.string() + R"(" ;;
+  esac)",
+                                                                                                 2, wanted);
+  int complete = 0, byInt = 0, byTerm = 0;
+  for (const vbim::testing::InterruptedRun& r : runs) {
+    const fs::path out = dir / ("r" + std::to_string(r.index));
+    if (r.status == 0) {
       ++complete;
-      if (writes) {
-        for (const char* f : kVectorFiles) EXPECT_TRUE(fs::exists(out / f)) << "run " << i << " lacks " << f;
+      if (r.index % 2 == 0) {
+        for (const char* f : kVectorFiles) EXPECT_TRUE(fs::exists(out / f)) << "run " << r.index << " lacks " << f;
       } else {
-        EXPECT_NE(log.find("vector files present in " + (dir / "committed").string() + " match"), std::string::npos)
-            << "run " << i << "\n"
-            << log;
+        EXPECT_NE(r.log.find("vector files present in " + committed.string() + " match"), std::string::npos)
+            << "run " << r.index << "\n"
+            << r.log;
       }
       continue;
     }
-    const bool term = sig == "TERM";
-    (term ? byTerm : byInt) += 1;
-    EXPECT_EQ(rc, term ? 143 : 130) << "run " << i << " (SIG" << sig << ")\n" << log;
-    const std::string said = term ? "stopped by a signal; temporary files removed, outputs left as they were"
-                                  : "interrupted (Ctrl-C); temporary files removed, outputs left as they were";
-    EXPECT_NE(log.find(said), std::string::npos)
-        << "run " << i << " (SIG" << sig << ", exit " << rc << ") did not say so:\n"
-        << log;
-    EXPECT_FALSE(fs::exists(out)) << "run " << i << " was stopped but left " << out;
+    (r.term ? byTerm : byInt) += 1;
+    vbim::testing::expectStoppedCleanly(r);
+    EXPECT_FALSE(fs::exists(out)) << "run " << r.index << " was stopped but left " << out;
   }
-  EXPECT_EQ(runs, wanted);
+  EXPECT_EQ(static_cast<int>(runs.size()), wanted);
   std::cout << byInt << " stopped by SIGINT, " << byTerm << " by SIGTERM, " << complete << " complete\n";
   // The moments do reach into the work, for both signals.
   EXPECT_GT(byInt, 0) << byTerm << " by SIGTERM, " << complete << " complete";
   EXPECT_GT(byTerm, 0) << byInt << " by SIGINT, " << complete << " complete";
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    EXPECT_NE(name[0], '.') << "left behind: " << name;
-  }
+  vbim::testing::expectNothingHiddenLeft(dir);
   fs::remove_all(dir);
 }
 

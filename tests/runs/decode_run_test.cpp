@@ -24,11 +24,17 @@ std::size_t filesIn(const fs::path& dir) {
   return n;
 }
 
-TEST(DecodeRun, EveryPictureIsAFileAndTheLineSaysHowMany) {
-  const fs::path dir = vbim::testing::testScratchDir("decode_run");
+// The sample decoded into `dir`/frames.
+DecodeRequest sampleInto(const fs::path& dir) {
   DecodeRequest r;
   r.input = kSample;
   r.out = (dir / "frames").string();
+  return r;
+}
+
+TEST(DecodeRun, EveryPictureIsAFileAndTheLineSaysHowMany) {
+  const fs::path dir = vbim::testing::testScratchDir("decode_run");
+  DecodeRequest r = sampleInto(dir);
   r.format = "yuv";
   int pictures = 0;
   DecodeObserver observer;
@@ -48,9 +54,7 @@ TEST(DecodeRun, EveryPictureIsAFileAndTheLineSaysHowMany) {
 
 TEST(DecodeRun, AStreamIdTheStreamDoesNotHoldWritesNothing) {
   const fs::path dir = vbim::testing::testScratchDir("decode_run");
-  DecodeRequest r;
-  r.input = kSample;
-  r.out = (dir / "frames").string();
+  DecodeRequest r = sampleInto(dir);
   r.streamId = "0xEF";
   EXPECT_THROW(decodeRun(r, {}), Error);
   EXPECT_FALSE(fs::exists(r.out));
