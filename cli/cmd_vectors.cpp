@@ -12,7 +12,6 @@
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/samples.hpp"
-#include "runs/output_dir.hpp"
 #include "runs/vectors_run.hpp"
 
 namespace vbim::cli {
@@ -48,12 +47,7 @@ std::vector<std::string> defaultStreams() {
 }
 
 void run(const VectorsRequest& r) {
-  if (r.out.empty() == r.check.empty()) throw Exit(2, "give exactly one of --out DIR and --check DIR");
-  if (!r.only.empty() && r.check.empty()) throw Exit(2, "--only selects what --check compares: give --check DIR");
-  if (!r.check.empty() && !std::filesystem::is_directory(r.check)) {
-    throw Exit(2, "--check " + r.check + ": not a directory");
-  }
-  if (!r.out.empty()) runs::refuseExistingOutputDir(runs::outputPath(r.out), r.force);
+  runs::checkVectorsRequest(r.out, r.check, r.only, r.force);
   const ipu::IdctKind idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);
   const std::vector<player::VectorFile> files = r.streams.empty() ? runs::streamVectors(defaultStreams(), "", idct)
                                                                   : runs::streamVectors(r.streams, "--stream ", idct);
@@ -63,16 +57,10 @@ void run(const VectorsRequest& r) {
     std::cout << "wrote " << files.size() << " vector files (" << lines << " lines) to " << r.out << "\n";
     return;
   }
-  const runs::VectorsCheck c = runs::checkVectors(files, r.check, r.only);
-  if (c.present == 0) {
-    if (!c.anySelected) throw Exit(2, "--only selects no entry of the vectors");
-    throw Exit(1, "no vector file selected is in " + r.check + ":\n" + c.report);
-  }
-  const std::string total = std::to_string(c.matched) + " of " + std::to_string(c.checked) + " entries match";
-  if (!c.passed) throw Exit(1, total + " in " + r.check + ":\n" + c.report);
-  std::cout << "the " << c.present << " vector files present in " << r.check << " match";
-  if (!r.only.empty()) std::cout << " (the " << c.checked << " entries --only selects)";
-  std::cout << "\n" << c.report;
+  const runs::VectorsVerdict v =
+      runs::vectorsVerdict(runs::checkVectors(files, r.check, r.only), r.check, !r.only.empty());
+  if (!v.passed) throw Exit(1, v.text);
+  std::cout << v.text;
 }
 
 }  // namespace

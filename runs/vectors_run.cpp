@@ -147,4 +147,24 @@ VectorsCheck checkVectors(const std::vector<player::VectorFile>& files, const fs
   return c;
 }
 
+void checkVectorsRequest(const std::string& out, const std::string& check, const std::vector<std::string>& only,
+                         bool force) {
+  if (out.empty() == check.empty()) throw Error("give exactly one of --out DIR and --check DIR");
+  if (!only.empty() && check.empty()) throw Error("--only selects what --check compares: give --check DIR");
+  if (!check.empty() && !fs::is_directory(check)) throw Error("--check " + check + ": not a directory");
+  if (!out.empty()) refuseExistingOutputDir(outputPath(out), force);
+}
+
+VectorsVerdict vectorsVerdict(const VectorsCheck& c, const std::string& dir, bool onlyGiven) {
+  if (c.present == 0) {
+    if (!c.anySelected) throw Error("--only selects no entry of the vectors");
+    return {false, "no vector file selected is in " + dir + ":\n" + c.report};
+  }
+  const std::string total = std::to_string(c.matched) + " of " + std::to_string(c.checked) + " entries match";
+  if (!c.passed) return {false, total + " in " + dir + ":\n" + c.report};
+  std::string text = "the " + std::to_string(c.present) + " vector files present in " + dir + " match";
+  if (onlyGiven) text += " (the " + std::to_string(c.checked) + " entries --only selects)";
+  return {true, text + "\n" + c.report};
+}
+
 }  // namespace vbim::runs
