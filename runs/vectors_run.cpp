@@ -10,6 +10,7 @@
 
 #include "runs/error.hpp"
 #include "runs/output_dir.hpp"
+#include "runs/samples.hpp"
 #include "runtime/error.hpp"
 
 namespace vbim::runs {
@@ -145,6 +146,21 @@ VectorsCheck checkVectors(const std::vector<player::VectorFile>& files, const fs
     });
   }
   return c;
+}
+
+std::vector<std::string> sampleVectorStreams() {
+  const std::vector<std::string> names{"day_clear.vbim", "day_weather.vbim"};
+  const std::optional<fs::path> dir = findSamples(names);
+  if (!dir) {
+    std::string searched;
+    for (const fs::path& d : sampleDirectories()) searched += (searched.empty() ? "" : ", ") + d.string();
+    throw Error("cannot find the sample streams " + names[0] + " and " + names[1] + " (looked in " + searched +
+                "); name the streams with --stream FILE");
+  }
+  std::vector<std::string> paths;
+  paths.reserve(names.size());
+  for (const std::string& name : names) paths.push_back((*dir / name).string());
+  return paths;
 }
 
 void checkVectorsRequest(const std::string& out, const std::string& check, const std::vector<std::string>& only,

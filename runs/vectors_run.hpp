@@ -21,6 +21,11 @@ namespace vbim::runs {
 void checkVectorsRequest(const std::string& out, const std::string& check, const std::vector<std::string>& only,
                          bool force);
 
+// Without --stream: the two sample streams day_clear.vbim and day_weather.vbim, wherever the program
+// finds them (samples.hpp), so that the vectors do not depend on the directory it is run from. Throws
+// vbim::Error naming where they were looked for when they are not there.
+std::vector<std::string> sampleVectorStreams();
+
 // The vectors of the stream files at `paths`, each named by its stem. A file that cannot be opened
 // is a vbim::Error "<label><path>: cannot open the stream file" (`label` is "--stream " when the
 // user named the files, "" for the defaults).

@@ -137,6 +137,13 @@ TEST(VectorsVerdict, PassFailAbsentAndNothingSelected) {
   EXPECT_THROW(vectorsVerdict(c, "port", true), Error);
 }
 
+// A test program is installed nowhere: the source tree's samples.
+TEST(SampleVectorStreams, TheSourceTreesSamplesFromABuildTree) {
+  const std::string samples = std::string(VBIM_SOURCE_DIR) + "/streams/samples/";
+  EXPECT_EQ(sampleVectorStreams(),
+            (std::vector<std::string>{samples + "day_clear.vbim", samples + "day_weather.vbim"}));
+}
+
 TEST(StreamVectors, AStreamThatCannotBeOpenedIsNamedWithItsOption) {
   try {
     streamVectors({"/nonexistent/day.vbim"}, "--stream ", ipu::kDefaultIdct);
