@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cli/exit_status.hpp"
+#include "cli/option_checks.hpp"
 #include "help/option_text.hpp"
 
 namespace vbim::cli {
@@ -15,14 +16,6 @@ std::vector<std::string> optionNames(const CLI::Option& opt) {
   for (const std::string& s : opt.get_snames()) names.push_back("-" + s);
   for (const std::string& l : opt.get_lnames()) names.push_back("--" + l);
   return names;
-}
-
-bool hasValidator(CLI::Option& opt, const std::string& name) {
-  try {
-    return opt.get_validator(name) != nullptr;
-  } catch (const CLI::OptionNotFound&) {
-    return false;
-  }
 }
 
 // What the option's value is, from its own checks and type (the same definitions --help shows).
