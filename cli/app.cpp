@@ -4,14 +4,11 @@
 //   exit 2                       bad usage or bad input (an argument, a file, a config, a stream)
 //   exit 1                       a failure while running (a file that cannot be written, ...)
 // A usage error prints one line and `see 'vbim CMD --help'`, not the whole help.
-#include <algorithm>
-#include <cctype>
 #include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <new>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -22,6 +19,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/suggest.hpp"
+#include "help/option_text.hpp"
 #include "runtime/error.hpp"
 #include "streams/disc/standard_input.hpp"
 
@@ -48,27 +46,7 @@ std::string prefixFor(CLI::App& app, int argc, char** argv) {
 class HelpFormatter : public CLI::Formatter {
  public:
   std::string make_option_opts(const CLI::Option* opt) const override {
-    std::string s = CLI::Formatter::make_option_opts(opt);
-    // The type name is "UINT:<description>:<description>..."; descriptions may hold spaces.
-    const std::string typeName = opt->get_type_name();
-    const auto colon = typeName.find(':');
-    const auto at = s.find(typeName);
-    if (colon == std::string::npos || at == std::string::npos) return s;
-    const std::string base = typeName.substr(0, colon);
-    std::string kept;  // descriptions that say something: a range, a limit
-    std::istringstream parts(typeName.substr(colon + 1));
-    for (std::string part; std::getline(parts, part, ':');) {
-      if (part.rfind(base + " ", 0) == 0) part.erase(0, base.size() + 1);  // "INT in [0 - 511]"
-      const bool bareName = std::none_of(part.begin(), part.end(), [](unsigned char c) { return std::islower(c); });
-      if (!bareName) kept += (kept.empty() ? "" : ", ") + part;
-    }
-    s.erase(at + colon, typeName.size() - colon);
-    if (!kept.empty()) {
-      std::size_t end = at + colon;  // after "=DEFAULT" when there is one
-      if (end < s.size() && s[end] == '=') end = std::min(s.find(' ', end), s.size());
-      s.insert(end, " (" + kept + ")");
-    }
-    return s;
+    return help::plainTypeText(CLI::Formatter::make_option_opts(opt), opt->get_type_name());
   }
 };
 

@@ -1,10 +1,11 @@
 #include "cli/app_doc.hpp"
 
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/exit_status.hpp"
+#include "cli/option_checks.hpp"
+#include "help/option_text.hpp"
 
 namespace vbim::cli {
 
@@ -17,29 +18,6 @@ std::vector<std::string> optionNames(const CLI::Option& opt) {
   return names;
 }
 
-// The fixed set in a validator's description: CLI::IsMember's "{a,b,c}", CLI::CheckedTransformer's
-// "value in {a->1,b->2} OR {1,2}" (the names before "->"), cli::oneOf's "{a,b}". Empty if none.
-std::vector<std::string> choicesIn(const std::string& description) {
-  const auto open = description.find('{');
-  const auto close = description.find('}', open);
-  if (open == std::string::npos || close == std::string::npos) return {};
-  std::vector<std::string> out;
-  std::istringstream items(description.substr(open + 1, close - open - 1));
-  for (std::string item; std::getline(items, item, ',');) {
-    item = item.substr(0, item.find("->"));
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
-bool hasValidator(CLI::Option& opt, const std::string& name) {
-  try {
-    return opt.get_validator(name) != nullptr;
-  } catch (const CLI::OptionNotFound&) {
-    return false;
-  }
-}
-
 // What the option's value is, from its own checks and type (the same definitions --help shows).
 void describeValue(CLI::Option& opt, help::OptionDoc& doc) {
   // A flag takes none: CLI11 gives it a type size of 1 like any option, and expects no item.
@@ -50,7 +28,7 @@ void describeValue(CLI::Option& opt, help::OptionDoc& doc) {
   doc.list = opt.get_delimiter() != '\0';
   // get_type_name() is the type and every validator's description: "TEXT:{png,exr}".
   const std::string typeName = opt.get_type_name();
-  doc.choices = choicesIn(typeName);
+  doc.choices = help::choicesIn(typeName);  // CLI::IsMember's, CLI::CheckedTransformer's, cli::oneOf's
   const std::string type = typeName.substr(0, typeName.find(':'));
   if (!doc.choices.empty()) {
     doc.value = help::ValueKind::Choice;

@@ -17,51 +17,51 @@ void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions
     o->options.push_back(opt);
     return opt;
   };
-  track(cmd->add_option("--terrain", o->terrain.heightfield,
+  track(cmd->add_option("--terrain", o->request.terrain.heightfield,
                         "Heightfield: a DEM GDAL reads (GeoTIFF, ASCII grid, .hgt...) or a single-channel picture "
                         "(16-bit PNG, TIFF, EXR...)"));
-  track(cmd->add_flag("--procedural", o->procedural,
+  track(cmd->add_flag("--procedural", o->request.procedural,
                       "Use the built-in procedural terrain (also what any Technique A option without --terrain gets)"));
   const std::map<std::string, lighting::TerrainFit> fits{
       {"crop", lighting::TerrainFit::Crop}, {"pad", lighting::TerrainFit::Pad}, {"none", lighting::TerrainFit::None}};
-  track(cmd->add_option("--terrain-fit", o->terrain.fit,
+  track(cmd->add_option("--terrain-fit", o->request.terrain.fit,
                         "Sides not multiples of 16: crop (centred), pad (edges repeated) or none (refused)")
             ->transform(CLI::CheckedTransformer(fits))
             ->default_str("crop"));
   track(cmd->add_option(
-      "--albedo", o->terrain.albedo,
+      "--albedo", o->request.terrain.albedo,
       "Diffuse colour map of the terrain's size or of the heightfield file's (then resampled with it)"));
-  track(cmd->add_option("--bounce-albedo", o->terrain.bounceAlbedo,
+  track(cmd->add_option("--bounce-albedo", o->request.terrain.bounceAlbedo,
                         "Colour of the surrounding terrain for the coloured bounce light only (same size)"));
-  track(cmd->add_option("--cloud-texture", o->terrain.cloudTexture,
+  track(cmd->add_option("--cloud-texture", o->request.terrain.cloudTexture,
                         "Single-channel cloud density texture (implies --clouds)"));
-  o->cellSizeOption = track(cmd->add_option("--cell-size", o->terrain.cellSize,
+  o->cellSizeOption = track(cmd->add_option("--cell-size", o->request.terrain.cellSize,
                                             "Metres between heightfield samples (a DEM's own unless given)")
                                 ->default_val(10.0));
   o->verticalScaleOption =
-      track(cmd->add_option("--vertical-scale", o->terrain.verticalScale,
+      track(cmd->add_option("--vertical-scale", o->request.terrain.verticalScale,
                             "Metres at full scale for integer heightfields; a multiplier for float ones and DEMs "
                             "(heights in metres are used as they are unless given)")
                 ->default_val(1000.0));
-  track(cmd->add_option("--size", o->terrain.procedural.size,
+  track(cmd->add_option("--size", o->request.terrain.procedural.size,
                         "Procedural terrain size in texels (multiple of 16); the default "
                         "fits the default platform config's VRAM next to the sky")
             ->default_val(256));
-  track(cmd->add_option("--seed", o->terrain.procedural.seed, "Procedural terrain seed")->default_val(1));
-  track(cmd->add_option("--relief", o->terrain.procedural.reliefMetres, "Procedural terrain relief in metres")
+  track(cmd->add_option("--seed", o->request.terrain.procedural.seed, "Procedural terrain seed")->default_val(1));
+  track(cmd->add_option("--relief", o->request.terrain.procedural.reliefMetres, "Procedural terrain relief in metres")
             ->default_val(900.0));
   // The plain pointer inside the stored functions (not the shared_ptr) keeps `o` from owning
   // itself, which LeakSanitizer would report.
   addLightingOptions(cmd, o->params, o->noMoon, o->given, LightingOptionNames{"--frame-count", "--exposure-klux"},
                      [&](CLI::Option* opt) { track(opt); });
-  track(
-      cmd->add_option("--lighting-config", o->lightingConfig, "TOML file of lighting.* keys (command-line options win)")
-          ->check(inputFile()));
-  track(cmd->add_option("--weather", o->weather,
+  track(cmd->add_option("--lighting-config", o->request.lightingConfig,
+                        "TOML file of lighting.* keys (command-line options win)")
+            ->check(inputFile()));
+  track(cmd->add_option("--weather", o->request.weather,
                         "Variants: presets clear, overcast, or NAME=FILE.toml (lighting.* over the base), "
                         "comma-separated")
             ->capture_default_str());
-  track(cmd->add_option("--threads", o->threads, "Host threads (the output does not depend on it)")
+  track(cmd->add_option("--threads", o->request.threads, "Host threads (the output does not depend on it)")
             ->default_val(2)
             ->check(hostThreads()));
 }
@@ -73,15 +73,10 @@ std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o) {
 }
 
 void runTerrainAuthor(const TerrainAuthorOptions& o, const streams::EncodeOptions& enc, const std::string& out) {
-  lighting::TerrainAuthorRequest request;
-  request.terrain = o.terrain;
+  lighting::TerrainAuthorRequest request = o.request;
   request.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
   request.terrain.verticalScaleGiven = o.verticalScaleOption != nullptr && o.verticalScaleOption->count() > 0;
-  request.procedural = o.procedural;
-  request.lightingConfig = o.lightingConfig;
   request.applyGiven = [&o](lighting::DayCycleParams& params) { applyGivenLightingOptions(o.given, params); };
-  request.weather = o.weather;
-  request.threads = o.threads;
   request.encode = enc;
   const lighting::TechniqueAStreamSettings s = lighting::terrainAuthorSettings(request);
 
@@ -92,7 +87,7 @@ void runTerrainAuthor(const TerrainAuthorOptions& o, const streams::EncodeOption
       });
   progress.finish();
   for (const std::string& note : stream.terrainNotes)
-    std::cout << "vbim author: " << o.terrain.heightfield << ": " << note << "\n";
+    std::cout << "vbim author: " << o.request.terrain.heightfield << ": " << note << "\n";
   std::cout << lighting::authoredSummary(out, stream, s.stream.encoder.containerFps);
 }
 

@@ -18,10 +18,8 @@
 namespace vbim::cli {
 
 struct TerrainAuthorOptions {
-  lighting::TerrainSource terrain;
-  bool procedural = false, noMoon = false;
-  std::string lightingConfig, weather = "clear";
-  unsigned threads = 2;
+  lighting::TerrainAuthorRequest request;  // the values; its given flags, overrides and encoder set when run
+  bool noMoon = false;
   lighting::DayCycleParams params;             // values given on the command line
   LightingOverrides given;                     // lighting options: each overrides the config file's value when given
   std::vector<CLI::Option*> options;           // every option of this source, to tell whether it was chosen

@@ -9,9 +9,7 @@
 #include "cli/progress.hpp"
 #include "iop/error.hpp"
 #include "runs/output_dir.hpp"
-#include "streams/authoring/encode_options.hpp"
-#include "streams/authoring/frame_stream.hpp"
-#include "streams/authoring/sequence_options.hpp"
+#include "streams/authoring/frame_author.hpp"
 #include "streams/disc/iso_disc.hpp"
 #include "streams/disc/iso_writer.hpp"
 
@@ -46,12 +44,7 @@ void addEncodeOptions(CLI::App* cmd, EncodeOptions& o) {
 }
 
 struct AuthorOptions {
-  SequenceOptions sequences;  // --frames, --sky, --name, --variant, --variant-sky
-  EncodeOptions encode;
-  std::string input = "auto";
-  std::string synthetic;
-  std::uint32_t syntheticFrames = 48;
-  std::string syntheticSize = "256x256", syntheticSkySize = "128x64";
+  FrameAuthorRequest frames;  // --frames ... or --synthetic ...
   std::string out;
   bool force = false;
   std::string iso, isoFile = "\\DATA\\DAY.VBI;1";  // --iso: also a disc image holding the stream
@@ -69,36 +62,14 @@ void writeDiscImage(const AuthorOptions& o) {
   }
 }
 
-// Image sequences or the synthetic day (streams/authoring/frame_stream.hpp).
+// Image sequences or the synthetic day (streams/authoring/frame_author.hpp).
 void runAuthor(const AuthorOptions& o) {
-  const AuthorSettings settings = streamSettings(o.encode);
-  const ToneMapping tone = toneMapping(o.encode);
-  const InputEncoding enc = inputEncoding(o.input);
   Progress progress("vbim author", "frames");
-  const auto show = [&](const FrameAuthorProgress& p) {
+  const std::string lines = authorFrameStream(o.frames, o.out, [&](const FrameAuthorProgress& p) {
     progress.show(static_cast<double>(p.done), static_cast<double>(p.total), p.label);
-  };
-  FrameStream stream;
-  if (!o.synthetic.empty()) {
-    if (!o.sequences.frames.empty() || !o.sequences.variants.empty())
-      throw Exit(2, "--synthetic replaces --frames and --variant; give one or the other");
-    SyntheticDay day;
-    day.frames = o.syntheticFrames;
-    parseSize(o.syntheticSize, day.width, day.height, "--synthetic-size");
-    parseSize(o.syntheticSkySize, day.skyWidth, day.skyHeight, "--synthetic-sky-size");
-    stream = authorSyntheticStream(day, weatherList(o.synthetic), settings, tone, show);
-  } else {
-    if (o.sequences.frames.empty()) {
-      throw Exit(2,
-                 "give a source: --frames PATTERN, --terrain FILE or --procedural (Technique A), or "
-                 "--synthetic");
-    }
-    stream = authorImageSequences(imageSequences(o.sequences, enc), settings, tone, show);
-  }
+  });
   progress.finish();
-  writeStreamFile(o.out, stream.bytes);
-  std::cout << o.out << ": " << stream.bytes.size() / 2048 << " sectors (" << stream.bytes.size() << " bytes)\n"
-            << containerStretchNote(stream.containerStretch, settings.encoder.containerFps);
+  std::cout << lines;
 }
 
 }  // namespace
@@ -106,20 +77,24 @@ void runAuthor(const AuthorOptions& o) {
 void addAuthor(CLI::App& app) {
   auto* cmd = app.add_subcommand(kAuthorCommand.name, kAuthorCommand.summary);
   auto o = std::make_shared<AuthorOptions>();
-  cmd->add_option("--frames", o->sequences.frames,
+  cmd->add_option("--frames", o->frames.sequences.frames,
                   "Lightmap frames, e.g. 'dir/lightmap_%04d.exr' (any OpenImageIO format)");
-  cmd->add_option("--sky", o->sequences.sky, "Sky dome frames, e.g. 'dir/sky_%04d.exr' (same numbering as --frames)");
-  cmd->add_option("--name", o->sequences.name, "Variant name of --frames/--sky")->capture_default_str();
-  cmd->add_option("--variant", o->sequences.variants, "Another variant (weather): NAME=LIGHTMAP_PATTERN; repeatable");
-  cmd->add_option("--variant-sky", o->sequences.variantSkies,
+  cmd->add_option("--sky", o->frames.sequences.sky,
+                  "Sky dome frames, e.g. 'dir/sky_%04d.exr' (same numbering as --frames)");
+  cmd->add_option("--name", o->frames.sequences.name, "Variant name of --frames/--sky")->capture_default_str();
+  cmd->add_option("--variant", o->frames.sequences.variants,
+                  "Another variant (weather): NAME=LIGHTMAP_PATTERN; repeatable");
+  cmd->add_option("--variant-sky", o->frames.sequences.variantSkies,
                   "Sky frames of a --variant: NAME=SKY_PATTERN; repeatable");
-  addEncodeOptions(cmd, o->encode);
-  cmd->add_option("--input", o->input, "auto (float files linear, integer files encoded), linear, encoded")
+  addEncodeOptions(cmd, o->frames.encode);
+  cmd->add_option("--input", o->frames.input, "auto (float files linear, integer files encoded), linear, encoded")
       ->capture_default_str();
-  cmd->add_option("--synthetic", o->synthetic, "Generate a synthetic day instead: WEATHER[,WEATHER] (clear, overcast)");
-  cmd->add_option("--synthetic-frames", o->syntheticFrames, "Frames of the synthetic day")->capture_default_str();
-  cmd->add_option("--synthetic-size", o->syntheticSize, "Synthetic lightmap size WxH")->capture_default_str();
-  cmd->add_option("--synthetic-sky-size", o->syntheticSkySize, "Synthetic sky size WxH (0x0: no sky)")
+  cmd->add_option("--synthetic", o->frames.synthetic,
+                  "Generate a synthetic day instead: WEATHER[,WEATHER] (clear, overcast)");
+  cmd->add_option("--synthetic-frames", o->frames.syntheticFrames, "Frames of the synthetic day")
+      ->capture_default_str();
+  cmd->add_option("--synthetic-size", o->frames.syntheticSize, "Synthetic lightmap size WxH")->capture_default_str();
+  cmd->add_option("--synthetic-sky-size", o->frames.syntheticSkySize, "Synthetic sky size WxH (0x0: no sky)")
       ->capture_default_str();
   cmd->add_option("-o,--out", o->out, "Output stream file (complete or left as it was)")->required();
   cmd->add_flag("--force", o->force, "Replace an existing output file");
@@ -147,14 +122,14 @@ void addAuthor(CLI::App& app) {
       return;
     }
     // Technique A renders its own frames: the image-sequence and synthetic options do not apply.
-    const SequenceOptions& seq = o->sequences;
+    const SequenceOptions& seq = o->frames.sequences;
     if (!seq.frames.empty() || !seq.sky.empty() || !seq.variants.empty() || !seq.variantSkies.empty() ||
-        !o->synthetic.empty()) {
+        !o->frames.synthetic.empty()) {
       throw Exit(2, technique +
                         " selects Technique A, which renders its own frames; it excludes --frames, --sky, "
                         "--variant, --variant-sky and --synthetic");
     }
-    runTerrainAuthor(*terrain, o->encode, o->out);
+    runTerrainAuthor(*terrain, o->frames.encode, o->out);
     if (!o->iso.empty()) writeDiscImage(*o);
   });
 }

@@ -1,7 +1,7 @@
 // vbim decode STREAM --out DIR --format png|exr|yuv|rgba: every picture of a stream through the IPU
 // decoder (no timing). STREAM is an MPEG program stream (a VBIM stream, or any MPEG-2 program stream
 // or MPEG-1 system stream) or a raw MPEG-1/2 video elementary stream (.m2v / .m1v). The work is
-// streams::decodeStream (streams/decode/); this file parses the arguments and prints.
+// runs::decodeRun (runs/decode_run.hpp, over streams/decode/); this file parses the arguments and prints.
 #include <iostream>
 #include <memory>
 #include <string>
@@ -10,70 +10,29 @@
 #include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
-#include "runs/output_dir.hpp"
-#include "streams/decode/decode_input.hpp"
-#include "streams/decode/frame_files.hpp"
-#include "streams/decode/stream_decode.hpp"
-#include "streams/disc/standard_input.hpp"
+#include "runs/decode_run.hpp"
 
 namespace vbim::cli {
 namespace {
 
-struct Options {
-  std::string input;
-  std::string file;  // the stream on a disc image
-  std::string outDir;
-  std::string format = "png";
-  std::string stream;
-  std::string idct = ipu::idctKindName(ipu::kDefaultIdct);
-  unsigned threads = 0;
-  bool force = false;
-  bool strict = false;
-  int th0 = 0;
-  int th1 = 0;
-};
-
-void run(const Options& o) {
-  streams::DecodeOptions options;
-  options.threads = o.threads;
-  options.idct = ipu::idctKindByName(o.idct).value_or(ipu::kDefaultIdct);
-  if (!o.stream.empty()) options.streamId = streams::parseStreamId(o.stream);
-  const streams::DecodeInput in = streams::readDecodeInput(o.input, o.file);
-  const std::string name = streams::nameStandardInput(in.name);
-  runs::OutputDir dir(o.outDir, o.force);
-  streams::FrameFileWriter writer(dir.directory(), streams::frameFileFormatNamed(o.format),
-                                  ipu::CscThresholds{o.th0, o.th1});
-  streams::DecodeSummary s;
+void run(const runs::DecodeRequest& r) {
   Progress progress("vbim decode", "pictures");
   int pictures = 0;
-  s = streams::decodeStream(
-      in.bytes, name, options,
-      [&](int frame, const ipu::Decoder& d) {
-        writer.write(frame, d);
-        progress.show(++pictures, 0);
-      },
-      [&progress](const std::string& line) {
-        progress.finish();  // a report starts on a line of its own
-        std::cerr << "vbim decode: " << line << "\n";
-      });
-  if (o.strict && s.issues > 0)
-    throw Exit(2, name + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
-  dir.commit();
-  std::cout << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
-            << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
-            << o.format;
-  if (s.issues) std::cout << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
-  if (s.skippedPictures)
-    std::cout << ", " << s.skippedPictures << (s.skippedPictures == 1 ? " picture" : " pictures")
-              << " skipped (cannot be decoded)";
-  std::cout << "\n";
+  runs::DecodeObserver observer;
+  observer.onPicture = [&] { progress.show(++pictures, 0); };
+  observer.onReport = [&progress](const std::string& line) {
+    progress.finish();  // a report starts on a line of its own
+    std::cerr << "vbim decode: " << line << "\n";
+  };
+  const std::string summary = runs::decodeRun(r, observer);
+  std::cout << summary;
 }
 
 }  // namespace
 
 void addDecode(CLI::App& app) {
   auto* cmd = app.add_subcommand("decode", "Decode every picture of a stream with the IPU model (no timing)");
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<runs::DecodeRequest>();
   cmd->add_option("stream", o->input,
                   "MPEG program stream (VBIM stream), MPEG-1/2 video elementary stream, or an ISO 9660 disc image; - "
                   "reads it from stdin")
@@ -82,13 +41,13 @@ void addDecode(CLI::App& app) {
       ->check(inputFile());
   cmd->add_option("--file", o->file,
                   "The stream on a disc image, e.g. '\\DATA\\DAY.VBI;1' (default: its only VBIM stream)");
-  cmd->add_option("-o,--out", o->outDir, "Output directory (written completely or not at all)")->required();
+  cmd->add_option("-o,--out", o->out, "Output directory (written completely or not at all)")->required();
   cmd->add_option("--format", o->format,
                   "png (RGBA, GS alpha doubled), exr (half float), yuv (planar 4:2:0) or rgba (raw RGB32 bytes, GS "
                   "alpha: what `vbim replay --frames` reads)")
       ->capture_default_str()
       ->check(CLI::IsMember({"png", "exr", "yuv", "rgba"}));
-  cmd->add_option("--stream-id", o->stream, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
+  cmd->add_option("--stream-id", o->streamId, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
   addThreadsOption(*cmd, o->threads, "Host threads for the slice-parallel decode");
   cmd->add_option("--idct", o->idct, "Inverse DCT as ipu.idct: pcsx2, libmpeg2 (mpeg2dec -c) or exact")
       ->capture_default_str()

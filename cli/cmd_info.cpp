@@ -2,8 +2,6 @@
 // (streams/info/stream_info.hpp).
 #include <iostream>
 
-#include <nlohmann/json.hpp>
-
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "streams/disc/standard_input.hpp"
@@ -31,14 +29,9 @@ void addInfo(CLI::App& app) {
   cmd->callback([path, json, file] {
     const streams::StreamInfo info = streams::inspectStream(*path, *file, *json);
     if (*json) {
-      const nlohmann::json j = streams::infoJson(info);
-      // Text read from a damaged stream (descriptor names, the authoring record) may not be UTF-8:
-      // such bytes are written as U+FFFD, so the document is always valid JSON, and said so.
-      std::string text;
-      try {
-        text = j.dump(2);
-      } catch (const nlohmann::json::type_error&) {
-        text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+      bool replaced = false;
+      const std::string text = streams::infoJsonText(info, replaced);
+      if (replaced) {
         std::cerr << "vbim info: warning: " << info.shown
                   << ": text in the stream is not UTF-8; its bytes are replaced by U+FFFD in the JSON\n";
       }

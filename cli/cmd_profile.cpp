@@ -13,7 +13,6 @@
 #include "cli/option_checks.hpp"
 #include "cli/profile_plan.hpp"
 #include "cli/progress.hpp"
-#include "player/report.hpp"
 #include "runs/profile_json.hpp"
 #include "runs/profile_run.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
@@ -54,26 +53,14 @@ void runProfile(const runs::ProfileRequest& r, const runs::Reencoder& reencode) 
   progress.onStart = [count](std::size_t total) { count->start(total); };
   progress.sweep.onRun = [count, &lines](const SweepRun& run) {
     checkInterrupted();  // Ctrl-C between runs: the output directory is not started yet
-    lines << count->next() << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax
-          << "  faults " << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate
-          << ", pop max " << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
-    // A run that stopped showing frames is flagged on its line and warned about on stderr.
+    const runs::SweepRunReport report = runs::sweepRunReport(run);
     // The line is finished (and flushed) before the warning, so the two never share a line.
-    const auto h = player::runHealth(run.result.lightmap, run.result.totals);
-    if (h.verdict != "ok") lines << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
-    lines << std::endl;
-    if (h.verdict != "ok") {
-      std::cerr << "vbim profile: " << run.stream << " ring " << run.ring.bankmax << ":" << run.ring.bufmax << " "
-                << run.policy << ": " << player::healthWarning(h) << "\n";
-    }
+    lines << count->next() << report.line << std::endl;
+    if (!report.warning.empty()) std::cerr << "vbim profile: " << report.warning << "\n";
   };
   progress.sweep.onStall = [count, &lines](const StallRow& row) {
     checkInterrupted();
-    lines << count->next() << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  "
-          << row.policy << "  " << toString(row.criterion) << ": "
-          << (row.result.longest ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
-                                 : std::string("fails without a stall"))
-          << " (" << row.result.runs << " runs)\n";
+    lines << count->next() << runs::stallSearchLine(row) << "\n";
   };
   const runs::ProfileResult result = runs::profileRun(r, reencode, progress);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -90,7 +77,7 @@ void runProfile(const runs::ProfileRequest& r, const runs::Reencoder& reencode) 
 
 void addProfile(CLI::App& app, const ProfileEncoders& encoders) {
   auto r = std::make_shared<runs::ProfileRequest>();
-  auto plan = std::make_shared<PlanRequest>();
+  auto plan = std::make_shared<PlanOptions>();
   auto* cmd = app.add_subcommand(kProfileCommand.name, kProfileCommand.summary);
   cmd->add_option("disc", r->discs,
                   "VBIM stream file(s) or ISO 9660 disc images; several discs are one sweep axis (not with --plan)")
@@ -136,11 +123,11 @@ void addProfile(CLI::App& app, const ProfileEncoders& encoders) {
       "blend-through,hard-skip --out prof/\n"
       "  vbim profile --plan examples/sweeps/survivable-stall.toml --jobs 2 --out study/\n");
   cmd->callback([r, plan, encoders] {
-    if (planMode(*plan)) {
+    if (runs::planMode(plan->request)) {
       if (!r->discs.empty()) throw Exit(2, "a sweep plan names its streams: give --plan or stream files, not both");
-      plan->out = r->out;
-      plan->force = r->force;
-      plan->json = r->json;
+      plan->request.out = r->out;
+      plan->request.force = r->force;
+      plan->request.json = r->json;
       return runPlan(*plan, encoders.transcode);
     }
     // `vbim` has no encoder (FFmpeg): vbim-full re-encodes (cli/main.cpp).

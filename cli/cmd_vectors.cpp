@@ -3,28 +3,20 @@
 // them, every entry (or the stages and keys --only selects), and scores each file: pass, fail with
 // the first differences and where in the value, or absent (exit 1 when a present file fails). The
 // vectors, their writing and the scoring are runs/vectors_run.hpp's.
-#include <filesystem>
 #include <iostream>
 #include <memory>
-#include <optional>
 
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/samples.hpp"
-#include "runs/output_dir.hpp"
 #include "runs/vectors_run.hpp"
 
 namespace vbim::cli {
 
 namespace {
 
-// Without --stream: the two sample streams, wherever vbim finds them (cli/samples.hpp), so the
-// vectors do not depend on the directory vbim is run from.
-const std::vector<std::string> kDefaultStreams{"day_clear.vbim", "day_weather.vbim"};
-
 struct VectorsRequest {
-  std::vector<std::string> streams;  // --stream; empty: kDefaultStreams
+  std::vector<std::string> streams;  // --stream; empty: runs::sampleVectorStreams()
   std::string out;
   std::string check;
   std::vector<std::string> only;  // --only: key patterns checked
@@ -32,47 +24,22 @@ struct VectorsRequest {
   bool force = false;
 };
 
-// The sample streams' paths; Exit(2) naming where they were looked for when they are not there.
-std::vector<std::string> defaultStreams() {
-  const std::optional<std::filesystem::path> dir = findSamples(kDefaultStreams);
-  if (!dir) {
-    std::string searched;
-    for (const std::filesystem::path& d : sampleDirectories()) searched += (searched.empty() ? "" : ", ") + d.string();
-    throw Exit(2, "cannot find the sample streams " + kDefaultStreams[0] + " and " + kDefaultStreams[1] +
-                      " (looked in " + searched + "); name the streams with --stream FILE");
-  }
-  std::vector<std::string> paths;
-  paths.reserve(kDefaultStreams.size());
-  for (const std::string& name : kDefaultStreams) paths.push_back((*dir / name).string());
-  return paths;
-}
-
 void run(const VectorsRequest& r) {
-  if (r.out.empty() == r.check.empty()) throw Exit(2, "give exactly one of --out DIR and --check DIR");
-  if (!r.only.empty() && r.check.empty()) throw Exit(2, "--only selects what --check compares: give --check DIR");
-  if (!r.check.empty() && !std::filesystem::is_directory(r.check)) {
-    throw Exit(2, "--check " + r.check + ": not a directory");
-  }
-  if (!r.out.empty()) runs::refuseExistingOutputDir(runs::outputPath(r.out), r.force);
+  runs::checkVectorsRequest(r.out, r.check, r.only, r.force);
   const ipu::IdctKind idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);
-  const std::vector<player::VectorFile> files = r.streams.empty() ? runs::streamVectors(defaultStreams(), "", idct)
-                                                                  : runs::streamVectors(r.streams, "--stream ", idct);
+  const std::vector<player::VectorFile> files = r.streams.empty()
+                                                    ? runs::streamVectors(runs::sampleVectorStreams(), "", idct)
+                                                    : runs::streamVectors(r.streams, "--stream ", idct);
   checkInterrupted();  // a Ctrl-C while the vectors were computed stops here: nothing written yet
   if (!r.out.empty()) {
     const std::size_t lines = exitOneOnRunFailure([&] { return runs::writeVectors(files, r.out, r.force); });
     std::cout << "wrote " << files.size() << " vector files (" << lines << " lines) to " << r.out << "\n";
     return;
   }
-  const runs::VectorsCheck c = runs::checkVectors(files, r.check, r.only);
-  if (c.present == 0) {
-    if (!c.anySelected) throw Exit(2, "--only selects no entry of the vectors");
-    throw Exit(1, "no vector file selected is in " + r.check + ":\n" + c.report);
-  }
-  const std::string total = std::to_string(c.matched) + " of " + std::to_string(c.checked) + " entries match";
-  if (!c.passed) throw Exit(1, total + " in " + r.check + ":\n" + c.report);
-  std::cout << "the " << c.present << " vector files present in " << r.check << " match";
-  if (!r.only.empty()) std::cout << " (the " << c.checked << " entries --only selects)";
-  std::cout << "\n" << c.report;
+  const runs::VectorsVerdict v =
+      runs::vectorsVerdict(runs::checkVectors(files, r.check, r.only), r.check, !r.only.empty());
+  if (!v.passed) throw Exit(1, v.text);
+  std::cout << v.text;
 }
 
 }  // namespace

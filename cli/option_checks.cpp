@@ -63,21 +63,22 @@ std::string fileProblem(const std::string& path, bool directory) {
 
 // What an option's value is, in words, from its checks and type: "a file", "a number", ...
 std::string expectedValue(CLI::Option& opt) {
-  const auto has = [&opt](const std::string& validator) {
-    try {
-      return opt.get_validator(validator) != nullptr;
-    } catch (const CLI::OptionNotFound&) {
-      return false;
-    }
-  };
-  if (has("input file")) return "a file";
-  if (has("input directory")) return "a directory";
+  if (hasValidator(opt, "input file")) return "a file";
+  if (hasValidator(opt, "input directory")) return "a directory";
   const std::string type = opt.get_type_name();
   if (type == "INT" || type == "UINT" || type == "FLOAT") return "a number";
   return "a value";
 }
 
 }  // namespace
+
+bool hasValidator(CLI::Option& opt, const std::string& name) {
+  try {
+    return opt.get_validator(name) != nullptr;
+  } catch (const CLI::OptionNotFound&) {
+    return false;
+  }
+}
 
 const CLI::Validator& inputFile() {
   static const CLI::Validator v([](std::string& s) { return fileProblem(s, false); }, "", "input file");

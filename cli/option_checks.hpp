@@ -24,6 +24,9 @@ const CLI::Validator& stdinAsFile();
 // A count, seed or size that cannot be negative (text of digits only, fits in 64 bits).
 const CLI::Validator& nonNegativeInteger();
 
+// True when `opt` has a check of that name ("input file", "input directory", CLI11's "DIR").
+bool hasValidator(CLI::Option& opt, const std::string& name);
+
 // Adds the strict number checks to every option of `app` and its subcommands whose type is an
 // integer or a floating-point number (CLI11's INT, UINT and FLOAT), and gives each option a plain
 // type name in --help (CLI11 appends validator names: "INT:NONNEGATIVE").

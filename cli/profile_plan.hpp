@@ -1,13 +1,12 @@
 // `vbim profile --plan sweep.toml`: a sweep plan run on this machine (--jobs), one shard of it
 // (--shard K/N), shards joined (--merge DIR) or a Slurm job array written for it (--emit-slurm DIR).
-// docs/sweeps.md. The modes are calls into sweep/outputs/ (study.hpp, plan_modes.hpp); this file
-// parses their options, shows progress and prints.
+// docs/sweeps.md. The modes are runs::planRun (runs/plan_run.hpp); this file registers their
+// options, shows the cases' progress and prints.
 #pragma once
-
-#include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "runs/plan_run.hpp"
 #include "runs/profile_run.hpp"
 #include "sweep/outputs/study.hpp"
 
@@ -23,27 +22,14 @@ struct ProfileEncoders {
 // Registers `vbim profile` (cli/cmd_profile.cpp).
 void addProfile(CLI::App& app, const ProfileEncoders& encoders);
 
-struct PlanRequest {
-  std::string plan;
-  std::string out;
-  bool force = false;
-  unsigned jobs = 0;  // 0: the cores available
-  bool progress = false;
-  bool json = false;      // vbim profile --json: the summary as JSON (a local run only)
-  std::string shard;      // "K/N"
-  std::string merge;      // directory of shards
-  std::string emitSlurm;  // directory for the job-array script
-  unsigned shards = 0;    // 0: from the measured cost
-  std::string partition;
-  std::string account;
-  unsigned cpusPerTask = 1;
+struct PlanOptions {
+  runs::PlanRequest request;
+  bool progress = false;  // --progress: the cases' progress on stderr even when it is not a terminal
 };
 
 // Adds the plan options to `vbim profile`.
-void addPlanOptions(CLI::App& cmd, PlanRequest& r);
-// True when any plan mode was asked for.
-bool planMode(const PlanRequest& r);
+void addPlanOptions(CLI::App& cmd, PlanOptions& o);
 // Runs the mode asked for; a plan that re-encodes without `transcode` is handed to vbim-full.
-void runPlan(const PlanRequest& r, const sweep::StreamTranscoder& transcode);
+void runPlan(const PlanOptions& o, const sweep::StreamTranscoder& transcode);
 
 }  // namespace vbim::cli

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "help/did_you_mean.hpp"
+#include "help/option_text.hpp"
 
 namespace vbim::cli {
 
@@ -59,9 +59,8 @@ std::size_t valuesTaken(const CLI::Option& opt) {
 
 std::string unknownMessage(const CLI::App& app, const std::string& token) {
   const std::string name = token.substr(0, token.find('='));
-  std::vector<std::string> close;
-  if (name.rfind("--", 0) == 0) close = help::closestNames(name, longNames(app));
-  return "unknown option '" + name + "'" + help::didYouMean(close);
+  // Only a long name is offered the closest ones: a single letter is close to every other.
+  return help::unknownName("option", name, name.rfind("--", 0) == 0 ? longNames(app) : std::vector<std::string>{});
 }
 
 // Scans args[from, to) against `app`'s options; the first unknown one's message.
@@ -111,7 +110,7 @@ std::string unknownCommand(CLI::App& app, const std::string& typed) {
   for (const CLI::App* sub : app.get_subcommands({})) {
     if (!sub->get_name().empty()) names.push_back(sub->get_name());
   }
-  return "unknown command '" + typed + "'" + help::didYouMean(help::closestNames(typed, names));
+  return help::unknownName("command", typed, names);
 }
 
 }  // namespace vbim::cli

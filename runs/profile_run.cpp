@@ -1,6 +1,7 @@
 #include "runs/profile_run.hpp"
 
 #include <filesystem>
+#include <sstream>
 #include <utility>
 
 #include "config/fault_plan_toml.hpp"
@@ -9,6 +10,7 @@
 #include "gs/error.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "player/report.hpp"
 #include "runs/output_dir.hpp"
 #include "streams/disc/stream_disc.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
@@ -60,6 +62,30 @@ SweepPlan sweepPlan(const ProfileRequest& r, const std::vector<std::shared_ptr<S
 }
 
 }  // namespace
+
+SweepRunReport sweepRunReport(const SweepRun& run) {
+  std::ostringstream line;
+  line << "sweep  " << run.stream << "  ring " << run.ring.bankmax << ":" << run.ring.bufmax << "  faults "
+       << run.faults << "  " << run.policy << ": late " << run.result.lightmap.framesLate << ", pop max "
+       << run.result.pop.value << ", lag max " << run.result.totals.lag.value;
+  const auto h = player::runHealth(run.result.lightmap, run.result.totals);
+  if (h.verdict == "ok") return {line.str(), {}};
+  line << "  " << (h.verdict == "starved" ? "STARVED" : "STUCK");
+  std::ostringstream warning;
+  warning << run.stream << " ring " << run.ring.bankmax << ":" << run.ring.bufmax << " " << run.policy << ": "
+          << player::healthWarning(h);
+  return {line.str(), warning.str()};
+}
+
+std::string stallSearchLine(const StallRow& row) {
+  std::ostringstream line;
+  line << "stall  " << row.stream << "  ring " << row.ring.bankmax << ":" << row.ring.bufmax << "  " << row.policy
+       << "  " << toString(row.criterion) << ": "
+       << (row.result.longest ? (row.result.saturated ? ">= " : "") + fixed(toSeconds(*row.result.longest), 3) + " s"
+                              : std::string("fails without a stall"))
+       << " (" << row.result.runs << " runs)";
+  return line.str();
+}
 
 bool reencodes(const ProfileRequest& r) {
   return !r.qscales.empty() || !r.bitrates.empty();

@@ -63,4 +63,17 @@ struct ProfileResult {
 // an output cannot be written. An existing, non-empty `out` is refused before the sweep.
 ProfileResult profileRun(const ProfileRequest& r, const Reencoder& reencode, const ProfileObserver& observer);
 
+// What `vbim profile` says of a sweep run as it ends: its line ("sweep  STREAM  ring B:S  faults F
+// POLICY: late N, pop max P, lag max L", then STARVED or STUCK when the display stopped) and, for
+// such a run, the health warning (player::healthWarning, said against the run; "" otherwise).
+struct SweepRunReport {
+  std::string line;
+  std::string warning;
+};
+SweepRunReport sweepRunReport(const sweep::SweepRun& run);
+
+// ... and of a stall search: "stall  STREAM  ring B:S  POLICY  CRITERION: T s (N runs)", the longest
+// stall survived (">= T s" when the search reached its maximum) or "fails without a stall".
+std::string stallSearchLine(const sweep::StallRow& row);
+
 }  // namespace vbim::runs

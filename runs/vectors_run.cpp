@@ -10,6 +10,7 @@
 
 #include "runs/error.hpp"
 #include "runs/output_dir.hpp"
+#include "runs/samples.hpp"
 #include "runtime/error.hpp"
 
 namespace vbim::runs {
@@ -145,6 +146,41 @@ VectorsCheck checkVectors(const std::vector<player::VectorFile>& files, const fs
     });
   }
   return c;
+}
+
+std::vector<std::string> sampleVectorStreams() {
+  const std::vector<std::string> names{"day_clear.vbim", "day_weather.vbim"};
+  const std::optional<fs::path> dir = findSamples(names);
+  if (!dir) {
+    std::string searched;
+    for (const fs::path& d : sampleDirectories()) searched += (searched.empty() ? "" : ", ") + d.string();
+    throw Error("cannot find the sample streams " + names[0] + " and " + names[1] + " (looked in " + searched +
+                "); name the streams with --stream FILE");
+  }
+  std::vector<std::string> paths;
+  paths.reserve(names.size());
+  for (const std::string& name : names) paths.push_back((*dir / name).string());
+  return paths;
+}
+
+void checkVectorsRequest(const std::string& out, const std::string& check, const std::vector<std::string>& only,
+                         bool force) {
+  if (out.empty() == check.empty()) throw Error("give exactly one of --out DIR and --check DIR");
+  if (!only.empty() && check.empty()) throw Error("--only selects what --check compares: give --check DIR");
+  if (!check.empty() && !fs::is_directory(check)) throw Error("--check " + check + ": not a directory");
+  if (!out.empty()) refuseExistingOutputDir(outputPath(out), force);
+}
+
+VectorsVerdict vectorsVerdict(const VectorsCheck& c, const std::string& dir, bool onlyGiven) {
+  if (c.present == 0) {
+    if (!c.anySelected) throw Error("--only selects no entry of the vectors");
+    return {false, "no vector file selected is in " + dir + ":\n" + c.report};
+  }
+  const std::string total = std::to_string(c.matched) + " of " + std::to_string(c.checked) + " entries match";
+  if (!c.passed) return {false, total + " in " + dir + ":\n" + c.report};
+  std::string text = "the " + std::to_string(c.present) + " vector files present in " + dir + " match";
+  if (onlyGiven) text += " (the " + std::to_string(c.checked) + " entries --only selects)";
+  return {true, text + "\n" + c.report};
 }
 
 }  // namespace vbim::runs

@@ -15,6 +15,17 @@
 
 namespace vbim::runs {
 
+// `vbim vectors`' request checked before any vector is made: exactly one of `out` and `check`,
+// `only` with `check` alone, `check` a directory, and an existing, non-empty `out` refused unless
+// `force`. Throws vbim::Error naming the option.
+void checkVectorsRequest(const std::string& out, const std::string& check, const std::vector<std::string>& only,
+                         bool force);
+
+// Without --stream: the two sample streams day_clear.vbim and day_weather.vbim, wherever the program
+// finds them (samples.hpp), so that the vectors do not depend on the directory it is run from. Throws
+// vbim::Error naming where they were looked for when they are not there.
+std::vector<std::string> sampleVectorStreams();
+
 // The vectors of the stream files at `paths`, each named by its stem. A file that cannot be opened
 // is a vbim::Error "<label><path>: cannot open the stream file" (`label` is "--stream " when the
 // user named the files, "" for the defaults).
@@ -41,5 +52,15 @@ struct VectorsCheck {
 // not reached that stage yet.
 VectorsCheck checkVectors(const std::vector<player::VectorFile>& files, const std::filesystem::path& dir,
                           const std::vector<std::string>& only);
+
+// What `vbim vectors --check DIR` says of `c`: when every present file passes, `passed` and the
+// lines to print (how many files match, the entries `only` selected when `onlyGiven`, the report);
+// otherwise the message of the failure (no selected file present, or entries that differ: exit 1).
+// Throws vbim::Error when no file is present and `only` selects no entry of any (bad input).
+struct VectorsVerdict {
+  bool passed = false;
+  std::string text;
+};
+VectorsVerdict vectorsVerdict(const VectorsCheck& c, const std::string& dir, bool onlyGiven);
 
 }  // namespace vbim::runs

@@ -36,4 +36,9 @@ std::string infoText(const StreamInfo& info);
 // `vbim info --json`'s document.
 nlohmann::json infoJson(const StreamInfo& info);
 
+// The document as text (two-space indent, no final newline). Text read from a damaged stream
+// (descriptor names, the authoring record) may not be UTF-8: such bytes are written as U+FFFD, so the
+// document is always valid JSON, and `replaced` says that happened.
+std::string infoJsonText(const StreamInfo& info, bool& replaced);
+
 }  // namespace vbim::streams

@@ -110,4 +110,15 @@ nlohmann::json infoJson(const StreamInfo& info) {
   return j;
 }
 
+std::string infoJsonText(const StreamInfo& info, bool& replaced) {
+  const nlohmann::json j = infoJson(info);
+  replaced = false;
+  try {
+    return j.dump(2);
+  } catch (const nlohmann::json::type_error&) {
+    replaced = true;
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+  }
+}
+
 }  // namespace vbim::streams

@@ -1,6 +1,7 @@
 // `vbim profile --plan`'s modes as calls: a plan's outputs from its records (run here or merged),
 // what to warn of in the records, one shard's cases, and a Slurm job array sized from measured cases.
-// The command (cli/profile_plan.cpp) parses the options, shows progress and prints what these return.
+// runs::planRun (runs/plan_run.hpp) puts them in order; the command (cli/profile_plan.cpp) shows
+// progress and prints what it returns.
 #pragma once
 
 #include <cstddef>

@@ -1,8 +1,9 @@
 // A sweep plan as a study (`vbim profile --plan`, docs/sweeps.md): the plan with its cases and
 // digest, its streams (re-encoded ones made once, in memory), its cases run on host threads, one
 // shard's files and the merge of shards, and the Slurm job array that runs the shards. The command
-// (cli/profile_plan.cpp) parses the options, shows progress and prints; everything it writes comes
-// from here. No host time enters any file but the Slurm script's sizing (measured by the caller).
+// (cli/profile_plan.cpp) parses the options and calls runs::planRun (runs/plan_run.hpp), which runs
+// the modes; everything they write comes from here. No host time enters any file but the Slurm script's sizing
+// (measured by the caller).
 #pragma once
 
 #include <cstddef>

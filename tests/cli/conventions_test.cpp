@@ -4,11 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <string>
 
+#include "tests/support/random_interrupts.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/scratch.hpp"
 #include "tests/support/soak.hpp"
@@ -27,11 +26,6 @@ const std::string kSample = std::string(VBIM_SOURCE_DIR) + "/streams/samples/day
 
 fs::path scratch(const std::string& name) {
   return vbim::testing::scratchPath("conventions_" + name);
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 int lines(const std::string& s) {
@@ -327,98 +321,45 @@ TEST(CliConventions, InterruptingRemovesTemporaryFiles) {
 
 // Ctrl-C or SIGTERM at any moment (issue #33): 240 runs of play, decode and author (author is run
 // by vbim-full, so its runs cross the exec from vbim), four at a time, each sent one SIGINT or one
-// SIGTERM at a random moment. Every run must end either complete (exit 0, its output in place) or
-// stopped (exit 130 or 143 with the message, its output absent), and nothing else may be left in
-// the directory.
-// The launching shell ignores both signals itself before it starts each run in the background, so
-// the run inherits them ignored from the fork on, as a background job of a script does with SIGINT:
-// a signal that comes before vbim's handlers are in is lost and the run completes. (The test once
-// started each run as `(trap '' INT; exec vbim ...) &`: until the subshell had run its trap, SIGINT
-// still had the shell's default action, and on a loaded machine a signal sent in the first
-// milliseconds ended the subshell itself, exit 130 with no message: the test's flake, not vbim's.)
-// The moments are spread over 1.2 times each command's own time, measured uninterrupted by the same
-// script with four at a time, so that on a loaded machine as on an idle one they reach from before
-// the handlers are in to after the output is complete.
+// SIGTERM at a random moment (tests/support/random_interrupts.hpp: how the runs inherit the signals
+// ignored, and how the moments are spread). Every run must end either complete (exit 0, its output
+// in place) or stopped (exit 130 or 143 with the message, its output absent), and nothing else may
+// be left in the directory.
 TEST(CliConventions, InterruptsAtRandomMomentsLeaveNothingBehind) {
   const fs::path dir = scratch("random_interrupts");
   fs::create_directories(dir);
-  const std::string d = dir.string();
   // 240 in the Release suite; fewer in the sanitizer suite (tests/support/soak.hpp).
   const int wanted = vbim::testing::soakRepetitions(240, 48);
-  const std::string script = R"(export D SAMPLE VBIM
-args_of() {
+  const std::vector<vbim::testing::InterruptedRun> runs = vbim::testing::runWithRandomInterrupts(dir, VBIM_BINARY, R"(
   out=$D/r$1
   case $(($1 % 3)) in
-    0) echo "play $SAMPLE --duration 120s --every 300 --out $out" ;;
-    1) echo "decode $SAMPLE --format png --out $out" ;;
+    0) echo "play )" + kSample + R"( --duration 120s --every 300 --out $out" ;;
+    1) echo "decode )" + kSample + R"( --format png --out $out" ;;
     2) echo "author --procedural --size 64 --sky-width 32 --frame-count 4 --out $out.vbim" ;;
-  esac
-}
-ms() { echo $(( $(date +%s%N) / 1000000 )); }
-# Each command's own time in ms, uninterrupted, four at a time as below (runs 900-911, 900 % 3 = 0).
-for k in 0 1 2; do
-  t0=$(ms)
-  for j in 0 3 6 9; do $VBIM $(args_of $((900 + k + j))) >/dev/null 2>&1 & done
-  for j in 0 3 6 9; do wait -n || { echo "command $k failed uninterrupted"; exit 1; }; done
-  echo $(( $(ms) - t0 )) >$D/time$k
-  rm -rf $D/r9* $D/r9*.vbim
-done
-one() {
-  i=$1
-  sig=INT; [ $((i % 2)) -eq 1 ] && sig=TERM
-  trap '' INT TERM
-  $VBIM $(args_of $i) >$D/log$i 2>&1 &
-  pid=$!
-  t=$(cat $D/time$((i % 3)))
-  delay=$(( (RANDOM * 32768 + RANDOM) % (t * 6 / 5 + 1) ))
-  sleep $((delay / 1000)).$(printf '%03d' $((delay % 1000)))
-  kill -$sig $pid 2>/dev/null
-  wait $pid
-  echo "$i $? $sig" >>$D/status
-}
-export -f one args_of
-seq )" + std::to_string(wanted) +
-                             R"( | xargs -P 4 -I{} bash -c 'one {}'
-rm -f $D/time0 $D/time1 $D/time2
-)";
-  std::ofstream(dir / "interrupt.sh") << script;
-  const auto r = vbim::testing::runCommand("D=" + d + " SAMPLE=" + kSample + " VBIM=" + std::string(VBIM_BINARY) +
-                                           " bash " + (dir / "interrupt.sh").string());
-  fs::remove(dir / "interrupt.sh");
-  ASSERT_EQ(r.status, 0) << r.output;
-  std::ifstream status(dir / "status");
-  int runs = 0, complete = 0, byInt = 0, byTerm = 0;
-  int i = 0, rc = 0;
-  for (std::string sig; status >> i >> rc >> sig; ++runs) {
-    const std::string log = slurp(dir / ("log" + std::to_string(i)));
+  esac)",
+                                                                                                 3, wanted);
+  int complete = 0, byInt = 0, byTerm = 0;
+  for (const vbim::testing::InterruptedRun& run : runs) {
+    const int i = run.index;
     const fs::path out = dir / ("r" + std::to_string(i) + (i % 3 == 2 ? ".vbim" : ""));
-    if (rc == 0) {
+    if (run.status == 0) {
       ++complete;
-      EXPECT_TRUE(fs::exists(out)) << "run " << i << " exited 0 without its output\n" << log;
+      EXPECT_TRUE(fs::exists(out)) << "run " << i << " exited 0 without its output\n" << run.log;
       if (i % 3 == 0) {
         EXPECT_TRUE(fs::exists(out / "stats.json")) << "run " << i;
       }
       continue;
     }
-    const bool term = sig == "TERM";
-    (term ? byTerm : byInt) += 1;
-    EXPECT_EQ(rc, term ? 143 : 130) << "run " << i << " (SIG" << sig << ")\n" << log;
-    const std::string said = term ? "stopped by a signal; temporary files removed, outputs left as they were"
-                                  : "interrupted (Ctrl-C); temporary files removed, outputs left as they were";
-    EXPECT_NE(log.find(said), std::string::npos)
-        << "run " << i << " (SIG" << sig << ", exit " << rc << ") did not say so:\n"
-        << log;
+    (run.term ? byTerm : byInt) += 1;
+    vbim::testing::expectStoppedCleanly(run);
     EXPECT_FALSE(fs::exists(out)) << "run " << i << " was stopped but left " << out;
   }
-  EXPECT_EQ(runs, wanted);
+  EXPECT_EQ(static_cast<int>(runs.size()), wanted);
   std::cout << byInt << " stopped by SIGINT, " << byTerm << " by SIGTERM, " << complete << " complete\n";
   // The moments do reach into the work, for both signals.
   EXPECT_GT(byInt, wanted / 8) << byTerm << " by SIGTERM, " << complete << " complete";
   EXPECT_GT(byTerm, wanted / 8) << byInt << " by SIGINT, " << complete << " complete";
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    EXPECT_NE(name[0], '.') << "left behind: " << name;
-  }
+  vbim::testing::expectNothingHiddenLeft(dir);
   fs::remove_all(dir);
 }
 

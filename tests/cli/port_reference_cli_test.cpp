@@ -11,8 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/random_interrupts.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/scratch.hpp"
+#include "tests/support/soak.hpp"
 
 namespace {
 
@@ -47,6 +49,51 @@ TEST(PortReference, GeneratedVectorsEqualTheCommittedOnes) {
   const Result check = run("vectors --check tests/vectors");
   EXPECT_EQ(check.status, 0) << check.output;
   fs::remove_all(out);
+}
+
+// Ctrl-C or SIGTERM at any moment of `vbim vectors`, writing (--out) or scoring (--check), four
+// runs at a time (tests/support/random_interrupts.hpp), as CliConventions.InterruptsAtRandomMoments...
+// does for play, decode and author: each run ends complete (exit 0: its directory in place, or the
+// check's verdict) or stopped (exit 130 or 143 with the message, no directory), and nothing else is
+// left beside the outputs.
+TEST(PortReference, VectorsInterruptedAtRandomMomentsLeaveNothingBehind) {
+  const fs::path dir = scratch("vectors_interrupts");
+  const fs::path committed = dir / "committed";  // the vectors --check scores
+  fs::create_directories(dir);
+  ASSERT_EQ(run("vectors --out " + committed.string()).status, 0);
+  // 80 in the Release suite; fewer in the sanitizer suite (tests/support/soak.hpp).
+  const int wanted = vbim::testing::soakRepetitions(80, 16);
+  const std::vector<vbim::testing::InterruptedRun> runs = vbim::testing::runWithRandomInterrupts(dir, VBIM_BINARY, R"(
+  case $(($1 % 2)) in
+    0) echo "vectors --out $D/r$1" ;;
+    1) echo "vectors --check )" + committed.string() + R"(" ;;
+  esac)",
+                                                                                                 2, wanted);
+  int complete = 0, byInt = 0, byTerm = 0;
+  for (const vbim::testing::InterruptedRun& r : runs) {
+    const fs::path out = dir / ("r" + std::to_string(r.index));
+    if (r.status == 0) {
+      ++complete;
+      if (r.index % 2 == 0) {
+        for (const char* f : kVectorFiles) EXPECT_TRUE(fs::exists(out / f)) << "run " << r.index << " lacks " << f;
+      } else {
+        EXPECT_NE(r.log.find("vector files present in " + committed.string() + " match"), std::string::npos)
+            << "run " << r.index << "\n"
+            << r.log;
+      }
+      continue;
+    }
+    (r.term ? byTerm : byInt) += 1;
+    vbim::testing::expectStoppedCleanly(r);
+    EXPECT_FALSE(fs::exists(out)) << "run " << r.index << " was stopped but left " << out;
+  }
+  EXPECT_EQ(static_cast<int>(runs.size()), wanted);
+  std::cout << byInt << " stopped by SIGINT, " << byTerm << " by SIGTERM, " << complete << " complete\n";
+  // The moments do reach into the work, for both signals.
+  EXPECT_GT(byInt, 0) << byTerm << " by SIGTERM, " << complete << " complete";
+  EXPECT_GT(byTerm, 0) << byInt << " by SIGINT, " << complete << " complete";
+  vbim::testing::expectNothingHiddenLeft(dir);
+  fs::remove_all(dir);
 }
 
 // A stream with P and B pictures: vlc.txt and idct.txt add non-intra macroblocks of its first P and

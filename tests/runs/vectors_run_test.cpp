@@ -96,6 +96,54 @@ TEST(WriteVectors, WritesEveryFileAndCountsItsLines) {
   fs::remove_all(out);
 }
 
+std::string requestRefusal(const std::string& out, const std::string& check, const std::vector<std::string>& only) {
+  try {
+    checkVectorsRequest(out, check, only, false);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CheckVectorsRequest, OneModeOnlyWithCheckAndACheckDirectory) {
+  const fs::path d = portWith("request", "x\n", "");
+  EXPECT_EQ(requestRefusal("", "", {}), "give exactly one of --out DIR and --check DIR");
+  EXPECT_EQ(requestRefusal("out", d.string(), {}), "give exactly one of --out DIR and --check DIR");
+  EXPECT_EQ(requestRefusal("out", "", {"vlc"}), "--only selects what --check compares: give --check DIR");
+  EXPECT_EQ(requestRefusal("", (d / "vlc.txt").string(), {}),
+            "--check " + (d / "vlc.txt").string() + ": not a directory");
+  EXPECT_EQ(requestRefusal("", d.string(), {"vlc"}), "");
+  // An existing, non-empty --out is refused before any vector is made.
+  EXPECT_NE(requestRefusal(d.string(), "", {}).find("exists and is not empty"), std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST(VectorsVerdict, PassFailAbsentAndNothingSelected) {
+  VectorsCheck c;
+  c.report = "  vlc.txt: 3 of 3 match (pass)\n";
+  c.present = 1;
+  c.checked = c.matched = 3;
+  EXPECT_TRUE(vectorsVerdict(c, "port", false).passed);
+  EXPECT_EQ(vectorsVerdict(c, "port", false).text, "the 1 vector files present in port match\n" + c.report);
+  EXPECT_EQ(vectorsVerdict(c, "port", true).text,
+            "the 1 vector files present in port match (the 3 entries --only selects)\n" + c.report);
+  c.passed = false;
+  c.matched = 1;
+  EXPECT_FALSE(vectorsVerdict(c, "port", false).passed);
+  EXPECT_EQ(vectorsVerdict(c, "port", false).text, "1 of 3 entries match in port:\n" + c.report);
+  c.present = 0;
+  EXPECT_EQ(vectorsVerdict(c, "port", false).text, "no vector file selected is in port:\n" + c.report);
+  c.anySelected = false;
+  EXPECT_THROW(vectorsVerdict(c, "port", true), Error);
+}
+
+// A test program is installed nowhere: the source tree's samples.
+TEST(SampleVectorStreams, TheSourceTreesSamplesFromABuildTree) {
+  const std::string samples = std::string(VBIM_SOURCE_DIR) + "/streams/samples/";
+  EXPECT_EQ(sampleVectorStreams(),
+            (std::vector<std::string>{samples + "day_clear.vbim", samples + "day_weather.vbim"}));
+}
+
 TEST(StreamVectors, AStreamThatCannotBeOpenedIsNamedWithItsOption) {
   try {
     streamVectors({"/nonexistent/day.vbim"}, "--stream ", ipu::kDefaultIdct);

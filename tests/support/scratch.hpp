@@ -1,7 +1,8 @@
 // Test support: where a test writes its files. Under the temporary directory (TMPDIR), which ctest
 // sets to the build tree's test-scratch/ for every test (cmake/VbimTargets.cmake, tests/CMakeLists.txt),
 // so that tests of several build trees, or anything that cleans /tmp, never meet; each name carries
-// the test program's pid as well.
+// the test program's pid as well. The script tests made with add_test get the same TMPDIR
+// (vbim_use_test_scratch, tests/CMakeLists.txt), so their mktemp -d lands there too.
 #pragma once
 
 #include <unistd.h>

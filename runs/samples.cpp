@@ -1,8 +1,8 @@
-#include "cli/samples.hpp"
+#include "runs/samples.hpp"
 
 #include <system_error>
 
-namespace vbim::cli {
+namespace vbim::runs {
 
 namespace fs = std::filesystem;
 
@@ -27,4 +27,4 @@ std::optional<fs::path> findSamples(const std::vector<std::string>& names) {
   return std::nullopt;
 }
 
-}  // namespace vbim::cli
+}  // namespace vbim::runs

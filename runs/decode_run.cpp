@@ -1,0 +1,47 @@
+#include "runs/decode_run.hpp"
+
+#include <sstream>
+
+#include "runs/output_dir.hpp"
+#include "streams/decode/decode_input.hpp"
+#include "streams/decode/frame_files.hpp"
+#include "streams/decode/stream_decode.hpp"
+#include "streams/disc/standard_input.hpp"
+
+namespace vbim::runs {
+
+std::string decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
+  streams::DecodeOptions options;
+  options.threads = r.threads;
+  options.idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);
+  if (!r.streamId.empty()) options.streamId = streams::parseStreamId(r.streamId);
+  const streams::DecodeInput in = streams::readDecodeInput(r.input, r.file);
+  const std::string name = streams::nameStandardInput(in.name);
+  OutputDir dir(r.out, r.force);
+  streams::FrameFileWriter writer(dir.directory(), streams::frameFileFormatNamed(r.format),
+                                  ipu::CscThresholds{r.th0, r.th1});
+  const streams::DecodeSummary s = streams::decodeStream(
+      in.bytes, name, options,
+      [&](int frame, const ipu::Decoder& d) {
+        writer.write(frame, d);
+        if (observer.onPicture) observer.onPicture();
+      },
+      [&observer](const std::string& line) {
+        if (observer.onReport) observer.onReport(line);
+      });
+  if (r.strict && s.issues > 0)
+    throw Error(name + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
+  dir.commit();
+  std::ostringstream line;
+  line << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
+       << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
+       << r.format;
+  if (s.issues) line << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
+  if (s.skippedPictures)
+    line << ", " << s.skippedPictures << (s.skippedPictures == 1 ? " picture" : " pictures")
+         << " skipped (cannot be decoded)";
+  line << "\n";
+  return line.str();
+}
+
+}  // namespace vbim::runs
