@@ -366,7 +366,12 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* 
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
-  const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][toggle ? (block[63] < 0 ? 1 : 0) : 2];
+  // Row 7's precomputed pass, [F[7][7] < 0] with the toggle, [2] without, by arithmetic: written as
+  // `toggle ? (block[63] < 0) : 2`, GCC 12 made it a branch on the toggle, which follows the parity
+  // of the coefficients' sum: a coin toss on most 2- and 4-row residual blocks.
+  const unsigned on = toggle ? 1u : 0u;
+  const unsigned neg = static_cast<unsigned>(static_cast<std::uint16_t>(block[63]) >> 15);
+  const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][(neg & on) | ((on ^ 1u) << 1)];
   // Every row through the pass, without a branch on which rows are zero or hold x0 alone (the pass
   // gives 0 and x0 * 8 there): on busy pictures those branches were coin tosses, for the residual
   // blocks of P and B pictures and the 8-row intra blocks alike.
