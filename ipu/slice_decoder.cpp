@@ -115,7 +115,9 @@ template <bool Mpeg1>
   const int size = static_cast<unsigned char>(e.value);  // 0..11 (a DC size)
   if (size != 0) {
     const int bits = static_cast<int>(br.read(size));
-    dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
+    // §7.2.1: a differential below half its range is negative, bits - (2^size - 1); the offset by a
+    // mask, as a branch on the sign was a coin toss.
+    dcPred_[cc] += bits - (((1 << size) - 1) & (((bits >> (size - 1)) & 1) - 1));
   }
   int dc = Mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] << (3 - pp_.intraDcPrecision);
   dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);

@@ -1,5 +1,6 @@
 #include "ipu/simd/simd_kernels.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 
@@ -406,14 +407,15 @@ HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned 
   if (Add && (rowMask & kIdctFirstOnly) && nonIntraDcShortcut(block[0])) {
     // Both decoders' non-intra DC shortcut: a constant residual, F[7][7] ignored. In byte lanes with
     // saturation: the residual is in [-256, 256], and adding +-255 instead of +-256 to a sample in
-    // 0..255 clamps to the same end.
+    // 0..255 clamps to the same end. Both an add and a subtract, one of them by 0: the residual's
+    // sign is a coin toss for a branch.
     const hn::FixedTag<std::uint8_t, 8> d8;
     const int v = nonIntraDcResidual(block[0]);
-    const auto m = hn::Set(d8, static_cast<std::uint8_t>(v < 0 ? (v < -255 ? 255 : -v) : (v > 255 ? 255 : v)));
+    const auto up = hn::Set(d8, static_cast<std::uint8_t>(std::clamp(v, 0, 255)));
+    const auto down = hn::Set(d8, static_cast<std::uint8_t>(std::clamp(-v, 0, 255)));
     for (int y = 0; y < 8; ++y) {
       std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride;
-      const auto x = hn::LoadU(d8, p);
-      hn::StoreU(v < 0 ? hn::SaturatedSub(x, m) : hn::SaturatedAdd(x, m), d8, p);
+      hn::StoreU(hn::SaturatedSub(hn::SaturatedAdd(hn::LoadU(d8, p), up), down), d8, p);
     }
     return;
   }
