@@ -211,14 +211,14 @@ template <bool Mpeg1>
   unsigned colMask = 1u | (masks >> 8);
   const bool ac = masks != 0;
   // §7.4.4 mismatch control: if the sum of all coefficients is even, toggle the LSB of F[7][7].
-  if (!Mpeg1 && (parity & 1) == 0) {
-    blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
-    if (((rowMask | colMask) & 0x80) == 0) {
-      rowMask |= kIdctToggleOnly;  // F[7][7] = +-1 alone in its row and column
-    } else {
-      rowMask |= 0x80;
-      colMask |= 0x80;
-    }
+  // By masks, not a branch: an intra block's parity is a coin toss. F[7][7] = +-1 alone in its row
+  // and column is kIdctToggleOnly; with a coefficient in row 7 or column 7 both bits 7 are set.
+  if constexpr (!Mpeg1) {
+    const unsigned even = ~parity & 1u;
+    blk[63] = static_cast<std::int16_t>(blk[63] ^ static_cast<int>(even));
+    const unsigned edge = ((rowMask | colMask) >> 7) & 1u;
+    rowMask |= (even & (edge ^ 1u)) * kIdctToggleOnly | (even & edge) << 7;
+    colMask |= (even & edge) << 7;
   }
   mb_.rowMask[b] = rowMask;
   mb_.colMask[b] = colMask;
