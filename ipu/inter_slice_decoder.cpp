@@ -32,6 +32,9 @@ class InterSliceDecoder {
         offset_(offset),
         out_(out) {
     frame_ = ip.pictureStructure == 3;
+    for (int s = 0; s < 2; ++s) {
+      fValid_[s] = ip.fCode[s][0] >= 1 && ip.fCode[s][0] <= 9 && ip.fCode[s][1] >= 1 && ip.fCode[s][1] <= 9;
+    }
     parity_ = ip.pictureStructure == 2 ? 1 : 0;
     for (int i = 0; i < 64; ++i) {
       const int pos = pp.scan[i];
@@ -90,6 +93,9 @@ class InterSliceDecoder {
   std::size_t offset_;
   const SliceOutput& out_;
   bool frame_ = true;
+  // Per direction: both f_codes are 1..9 (checked once per slice, not per vector: four compares
+  // per vector, and the chain of them mispredicted ~12k times per decode of the bench clip).
+  bool fValid_[2] = {};
   int parity_ = 0;  // a field picture's field: 0 top, 1 bottom
   int scale_ = 0;
   int dcPred_[3] = {128, 128, 128};
@@ -113,9 +119,9 @@ class InterSliceDecoder {
 // One motion_vector(r, s) (§6.2.5.3) and its reconstruction (§7.6.3.1); a field-format vector of a
 // frame picture predicts its vertical part from PMV / 2 and stores it back doubled.
 bool InterSliceDecoder::vector(int s, int r, bool fieldFormat, int& mvx, int& mvy, int* dmv) {
+  if (!fValid_[s]) return false;  // 15 (no vectors) or reserved
   const int fx = ip_.fCode[s][0];
   const int fy = ip_.fCode[s][1];
-  if (fx < 1 || fx > 9 || fy < 1 || fy > 9) return false;  // 15 (no vectors) or reserved
   int dx = 0;
   int dy = 0;
   int len = 0;
@@ -269,7 +275,9 @@ template <bool Intra, bool Mpeg1>
     const int size = static_cast<unsigned char>(e.value);
     if (size != 0) {
       const int bits = static_cast<int>(br.read(size));
-      dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
+      // §7.2.1: a differential below half its range is negative, bits - (2^size - 1); the offset by a
+      // mask, as a branch on the sign was a coin toss.
+      dcPred_[cc] += bits - (((1 << size) - 1) & (((bits >> (size - 1)) & 1) - 1));
     }
     int dc = Mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] * (1 << (3 - pp_.intraDcPrecision));
     dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);

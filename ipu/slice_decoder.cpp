@@ -115,7 +115,9 @@ template <bool Mpeg1>
   const int size = static_cast<unsigned char>(e.value);  // 0..11 (a DC size)
   if (size != 0) {
     const int bits = static_cast<int>(br.read(size));
-    dcPred_[cc] += (bits >> (size - 1)) ? bits : bits - ((1 << size) - 1);
+    // §7.2.1: a differential below half its range is negative, bits - (2^size - 1); the offset by a
+    // mask, as a branch on the sign was a coin toss.
+    dcPred_[cc] += bits - (((1 << size) - 1) & (((bits >> (size - 1)) & 1) - 1));
   }
   int dc = Mpeg1 ? dcPred_[cc] * 8 : dcPred_[cc] << (3 - pp_.intraDcPrecision);
   dc = dc < -2048 ? -2048 : (dc > 2047 ? 2047 : dc);
@@ -209,14 +211,14 @@ template <bool Mpeg1>
   unsigned colMask = 1u | (masks >> 8);
   const bool ac = masks != 0;
   // §7.4.4 mismatch control: if the sum of all coefficients is even, toggle the LSB of F[7][7].
-  if (!Mpeg1 && (parity & 1) == 0) {
-    blk[63] = static_cast<std::int16_t>(blk[63] ^ 1);
-    if (((rowMask | colMask) & 0x80) == 0) {
-      rowMask |= kIdctToggleOnly;  // F[7][7] = +-1 alone in its row and column
-    } else {
-      rowMask |= 0x80;
-      colMask |= 0x80;
-    }
+  // By masks, not a branch: an intra block's parity is a coin toss. F[7][7] = +-1 alone in its row
+  // and column is kIdctToggleOnly; with a coefficient in row 7 or column 7 both bits 7 are set.
+  if constexpr (!Mpeg1) {
+    const unsigned even = ~parity & 1u;
+    blk[63] = static_cast<std::int16_t>(blk[63] ^ static_cast<int>(even));
+    const unsigned edge = ((rowMask | colMask) >> 7) & 1u;
+    rowMask |= (even & (edge ^ 1u)) * kIdctToggleOnly | (even & edge) << 7;
+    colMask |= (even & edge) << 7;
   }
   mb_.rowMask[b] = rowMask;
   mb_.colMask[b] = colMask;

@@ -11,16 +11,14 @@ change is faster), and the median and range of those ratios are printed per benc
         --filter 'BM_GopDecodeOurs/interlaced:0/q:./l2idct:0/rgba:1' --pairs 8
 """
 import argparse
-import json
 import statistics
-import subprocess
 import sys
+
+from bench_runs import BenchError, check_runs, run_bench
 
 
 def cpu_times(binary: str, flt: str, min_time: float) -> dict[str, float]:
-    out = subprocess.run([binary, "--benchmark_format=json", f"--benchmark_filter={flt}",
-                          f"--benchmark_min_time={min_time}"], capture_output=True, text=True, check=True).stdout
-    return {b["name"]: b["cpu_time"] for b in json.loads(out)["benchmarks"]}
+    return {b["name"]: b["cpu_time"] for b in run_bench(binary, flt, min_time)}
 
 
 def main() -> int:
@@ -31,12 +29,15 @@ def main() -> int:
     ap.add_argument("--pairs", type=int, default=8)
     ap.add_argument("--min-time", type=float, default=0.4)
     args = ap.parse_args()
-    if args.pairs < 1:
-        ap.error("--pairs must be at least 1")
+    check_runs(ap, args.pairs, "pairs")
     ratios: dict[str, list[float]] = {}
     for _ in range(args.pairs):
-        before = cpu_times(args.before, args.filter, args.min_time)
-        after = cpu_times(args.after, args.filter, args.min_time)
+        try:
+            before = cpu_times(args.before, args.filter, args.min_time)
+            after = cpu_times(args.after, args.filter, args.min_time)
+        except BenchError as e:
+            print(f"ab_compare: {e}", file=sys.stderr)
+            return 1
         if not before or before.keys() != after.keys():
             print(f"ab_compare: the filter {args.filter!r} selects no benchmark, or not the same ones in both "
                   f"binaries ({sorted(before)} against {sorted(after)})", file=sys.stderr)

@@ -12,10 +12,10 @@ a gain on that load.
     bench/ipu/alternate_gop.py --runs 3 /tmp/before build/bench/ipu/bench_ipu_gop_decode
 """
 import argparse
-import json
 import statistics
-import subprocess
 import sys
+
+from bench_runs import BenchError, case_label, check_runs, run_bench
 
 RATIOS = ["x_libmpeg2_yuv", "x_libav_rgba"]
 
@@ -26,19 +26,17 @@ def main() -> int:
     ap.add_argument("--filter", default="BM_GopDecode/")
     ap.add_argument("bench", nargs="+")
     args = ap.parse_args()
-    if args.runs < 1:
-        ap.error("--runs must be at least 1")
+    check_runs(ap, args.runs)
     values: dict[str, dict[tuple[str, str], list[float]]] = {b: {} for b in args.bench}
     for run in range(args.runs):
         for b in args.bench:
             try:
-                out = subprocess.run([b, "--benchmark_format=json", f"--benchmark_filter={args.filter}"],
-                                     check=True, capture_output=True, text=True).stdout
-            except (OSError, subprocess.CalledProcessError) as e:
-                print(f"alternate_gop.py: {b}: {e}", file=sys.stderr)
+                benchmarks = run_bench(b, args.filter)
+            except BenchError as e:
+                print(f"alternate_gop.py: {e}", file=sys.stderr)
                 return 1
-            for r in json.loads(out)["benchmarks"]:
-                case = "/".join(p for p in r["name"].split("/")[1:] if not p.startswith(("min_time", "real_time")))
+            for r in benchmarks:
+                case = case_label(r["name"])
                 for c in RATIOS:
                     if c in r:
                         values[b].setdefault((case, c), []).append(float(r[c]))

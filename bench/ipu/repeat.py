@@ -11,10 +11,10 @@ come and go), so a figure worth quoting is the median over several runs with its
 Prints one Markdown table per benchmark family: median (min-max) over the runs of each counter.
 """
 import argparse
-import json
 import statistics
-import subprocess
 import sys
+
+from bench_runs import BenchError, case_label, check_runs, run_bench
 
 COUNTERS = {
     "BM_DecodeToRgba": ["ours_fps", "libavcodec_fps", "libmpeg2_fps", "x_libavcodec", "x_libmpeg2", "x_faster",
@@ -31,18 +31,16 @@ def main() -> int:
     ap.add_argument("--bench", default="build/bench/ipu/bench_ipu_decode")
     ap.add_argument("--filter", default=".")
     args = ap.parse_args()
-    if args.runs < 1:
-        ap.error("--runs must be at least 1")
+    check_runs(ap, args.runs)
 
     values: dict[str, dict[str, list[float]]] = {}
     for run in range(args.runs):
         try:
-            out = subprocess.run([args.bench, "--benchmark_format=json", f"--benchmark_filter={args.filter}"],
-                                 check=True, capture_output=True, text=True).stdout
-        except (OSError, subprocess.CalledProcessError) as e:
-            print(f"repeat.py: {args.bench}: {e}", file=sys.stderr)
+            benchmarks = run_bench(args.bench, args.filter)
+        except BenchError as e:
+            print(f"repeat.py: {e}", file=sys.stderr)
             return 1
-        for b in json.loads(out)["benchmarks"]:
+        for b in benchmarks:
             case = values.setdefault(b["name"], {})
             for key, v in b.items():
                 if isinstance(v, (int, float)):
@@ -61,7 +59,7 @@ def main() -> int:
         print(f"\n| {family} | " + " | ".join(counters) + " |")
         print("|---|" + "---:|" * len(counters))
         for name in cases:
-            label = "/".join(p for p in name.split("/")[1:] if not p.startswith(("min_time", "real_time")))
+            label = case_label(name)
             print(f"| {label} | " + " | ".join(cell(values[name][c]) if c in values[name] else "" for c in counters)
                   + " |")
     return 0

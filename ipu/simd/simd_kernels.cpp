@@ -1,5 +1,6 @@
 #include "ipu/simd/simd_kernels.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 
@@ -366,7 +367,12 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* 
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   alignas(64) std::int32_t t[8 * R];
-  const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][toggle ? (block[63] < 0 ? 1 : 0) : 2];
+  // Row 7's precomputed pass, [F[7][7] < 0] with the toggle, [2] without, by arithmetic: written as
+  // `toggle ? (block[63] < 0) : 2`, GCC 12 made it a branch on the toggle, which follows the parity
+  // of the coefficients' sum: a coin toss on most 2- and 4-row residual blocks.
+  const unsigned on = toggle ? 1u : 0u;
+  const unsigned neg = static_cast<unsigned>(static_cast<std::uint16_t>(block[63]) >> 15);
+  const std::int32_t* t7 = simd_detail::kMpeg2.toggleRow[Pcsx2 ? 0 : 1][(neg & on) | ((on ^ 1u) << 1)];
   // Every row through the pass, without a branch on which rows are zero or hold x0 alone (the pass
   // gives 0 and x0 * 8 there): on busy pictures those branches were coin tosses, for the residual
   // blocks of P and B pictures and the 8-row intra blocks alike.
@@ -401,14 +407,15 @@ HWY_INLINE void mpeg2Impl(const std::int16_t* block, unsigned rowMask, unsigned 
   if (Add && (rowMask & kIdctFirstOnly) && nonIntraDcShortcut(block[0])) {
     // Both decoders' non-intra DC shortcut: a constant residual, F[7][7] ignored. In byte lanes with
     // saturation: the residual is in [-256, 256], and adding +-255 instead of +-256 to a sample in
-    // 0..255 clamps to the same end.
+    // 0..255 clamps to the same end. Both an add and a subtract, one of them by 0: the residual's
+    // sign is a coin toss for a branch.
     const hn::FixedTag<std::uint8_t, 8> d8;
     const int v = nonIntraDcResidual(block[0]);
-    const auto m = hn::Set(d8, static_cast<std::uint8_t>(v < 0 ? (v < -255 ? 255 : -v) : (v > 255 ? 255 : v)));
+    const auto up = hn::Set(d8, static_cast<std::uint8_t>(std::clamp(v, 0, 255)));
+    const auto down = hn::Set(d8, static_cast<std::uint8_t>(std::clamp(-v, 0, 255)));
     for (int y = 0; y < 8; ++y) {
       std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride;
-      const auto x = hn::LoadU(d8, p);
-      hn::StoreU(v < 0 ? hn::SaturatedSub(x, m) : hn::SaturatedAdd(x, m), d8, p);
+      hn::StoreU(hn::SaturatedSub(hn::SaturatedAdd(hn::LoadU(d8, p), up), down), d8, p);
     }
     return;
   }
