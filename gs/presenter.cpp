@@ -89,7 +89,7 @@ BlendDraw Presenter::blendDraw(int y0, int y1) const {
   return blendDrawFor(vram_, params_, surface, lightmap_.width, lightmap_.height, y0, y1);
 }
 
-void Presenter::followTwin(const Presenter& twin, TwinTiles& equal, bool runSide) {
+void Presenter::followTwin(Presenter& twin, TwinTiles& equal, bool runSide, bool mirror) {
   if (!twin.lightmap_.sameSize(lightmap_) || equal.size() != blender_.tileChanges().size()) {
     throw GsError("a presenter can follow only a twin of its own size (" + std::to_string(lightmap_.width) + "x" +
                   std::to_string(lightmap_.height) + "), not " + std::to_string(twin.lightmap_.width) + "x" +
@@ -98,7 +98,99 @@ void Presenter::followTwin(const Presenter& twin, TwinTiles& equal, bool runSide
   twin_ = &twin;
   twinTiles_ = &equal;
   twinRunSide_ = runSide;
+  mayMirror_ = mirror && !runSide;
   blender_.recordBlends();
+}
+
+void Presenter::settleTwin() {
+  if (mirror_ && waiting_.pending) stopMirroring();
+}
+
+// The reference, asked to blend rows [y0, y1) of `source`: whether the blend waits for the run's
+// (mirroring: every tile known equal to the run's, so the run's same blend gives this one's result).
+bool Presenter::waitForTwin(const Rgba8Image& source, const BlendSpec& spec, std::uint64_t id, int y0, int y1) {
+  if (!mayMirror_ || sixteen_ || twin_->sixteen_ || !params_.convergence_aware || !twin_->params_.convergence_aware ||
+      !filled_ || !target_.image || &source != target_.image.get() || opt_.onVsync ||
+      (opt_.tracer != nullptr && opt_.tracer->enabled())) {
+    return false;
+  }
+  if (mirror_ && waiting_.pending) stopMirroring();  // a second blend before the run made the first
+  if (!mirror_) {
+    // Only when the run has not blended yet in this tick: a run that blends first (strip mode) would
+    // make every mirror stop at its next blend, with a copy of the whole lightmap each time.
+    if (twin_->lastBlendAt_ >= sched_.now()) return false;
+    const std::vector<std::uint64_t>& mine = blender_.tileChanges();
+    const std::vector<std::uint64_t>& theirs = twin_->blender_.tileChanges();
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      if (!twinTiles_->equalAt(i, theirs[i], mine[i])) return false;
+    }
+    mirror_ = true;
+    blender_.forgetAllRecords();  // the run must not copy from bytes this presenter stops writing
+  }
+  waiting_ =
+      Waiting{true, target_.image, spec, id, y0, y1, open_ != nullptr ? open_->vsync : last_.vsync, targetGeneration_};
+  return true;
+}
+
+// The run, about to blend rows [y0, y1) of `source`: whether the mirroring reference waits for this
+// very blend (same rows, spec and source bytes). Otherwise the reference takes its own bytes back
+// first, while the run's lightmap still holds the bytes it mirrors.
+bool Presenter::twinTakes(const Rgba8Image& source, const BlendSpec& spec, std::uint64_t id, int y0, int y1) {
+  if (twin_ == nullptr || !twin_->mirror_) return false;
+  Presenter& ref = *twin_;
+  const Waiting& w = ref.waiting_;
+  if (w.pending && w.y0 == y0 && w.y1 == y1 && w.sourceId == id && w.spec == spec) {
+    if (targetGeneration_ != takeSeenOwn_ || w.generation != takeSeenTwin_) {
+      takeSeenOwn_ = targetGeneration_;
+      takeSeenTwin_ = w.generation;
+      takeSame_ = w.source.get() == &source || (w.source->sameSize(source) && w.source->pixels == source.pixels);
+    }
+    if (takeSame_) return true;
+  }
+  ref.stopMirroring();
+  return false;
+}
+
+// The reference, after the run made the blend it waited for.
+void Presenter::takeFromTwin() {
+  const int pop = blender_.takeTwinBlend(twin_->blender_, *twinTiles_, twinRunSide_, waiting_.sourceId, waiting_.spec,
+                                         waiting_.y0, waiting_.y1);
+  const int ty0 = waiting_.y0 / kTileHeight;
+  const int ty1 = (std::min(waiting_.y1, lightmap_.height) + kTileHeight - 1) / kTileHeight;
+  counters_.tilesMirrored += static_cast<std::int64_t>(ty1 - ty0) * blender_.tilesX();
+  waiting_.pending = false;
+  waiting_.source.reset();
+  addPop(waiting_.vsync, pop);
+}
+
+// The reference takes its own bytes back: the run's as they are (the same), then the waiting blend.
+void Presenter::stopMirroring() {
+  if (!mirror_) return;
+  mirror_ = false;
+  ++counters_.mirrorStops;
+  lightmap_.pixels = twin_->lightmap_.pixels;
+  blender_.invalidate();  // its settled marks were not kept while mirroring
+  if (!waiting_.pending) return;
+  waiting_.pending = false;
+  const TiledBlender::Result r =
+      blender_.blend(lightmap_, *waiting_.source, waiting_.spec, waiting_.sourceId, waiting_.y0, waiting_.y1);
+  waiting_.source.reset();
+  counters_.tilesBlended += r.tilesBlended;
+  counters_.tilesSkipped += r.tilesSkipped;
+  addPop(waiting_.vsync, r.pop);
+}
+
+// A blend that waited for the run adds its pop to the vsync it was asked at.
+void Presenter::addPop(std::int64_t vsync, int pop) {
+  if (open_ != nullptr && open_->vsync == vsync) {
+    open_->pop = std::max(open_->pop, pop);  // present() takes it into the counters
+    return;
+  }
+  if (last_.vsync == vsync) last_.pop = std::max(last_.pop, pop);
+  if (opt_.keepHistory && !history_.empty() && history_.back().vsync == vsync) {
+    history_.back().pop = std::max(history_.back().pop, pop);
+  }
+  counters_.maxPop = std::max(counters_.maxPop, pop);  // mirroring starts after the initial fill
 }
 
 // The twin's last blend was from its current target, and that target holds the bytes of this
@@ -174,6 +266,7 @@ Task<void> Presenter::present(std::int64_t vsync) {
   VsyncRecord rec;
   rec.vsync = vsync;
   rec.at = now;
+  open_ = &rec;
 
   while (!branches_.empty() && branches_.front().at <= now) {
     const int variant = branches_.front().variant;
@@ -232,6 +325,7 @@ Task<void> Presenter::present(std::int64_t vsync) {
   if (!initialFill) counters_.maxPop = std::max(counters_.maxPop, rec.pop);
   if (opt_.keepHistory) history_.push_back(rec);
   last_ = rec;
+  open_ = nullptr;
   trace(rec);
   if (opt_.onVsync) opt_.onVsync(rec, lightmap_);
   presented_ = vsync + 1;
@@ -278,12 +372,20 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
     const Tick t = sched_.now();
     co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));
     if (tr != nullptr) tr->span(track_, t, sched_.now(), blendLabel);
-    TiledBlender::Twin twin;
-    if (twin_ != nullptr) {
-      twin = TiledBlender::Twin{&twin_->blender_, &twin_->lightmap_, twinTiles_, twinRunSide_, sameSourceAsTwin()};
+    TiledBlender::Result r;
+    lastBlendAt_ = sched_.now();
+    if (!waitForTwin(source, spec, id, y0, y1)) {
+      // The run: a mirroring reference waiting for this blend takes it afterwards; else it has its
+      // own bytes again by now, and the two share tiles as usual.
+      const bool taken = twinTakes(source, spec, id, y0, y1);
+      TiledBlender::Twin twin;
+      const bool share = twin_ != nullptr && !taken;
+      if (share) {
+        twin = TiledBlender::Twin{&twin_->blender_, &twin_->lightmap_, twinTiles_, twinRunSide_, sameSourceAsTwin()};
+      }
+      r = blender_.blend(lightmap_, source, spec, id, y0, y1, share ? &twin : nullptr);
+      if (taken) twin_->takeFromTwin();
     }
-    const TiledBlender::Result r =
-        blender_.blend(lightmap_, source, spec, id, y0, y1, twin_ != nullptr ? &twin : nullptr);
     rec.pop = std::max(rec.pop, r.pop);
     counters_.tilesBlended += r.tilesBlended;
     counters_.tilesSkipped += r.tilesSkipped;

@@ -78,7 +78,9 @@ struct PresenterCounters {
   std::int64_t uploadSetupQwords = 0;  // their GIFtags and register writes
   std::int64_t tilesBlended = 0;       // host work (convergence-aware mode skips the rest)
   std::int64_t tilesSkipped = 0;
-  std::int64_t tilesCopied = 0;  // taken from a twin instead of blended (followTwin)
+  std::int64_t tilesCopied = 0;    // taken from a twin instead of blended (followTwin)
+  std::int64_t tilesMirrored = 0;  // blends the run made for this mirroring reference (followTwin)
+  std::int64_t mirrorStops = 0;    // times the mirroring reference took its own bytes back
   Tick gsBusy = 0;
   Tick slip = 0;   // play-late: how far the schedule has slipped
   int maxPop = 0;  // largest pop, not counting the first frame copied into the empty lightmap
@@ -121,7 +123,8 @@ class Presenter {
   // The process: presents at vsyncs 0, 1, ... while their time is before `end`.
   Task<void> run(Tick end);
 
-  const Rgba8Image& lightmap() const { return lightmap_; }
+  // While mirroring (followTwin), the run's lightmap, which holds the same bytes.
+  const Rgba8Image& lightmap() const { return mirror_ ? twin_->lightmap_ : lightmap_; }
   // The blender that writes the lightmap (nothing else does): its tileChanges() say which tiles moved.
   const TiledBlender& blender() const { return blender_; }
   // A run and its fault-free reference (issue #31; the player) follow each other: each records its
@@ -130,7 +133,21 @@ class Presenter {
   // facts of which tiles are equal in `equal` (runSide: this presenter's counts are its run side).
   // Same bytes, records and hash as blending; host time only. Call on both before either runs; the
   // twin must outlive this presenter's run.
-  void followTwin(const Presenter& twin, TwinTiles& equal, bool runSide);
+  //
+  // Mirroring: once every tile of the reference's lightmap is known equal to the run's, the
+  // reference (runSide false) stops writing its own: lightmap() is then the run's, and each blend
+  // it is asked for waits until the run blends. The run's next blend, if it is the same (same source
+  // bytes, spec and rows), is taken as the reference's (TiledBlender::takeTwinBlend: counts, pop,
+  // no bytes); anything else first gives the reference its own bytes again (the run's copied, then
+  // the waiting blend made), and so does settleTwin(). No copy and no second blend while the two
+  // agree; the same bytes, counts and pops as blending. Not with a tracer or onVsync on the
+  // reference (their pop would be read before the run's blend).
+  // mirror false: the reference never mirrors (each blend made or copied as above).
+  void followTwin(Presenter& twin, TwinTiles& equal, bool runSide, bool mirror = true);
+  // The reference: a blend still waiting for the run's is made now (the run will not make it; the
+  // player calls this once every presenter has presented a vsync, before reading the lightmaps).
+  void settleTwin();
+  bool mirroring() const { return mirror_; }
   // With PresenterOptions::hashChain: the frame hash's chain after the lightmap's header and bytes.
   const HashChain& hashChain() { return blender_.hashChain(lightmap_); }
   // The console's VRAM plan: this presenter's own (the lightmap's), or the one it was given (the sky's).
@@ -168,6 +185,22 @@ class Presenter {
     return (static_cast<std::uint64_t>(t.seq) << 16) ^ static_cast<std::uint64_t>(t.variant);
   }
   bool sameSourceAsTwin();
+  // Mirroring (followTwin): a blend of the reference waiting for the run's.
+  struct Waiting {
+    bool pending = false;
+    std::shared_ptr<const Rgba8Image> source;
+    BlendSpec spec;
+    std::uint64_t sourceId = 0;
+    int y0 = 0;
+    int y1 = 0;
+    std::int64_t vsync = 0;
+    std::uint64_t generation = 0;  // of the reference's target
+  };
+  bool waitForTwin(const Rgba8Image& source, const BlendSpec& spec, std::uint64_t id, int y0, int y1);
+  bool twinTakes(const Rgba8Image& source, const BlendSpec& spec, std::uint64_t id, int y0, int y1);
+  void takeFromTwin();
+  void stopMirroring();
+  void addPop(std::int64_t vsync, int pop);
 
   Scheduler& sched_;
   FrameSource& source_;
@@ -191,12 +224,22 @@ class Presenter {
   bool filled_ = false;
   // followTwin: the twin, the tile facts, and whether the two targets hold the same bytes, as last
   // found for the two targets' generations.
-  const Presenter* twin_ = nullptr;
+  Presenter* twin_ = nullptr;
   TwinTiles* twinTiles_ = nullptr;
   bool twinRunSide_ = false;
   std::uint64_t sameSeenTwin_ = ~std::uint64_t{0};
   std::uint64_t sameSeenOwn_ = ~std::uint64_t{0};
   bool sameSeen_ = false;
+  bool mayMirror_ = false;
+  Tick lastBlendAt_ = -1;  // when this presenter last blended (or was asked to, mirroring)
+  bool mirror_ = false;
+  Waiting waiting_;
+  // The run: whether its target holds the bytes of the reference's waiting blend's source, as last
+  // found for the two generations (a frame's image does not change once decoded).
+  std::uint64_t takeSeenOwn_ = ~std::uint64_t{0};
+  std::uint64_t takeSeenTwin_ = ~std::uint64_t{0};
+  bool takeSame_ = false;
+  VsyncRecord* open_ = nullptr;  // the record of the vsync being presented (its pop may be added to)
   int variant_ = 0;
   std::vector<Branch> branches_;
   PresenterCounters counters_;

@@ -49,6 +49,31 @@ void TiledBlender::forgetRecords(int ty0, int ty1) {
   std::fill(blendEpoch_.begin() + first, blendEpoch_.begin() + last, kNoEpoch);
 }
 
+int TiledBlender::takeTwinBlend(const TiledBlender& twin, TwinTiles& equal, bool runSide, std::uint64_t sourceId,
+                                const BlendSpec& spec, int rowBegin, int rowEnd) {
+  if (!twin.record_ || twin.settled_.size() != settled_.size() || equal.size() != settled_.size()) {
+    throw GsError("a blend taken from a twin that does not record its blends, or of another size");
+  }
+  lastSourceId_ = sourceId;
+  lastSpec_ = spec;
+  const int ty0 = rowBegin / kTileHeight;
+  const int ty1 = (std::min(rowEnd, height_) + kTileHeight - 1) / kTileHeight;
+  int pop = 0;
+  for (auto i = static_cast<std::size_t>(ty0) * tilesX_; i < static_cast<std::size_t>(ty1) * tilesX_; ++i) {
+    if (twin.blendEpoch_[i] != twin.epoch_) throw GsError("a blend taken from a twin whose blend was not recorded");
+    const int delta = twin.blendDelta_[i];
+    if (delta != 0) ++changes_[i];
+    pop = std::max(pop, delta);
+    if (runSide) {
+      equal.setEqual(i, changes_[i], twin.changes_[i]);
+    } else {
+      equal.setEqual(i, twin.changes_[i], changes_[i]);
+    }
+  }
+  if (hash_) hashedRows_ = std::min(hashedRows_, ty0);
+  return pop;
+}
+
 bool TiledBlender::twinUsable(const Twin* t, const BlendSpec& spec) const {
   return t != nullptr && t->sameSource && t->blender != nullptr && t->blender->record_ && t->equal != nullptr &&
          t->image != nullptr && t->equal->size() == settled_.size() && t->blender->width_ == width_ &&

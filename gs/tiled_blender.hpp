@@ -72,6 +72,19 @@ class TiledBlender {
   // Keep, per tile, what its last blend was (change count before it, its largest change, the source
   // and spec it had), so that a twin can take its result (Twin). Costs a few stores per tile.
   void recordBlends();
+  // Forget every tile's record (a twin cannot take a blend from them), e.g. when this blender's
+  // lightmap stops being kept up to date because it mirrors its twin's (gs::Presenter::followTwin).
+  void forgetAllRecords() { forgetRecords(0, tilesY_); }
+  // A blend this blender did not make, because its lightmap held the bytes of `twin`'s and the twin
+  // just made that very blend (same source bytes and spec, rows [rowBegin, rowEnd)): the change
+  // counts move as this blend would have moved them, and each tile of the rows is noted equal in
+  // `equal` (runSide: this blender's counts are its run side). The lightmap's bytes are not written
+  // (the caller reads the twin's while they agree; the settled marks are forgotten with invalidate()
+  // before this blender blends again). The twin must recordBlends(). Returns the blend's pop (the
+  // largest change of the twin's blend over the rows). Throws GsError if the twin's last blend of a
+  // tile in the rows is not recorded (16-bit, or without the convergence shortcut).
+  int takeTwinBlend(const TiledBlender& twin, TwinTiles& equal, bool runSide, std::uint64_t sourceId,
+                    const BlendSpec& spec, int rowBegin, int rowEnd);
   std::uint64_t lastSourceId() const { return lastSourceId_; }
   const BlendSpec& lastSpec() const { return lastSpec_; }
   // Hash mode: the chain after the header word and every byte of `dst` (the image this blender

@@ -11,10 +11,10 @@ namespace {
 
 // The run's presenter and the reference's follow each other (gs::Presenter::followTwin): whichever
 // blends a tile second copies the other's; returns the tile facts they share with the lag.
-std::unique_ptr<gs::TwinTiles> twins(gs::Presenter& run, gs::Presenter& reference) {
+std::unique_ptr<gs::TwinTiles> twins(gs::Presenter& run, gs::Presenter& reference, bool mirror) {
   auto tiles = std::make_unique<gs::TwinTiles>(run.blender().tileChanges().size());
   run.followTwin(reference, *tiles, /*runSide=*/true);
-  reference.followTwin(run, *tiles, /*runSide=*/false);
+  reference.followTwin(run, *tiles, /*runSide=*/false, mirror);
   return tiles;
 }
 
@@ -36,8 +36,9 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
                                       nullptr, "ref.");
     const gs::BlendKernels& k = options_.kernels.blend != nullptr ? *options_.kernels.blend : gs::scalarKernels();
     if (options_.shareReference) {
-      lagTiles_ = twins(main_->lightmap(), ref_->lightmap());
-      if (main_->sky() != nullptr) skyLagTiles_ = twins(*main_->sky(), *ref_->sky());
+      const bool mirror = options_.mirrorReference;
+      lagTiles_ = twins(main_->lightmap(), ref_->lightmap(), mirror);
+      if (main_->sky() != nullptr) skyLagTiles_ = twins(*main_->sky(), *ref_->sky(), mirror);
     }
     lagDiff_ =
         std::make_unique<gs::TiledDifference>(main_->lightmap(), ref_->lightmap(), k.compareRect, lagTiles_.get());
@@ -57,11 +58,22 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
 void Player::runTo(Tick t) {
   if (!started_) {
     started_ = true;
-    main_->start(options_.duration);
+    // The reference's processes first: at a tick where both presenters blend, the reference's
+    // blend comes first and can wait for the run's (gs::Presenter::followTwin, mirroring). The two
+    // pipelines share no simulated state, so the order changes nothing in either.
     if (ref_) ref_->start(options_.duration);
+    main_->start(options_.duration);
     sched_.spawn("player.record", record(*this));
   }
   sched_.runUntil(std::min(t, options_.duration));
+  settleReference();  // the reference's lightmaps as they are, for whoever reads them now
+}
+
+// A reference blend still waiting for the run's is made (gs::Presenter::followTwin, mirroring).
+void Player::settleReference() {
+  if (!ref_) return;
+  ref_->lightmap().settleTwin();
+  if (ref_->sky() != nullptr) ref_->sky()->settleTwin();
 }
 
 void Player::onVsync(std::int64_t n) {
@@ -83,6 +95,7 @@ void Player::onVsync(std::int64_t n) {
     row.hash = last_->hash;
   }
   if (ref_) {
+    settleReference();  // every presenter presented vsync n: a blend still waiting will not be the run's
     // Only the tiles that either lightmap changed since the last vsync are compared again.
     row.lag = lagDiff_->update().max;
     if (skyLagDiff_) row.skyLag = skyLagDiff_->update().max;

@@ -42,6 +42,11 @@ struct PlayerOptions {
   // from the same bytes toward the same source with the same spec is copied, and tiles known equal
   // are not compared (gs/twin_tiles.hpp). false: the reference does all its own work. Same bytes.
   bool shareReference = true;
+  // With shareReference: while every tile of the reference's lightmap (and sky) is known equal to
+  // the run's, the reference writes none of its own and takes the run's blends as its own when they
+  // are the same (gs::Presenter::followTwin, mirroring): no copy, no second blend. false: the
+  // reference blends or copies each tile itself. Same bytes.
+  bool mirrorReference = true;
 };
 
 // What happened at one vsync, over the whole output (lightmap + sky).
@@ -120,6 +125,7 @@ class Player {
  private:
   static Task<void> record(Player& p);
   void onVsync(std::int64_t n);
+  void settleReference();
 
   PlayerOptions options_;
   ee::ProbedStream stream_;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "gs/error.hpp"
 #include "gs/hash_chain.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "gs/tiled_blender.hpp"
@@ -171,6 +172,60 @@ TEST(TwinBlender, NothingCopiedWithoutAKnownEqualTile) {
   const TiledBlender::Result r2 = b.blend(lb, src, spec, 1, 0, 64, &twin);
   EXPECT_EQ(r2.tilesCopied, static_cast<int>(equal.size()));
   EXPECT_EQ(la.pixels, lb.pixels);
+}
+
+// A blender that takes its twin's blends (TiledBlender::takeTwinBlend, the mirroring reference)
+// moves its change counts and reports the pop as one that blends the same bytes itself, through
+// source and FIX changes, converged tiles and strips; and each taken tile is noted equal.
+TEST(TwinBlender, TakenBlendsMoveCountsAndPopAsOwnBlends) {
+  for (const bool simdKernels : {false, true}) {
+    const BlendKernels& k = simdKernels ? simd::kernels() : scalarKernels();
+    Rng rng(11);
+    const int w = 200;
+    const int h = 100;
+    TiledBlender run(w, h, k, true, /*hashChain=*/true);
+    TiledBlender taker(w, h, k, true);
+    TiledBlender alone(w, h, k, true);
+    run.recordBlends();
+    Rgba8Image lmRun(w, h);
+    Rgba8Image lmAlone(w, h);
+    TwinTiles equal(run.tileChanges().size());
+    std::vector<Rgba8Image> frames;
+    for (int i = 0; i < 3; ++i) frames.push_back(randomImage(rng, w, h));
+    int frame = 0;
+    for (int step = 0; step < 200; ++step) {
+      if (rng.chance(1, 15)) frame = (frame + 1) % 3;
+      BlendSpec spec = makeBlendSpec(rng.chance(1, 6) ? 100 : 48);
+      if (rng.chance(1, 40)) {
+        spec.fix = 0x80;
+        spec.dither = false;
+      }
+      const int rowBegin = rng.chance(1, 3) ? static_cast<int>(rng.below(4)) * 32 : 0;
+      const int rowEnd = rowBegin == 0 ? h : std::min(h, rowBegin + 32);
+      const auto id = static_cast<std::uint64_t>(frame) + 1;
+      run.blend(lmRun, frames[static_cast<std::size_t>(frame)], spec, id, rowBegin, rowEnd);
+      const int pop = taker.takeTwinBlend(run, equal, /*runSide=*/false, id, spec, rowBegin, rowEnd);
+      const TiledBlender::Result own =
+          alone.blend(lmAlone, frames[static_cast<std::size_t>(frame)], spec, id, rowBegin, rowEnd);
+      ASSERT_EQ(pop, own.pop) << "step " << step;
+      ASSERT_EQ(taker.tileChanges(), alone.tileChanges()) << "step " << step;
+      ASSERT_EQ(lmRun.pixels, lmAlone.pixels) << "step " << step;
+      for (std::size_t i = 0; i < equal.size(); ++i) {
+        if (run.tileChanges()[i] == 0 && taker.tileChanges()[i] == 0) continue;  // never blended yet
+        ASSERT_TRUE(equal.equalAt(i, run.tileChanges()[i], taker.tileChanges()[i])) << "tile " << i;
+      }
+    }
+  }
+}
+
+TEST(TwinBlender, TakingABlendNotRecordedThrows) {
+  TiledBlender run(64, 32, scalarKernels(), true);
+  TiledBlender taker(64, 32, scalarKernels(), true);
+  TwinTiles equal(run.tileChanges().size());
+  const BlendSpec spec = makeBlendSpec(64);
+  EXPECT_THROW(taker.takeTwinBlend(run, equal, false, 1, spec, 0, 32), GsError);  // no recordBlends()
+  run.recordBlends();
+  EXPECT_THROW(taker.takeTwinBlend(run, equal, false, 1, spec, 0, 32), GsError);  // nothing blended yet
 }
 
 }  // namespace

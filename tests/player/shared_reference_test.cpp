@@ -3,7 +3,9 @@
 // copied by the other, and tiles known equal are not compared for the lag. Fault plays with and
 // without the sharing must give the same rows (hash, lag, sky lag, presenter records) at every vsync
 // and the same lightmaps and skies of both pipelines, over several fault plans, seeds, catch-up
-// policies, upload modes, kernels and a branch; and the sharing must actually take place.
+// policies, upload modes, kernels and a branch; and the sharing must actually take place. The same
+// with the reference mirroring the run (PlayerOptions::mirrorReference: it takes the run's blends
+// as its own while every tile agrees) and without; the reference's own records (its pops) too.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -31,28 +33,44 @@ struct Case {
   // Play-late slips the run's schedule for good after the stall, so the two never blend the same
   // bytes toward the same frame again: nothing to share, the bytes must still agree.
   bool expectShared = true;
+  // In strip mode the run blends each strip before the reference does (the order of their events
+  // in a tick), so the reference never finds every tile equal before its blend: it copies instead.
+  bool expectMirrored = true;
+  // A stall after the two were in step makes the mirroring reference take its own bytes back.
+  bool expectStops = false;
 };
 
 struct Outcome {
   std::vector<VsyncRow> rows;
   Rgba8Image lightmap, sky, refLightmap, refSky;
-  std::int64_t copied = 0;  // tiles copied by either pipeline's presenters
+  std::int64_t copied = 0;    // tiles copied by either pipeline's presenters
+  std::int64_t mirrored = 0;  // tiles whose blend the reference took from the run's (mirroring)
+  std::int64_t stops = 0;     // times the mirroring reference took its own bytes back
+  std::vector<gs::VsyncRecord> refRecords, refSkyRecords;
 };
 
-Outcome play(const Case& c, bool share) {
+Outcome play(const Case& c, bool share, bool mirror = true) {
   Scenario sc = Scenario::bareFile(testing::samplePath(c.sample)).seed(c.seed).trace(false).policy(c.policy);
   if (c.simd) sc.kernels(Kernels{&gs::simd::kernels(), nullptr, nullptr});
   sc.options().config.gs.convergence_aware = c.aware;
   sc.options().config.gs.catchup_fix = c.catchupFix;
   if (c.strips) sc.options().config.gs.upload_mode = "strips";
   sc.options().shareReference = share;
+  sc.options().mirrorReference = mirror;
   sc.faults(config::parseFaultPlan(c.faults, "<faults>", &sc.disc()));
   if (c.branchAt >= 0) sc.branch(c.branchAt, 1);
   auto run = sc.start(c.duration);
-  run->runToEnd();
   Player& p = run->player();
-  EXPECT_TRUE(p.hasReference());
   Outcome o;
+  // The reference's records as they are once every presenter presented the vsync.
+  Player::Sink inner = p.sink();
+  p.setSink([&](const VsyncRow& row, const Rgba8Image& lm, const Rgba8Image* sky) {
+    o.refRecords.push_back(p.reference()->lightmap().last());
+    o.refSkyRecords.push_back(p.reference()->sky()->last());
+    if (inner) inner(row, lm, sky);
+  });
+  run->runToEnd();
+  EXPECT_TRUE(p.hasReference());
   o.rows = run->rows();
   o.lightmap = p.lightmap();
   o.sky = *p.sky();
@@ -60,6 +78,8 @@ Outcome play(const Case& c, bool share) {
   o.refSky = p.reference()->sky()->lightmap();
   for (Pipeline* pl : {&p.pipeline(), p.reference()}) {
     o.copied += pl->lightmap().counters().tilesCopied + pl->sky()->counters().tilesCopied;
+    o.mirrored += pl->lightmap().counters().tilesMirrored + pl->sky()->counters().tilesMirrored;
+    o.stops += pl->lightmap().counters().mirrorStops + pl->sky()->counters().mirrorStops;
   }
   return o;
 }
@@ -74,9 +94,7 @@ void expectSameRecord(const gs::VsyncRecord& a, const gs::VsyncRecord& b, std::i
   EXPECT_EQ(a.gsBusy, b.gsBusy) << "vsync " << n;
 }
 
-void expectSameBytes(const Case& c) {
-  const Outcome shared = play(c, true);
-  const Outcome own = play(c, false);
+void expectSameOutcome(const Outcome& shared, const Outcome& own) {
   ASSERT_EQ(shared.rows.size(), own.rows.size());
   int lagged = 0;
   for (std::size_t i = 0; i < own.rows.size(); ++i) {
@@ -91,16 +109,47 @@ void expectSameBytes(const Case& c) {
     expectSameRecord(*a.sky, *b.sky, b.vsync);
     if (b.lag != 0) ++lagged;
   }
+  ASSERT_EQ(shared.refRecords.size(), own.refRecords.size());
+  for (std::size_t i = 0; i < own.refRecords.size(); ++i) {
+    expectSameRecord(shared.refRecords[i], own.refRecords[i], own.refRecords[i].vsync);
+    expectSameRecord(shared.refSkyRecords[i], own.refSkyRecords[i], own.refSkyRecords[i].vsync);
+  }
   EXPECT_EQ(shared.lightmap.pixels, own.lightmap.pixels);
   EXPECT_EQ(shared.sky.pixels, own.sky.pixels);
   EXPECT_EQ(shared.refLightmap.pixels, own.refLightmap.pixels);
   EXPECT_EQ(shared.refSky.pixels, own.refSky.pixels);
   EXPECT_GT(lagged, 10) << "the faults should make the run differ from the reference";
   EXPECT_EQ(own.copied, 0);
+  EXPECT_EQ(own.mirrored, 0);
+}
+
+void expectSameBytes(const Case& c) {
+  const Outcome own = play(c, false);
+  const Outcome copying = play(c, true, /*mirror=*/false);
+  const Outcome mirroring = play(c, true, /*mirror=*/true);
+  {
+    SCOPED_TRACE("shared by copies");
+    expectSameOutcome(copying, own);
+  }
+  {
+    SCOPED_TRACE("shared by mirroring");
+    expectSameOutcome(mirroring, own);
+  }
+  EXPECT_EQ(copying.mirrored, 0);
+  EXPECT_EQ(copying.stops, 0);
   if (!c.aware) {
-    EXPECT_EQ(shared.copied, 0) << "without the convergence shortcut there is nothing recorded to share";
+    EXPECT_EQ(copying.copied, 0) << "without the convergence shortcut there is nothing recorded to share";
+    EXPECT_EQ(mirroring.copied + mirroring.mirrored, 0) << "nor anything to mirror";
   } else if (c.expectShared) {
-    EXPECT_GT(shared.copied, 1000) << "the pipelines should share most blends while in step";
+    EXPECT_GT(copying.copied, 1000) << "the pipelines should share most blends while in step";
+    if (c.expectMirrored) {
+      EXPECT_GT(mirroring.mirrored, 1000) << "the reference should mirror the run while in step";
+    }
+  }
+  // Each stop copies the whole lightmap: a few per divergence, never one per blend.
+  EXPECT_LT(mirroring.stops, 40);
+  if (c.expectStops) {
+    EXPECT_GT(mirroring.stops, 0) << "the late stall should make the reference take its bytes back";
   }
 }
 
@@ -112,6 +161,9 @@ constexpr const char* kStallsAndReadError =
     "[[fault]]\nkind='read_error'\nlba=2090\nattempts=300\n"
     "[[fault]]\nkind='random_stall'\nfrom='0s'\nduration='40s'\nmean_interval='5s'\nstall='2s'\n";
 constexpr const char* kLongStall = "[[fault]]\nkind='stall'\nat='200ms'\nduration='8s'\n";
+// In step from the start (no fault before 20 s), then a stall over the loop's re-read at 24 s: the
+// run shows six frames late.
+constexpr const char* kLateStall = "[[fault]]\nkind='stall'\nat='20s'\nduration='10s'\n";
 
 TEST(SharedReference, SameBytesAsUnsharedAcrossSeeds) {
   for (const std::uint64_t seed : {1, 2, 5}) {
@@ -136,6 +188,7 @@ TEST(SharedReference, SameBytesInStripsWithCatchUpFix) {
   c.faults = kStalls;
   c.strips = true;
   c.catchupFix = 96;
+  c.expectMirrored = false;
   expectSameBytes(c);
 }
 
@@ -157,6 +210,18 @@ TEST(SharedReference, SameBytesWithABranch) {
   c.branchAt = fromMs(14'000);
   c.seed = 3;
   expectSameBytes(c);
+}
+
+TEST(SharedReference, SameBytesWhenTheRunFallsBehindAfterBeingInStep) {
+  for (const char* policy : {"blend-through", "hard-skip"}) {
+    SCOPED_TRACE(policy);
+    Case c;
+    c.faults = kLateStall;
+    c.policy = policy;
+    c.seed = 4;
+    c.expectStops = true;
+    expectSameBytes(c);
+  }
 }
 
 TEST(SharedReference, SameBytesWithoutTheConvergenceShortcut) {
