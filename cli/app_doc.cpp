@@ -79,6 +79,7 @@ help::ProgramDoc programDoc(CLI::App& app) {
   doc.exits.done = kExitDone;
   doc.exits.failure = kExitFailure;
   doc.exits.badInput = kExitBadInput;
+  doc.exits.shardsMissing = kExitShardsMissing;
   for (const StopSignal& s : kStopSignals) doc.exits.signals.push_back({s.name, exitForSignal(s.number)});
   return doc;
 }

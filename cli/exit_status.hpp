@@ -11,6 +11,9 @@ namespace vbim::cli {
 inline constexpr int kExitDone = 0;      // every output is complete
 inline constexpr int kExitFailure = 1;   // a failure while running (an output that cannot be written)
 inline constexpr int kExitBadInput = 2;  // bad usage or bad input, refused before any work
+// `vbim profile --plan --merge` with shards missing or unfinished: each named with how to re-run it
+// (docs/sweeps.md), so a batch script can tell "run these shards again" from a bad request.
+inline constexpr int kExitShardsMissing = 3;
 
 // The signals that stop a command cleanly (cli/interrupt.hpp), with what the man page calls them.
 struct StopSignal {

@@ -11,6 +11,7 @@
 
 #include "cli/command.hpp"
 #include "cli/common_options.hpp"
+#include "cli/exit_status.hpp"
 #include "cli/progress.hpp"
 
 namespace vbim::cli {
@@ -92,7 +93,7 @@ void runPlan(const PlanOptions& o, const sweep::StreamTranscoder& transcode) {
   try {
     result = runs::planRun(o.request, p, transcode, observer);
   } catch (const sweep::MissingShards& e) {
-    throw Exit(3, e.what());  // docs/sweeps.md: a merge with shards to re-run
+    throw Exit(kExitShardsMissing, e.what());  // docs/sweeps.md: a merge with shards to re-run
   }
   if (o.request.json) {
     requestedOut() << result.json;

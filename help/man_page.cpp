@@ -82,7 +82,11 @@ std::string manPage(const ProgramDoc& program) {
     << ".TP\n"
     << exits.badInput
     << "\nbad usage or bad input, refused before any work (an unknown option, a number out of range, a missing file, "
-       "a config or stream that fails validation, an output that exists without \\-\\-force)\n";
+       "a config or stream that fails validation, an output that exists without \\-\\-force)\n"
+    << ".TP\n"
+    << exits.shardsMissing
+    << "\n\\fBvbim profile \\-\\-plan \\-\\-merge\\fR found shards missing or unfinished: each is named with "
+       "how to run it again; nothing written\n";
   for (const ExitDoc::Signal& s : exits.signals) {
     m << ".TP\n"
       << s.status << "\nstopped by " << roff(s.name)

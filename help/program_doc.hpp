@@ -35,6 +35,7 @@ struct ExitDoc {
   int done = 0;
   int failure = 1;
   int badInput = 2;
+  int shardsMissing = 3;  // a sweep's --merge with shards to re-run
   struct Signal {
     std::string name;  // "SIGINT (Ctrl-C)"
     int status;        // what the program exits with when the signal stops it
