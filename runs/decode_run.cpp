@@ -37,9 +37,10 @@ std::string decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
        << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
        << r.format;
   if (s.issues) line << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
-  if (s.skippedPictures)
+  if (s.skippedPictures) {
     line << ", " << s.skippedPictures << (s.skippedPictures == 1 ? " picture" : " pictures")
          << " skipped (cannot be decoded)";
+  }
   line << "\n";
   return line.str();
 }
