@@ -34,8 +34,18 @@ std::vector<CaseRecord> runPlanCases(const SweepPlanSpec& plan, const std::vecto
   std::vector<CaseRecord> records(cases.size());
   std::atomic<std::size_t> next{0};
   std::mutex doneMutex;
+  // The first exception that is not a case's own failure: one out of `done` (its progress report saw
+  // Ctrl-C, cli/interrupt.hpp) or a non-std exception from a case. It must not leave a worker thread
+  // (std::terminate); it stops the sweep and is rethrown on the calling thread once all have joined.
+  std::exception_ptr stopped;
+  std::atomic<bool> stop{false};
+  const auto stopWith = [&](std::exception_ptr e) {
+    const std::lock_guard lock(doneMutex);
+    if (!stopped) stopped = std::move(e);
+    stop = true;
+  };
   auto work = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < cases.size();) {
+    for (std::size_t i; !stop && (i = next.fetch_add(1)) < cases.size();) {
       CaseRecord r;
       try {
         const std::shared_ptr<Stream> s = open(cases[i].stream);
@@ -45,11 +55,21 @@ std::vector<CaseRecord> runPlanCases(const SweepPlanSpec& plan, const std::vecto
         r.number = cases[i].number;
         r.ok = false;
         r.error = e.what();
+      } catch (...) {
+        stopWith(std::current_exception());
+        return;
       }
       records[i] = std::move(r);
       if (done) {
         const std::lock_guard lock(doneMutex);
-        done(records[i]);
+        if (stop) return;  // no report after the one that stopped the sweep
+        try {
+          done(records[i]);
+        } catch (...) {
+          stopped = std::current_exception();  // under the lock, as stopWith
+          stop = true;
+          return;
+        }
       }
     }
   };
@@ -58,7 +78,8 @@ std::vector<CaseRecord> runPlanCases(const SweepPlanSpec& plan, const std::vecto
     std::vector<std::jthread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
     work();
-  }  // joined: every record written
+  }  // joined: every record written, or the sweep stopped
+  if (stopped) std::rethrow_exception(stopped);
   return records;
 }
 

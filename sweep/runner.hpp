@@ -37,7 +37,9 @@ struct RunOptions {
 };
 
 // Runs `cases` (a subset of expandPlan(plan), any order) with `jobs` threads; the records come back
-// in the order of `cases`. A case that throws a std::exception becomes a failed record.
+// in the order of `cases`. A case that throws a std::exception becomes a failed record. An exception
+// out of `done` (a progress report that saw Ctrl-C) stops the sweep: no case starts after it, the
+// cases under way finish unreported, and it is rethrown here once every thread has joined.
 std::vector<CaseRecord> runPlanCases(const SweepPlanSpec& plan, const std::vector<PlanCase>& cases,
                                      const StreamOpener& open, const RunOptions& options, const CaseDone& done = {});
 

@@ -4,6 +4,7 @@
 // ThreadSanitizer by .ci/run.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <stdexcept>
 #include <string>
 
@@ -81,6 +82,38 @@ TEST(SweepRunner, ThreadsGiveTheSameRecordsInCaseOrder) {
   }
   // A longer stall with the small ring shows in the records: the draws are not all alike.
   EXPECT_NE(one[0].result.totals.ringSum, one[2].result.totals.ringSum);
+}
+
+// Ctrl-C during `vbim profile --plan --jobs 2` ended the process in std::terminate (exit 134): the
+// progress report that saw it threw on a worker thread. An exception out of the report now stops the
+// sweep (no case starts after it, none is reported after it) and reaches the caller, which exits 130.
+TEST(SweepRunner, AnExceptionFromTheReportStopsTheSweepAndReachesTheCaller) {
+  struct Interrupted : std::runtime_error {
+    Interrupted() : std::runtime_error("interrupted") {}
+  };
+  const SweepPlanSpec plan = smallPlan();
+  const std::vector<PlanCase> cases = expandPlan(plan);
+  for (const unsigned jobs : {1u, 2u, 3u}) {
+    std::atomic<int> opened{0};
+    int reported = 0;
+    RunOptions o;
+    o.jobs = jobs;
+    EXPECT_THROW(runPlanCases(
+                     plan, cases,
+                     [&](std::size_t s) {
+                       ++opened;
+                       return bareStream(plan.streams[s].path);
+                     },
+                     o,
+                     [&](const CaseRecord&) {
+                       if (++reported == 2) throw Interrupted();
+                     }),
+                 Interrupted)
+        << jobs << " jobs";
+    EXPECT_EQ(reported, 2) << jobs << " jobs";
+    // Only the cases already under way on the other threads ran after the report that threw.
+    EXPECT_LE(opened.load(), 2 + static_cast<int>(jobs) - 1) << jobs << " jobs";
+  }
 }
 
 TEST(SweepRunner, ShardRangesCoverEveryCaseOnce) {
