@@ -457,31 +457,66 @@ HWY_EXPORT(blendHashRows);
 HWY_EXPORT(targetNameHere);
 
 namespace {
+
+// AVX-512 gives way to AVX2 for these kernels on a CPU that has both, unless a test forced one
+// target (SupportedTargets() is then that target alone, so forEachTarget still runs each). The
+// kernels alone are about as fast either way (bench_blend_hash: the fused pass within 5 %), but the
+// 512x512 play ran 1.14-1.21x faster in CPU time with them on AVX2 (Intel Xeon Ice Lake-SP, 2 vCPU,
+// 2026-12-05, bench/player/play_speed_ab.sh; docs/player.md "Speed and memory"): 512-bit
+// instructions lower the core's clock for a while after they run and close port 1's vector unit,
+// which costs the code between the blends (decode, scheduler) more than the wider vectors save. [A]
+// that other AVX-512 CPUs behave alike; the bytes are the same on every target.
+bool avx2Preferred() {
+#if HWY_TARGETS & HWY_AVX2
+  const std::int64_t supported = hwy::SupportedTargets();
+  return (supported & HWY_AVX2) != 0 && (supported & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
+#else
+  return false;
+#endif
+}
+
 void dispatchBlend(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) {
+    N_AVX2::blendSpan(dst, src, pixels, spec);
+    return;
+  }
+#endif
   HWY_DYNAMIC_DISPATCH(blendSpan)(dst, src, pixels, spec);
 }
 int dispatchBlendDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) return N_AVX2::blendSpanDelta(dst, src, pixels, spec);
+#endif
   return HWY_DYNAMIC_DISPATCH(blendSpanDelta)(dst, src, pixels, spec);
 }
 int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
                            std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) return N_AVX2::blendRectDelta(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
+#endif
   return HWY_DYNAMIC_DISPATCH(blendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
 }
 void dispatchBlendHashRows(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
                            std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
                            HashChain* chain) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) {
+    N_AVX2::blendHashRows(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+    return;
+  }
+#endif
   HWY_DYNAMIC_DISPATCH(blendHashRows)(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+}
+const char* targetName() {
+  return avx2Preferred() ? hwy::TargetName(HWY_AVX2) : HWY_DYNAMIC_DISPATCH(targetNameHere)();
 }
 }  // namespace
 
 const BlendKernels& kernels() {
   // The name is read once; dispatch itself stays dynamic so forEachTarget can force a target.
-  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(targetNameHere)(),
-                              &dispatchBlend,
-                              &dispatchBlendDelta,
-                              &dispatchBlendRectDelta,
-                              &compareRect,
-                              &dispatchBlendHashRows};
+  static const BlendKernels k{targetName(), &dispatchBlend,        &dispatchBlendDelta, &dispatchBlendRectDelta,
+                              &compareRect, &dispatchBlendHashRows};
   return k;
 }
 
@@ -489,7 +524,7 @@ void forEachTarget(const std::function<void(const std::string& target)>& fn) {
   (void)kernels();  // name the normal dispatch choice before any target is forced
   for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
-    fn(HWY_DYNAMIC_DISPATCH(targetNameHere)());
+    fn(targetName());
   }
   hwy::SetSupportedTargetsForTest(0);
 }
