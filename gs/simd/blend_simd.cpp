@@ -445,6 +445,8 @@ const char* targetNameHere() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <atomic>
+
 #include "gs/simd/blend_simd.hpp"
 #include "gs/simd/compare_simd.hpp"
 
@@ -458,21 +460,27 @@ HWY_EXPORT(targetNameHere);
 
 namespace {
 
-// AVX-512 gives way to AVX2 for these kernels on a CPU that has both, unless a test forced one
-// target (SupportedTargets() is then that target alone, so forEachTarget still runs each). The
+// AVX-512 gives way to AVX2 for these kernels on a CPU that has both, except while forEachTarget
+// forces each target in turn (the tests check every one). The
 // kernels alone are about as fast either way (bench_blend_hash: the fused pass within 5 %), but the
 // 512x512 play ran 1.14-1.21x faster in CPU time with them on AVX2 (Intel Xeon Ice Lake-SP, 2 vCPU,
 // 2026-12-05, bench/player/play_speed_ab.sh; docs/player.md "Speed and memory"): 512-bit
 // instructions lower the core's clock for a while after they run and close port 1's vector unit,
 // which costs the code between the blends (decode, scheduler) more than the wider vectors save. [A]
 // that other AVX-512 CPUs behave alike; the bytes are the same on every target.
-bool avx2Preferred() {
+// Asked once: hwy::SupportedTargets() runs CPUID each time (it was 44 % of a play when asked per call).
+bool avx2PreferredOnThisCpu() {
 #if HWY_TARGETS & HWY_AVX2
   const std::int64_t supported = hwy::SupportedTargets();
   return (supported & HWY_AVX2) != 0 && (supported & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
 #else
   return false;
 #endif
+}
+std::atomic<bool> targetForced{false};  // forEachTarget is running: Highway's dispatch decides
+bool avx2Preferred() {
+  static const bool onThisCpu = avx2PreferredOnThisCpu();
+  return onThisCpu && !targetForced.load(std::memory_order_relaxed);
 }
 
 void dispatchBlend(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
@@ -522,11 +530,13 @@ const BlendKernels& kernels() {
 
 void forEachTarget(const std::function<void(const std::string& target)>& fn) {
   (void)kernels();  // name the normal dispatch choice before any target is forced
+  targetForced = true;
   for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
     fn(targetName());
   }
   hwy::SetSupportedTargetsForTest(0);
+  targetForced = false;
 }
 
 }  // namespace vbim::gs::simd
