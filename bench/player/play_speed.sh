@@ -13,6 +13,8 @@
 # with 5 (Docs.PlaySpeedScriptRunsShortened). A WORKDIR holds streams of one length only.
 # A third line plays the 512x512 stream authored with GOPs of 12 and two B pictures (issue #29: P and
 # B pictures through the BDEC flow; the goal is 500x real time in CPU time).
+# PLAY_SPEED_STREAMS (default "512 256 512gop") picks the lines, e.g. "512" for the first alone
+# (play_speed_ab.sh alternates two builds on it).
 set -eu
 vbim=${1:?usage: play_speed.sh VBIM [RUNS] [WORKDIR] [THREADS]}
 runs=${2:-5}
@@ -44,7 +46,7 @@ median() { sort -n | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]
 load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo "?")
 echo "vbim play, ${seconds} s simulated, default options, --threads $threads, $runs runs each; load average $load before"
 cp "$work/512.toml" "$work/512gop.toml"
-for name in 512 256 512gop; do
+for name in ${PLAY_SPEED_STREAMS:-512 256 512gop}; do
   size=${name%gop}
   if [ "$name" = 512gop ]; then
     author "$name" "$size" $((size / 2)) --gop 12 --b-frames 2

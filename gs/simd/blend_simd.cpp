@@ -48,6 +48,39 @@ struct FixedPointTest {
   }
 };
 
+// The change and the fixed-point test of the FIX 64 blend (HalfBlend) from the byte distances to
+// the target alone, a = Cs -sat Cd and b = Cd -sat Cs, kept as their maxima: two subtractions and
+// two maxima a vector where the general tests (FixedPointTest, |r - Cd|) take nine. Exact, for the
+// blend r = floor((Cs + Cd) / 2) of a colour byte:
+//   its change |r - Cd| is floor(a / 2) (Cs >= Cd) or ceil(b / 2) (Cd > Cs), the other distance
+//   being 0; both grow with the distance, so the largest change is max(floor(A / 2), ceil(B / 2))
+//   of the maxima A and B;
+//   r is at its fixed point (spanAtFixedPoint: 0 <= Cs - r <= fixedPointBand(64) = 1) unless
+//   Cs - r = ceil((Cs - Cd) / 2) is 2 or more (a >= 3) or below 0 (b >= 2).
+// Alpha is As (AlphaWrite::Source: change |As - Ad| = max(a, b), then at its fixed point) or Ad
+// (Keep: no change). The tests compare every (Cs, Cd) pair with the scalar reference.
+template <class D8, bool kKeepAlpha>
+struct HalfChange {
+  hn::Vec<D8> colour, two, one;
+  explicit HalfChange(D8 d8) {
+    const hn::Repartition<std::uint32_t, D8> d32;
+    colour = hn::BitCast(d8, hn::Set(d32, 0x00FFFFFFu));  // bytes 0-2 of each little-endian pixel
+    two = hn::Set(d8, 2);
+    one = hn::Set(d8, 1);
+  }
+  // Non-zero bytes where a blended row whose distances had maxima rowA, rowB is not at its fixed point.
+  hn::Vec<D8> off(hn::Vec<D8> rowA, hn::Vec<D8> rowB) const {
+    return hn::And(hn::Or(hn::SaturatedSub(rowA, two), hn::SaturatedSub(rowB, one)), colour);
+  }
+  // The largest change of each byte lane, from the maxima of its distances.
+  hn::Vec<D8> change(D8 d8, hn::Vec<D8> a, hn::Vec<D8> b) const {
+    const auto zero = hn::Zero(d8);
+    const auto colourChange = hn::Max(hn::Sub(a, hn::AverageRound(a, zero)), hn::AverageRound(b, zero));
+    const auto alphaChange = kKeepAlpha ? zero : hn::Max(a, b);
+    return hn::Or(hn::And(colour, colourChange), hn::AndNot(colour, alphaChange));
+  }
+};
+
 // The row loop of every kernel: `rows` spans of `pixels`, each vector's result given by
 // `blend(s, d)`, the last pixels of a span by the scalar reference, the change reduced once at the
 // end (a 64x32 tile is one call). kSettle: rows marked in *settled are skipped, blended rows left at
@@ -61,19 +94,37 @@ HWY_INLINE int blendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstS
   auto deltaAcc = hn::Zero(d8);
   int delta = 0;
   const FixedPointTest<D8> fixed(d8, spec);
+  // FIX 64 with the change wanted: the distances' maxima instead (HalfChange).
+  constexpr bool kHalfTrack = kTrack && BlendVector::kHalf;
+  const HalfChange<D8, BlendVector::kKeep> half(d8);
+  auto accA = hn::Zero(d8), accB = hn::Zero(d8);
   for (std::size_t y = 0; y < rows; ++y, dst += dstStride, src += srcStride) {
     if constexpr (kSettle) {
       if ((*settled >> y) & 1u) continue;
     }
     auto off = hn::Zero(d8);
     std::size_t i = 0;
-    for (; i + step <= bytes; i += step) {
-      const auto s = hn::LoadU(d8, src + i);
-      const auto d = hn::LoadU(d8, dst + i);
-      const auto r = blend(s, d);
-      if constexpr (kTrack) deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r, d), hn::SaturatedSub(d, r)));
-      if constexpr (kSettle) off = hn::Or(off, fixed.off(s, r));
-      hn::StoreU(r, d8, dst + i);
+    if constexpr (kHalfTrack) {
+      auto rowA = hn::Zero(d8), rowB = hn::Zero(d8);
+      for (; i + step <= bytes; i += step) {
+        const auto s = hn::LoadU(d8, src + i);
+        const auto d = hn::LoadU(d8, dst + i);
+        rowA = hn::Max(rowA, hn::SaturatedSub(s, d));
+        rowB = hn::Max(rowB, hn::SaturatedSub(d, s));
+        hn::StoreU(blend(s, d), d8, dst + i);
+      }
+      accA = hn::Max(accA, rowA);
+      accB = hn::Max(accB, rowB);
+      if constexpr (kSettle) off = half.off(rowA, rowB);
+    } else {
+      for (; i + step <= bytes; i += step) {
+        const auto s = hn::LoadU(d8, src + i);
+        const auto d = hn::LoadU(d8, dst + i);
+        const auto r = blend(s, d);
+        if constexpr (kTrack) deltaAcc = hn::Max(deltaAcc, hn::Or(hn::SaturatedSub(r, d), hn::SaturatedSub(d, r)));
+        if constexpr (kSettle) off = hn::Or(off, fixed.off(s, r));
+        hn::StoreU(r, d8, dst + i);
+      }
     }
     bool tailFixed = true;
     if (i < bytes) {
@@ -86,6 +137,7 @@ HWY_INLINE int blendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstS
     }
   }
   if constexpr (kTrack) {
+    if constexpr (kHalfTrack) deltaAcc = half.change(d8, accA, accB);
     std::uint8_t lanes[256];  // >= the widest vector of any target
     hn::StoreU(deltaAcc, d8, lanes);
     for (std::size_t k = 0; k < step; ++k) delta = std::max<int>(delta, lanes[k]);
@@ -96,6 +148,8 @@ HWY_INLINE int blendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstS
 // Any FIX, COLCLAMP and alpha mode (the arithmetic in the comment at the top of the file).
 template <bool kWide, bool kWrap, bool kKeepAlpha>
 struct GeneralBlend {
+  static constexpr bool kHalf = false;
+  static constexpr bool kKeep = kKeepAlpha;
   using D8 = hn::ScalableTag<std::uint8_t>;
   using D16 = hn::Repartition<std::uint16_t, D8>;
   using DI16 = hn::Repartition<std::int16_t, D8>;
@@ -162,6 +216,8 @@ int blendRectT(std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride, const std:
 // most blends of a play are this one (docs/player.md, "Sixth round").
 template <bool kKeepAlpha>
 struct HalfBlend {
+  static constexpr bool kHalf = true;
+  static constexpr bool kKeep = kKeepAlpha;
   using D8 = hn::ScalableTag<std::uint8_t>;
   hn::Vec<D8> one, alpha;
   HalfBlend() {
@@ -244,9 +300,16 @@ void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_R
     blendHashRowsScalar(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
     return;
   }
+  // Per tile, its bytes' largest change; for FIX 64 the largest distances Cs - Cd (acc) and Cd - Cs
+  // (accB) instead, turned into the change at the end (HalfChange).
   HWY_ALIGN std::uint8_t acc[kMaxTiles * kMaxLanes];
+  HWY_ALIGN std::uint8_t accB[Blend::kHalf ? kMaxTiles * kMaxLanes : 1];
   for (std::size_t t = 0; t < tiles; ++t) hn::Store(hn::Zero(d8), d8, acc + t * step);
+  if constexpr (Blend::kHalf) {
+    for (std::size_t t = 0; t < tiles; ++t) hn::Store(hn::Zero(d8), d8, accB + t * step);
+  }
   const FixedPointTest<D8> fixed(d8, spec);
+  const HalfChange<D8, Blend::kKeep> half(d8);
   const std::size_t stride = pixels * 4;
   for (std::size_t y = 0; y < rows; ++y) {
     std::uint8_t* drow = dst + y * stride;
@@ -258,17 +321,31 @@ void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_R
       const std::uint8_t* s = srow + 4 * x0;
       if (((settled[t] >> y) & 1u) == 0) {
         auto off = hn::Zero(d8);
-        auto change = hn::Load(d8, acc + t * step);
         std::size_t i = 0;
-        for (; i + step <= bytes; i += step) {
-          const auto sv = hn::LoadU(d8, s + i);
-          const auto dv = hn::LoadU(d8, d + i);
-          const auto r = blend(sv, dv);
-          change = hn::Max(change, hn::Or(hn::SaturatedSub(r, dv), hn::SaturatedSub(dv, r)));
-          off = hn::Or(off, fixed.off(sv, r));
-          hn::StoreU(r, d8, d + i);
+        if constexpr (Blend::kHalf) {
+          auto rowA = hn::Zero(d8), rowB = hn::Zero(d8);
+          for (; i + step <= bytes; i += step) {
+            const auto sv = hn::LoadU(d8, s + i);
+            const auto dv = hn::LoadU(d8, d + i);
+            rowA = hn::Max(rowA, hn::SaturatedSub(sv, dv));
+            rowB = hn::Max(rowB, hn::SaturatedSub(dv, sv));
+            hn::StoreU(blend(sv, dv), d8, d + i);
+          }
+          hn::Store(hn::Max(hn::Load(d8, acc + t * step), rowA), d8, acc + t * step);
+          hn::Store(hn::Max(hn::Load(d8, accB + t * step), rowB), d8, accB + t * step);
+          off = half.off(rowA, rowB);
+        } else {
+          auto change = hn::Load(d8, acc + t * step);
+          for (; i + step <= bytes; i += step) {
+            const auto sv = hn::LoadU(d8, s + i);
+            const auto dv = hn::LoadU(d8, d + i);
+            const auto r = blend(sv, dv);
+            change = hn::Max(change, hn::Or(hn::SaturatedSub(r, dv), hn::SaturatedSub(dv, r)));
+            off = hn::Or(off, fixed.off(sv, r));
+            hn::StoreU(r, d8, d + i);
+          }
+          hn::Store(change, d8, acc + t * step);
         }
-        hn::Store(change, d8, acc + t * step);
         bool tailFixed = true;
         if (i < bytes) {
           const std::size_t rest = (bytes - i) / 4;
@@ -287,6 +364,9 @@ void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_R
     }
   }
   for (std::size_t t = 0; t < tiles; ++t) {
+    if constexpr (Blend::kHalf) {
+      hn::Store(half.change(d8, hn::Load(d8, acc + t * step), hn::Load(d8, accB + t * step)), d8, acc + t * step);
+    }
     for (std::size_t k = 0; k < step; ++k) delta[t] = std::max<int>(delta[t], acc[t * step + k]);
   }
   if (chain != nullptr && !rowWise) chain->addBytes(dst, stride * rows);
@@ -365,6 +445,8 @@ const char* targetNameHere() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <atomic>
+
 #include "gs/simd/blend_simd.hpp"
 #include "gs/simd/compare_simd.hpp"
 
@@ -377,41 +459,84 @@ HWY_EXPORT(blendHashRows);
 HWY_EXPORT(targetNameHere);
 
 namespace {
+
+// AVX-512 gives way to AVX2 for these kernels on a CPU that has both, except while forEachTarget
+// forces each target in turn (the tests check every one). The
+// kernels alone are about as fast either way (bench_blend_hash: the fused pass within 5 %), but the
+// 512x512 play ran 1.14-1.21x faster in CPU time with them on AVX2 (Intel Xeon Ice Lake-SP, 2 vCPU,
+// 2026-12-05, bench/player/play_speed_ab.sh; docs/player.md "Speed and memory"): 512-bit
+// instructions lower the core's clock for a while after they run and close port 1's vector unit,
+// which costs the code between the blends (decode, scheduler) more than the wider vectors save. [A]
+// that other AVX-512 CPUs behave alike; the bytes are the same on every target.
+// Asked once: hwy::SupportedTargets() runs CPUID each time (it was 44 % of a play when asked per call).
+bool avx2PreferredOnThisCpu() {
+#if HWY_TARGETS & HWY_AVX2
+  const std::int64_t supported = hwy::SupportedTargets();
+  return (supported & HWY_AVX2) != 0 && (supported & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
+#else
+  return false;
+#endif
+}
+std::atomic<bool> targetForced{false};  // forEachTarget is running: Highway's dispatch decides
+bool avx2Preferred() {
+  static const bool onThisCpu = avx2PreferredOnThisCpu();
+  return onThisCpu && !targetForced.load(std::memory_order_relaxed);
+}
+
 void dispatchBlend(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) {
+    N_AVX2::blendSpan(dst, src, pixels, spec);
+    return;
+  }
+#endif
   HWY_DYNAMIC_DISPATCH(blendSpan)(dst, src, pixels, spec);
 }
 int dispatchBlendDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) return N_AVX2::blendSpanDelta(dst, src, pixels, spec);
+#endif
   return HWY_DYNAMIC_DISPATCH(blendSpanDelta)(dst, src, pixels, spec);
 }
 int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
                            std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) return N_AVX2::blendRectDelta(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
+#endif
   return HWY_DYNAMIC_DISPATCH(blendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
 }
 void dispatchBlendHashRows(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
                            std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
                            HashChain* chain) {
+#if HWY_TARGETS & HWY_AVX2
+  if (avx2Preferred()) {
+    N_AVX2::blendHashRows(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+    return;
+  }
+#endif
   HWY_DYNAMIC_DISPATCH(blendHashRows)(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+}
+const char* targetName() {
+  return avx2Preferred() ? hwy::TargetName(HWY_AVX2) : HWY_DYNAMIC_DISPATCH(targetNameHere)();
 }
 }  // namespace
 
 const BlendKernels& kernels() {
   // The name is read once; dispatch itself stays dynamic so forEachTarget can force a target.
-  static const BlendKernels k{HWY_DYNAMIC_DISPATCH(targetNameHere)(),
-                              &dispatchBlend,
-                              &dispatchBlendDelta,
-                              &dispatchBlendRectDelta,
-                              &compareRect,
-                              &dispatchBlendHashRows};
+  static const BlendKernels k{targetName(), &dispatchBlend,        &dispatchBlendDelta, &dispatchBlendRectDelta,
+                              &compareRect, &dispatchBlendHashRows};
   return k;
 }
 
 void forEachTarget(const std::function<void(const std::string& target)>& fn) {
   (void)kernels();  // name the normal dispatch choice before any target is forced
+  targetForced = true;
   for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
-    fn(HWY_DYNAMIC_DISPATCH(targetNameHere)());
+    fn(targetName());
   }
   hwy::SetSupportedTargetsForTest(0);
+  targetForced = false;
 }
 
 }  // namespace vbim::gs::simd

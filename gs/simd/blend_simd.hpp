@@ -12,7 +12,8 @@
 
 namespace vbim::gs::simd {
 
-// Kernels for the best target this CPU supports; name() is the Highway target ("AVX2", "AVX3").
+// Kernels for the best target this CPU supports, except that AVX2 runs them where AVX-512 is there
+// too (blend_simd.cpp says why); name() is the Highway target ("AVX2", "SSE4").
 const BlendKernels& kernels();
 
 // Runs fn once per compiled target the CPU supports, with dispatch forced to that target (tests);

@@ -242,6 +242,55 @@ TEST(BlendSimd, BlendHashRowsMatchesScalarOnEveryTarget) {
   });
 }
 
+// FIX 64 has its own change and fixed-point test in the kernels (HalfChange, gs/simd/blend_simd.cpp):
+// every (Cs, Cd) pair in every byte of a pixel, each pair alone in its tile of a one-row image among
+// bytes at their fixed point, so that a tile's change and its row's settled mark are that pair's
+// alone; the fused blend + hash and the tile blend of every target against the scalar reference.
+TEST(BlendSimd, HalfBlendChangeAndFixedPointMatchScalarOnEveryPair) {
+  constexpr std::size_t kTile = 64, kTiles = 8, kPixels = kTile * kTiles;
+  std::vector<std::uint8_t> src(4 * kPixels), dst(4 * kPixels);
+  simd::forEachTarget([&](const std::string& target) {
+    for (const AlphaWrite aw : {AlphaWrite::Source, AlphaWrite::Keep}) {
+      const BlendSpec spec = makeBlendSpec(64, ColClamp::Clamp, aw);
+      for (int channel = 0; channel < 4; ++channel) {
+        for (int first = 0; first < 65536; first += static_cast<int>(kTiles)) {
+          for (std::size_t i = 0; i < src.size(); ++i) src[i] = dst[i] = static_cast<std::uint8_t>(i * 37);
+          for (std::size_t t = 0; t < kTiles; ++t) {
+            const int pair = first + static_cast<int>(t);
+            const std::size_t x = t * kTile + static_cast<std::size_t>(pair / static_cast<int>(kTiles)) % kTile;
+            src[4 * x + static_cast<std::size_t>(channel)] = static_cast<std::uint8_t>(pair & 0xFF);
+            dst[4 * x + static_cast<std::size_t>(channel)] = static_cast<std::uint8_t>(pair >> 8);
+          }
+          std::vector<std::uint8_t> want = dst, got = dst, gotTiles = dst;
+          std::vector<std::uint32_t> wantMask(kTiles, 0), gotMask(kTiles, 0), tileMask(kTiles, 0);
+          std::vector<int> wantDelta(kTiles, 0), gotDelta(kTiles, 0);
+          HashChain wantChain, gotChain;
+          blendHashRowsScalar(want.data(), src.data(), kPixels, 1, kTile, spec, wantMask.data(), wantDelta.data(),
+                              &wantChain);
+          simd::kernels().blendHashRows(got.data(), src.data(), kPixels, 1, kTile, spec, gotMask.data(),
+                                        gotDelta.data(), &gotChain);
+          const auto where = [&] {
+            return target + " channel " + std::to_string(channel) + " pairs from " + std::to_string(first) +
+                   (aw == AlphaWrite::Keep ? " alpha kept" : "");
+          };
+          ASSERT_EQ(got, want) << where();
+          ASSERT_EQ(gotDelta, wantDelta) << where();
+          ASSERT_EQ(gotMask, wantMask) << where();
+          ASSERT_EQ(gotChain.lanes[0], wantChain.lanes[0]) << where();
+          for (std::size_t t = 0; t < kTiles; ++t) {
+            const int d =
+                simd::kernels().blendRectDelta(gotTiles.data() + 4 * t * kTile, 4 * kPixels, src.data() + 4 * t * kTile,
+                                               4 * kPixels, kTile, 1, spec, &tileMask[t]);
+            ASSERT_EQ(d, wantDelta[t]) << where() << " tile " << t;
+          }
+          ASSERT_EQ(gotTiles, want) << where();
+          ASSERT_EQ(tileMask, wantMask) << where();
+        }
+      }
+    }
+  });
+}
+
 TEST(BlendSimd, DispatchNamesATarget) {
   const std::string name = simd::kernels().name;
   EXPECT_FALSE(name.empty());
