@@ -3,8 +3,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -13,21 +11,12 @@
 #include "cli/common_options.hpp"
 #include "cli/exit_status.hpp"
 #include "cli/progress.hpp"
+#include "help/status_text.hpp"
+#include "runs/play_json.hpp"
 
 namespace vbim::cli {
 
 namespace {
-
-std::string clock(double seconds) {
-  const auto s = static_cast<long long>(std::llround(seconds));
-  char b[32];
-  if (s >= 3600) {
-    std::snprintf(b, sizeof b, "%lldh%02lldm", s / 3600, s / 60 % 60);
-  } else {
-    std::snprintf(b, sizeof b, "%lldm%02llds", s / 60, s % 60);
-  }
-  return b;
-}
 
 // The cases' progress on stderr (n/N, failures, time left): redrawn on a terminal, or one line every
 // few seconds when --progress asks for it elsewhere (never for the cases --emit-slurm measures).
@@ -50,7 +39,7 @@ class CaseProgress {
     if (!terminal_ && done_ < total_ && now - lastShown_ < std::chrono::seconds(5)) return;
     lastShown_ = now;
     bar_->show(static_cast<double>(done_), static_cast<double>(total_),
-               std::to_string(failed_) + " failed, " + clock(secondsLeft(elapsed, done_, total_)) + " left");
+               std::to_string(failed_) + " failed, " + help::clockText(help::secondsLeft(elapsed, done_, total_)) + " left");
   }
   void end() { bar_->finish(); }
 
@@ -96,6 +85,7 @@ void runPlan(const PlanOptions& o, const sweep::StreamTranscoder& transcode) {
     throw Exit(kExitShardsMissing, e.what());  // docs/sweeps.md: a merge with shards to re-run
   }
   if (o.request.json) {
+    if (result.jsonReplaced) std::cerr << "vbim profile: " << runs::kNotUtf8Warning << "\n";
     requestedOut() << result.json;
   } else {
     std::cout << result.text;
