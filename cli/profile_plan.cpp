@@ -38,8 +38,9 @@ class CaseProgress {
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     if (!terminal_ && done_ < total_ && now - lastShown_ < std::chrono::seconds(5)) return;
     lastShown_ = now;
+    const std::string left = help::clockText(help::secondsLeft(elapsed, done_, total_));
     bar_->show(static_cast<double>(done_), static_cast<double>(total_),
-               std::to_string(failed_) + " failed, " + help::clockText(help::secondsLeft(elapsed, done_, total_)) + " left");
+               std::to_string(failed_) + " failed, " + left + " left");
   }
   void end() { bar_->finish(); }
 

@@ -6,8 +6,8 @@
 // stay clean; finished with a newline. Asked for explicitly (`always`, or VBIM_PROGRESS=1 in the
 // environment), it also writes to a non-terminal: whole lines, at most one every 5 s (a batch
 // job's log), as under --verbose; --quiet draws nothing. Rate and time left come from the host's clock: shown to the
-// user, never hashed. The words are help::progressLine's (help/status_text.hpp). Libraries never print: they report through a plain callback (render::RenderProgressFn,
-// lighting::TechniqueAProgressFn) that the command forwards here.
+// user, never hashed. The words are help::progressLine's (help/status_text.hpp). Libraries never print: they report
+// through a plain callback (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command forwards here.
 #pragma once
 
 #include <chrono>

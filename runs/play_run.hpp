@@ -50,8 +50,8 @@ struct PlayRequest {
 };
 
 struct PlayResult {
-  std::string summary;  // one paragraph: what was played, frames, pop, lag, ring, pictures
-  std::string warning;  // a run that stopped showing frames (player::healthWarning), or empty
+  std::string summary;        // one paragraph: what was played, frames, pop, lag, ring, pictures
+  std::string warning;        // a run that stopped showing frames (player::healthWarning), or empty
   bool jsonReplaced = false;  // --json: bytes of the inputs not UTF-8 written as U+FFFD (kNotUtf8Warning)
 };
 

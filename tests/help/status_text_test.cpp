@@ -13,8 +13,7 @@ TEST(StatusText, TheLineHasTheBarTheCountTheRateAndTheTimeLeft) {
   EXPECT_EQ(progressLine("vbim lightmap", "frames", 16, 32, 8.0, "clear 3"),
             "vbim lightmap [###############...............] 16/32 frames  2 frames/s, 8 s left  clear 3");
   // Not yet half a second: no rate. Done: no time left.
-  EXPECT_EQ(progressLine("vbim play", "s", 0.5, 60, 0.2, ""),
-            "vbim play [..............................] 0.5/60 s");
+  EXPECT_EQ(progressLine("vbim play", "s", 0.5, 60, 0.2, ""), "vbim play [..............................] 0.5/60 s");
   EXPECT_EQ(progressLine("vbim play", "s", 60, 60, 10, ""),
             "vbim play [##############################] 60/60 s  6 s/s");
   // A total not known in advance: the count alone.
