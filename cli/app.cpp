@@ -23,6 +23,7 @@
 #include "runs/error.hpp"
 #include "runtime/error.hpp"
 #include "streams/disc/standard_input.hpp"
+#include "sweep/outputs/study.hpp"
 
 namespace vbim::cli {
 
@@ -117,6 +118,10 @@ int runApp(CLI::App& app, int argc, char** argv) {
   } catch (const Exit& e) {
     std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";
     return e.code();
+  } catch (const sweep::MissingShards& e) {
+    // docs/sweeps.md: a merge with shards to re-run, told apart from a bad request.
+    std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";
+    return kExitShardsMissing;
   } catch (const runs::RunFailure& e) {
     // A library call failed while it ran (an output that cannot be written): not the input's fault.
     std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";

@@ -9,7 +9,6 @@
 
 #include "cli/command.hpp"
 #include "cli/common_options.hpp"
-#include "cli/exit_status.hpp"
 #include "cli/progress.hpp"
 #include "help/status_text.hpp"
 #include "runs/play_json.hpp"
@@ -79,12 +78,7 @@ void runPlan(const PlanOptions& o, const sweep::StreamTranscoder& transcode) {
   observer.onCaseDone = [&progress](const sweep::CaseRecord& rec) { progress.done(rec); };
   observer.onCasesEnd = [&progress] { progress.end(); };
   observer.onWarning = [](const std::string& line) { std::cerr << "vbim profile: " << line << "\n"; };
-  runs::PlanResult result;
-  try {
-    result = runs::planRun(o.request, p, transcode, observer);
-  } catch (const sweep::MissingShards& e) {
-    throw Exit(kExitShardsMissing, e.what());  // docs/sweeps.md: a merge with shards to re-run
-  }
+  const runs::PlanResult result = runs::planRun(o.request, p, transcode, observer);
   if (o.request.json) {
     if (result.jsonReplaced) std::cerr << "vbim profile: " << runs::kNotUtf8Warning << "\n";
     requestedOut() << result.json;
