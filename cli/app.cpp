@@ -20,20 +20,14 @@
 #include "cli/option_checks.hpp"
 #include "cli/suggest.hpp"
 #include "help/option_text.hpp"
+#include "runs/error.hpp"
 #include "runtime/error.hpp"
 #include "streams/disc/standard_input.hpp"
+#include "sweep/outputs/study.hpp"
 
 namespace vbim::cli {
 
 namespace {
-
-// The subcommand named by the first argument, or nullptr.
-CLI::App* subcommandNamed(CLI::App& app, std::string_view name) {
-  for (auto* sub : app.get_subcommands({})) {
-    if (sub->get_name() == name) return sub;
-  }
-  return nullptr;
-}
 
 // "vbim play: " for the command the user typed ("vbim: " before one is known).
 std::string prefixFor(CLI::App& app, int argc, char** argv) {
@@ -124,6 +118,14 @@ int runApp(CLI::App& app, int argc, char** argv) {
   } catch (const Exit& e) {
     std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";
     return e.code();
+  } catch (const sweep::MissingShards& e) {
+    // docs/sweeps.md: a merge with shards to re-run, told apart from a bad request.
+    std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";
+    return kExitShardsMissing;
+  } catch (const runs::RunFailure& e) {
+    // A library call failed while it ran (an output that cannot be written): not the input's fault.
+    std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";
+    return kExitFailure;
   } catch (const Error& e) {
     // The project's own errors name the input and what was expected: bad input.
     std::cerr << prefix << streams::nameStandardInput(e.what()) << "\n";

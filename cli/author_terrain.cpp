@@ -1,12 +1,10 @@
 #include "cli/author_terrain.hpp"
 
-#include <iostream>
 #include <map>
 
 #include "cli/host_threads.hpp"
 #include "cli/lighting_options.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/progress.hpp"
 
 namespace vbim::cli {
 
@@ -72,23 +70,13 @@ std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o) {
   return "";
 }
 
-void runTerrainAuthor(const TerrainAuthorOptions& o, const streams::EncodeOptions& enc, const std::string& out) {
+lighting::TerrainAuthorRequest terrainRequest(const TerrainAuthorOptions& o) {
   lighting::TerrainAuthorRequest request = o.request;
   request.terrain.cellSizeGiven = o.cellSizeOption != nullptr && o.cellSizeOption->count() > 0;
   request.terrain.verticalScaleGiven = o.verticalScaleOption != nullptr && o.verticalScaleOption->count() > 0;
+  // `o` outlives the run (the app's callback holds it).
   request.applyGiven = [&o](lighting::DayCycleParams& params) { applyGivenLightingOptions(o.given, params); };
-  request.encode = enc;
-  const lighting::TechniqueAStreamSettings s = lighting::terrainAuthorSettings(request);
-
-  Progress progress("vbim author", "frames");
-  const lighting::AuthoredStream stream =
-      lighting::authorTechniqueA(s, out, [&](const lighting::TechniqueAProgress& p) {
-        progress.show(p.done, p.total, p.variant + " " + std::to_string(p.frame));
-      });
-  progress.finish();
-  for (const std::string& note : stream.terrainNotes)
-    std::cout << "vbim author: " << o.request.terrain.heightfield << ": " << note << "\n";
-  std::cout << lighting::authoredSummary(out, stream, s.stream.encoder.containerFps);
+  return request;
 }
 
 }  // namespace vbim::cli

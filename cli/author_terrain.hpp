@@ -1,7 +1,7 @@
 // `vbim author --terrain FILE | --procedural ...`: Technique A (lighting/) straight to a VBIM stream,
 // frames rendered one at a time in memory (lighting/authoring/technique_a_stream.hpp): the options
-// (shared with `vbim lightmap`'s lighting ones, cli/lighting_options.hpp) and the progress and lines
-// printed; the settings are lighting::terrainAuthorSettings (lighting/authoring/terrain_author.hpp).
+// (shared with `vbim lightmap`'s lighting ones, cli/lighting_options.hpp), read into the request
+// runs::authorRun takes (runs/author_run.hpp; its settings are lighting::terrainAuthorSettings).
 #pragma once
 
 #include <functional>
@@ -30,6 +30,8 @@ struct TerrainAuthorOptions {
 void addTerrainOptions(CLI::App* cmd, const std::shared_ptr<TerrainAuthorOptions>& o);
 // The first Technique A option on the command line ("" if none): selects this source.
 std::string firstTerrainOptionGiven(const TerrainAuthorOptions& o);
-void runTerrainAuthor(const TerrainAuthorOptions& o, const streams::EncodeOptions& enc, const std::string& out);
+// The request the options make (run by runs::authorRun): the values, which of them were given, and
+// the lighting options given over a lighting config's values. Holds a reference to `o`.
+lighting::TerrainAuthorRequest terrainRequest(const TerrainAuthorOptions& o);
 
 }  // namespace vbim::cli

@@ -10,6 +10,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
+#include "runs/play_json.hpp"
 #include "runs/play_run.hpp"
 #include "streams/disc/standard_input.hpp"
 
@@ -76,14 +77,13 @@ void addPlay(CLI::App& app) {
   cmd->callback([r] {
     if (streams::isStandardInput(r->disc)) r->discLabel = "<stdin>";  // the summary and stats.json
     Progress bar("vbim play", "s");
-    const runs::PlayResult result = exitOneOnRunFailure([&] {
-      return runs::playRun(*r, [&bar](double played, double total) {
-        bar.show(played, total);
-        checkInterrupted();
-      });
+    const runs::PlayResult result = runs::playRun(*r, [&bar](double played, double total) {
+      bar.show(played, total);
+      checkInterrupted();
     });
     bar.finish();
     if (r->json) {
+      if (result.jsonReplaced) std::cerr << "vbim play: " << runs::kNotUtf8Warning << "\n";
       if (!result.warning.empty()) std::cerr << "vbim play: " << result.warning << "\n";
       requestedOut() << result.summary;
       return;

@@ -12,7 +12,8 @@
 #include "cli/interrupt.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/profile_plan.hpp"
-#include "cli/progress.hpp"
+#include "help/status_text.hpp"
+#include "runs/play_json.hpp"
 #include "runs/profile_json.hpp"
 #include "runs/profile_run.hpp"
 #include "sweep/outputs/profile_outputs.hpp"
@@ -34,8 +35,7 @@ class Count {
   std::string next() {
     ++done_;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    return "[" + std::to_string(done_) + "/" + std::to_string(total_) + ", " +
-           fixed(secondsLeft(elapsed, done_, total_), 0) + " s left] ";
+    return help::countText(done_, total_, help::secondsLeft(elapsed, done_, total_));
   }
 
  private:
@@ -65,7 +65,10 @@ void runProfile(const runs::ProfileRequest& r, const runs::Reencoder& reencode) 
   const runs::ProfileResult result = runs::profileRun(r, reencode, progress);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (r.json) {
-    requestedOut() << runs::profileSummaryJson(result.data, wall, result.written);
+    bool replaced = false;
+    const std::string json = runs::profileSummaryJson(result.data, wall, result.written, replaced);
+    if (replaced) std::cerr << "vbim profile: " << runs::kNotUtf8Warning << "\n";
+    requestedOut() << json;
     return;
   }
   std::cout << "profiled " << result.data.sweep.size() << " sweep runs and " << result.data.stalls.size()

@@ -2,7 +2,7 @@
 // "Known-answer vectors"). --out DIR writes them; --check DIR compares a port's captured files with
 // them, every entry (or the stages and keys --only selects), and scores each file: pass, fail with
 // the first differences and where in the value, or absent (exit 1 when a present file fails). The
-// vectors, their writing and the scoring are runs/vectors_run.hpp's.
+// vectors, their writing and the scoring are runs::vectorsRun's (runs/vectors_run.hpp).
 #include <iostream>
 #include <memory>
 
@@ -15,29 +15,9 @@ namespace vbim::cli {
 
 namespace {
 
-struct VectorsRequest {
-  std::vector<std::string> streams;  // --stream; empty: runs::sampleVectorStreams()
-  std::string out;
-  std::string check;
-  std::vector<std::string> only;  // --only: key patterns checked
-  std::string idct = ipu::idctKindName(ipu::kDefaultIdct);
-  bool force = false;
-};
-
-void run(const VectorsRequest& r) {
-  runs::checkVectorsRequest(r.out, r.check, r.only, r.force);
-  const ipu::IdctKind idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);
-  const std::vector<player::VectorFile> files = r.streams.empty()
-                                                    ? runs::streamVectors(runs::sampleVectorStreams(), "", idct)
-                                                    : runs::streamVectors(r.streams, "--stream ", idct);
-  checkInterrupted();  // a Ctrl-C while the vectors were computed stops here: nothing written yet
-  if (!r.out.empty()) {
-    const std::size_t lines = exitOneOnRunFailure([&] { return runs::writeVectors(files, r.out, r.force); });
-    std::cout << "wrote " << files.size() << " vector files (" << lines << " lines) to " << r.out << "\n";
-    return;
-  }
-  const runs::VectorsVerdict v =
-      runs::vectorsVerdict(runs::checkVectors(files, r.check, r.only), r.check, !r.only.empty());
+void run(const runs::VectorsRequest& r) {
+  // A Ctrl-C while the vectors are computed or written stops the run before the directory takes its name.
+  const runs::VectorsVerdict v = runs::vectorsRun(r, checkInterrupted);
   if (!v.passed) throw Exit(1, v.text);
   std::cout << v.text;
 }
@@ -45,7 +25,7 @@ void run(const VectorsRequest& r) {
 }  // namespace
 
 void addVectors(CLI::App& app) {
-  auto r = std::make_shared<VectorsRequest>();
+  auto r = std::make_shared<runs::VectorsRequest>();
   auto* cmd = app.add_subcommand(
       "vectors", "Write the timing-independent known-answer vectors for a port, or check a port's against them");
   cmd->add_option("-o,--out", r->out, "Write the vector files into this directory (complete or not at all)");

@@ -15,8 +15,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include "runs/error.hpp"
-
 namespace vbim::runs {
 struct PlayResult;
 }
@@ -37,17 +35,6 @@ class Exit : public std::runtime_error {
 // catches it and hands the whole command line to vbim-full. Not a std::exception, so that runApp's
 // error handling lets it through.
 struct HandOverToFull {};
-
-// Runs a library call; a failure while it ran (runs::RunFailure: an output that cannot be written)
-// ends the command with exit 1, where every other vbim::Error is bad input (exit 2, runApp).
-template <typename Body>
-decltype(auto) exitOneOnRunFailure(Body&& body) {
-  try {
-    return body();
-  } catch (const runs::RunFailure& e) {
-    throw Exit(1, e.what());
-  }
-}
 
 // A play's summary on stdout, after its health warning on stderr (`vbim play: ...`); play and demo.
 void printPlayResult(const runs::PlayResult& result);
@@ -77,7 +64,7 @@ void configureApp(CLI::App& app);
 // (cli/option_checks.hpp): the tree as it is parsed, and as --generate describes it.
 void prepareApp(CLI::App& app);
 // Parses and runs (after prepareApp); every error becomes `vbim CMD: message` on stderr and exit 2 (bad usage or
-// input) or 1 (a failure while running).
+// input) or 1 (a failure while running: runs::RunFailure, an output that cannot be written).
 int runApp(CLI::App& app, int argc, char** argv);
 // argv with `vbim help CMD ...` turned into `vbim CMD ... --help` (null-terminated, for exec too).
 std::vector<char*> helpAsOption(int argc, char** argv);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gs/params.hpp"
+#include "help/status_text.hpp"
 #include "runtime/error.hpp"
 
 namespace vbim::cli {
@@ -38,20 +39,6 @@ void beQuiet() {
   static NullBuffer* const sink = new NullBuffer;
   level() = Verbosity::Quiet;
   if (originalStdout() == nullptr) originalStdout() = std::cout.rdbuf(sink);
-}
-
-// "12.3 kB" (decimal units, as `ls -h --si`).
-std::string size(std::uintmax_t bytes) {
-  const char* units[] = {"bytes", "kB", "MB", "GB", "TB"};
-  double v = static_cast<double>(bytes);
-  std::size_t u = 0;
-  while (v >= 1000 && u + 1 < std::size(units)) {
-    v /= 1000;
-    ++u;
-  }
-  char text[32];
-  std::snprintf(text, sizeof text, u == 0 ? "%.0f %s" : "%.1f %s", v, units[u]);
-  return text;
 }
 
 }  // namespace
@@ -124,7 +111,7 @@ void listWritten(const CLI::App& command) {
     std::sort(files.begin(), files.end());
     for (const std::filesystem::path& f : files) {
       std::cerr << "vbim " << command.get_name() << ": wrote " << f.string() << " ("
-                << size(std::filesystem::file_size(f, ec)) << ")\n";
+                << help::sizeText(std::filesystem::file_size(f, ec)) << ")\n";
     }
   }
 }

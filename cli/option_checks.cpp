@@ -3,13 +3,11 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <charconv>
-#include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <system_error>
 
+#include "help/option_text.hpp"
 #include "streams/disc/standard_input.hpp"
 
 namespace vbim::cli {
@@ -17,38 +15,6 @@ namespace vbim::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string quoted(const std::string& s) {
-  return "'" + s + "'";
-}
-
-// "" when `text` is a whole number of type T written plainly; otherwise what is wrong with it.
-template <typename T>
-std::string integerProblem(const std::string& text) {
-  if (text.empty()) return "expected a whole number, found nothing";
-  if constexpr (std::is_unsigned_v<T>) {
-    if (text.front() == '-') return quoted(text) + " is negative; expected a whole number 0 or more";
-  }
-  T value{};
-  const char* end = text.data() + text.size();
-  const char* first = text.data() + (text.front() == '+' ? 1 : 0);
-  const auto [ptr, ec] = std::from_chars(first, end, value);
-  if (ec == std::errc::result_out_of_range) {
-    return quoted(text) + " is out of range (at most " + std::to_string(std::numeric_limits<T>::max()) + ")";
-  }
-  if (ec != std::errc() || ptr != end) return quoted(text) + " is not a whole number";
-  return {};
-}
-
-std::string realProblem(const std::string& text) {
-  double value = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec == std::errc::result_out_of_range) return quoted(text) + " is out of range";
-  if (ec != std::errc() || ptr != end) return quoted(text) + " is not a number";
-  if (!std::isfinite(value)) return quoted(text) + " is not a finite number";
-  return {};
-}
 
 std::string fileProblem(const std::string& path, bool directory) {
   std::error_code ec;
@@ -104,15 +70,15 @@ const CLI::Validator& stdinAsFile() {
 }
 
 const CLI::Validator& nonNegativeInteger() {
-  static const CLI::Validator v([](std::string& s) { return integerProblem<std::uint64_t>(s); }, "",
+  static const CLI::Validator v([](std::string& s) { return help::wholeNumberProblem(s, false); }, "",
                                 "non-negative integer");
   return v;
 }
 
 void checkNumbersStrictly(CLI::App& app) {
-  static const CLI::Validator signedInteger([](std::string& s) { return integerProblem<std::int64_t>(s); }, "",
+  static const CLI::Validator signedInteger([](std::string& s) { return help::wholeNumberProblem(s, true); }, "",
                                             "integer");
-  static const CLI::Validator real([](std::string& s) { return realProblem(s); }, "", "number");
+  static const CLI::Validator real([](std::string& s) { return help::numberProblem(s); }, "", "number");
   for (CLI::Option* opt : app.get_options({})) {
     std::string type = opt->get_type_name();
     if (const auto colon = type.find(':'); colon != std::string::npos) type = type.substr(0, colon);

@@ -3,31 +3,19 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <string>
 
 #include "cli/command.hpp"
 #include "cli/common_options.hpp"
-#include "cli/exit_status.hpp"
 #include "cli/progress.hpp"
+#include "help/status_text.hpp"
+#include "runs/play_json.hpp"
 
 namespace vbim::cli {
 
 namespace {
-
-std::string clock(double seconds) {
-  const auto s = static_cast<long long>(std::llround(seconds));
-  char b[32];
-  if (s >= 3600) {
-    std::snprintf(b, sizeof b, "%lldh%02lldm", s / 3600, s / 60 % 60);
-  } else {
-    std::snprintf(b, sizeof b, "%lldm%02llds", s / 60, s % 60);
-  }
-  return b;
-}
 
 // The cases' progress on stderr (n/N, failures, time left): redrawn on a terminal, or one line every
 // few seconds when --progress asks for it elsewhere (never for the cases --emit-slurm measures).
@@ -49,8 +37,9 @@ class CaseProgress {
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     if (!terminal_ && done_ < total_ && now - lastShown_ < std::chrono::seconds(5)) return;
     lastShown_ = now;
+    const std::string left = help::clockText(help::secondsLeft(elapsed, done_, total_));
     bar_->show(static_cast<double>(done_), static_cast<double>(total_),
-               std::to_string(failed_) + " failed, " + clock(secondsLeft(elapsed, done_, total_)) + " left");
+               std::to_string(failed_) + " failed, " + left + " left");
   }
   void end() { bar_->finish(); }
 
@@ -89,13 +78,9 @@ void runPlan(const PlanOptions& o, const sweep::StreamTranscoder& transcode) {
   observer.onCaseDone = [&progress](const sweep::CaseRecord& rec) { progress.done(rec); };
   observer.onCasesEnd = [&progress] { progress.end(); };
   observer.onWarning = [](const std::string& line) { std::cerr << "vbim profile: " << line << "\n"; };
-  runs::PlanResult result;
-  try {
-    result = runs::planRun(o.request, p, transcode, observer);
-  } catch (const sweep::MissingShards& e) {
-    throw Exit(kExitShardsMissing, e.what());  // docs/sweeps.md: a merge with shards to re-run
-  }
+  const runs::PlanResult result = runs::planRun(o.request, p, transcode, observer);
   if (o.request.json) {
+    if (result.jsonReplaced) std::cerr << "vbim profile: " << runs::kNotUtf8Warning << "\n";
     requestedOut() << result.json;
   } else {
     std::cout << result.text;

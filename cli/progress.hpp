@@ -6,23 +6,16 @@
 // stay clean; finished with a newline. Asked for explicitly (`always`, or VBIM_PROGRESS=1 in the
 // environment), it also writes to a non-terminal: whole lines, at most one every 5 s (a batch
 // job's log), as under --verbose; --quiet draws nothing. Rate and time left come from the host's clock: shown to the
-// user, never hashed. Libraries never print: they report through a plain callback (render::RenderProgressFn,
-// lighting::TechniqueAProgressFn) that the command forwards here.
+// user, never hashed. The words are help::progressLine's (help/status_text.hpp). Libraries never print: they report
+// through a plain callback (render::RenderProgressFn, lighting::TechniqueAProgressFn) that the command forwards here.
 #pragma once
 
-#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <string>
 #include <string_view>
 
 namespace vbim::cli {
-
-// Host seconds left for `total` steps at the rate of `done` in `elapsed` seconds (0 when done is 0).
-inline double secondsLeft(double elapsed, std::size_t done, std::size_t total) {
-  if (done == 0) return 0;
-  return elapsed / static_cast<double>(done) * static_cast<double>(total - std::min(done, total));
-}
 
 class Progress {
  public:

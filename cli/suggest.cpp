@@ -30,13 +30,6 @@ std::vector<std::string> longNames(const CLI::App& app) {
   return names;
 }
 
-CLI::App* subcommandNamed(CLI::App& app, const std::string& name) {
-  for (CLI::App* sub : app.get_subcommands({})) {
-    if (sub->get_name() == name) return sub;
-  }
-  return nullptr;
-}
-
 CLI::Option* findLong(CLI::App& app, const std::string& name) {
   for (CLI::Option* opt : app.get_options({})) {
     if (opt->check_lname(name)) return opt;
@@ -94,6 +87,13 @@ std::optional<std::string> scan(CLI::App& app, const std::vector<std::string>& a
 }
 
 }  // namespace
+
+CLI::App* subcommandNamed(CLI::App& app, std::string_view name) {
+  for (CLI::App* sub : app.get_subcommands({})) {
+    if (sub->get_name() == name) return sub;
+  }
+  return nullptr;
+}
 
 std::optional<std::string> unknownOption(CLI::App& app, int argc, char** argv) {
   const std::vector<std::string> args(argv, argv + argc);

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,9 @@ namespace vbim::cli {
 // "unknown option '--outt' (did you mean '--out'?)". Values of known options are skipped as CLI11
 // takes them (`--seed -1` is a value, checked later), and so is everything after "--".
 std::optional<std::string> unknownOption(CLI::App& app, int argc, char** argv);
+
+// The subcommand of `app` called `name` (the first argument, say), or nullptr.
+CLI::App* subcommandNamed(CLI::App& app, std::string_view name);
 
 // The message for a first word that is no command: "unknown command 'pla' (did you mean 'play'?)".
 std::string unknownCommand(CLI::App& app, const std::string& typed);

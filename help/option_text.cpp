@@ -2,11 +2,56 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
+#include <system_error>
+#include <type_traits>
 
 #include "help/did_you_mean.hpp"
 
 namespace vbim::help {
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
+template <typename T>
+std::string integerProblem(const std::string& text) {
+  if (text.empty()) return "expected a whole number, found nothing";
+  if constexpr (std::is_unsigned_v<T>) {
+    if (text.front() == '-') return quoted(text) + " is negative; expected a whole number 0 or more";
+  }
+  T value{};
+  const char* end = text.data() + text.size();
+  const char* first = text.data() + (text.front() == '+' ? 1 : 0);
+  const auto [ptr, ec] = std::from_chars(first, end, value);
+  if (ec == std::errc::result_out_of_range) {
+    return quoted(text) + " is out of range (at most " + std::to_string(std::numeric_limits<T>::max()) + ")";
+  }
+  if (ec != std::errc() || ptr != end) return quoted(text) + " is not a whole number";
+  return {};
+}
+
+}  // namespace
+
+std::string wholeNumberProblem(const std::string& text, bool negativeAllowed) {
+  return negativeAllowed ? integerProblem<std::int64_t>(text) : integerProblem<std::uint64_t>(text);
+}
+
+std::string numberProblem(const std::string& text) {
+  double value = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec == std::errc::result_out_of_range) return quoted(text) + " is out of range";
+  if (ec != std::errc() || ptr != end) return quoted(text) + " is not a number";
+  if (!std::isfinite(value)) return quoted(text) + " is not a finite number";
+  return {};
+}
 
 std::vector<std::string> choicesIn(const std::string& description) {
   const auto open = description.find('{');

@@ -89,7 +89,7 @@ PlanResult PlanModeRun::local() {
   if (r_.json) {
     summary.jobs = n;
     summary.wallSeconds = wall;
-    result.json = planSummaryJson(summary);
+    result.json = planSummaryJson(summary, result.jsonReplaced);
     return result;
   }
   text << "ran " << p_.cases.size() << " cases with " << n << " job(s) in " << sweep::fixed(wall, 1)
@@ -109,7 +109,7 @@ PlanResult PlanModeRun::shard() {
   text << "shard " << shard.k << "/" << shard.n << ": cases " << shard.first << ".."
        << (shard.last == shard.first ? shard.first : shard.last - 1) << ", " << failed << " failed -> "
        << dir.finalPath().string() << "\n";
-  return {text.str(), {}};
+  return {text.str(), {}, false};
 }
 
 // --merge DIR: every shard-K-of-N of one N, all of this plan; the outputs a local run writes.
@@ -122,7 +122,7 @@ PlanResult PlanModeRun::merge() {
   PlanResult result;
   if (r_.json) {
     summary.shards = m.shards;
-    result.json = planSummaryJson(summary);
+    result.json = planSummaryJson(summary, result.jsonReplaced);
     return result;
   }
   text << "merged " << m.shards << " shards, " << m.records.size() << " cases\n";
@@ -145,7 +145,7 @@ PlanResult PlanModeRun::emitSlurm() {
        << ", --mem " << e.job.memMb << "M (measured " << sweep::fixed(e.perCase, 3) << " s per case)\n"
        << "submit: sbatch " << script << "\nthen:   vbim profile --plan " << r_.plan << " --merge "
        << (finalDir / "shards").string() << " --out RESULTS\n";
-  return {text.str(), {}};
+  return {text.str(), {}, false};
 }
 
 }  // namespace

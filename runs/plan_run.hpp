@@ -55,8 +55,9 @@ struct PlanObserver {
 };
 
 struct PlanResult {
-  std::string text;  // the lines for stdout: the summary, the files written, what ran
-  std::string json;  // with PlanRequest::json: the document instead (runs/profile_json.hpp)
+  std::string text;           // the lines for stdout: the summary, the files written, what ran
+  std::string json;           // with PlanRequest::json: the document instead (runs/profile_json.hpp)
+  bool jsonReplaced = false;  // its bytes not UTF-8 written as U+FFFD: the command warns (kNotUtf8Warning)
 };
 
 // Runs the mode asked for on `p` (loadPlan(r)), re-encoding through `transcode`. Throws vbim::Error

@@ -1,7 +1,6 @@
 #include "runs/play_json.hpp"
 
 #include <algorithm>
-#include <iostream>
 
 #include <nlohmann/json.hpp>
 
@@ -11,12 +10,12 @@ namespace vbim::runs {
 
 using Json = nlohmann::ordered_json;
 
-std::string jsonText(const Json& j, const char* command) {
+std::string jsonText(const Json& j, bool& replaced) {
+  replaced = false;
   try {
     return j.dump(2) + "\n";
   } catch (const nlohmann::json::type_error&) {
-    std::cerr << "vbim " << command
-              << ": warning: text from the input is not UTF-8; its bytes are replaced by U+FFFD in the JSON\n";
+    replaced = true;
     return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   }
 }
@@ -36,7 +35,7 @@ Json health(const gs::PresenterCounters& lightmap, const player::RunTotals& tota
 }  // namespace
 
 std::string playSummaryJson(const player::Player& player, const std::string& disc, double wallSeconds,
-                            double cpuSeconds, std::int64_t images, const PictureCost& pictures) {
+                            double cpuSeconds, std::int64_t images, const PictureCost& pictures, bool& replaced) {
   const player::Pipeline& p = player.pipeline();
   const gs::PresenterCounters& c = p.lightmap().counters();
   const player::RunTotals& t = player.totals();
@@ -67,7 +66,7 @@ std::string playSummaryJson(const player::Player& player, const std::string& dis
                          {"format", pictures.format}};
   }
   j["health"] = health(c, t);
-  return jsonText(j, "play");
+  return jsonText(j, replaced);
 }
 
 }  // namespace vbim::runs

@@ -204,7 +204,7 @@ PlayResult playRun(const PlayRequest& r, const PlayProgressFn& onSecond) {
   if (r.json) {
     const PictureCost pictures{writer ? writer->pictureCpuSeconds() : 0.0,
                                r.format == "exr" ? "EXR" : "PNG level " + std::to_string(r.pngLevel)};
-    result.summary = playSummaryJson(*player, label, wall, cpu, images, pictures);
+    result.summary = playSummaryJson(*player, label, wall, cpu, images, pictures, result.jsonReplaced);
     return result;
   }
   result.summary = playSummary(*player, label, wall, cpu, images);

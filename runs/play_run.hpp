@@ -50,8 +50,9 @@ struct PlayRequest {
 };
 
 struct PlayResult {
-  std::string summary;  // one paragraph: what was played, frames, pop, lag, ring, pictures
-  std::string warning;  // a run that stopped showing frames (player::healthWarning), or empty
+  std::string summary;        // one paragraph: what was played, frames, pop, lag, ring, pictures
+  std::string warning;        // a run that stopped showing frames (player::healthWarning), or empty
+  bool jsonReplaced = false;  // --json: bytes of the inputs not UTF-8 written as U+FFFD (kNotUtf8Warning)
 };
 
 // Called after each simulated second with the time played and the run's length, in seconds (a

@@ -23,7 +23,7 @@ Json health(const gs::PresenterCounters& lightmap, const player::RunTotals& tota
 }  // namespace
 
 std::string profileSummaryJson(const sweep::ProfileData& data, double wallSeconds,
-                               const std::vector<std::string>& written) {
+                               const std::vector<std::string>& written, bool& replaced) {
   Json runs = Json::array();
   for (const sweep::SweepRun& r : data.sweep) {
     runs.push_back(Json{{"stream", r.stream},
@@ -52,10 +52,10 @@ std::string profileSummaryJson(const sweep::ProfileData& data, double wallSecond
   j["stall_searches"] = stalls;
   j["host_s"] = wallSeconds;
   j["outputs"] = written;
-  return jsonText(j, "profile");
+  return jsonText(j, replaced);
 }
 
-std::string planSummaryJson(const sweep::PlanSummary& s) {
+std::string planSummaryJson(const sweep::PlanSummary& s, bool& replaced) {
   Json j;
   j["cases"] = s.cases;
   if (s.shards > 0) {
@@ -66,7 +66,7 @@ std::string planSummaryJson(const sweep::PlanSummary& s) {
   }
   j["summary"] = s.lines;
   j["outputs"] = s.written;
-  return jsonText(j, "profile");
+  return jsonText(j, replaced);
 }
 
 }  // namespace vbim::runs

@@ -89,7 +89,8 @@ std::vector<player::VectorFile> streamVectors(const std::vector<std::string>& pa
   return player::knownAnswerVectors(streams, idct);
 }
 
-std::size_t writeVectors(const std::vector<player::VectorFile>& files, const std::string& out, bool force) {
+std::size_t writeVectors(const std::vector<player::VectorFile>& files, const std::string& out, bool force,
+                         const std::function<void()>& beforeCommit) {
   OutputDir dir(out, force);
   std::size_t lines = 0;
   for (const player::VectorFile& f : files) {
@@ -98,6 +99,7 @@ std::size_t writeVectors(const std::vector<player::VectorFile>& files, const std
     if (!o) throw RunFailure(dir.path(f.name).string() + ": cannot write");
     lines += static_cast<std::size_t>(std::count(f.text.begin(), f.text.end(), '\n'));
   }
+  if (beforeCommit) beforeCommit();
   dir.commit();
   return lines;
 }
@@ -181,6 +183,18 @@ VectorsVerdict vectorsVerdict(const VectorsCheck& c, const std::string& dir, boo
   std::string text = "the " + std::to_string(c.present) + " vector files present in " + dir + " match";
   if (onlyGiven) text += " (the " + std::to_string(c.checked) + " entries --only selects)";
   return {true, text + "\n" + c.report};
+}
+
+VectorsVerdict vectorsRun(const VectorsRequest& r, const std::function<void()>& checkpoint) {
+  checkVectorsRequest(r.out, r.check, r.only, r.force);
+  const ipu::IdctKind idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);
+  const std::vector<player::VectorFile> files =
+      r.streams.empty() ? streamVectors(sampleVectorStreams(), "", idct) : streamVectors(r.streams, "--stream ", idct);
+  if (checkpoint) checkpoint();  // nothing written yet
+  if (r.out.empty()) return vectorsVerdict(checkVectors(files, r.check, r.only), r.check, !r.only.empty());
+  const std::size_t lines = writeVectors(files, r.out, r.force, checkpoint);
+  return {true, "wrote " + std::to_string(files.size()) + " vector files (" + std::to_string(lines) + " lines) to " +
+                    r.out + "\n"};
 }
 
 }  // namespace vbim::runs

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,11 @@ std::vector<player::VectorFile> streamVectors(const std::vector<std::string>& pa
                                               ipu::IdctKind idct);
 
 // Writes every file into `out` (complete or absent, runs/output_dir.hpp) and returns their lines.
-// Throws RunFailure (runs/error.hpp) when a file cannot be written.
-std::size_t writeVectors(const std::vector<player::VectorFile>& files, const std::string& out, bool force);
+// Throws RunFailure (runs/error.hpp) when a file cannot be written. `beforeCommit`, when given, is
+// called with every file written and before the directory takes its name: whatever it throws (the
+// command's Ctrl-C) leaves no directory.
+std::size_t writeVectors(const std::vector<player::VectorFile>& files, const std::string& out, bool force,
+                         const std::function<void()>& beforeCommit = {});
 
 // A port's directory scored against the vectors.
 struct VectorsCheck {
@@ -62,5 +66,21 @@ struct VectorsVerdict {
   std::string text;
 };
 VectorsVerdict vectorsVerdict(const VectorsCheck& c, const std::string& dir, bool onlyGiven);
+
+// `vbim vectors` as one call: its options, as the command line gives them.
+struct VectorsRequest {
+  std::vector<std::string> streams;  // --stream; empty: sampleVectorStreams()
+  std::string out;                   // write the vectors here, or
+  std::string check;                 // score a port's files here
+  std::vector<std::string> only;     // --only: the stages or key patterns checked
+  std::string idct = ipu::idctKindName(ipu::kDefaultIdct);
+  bool force = false;
+};
+
+// The request checked, the vectors computed, then written (the verdict: passed, "wrote N vector files
+// (L lines) to OUT") or the port's files scored (vectorsVerdict). `checkpoint`, when given, is called
+// once the vectors are computed and again before the output directory takes its name: whatever it
+// throws (the command's Ctrl-C) stops the run with nothing written.
+VectorsVerdict vectorsRun(const VectorsRequest& r, const std::function<void()>& checkpoint = {});
 
 }  // namespace vbim::runs

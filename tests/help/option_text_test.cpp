@@ -35,4 +35,24 @@ TEST(OptionText, UnknownNamesOfferTheClosest) {
   EXPECT_EQ(unknownName("option", "-x", {}), "unknown option '-x'");
 }
 
+// Numbers are read strictly: no wrap of "-1" to 2^64-1, no clamp, no text after the digits.
+TEST(OptionText, NumbersAreReadStrictly) {
+  EXPECT_EQ(wholeNumberProblem("42", false), "");
+  EXPECT_EQ(wholeNumberProblem("+42", false), "");
+  EXPECT_EQ(wholeNumberProblem("-1", true), "");
+  EXPECT_EQ(wholeNumberProblem("-1", false), "'-1' is negative; expected a whole number 0 or more");
+  EXPECT_EQ(wholeNumberProblem("", false), "expected a whole number, found nothing");
+  EXPECT_EQ(wholeNumberProblem("12x", true), "'12x' is not a whole number");
+  EXPECT_EQ(wholeNumberProblem("1e3", false), "'1e3' is not a whole number");
+  EXPECT_EQ(wholeNumberProblem("18446744073709551616", false),
+            "'18446744073709551616' is out of range (at most 18446744073709551615)");
+  EXPECT_EQ(wholeNumberProblem("9223372036854775808", true),
+            "'9223372036854775808' is out of range (at most 9223372036854775807)");
+  EXPECT_EQ(numberProblem("2.5"), "");
+  EXPECT_EQ(numberProblem("-1e3"), "");
+  EXPECT_EQ(numberProblem("2.5s"), "'2.5s' is not a number");
+  EXPECT_EQ(numberProblem("1e999"), "'1e999' is out of range");
+  EXPECT_EQ(numberProblem("nan"), "'nan' is not a finite number");
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 #include "runs/vectors_run.hpp"
 
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,21 @@ TEST(WriteVectors, WritesEveryFileAndCountsItsLines) {
   fs::remove_all(out);
 }
 
+// What the command's Ctrl-C check throws after the files are written leaves no directory: the
+// signal that came last is not lost to a rename (vbim vectors exits 130, not 0).
+TEST(WriteVectors, AThrowBeforeTheCommitLeavesNoDirectory) {
+  const fs::path out = vbim::testing::scratchPath("vectors_run_stopped");
+  bool called = false;
+  EXPECT_THROW(writeVectors(kVectors, out.string(), false,
+                            [&called] {
+                              called = true;
+                              throw std::runtime_error("interrupted");
+                            }),
+               std::runtime_error);
+  EXPECT_TRUE(called);
+  EXPECT_FALSE(fs::exists(out));
+}
+
 std::string requestRefusal(const std::string& out, const std::string& check, const std::vector<std::string>& only) {
   try {
     checkVectorsRequest(out, check, only, false);
@@ -103,6 +119,33 @@ std::string requestRefusal(const std::string& out, const std::string& check, con
     return e.what();
   }
   return "";
+}
+
+// vectorsRun's checkpoint is called once the vectors are computed and again before the rename; a
+// throw from either leaves no directory (the command's Ctrl-C: exit 130, nothing written).
+TEST(VectorsRun, TheCheckpointComesBeforeAnyOutputAndBeforeTheRename) {
+  const fs::path out = vbim::testing::scratchPath("vectors_run_checkpoint");
+  VectorsRequest r;
+  r.streams = {std::string(VBIM_SOURCE_DIR) + "/streams/samples/day_clear.vbim"};
+  r.out = out.string();
+  for (const int stopAt : {1, 2}) {
+    int calls = 0;
+    EXPECT_THROW(vectorsRun(r,
+                            [&] {
+                              if (++calls == stopAt) throw std::runtime_error("interrupted");
+                              EXPECT_FALSE(fs::exists(out)) << "before the rename";
+                            }),
+                 std::runtime_error);
+    EXPECT_EQ(calls, stopAt);
+    EXPECT_FALSE(fs::exists(out));
+  }
+  int calls = 0;
+  const VectorsVerdict v = vectorsRun(r, [&calls] { ++calls; });
+  EXPECT_EQ(calls, 2);
+  EXPECT_TRUE(v.passed);
+  EXPECT_EQ(v.text.rfind("wrote ", 0), 0u) << v.text;
+  EXPECT_TRUE(fs::exists(out / "vlc.txt"));
+  fs::remove_all(out);
 }
 
 TEST(CheckVectorsRequest, OneModeOnlyWithCheckAndACheckDirectory) {
