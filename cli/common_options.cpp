@@ -64,15 +64,19 @@ CLI::Validator catchupPolicy() {
 void addCommonOptions(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) {
     const CLI::Option* out = nullptr;
+    bool json = false;
     for (const CLI::Option* opt : sub->get_options({})) {
       if (opt->check_lname("out")) out = opt;
+      json = json || opt->check_lname("json");
     }
     if (out == nullptr) continue;
     if (!out->check_sname("o")) {
       throw std::logic_error("vbim " + sub->get_name() + ": --out is registered without -o");
     }
     CLI::Option* quiet = sub->add_flag_callback(
-        "-q,--quiet", [] { beQuiet(); }, "No progress and no summary: only warnings and errors (and --json)");
+        "-q,--quiet", [] { beQuiet(); },
+        json ? "No progress and no summary: only warnings and errors (and --json)"
+             : "No progress and no summary: only warnings and errors");
     CLI::Option* verbose = sub->add_flag_callback(
         "-v,--verbose", [] { level() = Verbosity::Verbose; },
         "Progress lines even into a log or pipe, and every file written with its size");

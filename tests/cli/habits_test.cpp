@@ -138,6 +138,8 @@ TEST(CliHabits, EveryCommandThatWritesTakesShortOptions) {
     EXPECT_TRUE(has(help.output, "-o,--out")) << cmd << "\n" << help.output;
     EXPECT_TRUE(has(help.output, "-q,--quiet")) << cmd << "\n" << help.output;
     EXPECT_TRUE(has(help.output, "-v,--verbose")) << cmd << "\n" << help.output;
+    // --quiet's help names --json only where the command has it (it said so on decode, which has none).
+    EXPECT_EQ(has(help.output, "errors (and --json)"), has(help.output, "\n  --json")) << cmd << "\n" << help.output;
   }
   // Commands whose output is what they print have no --quiet.
   for (const char* cmd : {"info", "config"}) {
