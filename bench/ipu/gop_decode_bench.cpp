@@ -323,8 +323,8 @@ void BM_GopDecodeTargets(benchmark::State& state) {
   constexpr int kRounds = 15;
   std::vector<std::vector<double>> ratios(targets.size());
   for (int r = 0; r < kRounds; ++r) {
-    std::vector<double> t;
-    for (Target& x : targets) t.push_back(secondsOnce(*x.dec, c));
+    std::vector<double> t(targets.size());
+    for (std::size_t k = 0; k < targets.size(); ++k) t[k] = secondsOnce(*targets[k].dec, c);
     for (std::size_t k = 1; k < targets.size(); ++k) ratios[k].push_back(t[k] / t[0]);
   }
   for (std::size_t k = 1; k < targets.size(); ++k) state.counters["x_" + targets[k].name] = median(ratios[k]);
