@@ -10,13 +10,20 @@
 // Interleaved rounds, thread CPU time; counters: frames/s (best round) and per-round ratios, medians:
 //   x_libmpeg2_yuv = libmpeg2 / ours_yuv, x_libav_rgba = libavcodec / ours_rgba (> 1: we are faster),
 //   l2idct_cost = ours_l2idct / ours_yuv (what libmpeg2 0.5.1's IDCT costs against the default).
+// BM_GopDecodeTargets: our decode with the kernels of each Highway target this machine runs (is a
+// wider target's code slower here than a narrower one's?).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <map>
+#include <memory>
 #include <span>
+#include <string>
 #include <vector>
+
+#include "hwy/targets.h"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -32,6 +39,7 @@ extern "C" {
 #include "ipu/csc.hpp"
 #include "ipu/elementary_stream.hpp"
 #include "ipu/picture_decoder.hpp"
+#include "ipu/simd/mc_kernels.hpp"
 #include "ipu/simd/simd_kernels.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 
@@ -71,10 +79,11 @@ const Clip& clip(bool interlaced, int q) {
 // --- the decoders, each decoding the whole clip once ------------------------------------------
 
 struct Ours {
-  explicit Ours(vbim::ipu::IdctKind idct, bool toRgba) : dec(options(idct)), rgba_(toRgba) {}
-  static vbim::ipu::DecoderOptions options(vbim::ipu::IdctKind idct) {
+  explicit Ours(vbim::ipu::IdctKind idct, bool toRgba, const vbim::ipu::Kernels* kernels = &vbim::ipu::simdKernels())
+      : dec(options(idct, kernels)), rgba_(toRgba) {}
+  static vbim::ipu::DecoderOptions options(vbim::ipu::IdctKind idct, const vbim::ipu::Kernels* kernels) {
     vbim::ipu::DecoderOptions o;
-    o.kernels = &vbim::ipu::simdKernels();
+    o.kernels = kernels;
     o.idct = idct;
     return o;
   }
@@ -260,6 +269,73 @@ BENCHMARK(BM_GopDecodeOurs)
     ->Args({1, 4, 0, 0})
     ->Args({0, 4, 0, 1})
     ->Args({0, 2, 0, 1})
+    ->Unit(benchmark::kMillisecond);
+
+// Our decode with each Highway target's kernels (IDCT, motion compensation, CSC) on the same bytes, in
+// interleaved rounds: x_<TARGET> = that target's time / the best target's (the one simdKernels()
+// picks), median of the per-round ratios (> 1: the dispatch's pick is faster). A wider target that
+// is slower on the machine than a narrower one would show here as x < 1.
+void BM_GopDecodeTargets(benchmark::State& state) {
+  const Clip& c = clip(state.range(0) != 0, static_cast<int>(state.range(1)));
+  const bool toRgba = state.range(2) != 0;
+  struct Target {
+    std::string name;
+    vbim::ipu::McKernels mc;
+    vbim::ipu::Kernels kernels;
+    std::unique_ptr<Ours> dec;
+  };
+  std::deque<Target> targets;  // stable addresses: each Kernels points at its McKernels
+  for (const std::int64_t t : hwy::SupportedAndGeneratedTargets()) {
+    if (t == HWY_SCALAR || t == HWY_EMU128) continue;
+    hwy::SetSupportedTargetsForTest(t);
+    Target& x = targets.emplace_back();
+    x.name = hwy::TargetName(t);
+    x.mc = vbim::ipu::simdMcKernelsOfCurrentTarget();
+    x.kernels = vbim::ipu::simdKernelsOfCurrentTarget();
+    x.kernels.mc = &x.mc;
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  // To RGBA, also the best target's decode with each narrower target's colour conversion
+  // (csc_<TARGET>), to tell the conversion's share of a difference from the decode's.
+  const std::size_t wholeTargets = targets.size();
+  if (toRgba) {
+    for (std::size_t k = 1; k < wholeTargets; ++k) {
+      Target& x = targets.emplace_back();
+      x.name = "csc_" + targets[k].name;
+      x.mc = targets.front().mc;
+      x.kernels = targets.front().kernels;
+      x.kernels.mc = &x.mc;
+      x.kernels.cscRow = targets[k].kernels.cscRow;
+    }
+  }
+  for (Target& x : targets) x.dec = std::make_unique<Ours>(vbim::ipu::kDefaultIdct, toRgba, &x.kernels);
+  if (targets.empty()) {
+    state.SkipWithError("no SIMD target");
+    return;
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(targets.front().dec->run(c));
+  // Every target's decode shows the same samples (a check, not a proof: tests/ipu/simd_test.cpp
+  // and mc_kernels_test.cpp compare the kernels on every target).
+  const std::uint64_t reference = targets.front().dec->run(c);
+  bool same = true;
+  for (Target& x : targets) same = same && x.dec->run(c) == reference;
+  state.counters["same_samples"] = same ? 1 : 0;
+  constexpr int kRounds = 15;
+  std::vector<std::vector<double>> ratios(targets.size());
+  for (int r = 0; r < kRounds; ++r) {
+    std::vector<double> t(targets.size());
+    for (std::size_t k = 0; k < targets.size(); ++k) t[k] = secondsOnce(*targets[k].dec, c);
+    for (std::size_t k = 1; k < targets.size(); ++k) ratios[k].push_back(t[k] / t[0]);
+  }
+  for (std::size_t k = 1; k < targets.size(); ++k) state.counters["x_" + targets[k].name] = median(ratios[k]);
+  state.SetLabel(targets.front().name);
+}
+BENCHMARK(BM_GopDecodeTargets)
+    ->ArgNames({"interlaced", "q", "rgba"})
+    ->Args({0, 2, 0})
+    ->Args({0, 4, 0})
+    ->Args({1, 4, 0})
+    ->Args({0, 2, 1})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
