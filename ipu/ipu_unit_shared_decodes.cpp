@@ -29,7 +29,11 @@ bool SharedDecodes::same(const Entry& e, std::span<const std::uint8_t> bytes, Cs
 std::optional<SharedDecodes::Taken> SharedDecodes::take(int side, std::span<const std::uint8_t> bytes,
                                                         CscThresholds th) {
   Side& me = sides_.at(static_cast<std::size_t>(side));
-  if (!me.diverged && me.cursor < end() && same(at(me.cursor), bytes, th)) return takeAt(me, me.cursor);
+  if (!me.diverged && me.cursor < end() && same(at(me.cursor), bytes, th)) {
+    // Unless its decoder would have more than maxAhead pictures to read again (a stream with one
+    // sequence header at its start): then it decodes from here on itself, and the log stays short.
+    if (!me.stale || at(me.cursor).freshStart || me.cursor - me.replayFrom < maxAhead_) return takeAt(me, me.cursor);
+  }
   // A fresh start may be one the other side decoded further on (this side dropped a picture, or
   // went its own way on damaged bytes): it picks up there.
   if (!me.pendingAfter && startsWithSequenceHeader(bytes)) {

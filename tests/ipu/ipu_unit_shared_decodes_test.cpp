@@ -182,6 +182,15 @@ TEST(SharedDecodes, PicturesWithoutTheirOwnSequenceHeaderAreDecodedAgainBeforeAD
   EXPECT_EQ(c.replayed, 6) << "the late side's decoder must read pictures 0-5 before it decodes picture 6";
 }
 
+TEST(SharedDecodes, AStaleDecoderNeverHasMoreThanTheLimitToReadAgain) {
+  std::vector<Bytes> pics = pictures(64, 48, 12, testing::Content::kBusy);
+  for (std::size_t i = 1; i < pics.size(); ++i) pics[i] = withoutSequenceHeader(pics[i]);
+  const SharedDecodes::Counters c =
+      expectSameAsUnshared(steps(pics, 0, kEvery), steps(pics, fromMs(7), kEvery), /*maxAhead=*/4);
+  EXPECT_EQ(c.taken, 4);
+  EXPECT_EQ(c.replayed, 4) << "the late side reads pictures 0-3 again, then decodes the rest itself";
+}
+
 TEST(SharedDecodes, TheSideAheadKeepsItsDecodesPastTheLimit) {
   const std::vector<Bytes> pics = pictures(64, 48, 12, testing::Content::kSmooth);
   const SharedDecodes::Counters c =
