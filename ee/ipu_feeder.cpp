@@ -72,9 +72,10 @@ Task<void> IpuFeeder::decodeOne(int stream) {
   const std::uint64_t gen = generation_;
   const Tick t0 = s_.now();
   co_await s_.delay(fromEeCycles(p_.decode_setup_cycles));
-  // A recycled buffer of this stream's size: the IPU writes every byte of it.
+  // A recycled buffer of this stream's size: the IPU writes every byte of it (or hands back the
+  // image of the same picture another IPU decoded: ipu/ipu_unit_shared_decodes.hpp).
   std::shared_ptr<Rgba8Image> image = images_[si].take();
-  const ipu::TimedPicture tp = co_await ipu_.decode(ipuStreams_[si], pic.data, *image);
+  const ipu::TimedPicture tp = co_await ipu_.decode(ipuStreams_[si], pic.data, image);
   // The variant the picture belongs to (its number in the stream), not the one a branch may have
   // switched to meanwhile.
   if (commandHook_) commandHook_(stream, static_cast<int>(pic.globalFrame / timeline_.framesPerVariant()), pic, tp);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <memory>
+#include <optional>
 #include <utility>
 
 #include "ipu/block_walker.hpp"
@@ -32,6 +34,19 @@ bool hasPredictedPicture(std::span<const std::uint8_t> bytes) {
     if (type == 2 || type == 3) return true;
   }
   return false;
+}
+
+// What the IDEC command's timing and log take from the decoder after its picture (not the report).
+IdecDecode idecDecodeOf(const Decoder& dec) {
+  IdecDecode d;
+  d.trace = dec.macroblockTrace();
+  d.sequence = dec.sequence();
+  d.picture = dec.picture();
+  d.mbWidth = dec.frame().mbWidth;
+  d.mbHeight = dec.frame().mbHeight;
+  d.width = dec.width();
+  d.height = dec.height();
+  return d;
 }
 
 // libmpeg's CSC command converts at most 0x3FF macroblocks (MBC is 11 bits; _MPEG_CSCImage
@@ -65,6 +80,19 @@ StreamId IpuUnit::openStream(DecodePath path) {
 
 Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
                                    CscThresholds th) {
+  if (share_ == nullptr || streams_.at(stream).path != DecodePath::kIdec) {
+    co_return co_await decodeUnshared(stream, bytes, out, th);
+  }
+  // Through the shared decodes, so they know what this decoder was given; the image may be the
+  // twin's, so its bytes are copied.
+  auto image = std::make_shared<Rgba8Image>(std::move(out));
+  TimedPicture result = co_await decode(stream, bytes, image, th);
+  out = *image;
+  co_return result;
+}
+
+Task<TimedPicture> IpuUnit::decodeUnshared(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
+                                           CscThresholds th) {
   Stream& st = streams_.at(stream);
   Decoder& dec = *st.decoder;
   TimedPicture result;
@@ -89,38 +117,8 @@ Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t
       result.finished = s_.now();
       co_return result;
     }
-    const FrameStore& fs = dec.frame();
-    const std::size_t mbs = static_cast<std::size_t>(fs.mbWidth) * fs.mbHeight;
-    CommandTiming& tm = cmd.timing;
-    tm.arrival = s_.now();
-    tm.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
-    // Per macroblock (raster order): the qwords holding its last bit, and its bit count. Concealed
-    // macroblocks cost the base only and need no further input.
-    std::vector<std::uint32_t> endByte(mbs, 0);
-    tm.bits.assign(mbs, 0);
-    for (const MacroblockBits& m : dec.macroblockTrace()) {
-      if (m.address < mbs) {
-        endByte[m.address] = m.endByte;
-        tm.bits[m.address] = m.bits;
-      }
-    }
-    tm.restart = idecRestarts(dec.macroblockTrace(), mbs);
-    tm.qwordsPerRow = qwordsPerRow();
-    result.idecCommands = 1 + std::count(tm.restart.begin(), tm.restart.end(), std::uint8_t{1});
-    result.commands.idec = result.idecCommands;
-    result.outputQwords = static_cast<std::int64_t>(mbs) * kRowsPerMacroblock * qwordsPerRow();
-    if (recordCommands_) {
-      result.ctrl = ipuCtrl(dec.sequence(), dec.picture());
-      planIdecWords(cmd, bytes, dec, th);
-    }
-    result.displayed = true;
-    tm.needQwords.resize(mbs);
-    std::uint32_t need = 0;
-    for (std::size_t i = 0; i < mbs; ++i) {
-      need = std::max(need, std::min(tm.inQwords, (endByte[i] + 15) / 16));
-      tm.needQwords[i] = need;
-    }
-    co_return co_await submit(shared, std::move(result), out, dec.width(), dec.height());
+    const IdecDecode d = idecDecodeOf(dec);
+    co_return co_await submitIdec(shared, std::move(result), bytes, d, th, out);
   }
   // The BDEC flow.
   result.report = dec.decode(bytes, runner_);
@@ -145,6 +143,91 @@ Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t
     result.outputQwords = stageDisplayCsc(cmd, dec, *shown, th, out);
   }
   co_return co_await submit(shared, std::move(result), out, width, height);
+}
+
+// IDEC path: the command's timing (and log) from its picture's decode, then the command itself.
+Task<TimedPicture> IpuUnit::submitIdec(std::shared_ptr<Command> shared, TimedPicture result,
+                                       std::span<const std::uint8_t> bytes, const IdecDecode& d, CscThresholds th,
+                                       Rgba8Image& out) {
+  Command& cmd = *shared;
+  const std::size_t mbs = static_cast<std::size_t>(d.mbWidth) * d.mbHeight;
+  CommandTiming& tm = cmd.timing;
+  tm.arrival = s_.now();
+  tm.inQwords = static_cast<std::uint32_t>((bytes.size() + 15) / 16);
+  // Per macroblock (raster order): the qwords holding its last bit, and its bit count. Concealed
+  // macroblocks cost the base only and need no further input.
+  std::vector<std::uint32_t> endByte(mbs, 0);
+  tm.bits.assign(mbs, 0);
+  for (const MacroblockBits& m : d.trace) {
+    if (m.address < mbs) {
+      endByte[m.address] = m.endByte;
+      tm.bits[m.address] = m.bits;
+    }
+  }
+  tm.restart = idecRestarts(d.trace, mbs);
+  tm.qwordsPerRow = qwordsPerRow();
+  result.idecCommands = 1 + std::count(tm.restart.begin(), tm.restart.end(), std::uint8_t{1});
+  result.commands.idec = result.idecCommands;
+  result.outputQwords = static_cast<std::int64_t>(mbs) * kRowsPerMacroblock * qwordsPerRow();
+  if (recordCommands_) {
+    result.ctrl = ipuCtrl(d.sequence, d.picture);
+    planIdecWords(cmd, bytes, d, th);
+  }
+  result.displayed = true;
+  tm.needQwords.resize(mbs);
+  std::uint32_t need = 0;
+  for (std::size_t i = 0; i < mbs; ++i) {
+    need = std::max(need, std::min(tm.inQwords, (endByte[i] + 15) / 16));
+    tm.needQwords[i] = need;
+  }
+  co_return co_await submit(shared, std::move(result), out, d.width, d.height);
+}
+
+void IpuUnit::shareDecodes(SharedDecodes& shared, int side) {
+  share_ = &shared;
+  shareSide_ = side;
+}
+
+Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t> bytes,
+                                   std::shared_ptr<Rgba8Image>& out, CscThresholds th) {
+  Stream& st = streams_.at(stream);
+  if (share_ == nullptr || st.path != DecodePath::kIdec || hasPredictedPicture(bytes)) {
+    co_return co_await decodeUnshared(stream, bytes, *out, th);
+  }
+  TimedPicture result;
+  result.started = s_.now();
+  const auto shared = std::make_shared<Command>(s_);
+  Command& cmd = *shared;
+  cmd.arrival = s_.now();
+  cmd.inPlace = true;  // the image is `out` (or the twin's), not cmd.staged
+  std::optional<SharedDecodes::Taken> taken = share_->take(shareSide_, bytes, th);
+  if (!taken) {
+    share_->prepare(shareSide_, st.decoder, streamOptions(options_, p_, st.path), bytes);
+    Decoder& dec = *st.decoder;
+    const bool pendingBefore = dec.fieldPending();
+    // Into out's buffer, as the unshared path does (every byte written), and cropped to the
+    // picture's size as submit() would (a new image: the old one may be the twin's).
+    PictureReport report = dec.decode(bytes, runner_, RgbaOutput{out.get(), th, true});
+    taken.emplace(SharedDecodes::Taken{idecDecodeOf(dec), out});
+    taken->decode.report = std::move(report);
+    const IdecDecode& d = taken->decode;
+    if (!d.report.produced) taken->image = nullptr;  // nothing to show: the image stays the caller's
+    if (d.report.produced && (out->width != d.width || out->height != d.height)) {
+      auto cropped = std::make_shared<Rgba8Image>(d.width, d.height);
+      for (int y = 0; y < d.height; ++y)
+        std::memcpy(cropped->row(y), out->row(y), static_cast<std::size_t>(d.width) * 4);
+      taken->image = std::move(cropped);
+    }
+    share_->publish(shareSide_, bytes, th, pendingBefore, dec, taken->decode, taken->image);
+  }
+  result.report = taken->decode.report;
+  if (!result.report.produced) {
+    *out = Rgba8Image{};  // as the unshared path leaves it
+    result.finished = s_.now();
+    co_return result;
+  }
+  out = taken->image;  // the caller reads it only once this returns
+  co_return co_await submitIdec(shared, std::move(result), bytes, taken->decode, th, *out);
 }
 
 Task<TimedPicture> IpuUnit::flush(StreamId stream, Rgba8Image& out, CscThresholds th) {
@@ -188,12 +271,11 @@ std::int64_t IpuUnit::stageDisplayCsc(Command& cmd, const Decoder& dec, const Fr
 // thresholds are not 0, then one IDEC per slice the timing restarts IDEC at. FB skips the start
 // code, the slice header and the first address increment (a longer skip than FB's 6 bits is done by
 // FDECs first); DTD = !frame_pred_frame_dct (P-IPU ipuIDEC); SGN = 0; OFM and DTE the output's.
-void IpuUnit::planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec,
+void IpuUnit::planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, const IdecDecode& d,
                             CscThresholds th) const {
-  const FrameStore& fs = dec.frame();
-  const PictureHeader& pic = dec.picture();
-  const std::vector<SliceStart> slices = sliceStarts(bytes, dec.sequence(), pic, fs.mbWidth, fs.mbHeight);
-  const bool dtd = dec.sequence().mpeg2 && pic.pictureStructure == 3 && !pic.framePredFrameDct;
+  const PictureHeader& pic = d.picture;
+  const std::vector<SliceStart> slices = sliceStarts(bytes, d.sequence, pic, d.mbWidth, d.mbHeight);
+  const bool dtd = d.sequence.mpeg2 && pic.pictureStructure == 3 && !pic.framePredFrameDct;
   cmd.planned.clear();
   cmd.planned.push_back({bclrWord(slices.empty() ? 0 : static_cast<int>(8 * (slices.front().offset & 15))), -1});
   if (th.th0 != 0 || th.th1 != 0) cmd.planned.push_back({setthWord(th.th0, th.th1), -1});
@@ -213,7 +295,7 @@ void IpuUnit::planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, c
     cmd.planned.push_back({idecWord(fb, s != nullptr ? s->qsc : 0, dtd, false, rgb16_ && dither_, rgb16_), mb});
   };
   // The first IDEC covers the picture up to the first restart, with the first slice decoded.
-  const std::vector<MacroblockBits>& trace = dec.macroblockTrace();
+  const std::vector<MacroblockBits>& trace = d.trace;
   const auto first = std::find_if(trace.begin(), trace.end(), [](const MacroblockBits& m) { return m.sliceStart; });
   idec(first != trace.end() ? sliceAt(first->address) : nullptr, 0);
   const std::vector<std::uint8_t>& restart = cmd.timing.restart;
@@ -337,7 +419,9 @@ Task<TimedPicture> IpuUnit::submit(std::shared_ptr<Command> shared, TimedPicture
   if (recordQwords_ && !cmd.flow) recorded_.push_back(shared);
   co_await commands_.push(shared);
   while (!cmd.done) co_await cmd.finishedEvent.wait();
-  if (!cmd.flow || cmd.hasCsc) {
+  if (cmd.inPlace) {
+    result.displayed = true;
+  } else if (!cmd.flow || cmd.hasCsc) {
     // The picture is in memory: the caller sees it whole (no one reads it while the DMA runs).
     if (cmd.staged.width == width && cmd.staged.height == height) {
       out = std::move(cmd.staged);  // whole macroblocks are the picture: hand the buffer over

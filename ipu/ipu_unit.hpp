@@ -34,6 +34,7 @@
 #include "ipu/bdec_flow_timing.hpp"
 #include "ipu/csc.hpp"
 #include "ipu/ipu_commands.hpp"
+#include "ipu/ipu_unit_shared_decodes.hpp"
 #include "ipu/ipu_unit_timing.hpp"
 #include "ipu/params.hpp"
 #include "ipu/picture_decoder.hpp"
@@ -90,6 +91,10 @@ class IpuUnit {
   // when a frame became due for display (TimedPicture::displayed).
   Task<TimedPicture> decode(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
                             CscThresholds th = {});
+  // The same into a shared image: with shared decodes (shareDecodes) `out` may come back as the
+  // twin IPU's image of the same picture, which no one writes again (a decoded frame is only read).
+  Task<TimedPicture> decode(StreamId stream, std::span<const std::uint8_t> bytes, std::shared_ptr<Rgba8Image>& out,
+                            CscThresholds th = {});
   // End of a kBdec stream: the last frame not yet displayed, through CSC into `out` (displayed).
   Task<TimedPicture> flush(StreamId stream, Rgba8Image& out, CscThresholds th = {});
 
@@ -115,6 +120,10 @@ class IpuUnit {
     dither_ = dither;
   }
   bool rgb16Output() const { return rgb16_; }
+  // Shares the decodes of its IDEC stream with another IPU given the same pictures, as side 0 or 1
+  // of `shared` (ipu/ipu_unit_shared_decodes.hpp): same bytes, ticks and reports either way; only
+  // the host's work changes. decoder() may then be behind (the decodes it took were not its own).
+  void shareDecodes(SharedDecodes& shared, int side);
   // Fill TimedPicture::ctrl and ::issued from now on (the command log of `vbim play --trace-detail ipu`).
   void recordCommands() { recordCommands_ = true; }
 
@@ -140,7 +149,8 @@ class IpuUnit {
       std::int64_t mb;
     };
     std::vector<PlannedWord> planned;
-    Rgba8Image staged;  // the IPU's output, whole macroblocks
+    Rgba8Image staged;     // the IPU's output, whole macroblocks
+    bool inPlace = false;  // IDEC with shared decodes: the output is the caller's shared image, not `staged`
     bool done = false;
     Event finishedEvent;
   };
@@ -150,6 +160,11 @@ class IpuUnit {
     std::unique_ptr<Decoder> decoder;
   };
   static Task<void> run(IpuUnit& u);
+  Task<TimedPicture> decodeUnshared(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
+                                    CscThresholds th);
+  Task<TimedPicture> submitIdec(std::shared_ptr<Command> shared, TimedPicture result,
+                                std::span<const std::uint8_t> bytes, const IdecDecode& d, CscThresholds th,
+                                Rgba8Image& out);
   Task<void> traceCommand(const Command& cmd, bool cscOnly);
   Task<void> traceFlowCoalesced(const Command& cmd);
   Task<TimedPicture> submit(std::shared_ptr<Command> shared, TimedPicture result, Rgba8Image& out, int width,
@@ -160,7 +175,7 @@ class IpuUnit {
   std::int64_t stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
                                Rgba8Image& out) const;
   // The command log of a finished command (recordCommands).
-  void planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec, CscThresholds th) const;
+  void planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, const IdecDecode& d, CscThresholds th) const;
   void planFlowWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec) const;
   void logCommands(const Command& cmd, TimedPicture& result) const;
   int qwordsPerRow() const { return rgb16_ ? kQwordsPerRow16 : kQwordsPerRow; }
@@ -188,6 +203,8 @@ class IpuUnit {
   bool rgb16_ = false;
   bool dither_ = false;
   bool recordCommands_ = false;
+  SharedDecodes* share_ = nullptr;
+  int shareSide_ = 0;
 };
 
 }  // namespace vbim::ipu

@@ -81,6 +81,9 @@ class Decoder {
   // the display frame (a frame left waiting for its second field, then the last I or P frame).
   bool flushDisplay();
   bool hasSequence() const { return haveSequence_; }
+  // A first field waits for its second: the next field picture of the other parity fills its frame
+  // (ipu/ipu_unit_shared_decodes.hpp: then a picture after a sequence header still depends on the past).
+  bool fieldPending() const { return pendingField_ != 0; }
   const SequenceHeader& sequence() const { return seq_; }
   const PictureHeader& picture() const { return pic_; }
   // Display size of the picture last decoded into frame() (0 before the first). A sequence header

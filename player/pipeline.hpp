@@ -70,6 +70,7 @@ class Pipeline : public ee::DecodedFrames::BranchSink {
   const gs::Presenter& lightmap() const { return *lightmap_; }
   gs::Presenter* sky() { return sky_.get(); }
   const SerialUnit& gsUnit() const { return gs_; }
+  ipu::IpuUnit& ipu() { return ipu_; }
   const iop::Drive& drive() const { return drive_; }
   const iop::StreamRing& ring() const { return ring_; }
   const iop::SifChannel& sif() const { return sif_; }

@@ -34,6 +34,11 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
   if (options_.reference && !options_.faults.faults.empty()) {
     ref_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, nullptr, options_.seed, options_.kernels,
                                       nullptr, "ref.");
+    if (options_.shareDecodes) {
+      decodes_ = std::make_unique<ipu::SharedDecodes>();
+      main_->ipu().shareDecodes(*decodes_, 0);
+      ref_->ipu().shareDecodes(*decodes_, 1);
+    }
     const gs::BlendKernels& k = options_.kernels.blend != nullptr ? *options_.kernels.blend : gs::scalarKernels();
     if (options_.shareReference) {
       const bool mirror = options_.mirrorReference;

@@ -16,6 +16,7 @@
 #include "gs/twin_tiles.hpp"
 #include "iop/fault_plan.hpp"
 #include "iop/sector_source.hpp"
+#include "ipu/ipu_unit_shared_decodes.hpp"
 #include "player/frame_hash.hpp"
 #include "player/pipeline.hpp"
 #include "player/platform_config.hpp"
@@ -47,6 +48,10 @@ struct PlayerOptions {
   // are the same (gs::Presenter::followTwin, mirroring): no copy, no second blend. false: the
   // reference blends or copies each tile itself. Same bytes.
   bool mirrorReference = true;
+  // The run's IPU and the reference's share the decode of each intra picture both are given after
+  // the same history (ipu/ipu_unit_shared_decodes.hpp): one decodes, the other takes its picture,
+  // and both pipelines hold the same image. false: each IPU decodes every picture. Same bytes.
+  bool shareDecodes = true;
 };
 
 // What happened at one vsync, over the whole output (lightmap + sky).
@@ -114,6 +119,8 @@ class Player {
   const Pipeline& pipeline() const { return *main_; }
   bool hasReference() const { return ref_ != nullptr; }
   Pipeline* reference() { return ref_.get(); }
+  // With a reference and shareDecodes: what the two IPUs shared (tests), else null.
+  const ipu::SharedDecodes* sharedDecodes() const { return decodes_.get(); }
   const Tracer& tracer() const { return tracer_; }
   Tracer& tracer() { return tracer_; }  // e.g. to stream it to files (Tracer::streamTo) before the run
   const Scheduler& scheduler() const { return sched_; }
@@ -131,6 +138,7 @@ class Player {
   ee::ProbedStream stream_;
   Scheduler sched_;
   Tracer tracer_;
+  std::unique_ptr<ipu::SharedDecodes> decodes_;  // outlives both pipelines' IPUs
   std::unique_ptr<Pipeline> main_;
   std::unique_ptr<Pipeline> ref_;
   // The lag of the lightmap and of the sky against the reference (with ref_ only), and the tiles of

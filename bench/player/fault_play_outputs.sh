@@ -4,9 +4,10 @@
 # builds and diff the listings to show that a speed change moved no output byte (issue #31).
 # The plays: the samples with the committed fault plan of fault_play_speed.sh, the example plans,
 # several seeds, a branch, --threads 2, each catch-up policy, the blender without its
-# convergence shortcut, a catch-up FIX, and a 512x512 stream in strip mode.
+# convergence shortcut, a catch-up FIX, a 512x512 stream in strip mode, and a stream of GOPs of 12
+# with 2 B pictures (whose decodes the run's and the reference's IPUs do not share).
 #   fault_play_outputs.sh VBIM [WORKDIR]  > listing.txt
-# WORKDIR keeps the 512x512 stream between invocations; a temporary directory otherwise.
+# WORKDIR keeps the authored streams between invocations; a temporary directory otherwise.
 set -eu
 vbim=${1:?usage: fault_play_outputs.sh VBIM [WORKDIR]}
 work=${2:-}
@@ -25,6 +26,8 @@ printf '[gs]\ncatchup_fix = 96\n' >"$work/catchup.toml"
 printf '[gs]\nupload_mode = "strips"\nsky_height = 128\n' >"$work/strips.toml"
 [ -f "$work/ta512.vbim" ] || "$vbim" author --procedural --size 512 --sky-width 256 --frame-count 12 --fps 1 \
   --out "$work/ta512.vbim" >/dev/null
+[ -f "$work/gop12.vbim" ] || "$vbim" author --procedural --size 256 --sky-width 128 --frame-count 24 --fps 1 \
+  --gop 12 --b-frames 2 --out "$work/gop12.vbim" >/dev/null
 
 play() {  # NAME DISC ARGS...
   name=$1 disc=$2
@@ -41,3 +44,4 @@ play weather-branch "$weather" --faults "$plan" --seed 4 --duration 120s --branc
 play hard-skip-unaware "$clear" --faults "$plan" --seed 5 --duration 90s --policy hard-skip --config "$work/unaware.toml"
 play play-late-catchup "$clear" --faults "$plan" --seed 6 --duration 90s --policy play-late --config "$work/catchup.toml"
 play strips512 "$work/ta512.vbim" --faults "$plan" --seed 8 --duration 60s --config "$work/strips.toml"
+play gop12 "$work/gop12.vbim" --faults "$plan" --seed 9 --duration 90s

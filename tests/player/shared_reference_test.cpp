@@ -6,21 +6,30 @@
 // policies, upload modes, kernels and a branch; and the sharing must actually take place. The same
 // with the reference mirroring the run (PlayerOptions::mirrorReference: it takes the run's blends
 // as its own while every tile agrees) and without; the reference's own records (its pops) too.
+// And with the two IPUs sharing their decodes (PlayerOptions::shareDecodes: one decodes each intra
+// picture both are given after the same history, the other takes its picture) and without, also
+// on a stream of GOPs with P and B pictures (not shared: the BDEC flow's references are each
+// IPU's own).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "config/fault_plan_toml.hpp"
 #include "gs/simd/blend_simd.hpp"
 #include "player/scenario.hpp"
+#include "streams/authoring/stream_writer.hpp"
+#include "streams/authoring/synthetic_day.hpp"
+#include "streams/authoring/tone_map.hpp"
 #include "tests/player/sample_path.hpp"
+#include "tests/support/scratch.hpp"
 
 namespace vbim::player {
 namespace {
 
 struct Case {
-  const char* sample = "day_clear.vbim";
+  std::string sample = "day_clear.vbim";  // under streams/samples/, or a path
   const char* faults = "";
   std::uint64_t seed = 1;
   bool simd = true;
@@ -38,6 +47,8 @@ struct Case {
   bool expectMirrored = true;
   // A stall after the two were in step makes the mirroring reference take its own bytes back.
   bool expectStops = false;
+  // Intra pictures: the run's IPU and the reference's share their decodes.
+  bool expectDecodesShared = true;
 };
 
 struct Outcome {
@@ -47,16 +58,19 @@ struct Outcome {
   std::int64_t mirrored = 0;  // tiles whose blend the reference took from the run's (mirroring)
   std::int64_t stops = 0;     // times the mirroring reference took its own bytes back
   std::vector<gs::VsyncRecord> refRecords, refSkyRecords;
+  std::int64_t decodesTaken = 0;  // decodes one IPU took from the other
 };
 
-Outcome play(const Case& c, bool share, bool mirror = true) {
-  Scenario sc = Scenario::bareFile(testing::samplePath(c.sample)).seed(c.seed).trace(false).policy(c.policy);
+Outcome play(const Case& c, bool share, bool mirror, bool shareDecodes) {
+  const std::string path = c.sample.find('/') == std::string::npos ? testing::samplePath(c.sample) : c.sample;
+  Scenario sc = Scenario::bareFile(path).seed(c.seed).trace(false).policy(c.policy);
   if (c.simd) sc.kernels(Kernels{&gs::simd::kernels(), nullptr, nullptr});
   sc.options().config.gs.convergence_aware = c.aware;
   sc.options().config.gs.catchup_fix = c.catchupFix;
   if (c.strips) sc.options().config.gs.upload_mode = "strips";
   sc.options().shareReference = share;
   sc.options().mirrorReference = mirror;
+  sc.options().shareDecodes = shareDecodes;
   sc.faults(config::parseFaultPlan(c.faults, "<faults>", &sc.disc()));
   if (c.branchAt >= 0) sc.branch(c.branchAt, 1);
   auto run = sc.start(c.duration);
@@ -81,6 +95,8 @@ Outcome play(const Case& c, bool share, bool mirror = true) {
     o.mirrored += pl->lightmap().counters().tilesMirrored + pl->sky()->counters().tilesMirrored;
     o.stops += pl->lightmap().counters().mirrorStops + pl->sky()->counters().mirrorStops;
   }
+  EXPECT_EQ(p.sharedDecodes() != nullptr, shareDecodes);
+  if (p.sharedDecodes() != nullptr) o.decodesTaken = p.sharedDecodes()->counters().taken;
   return o;
 }
 
@@ -124,16 +140,28 @@ void expectSameOutcome(const Outcome& shared, const Outcome& own) {
 }
 
 void expectSameBytes(const Case& c) {
-  const Outcome own = play(c, false);
-  const Outcome copying = play(c, true, /*mirror=*/false);
-  const Outcome mirroring = play(c, true, /*mirror=*/true);
+  const Outcome own = play(c, false, false, /*shareDecodes=*/false);
+  const Outcome copying = play(c, true, /*mirror=*/false, /*shareDecodes=*/false);
+  const Outcome mirroring = play(c, true, /*mirror=*/true, /*shareDecodes=*/true);
+  const Outcome decodesOnly = play(c, false, false, /*shareDecodes=*/true);
   {
     SCOPED_TRACE("shared by copies");
     expectSameOutcome(copying, own);
   }
   {
-    SCOPED_TRACE("shared by mirroring");
+    SCOPED_TRACE("shared by mirroring and decodes");
     expectSameOutcome(mirroring, own);
+  }
+  {
+    SCOPED_TRACE("decodes shared");
+    expectSameOutcome(decodesOnly, own);
+  }
+  if (c.expectDecodesShared) {
+    // Two decodes a second in either play for most of its 40 s: most of them taken.
+    EXPECT_GT(decodesOnly.decodesTaken, 40) << "the IPUs should share the decodes of the same pictures";
+    EXPECT_GT(mirroring.decodesTaken, 40);
+  } else {
+    EXPECT_EQ(decodesOnly.decodesTaken, 0) << "P and B pictures are each IPU's own";
   }
   EXPECT_EQ(copying.mirrored, 0);
   EXPECT_EQ(copying.stops, 0);
@@ -220,6 +248,46 @@ TEST(SharedReference, SameBytesWhenTheRunFallsBehindAfterBeingInStep) {
     c.policy = policy;
     c.seed = 4;
     c.expectStops = true;
+    expectSameBytes(c);
+  }
+}
+
+// A day cycle of GOPs of 12 with 2 B pictures (as `vbim author --gop 12 --b-frames 2`), 128x128
+// with a 64x32 sky, 24 frames at 1 frame/s, written under the test's scratch directory.
+std::string gopStream() {
+  streams::AuthorSettings s;
+  s.gameFps = {1, 1};
+  s.encoder.gop = 12;
+  s.encoder.bFrames = 2;
+  streams::StreamWriter w(s);
+  streams::SyntheticDay day;
+  day.width = 128;
+  day.height = 128;
+  day.skyWidth = 64;
+  day.skyHeight = 32;
+  day.frames = 24;
+  w.beginVariant("clear");
+  for (std::uint32_t f = 0; f < day.frames; ++f) {
+    const Rgba8Image lm = streams::toneMap(streams::syntheticLightmap(day, f), streams::ToneMapping{});
+    const Rgba8Image sky = streams::toneMap(streams::syntheticSky(day, f), streams::ToneMapping{});
+    w.addFrame(lm, &sky);
+  }
+  const std::vector<std::uint8_t> bytes = w.finish();
+  const std::string path = (vbim::testing::scratchDir("shared_reference_gop") / "gop12.vbim").string();
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return path;
+}
+
+TEST(SharedReference, SameBytesOnAStreamOfGops) {
+  const std::string path = gopStream();
+  for (const std::uint64_t seed : {1, 3}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Case c;
+    c.sample = path;
+    c.faults = kStallsAndReadError;
+    c.seed = seed;
+    c.expectDecodesShared = false;
     expectSameBytes(c);
   }
 }

@@ -1,0 +1,143 @@
+#include "ipu/ipu_unit_shared_decodes.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <utility>
+
+#include "ipu/bit_reader.hpp"
+#include "ipu/start_code.hpp"
+
+namespace vbim::ipu {
+
+bool startsWithSequenceHeader(std::span<const std::uint8_t> bytes) {
+  const std::uint8_t* d = bytes.data();
+  const std::size_t n = bytes.size();
+  const std::size_t pos = findStartCode(d, n, 0);
+  if (pos + 3 >= n || d[pos + 3] != kSequenceHeaderCode) return false;
+  // As Decoder::decode reads it: from after the start code to the next one.
+  const std::size_t payload = pos + 4;
+  BitReader br(d + payload, d + findStartCode(d, n, payload));
+  SequenceHeader seq;
+  return parseSequenceHeader(br, seq);
+}
+
+bool SharedDecodes::same(const Entry& e, std::span<const std::uint8_t> bytes, CscThresholds th) {
+  return e.result && e.th.th0 == th.th0 && e.th.th1 == th.th1 && e.bytes.size() == bytes.size() &&
+         (bytes.empty() || std::memcmp(e.bytes.data(), bytes.data(), bytes.size()) == 0);
+}
+
+std::optional<SharedDecodes::Taken> SharedDecodes::take(int side, std::span<const std::uint8_t> bytes,
+                                                        CscThresholds th) {
+  Side& me = sides_.at(static_cast<std::size_t>(side));
+  if (!me.diverged && me.cursor < end() && same(at(me.cursor), bytes, th)) {
+    // Unless its decoder would have more than maxAhead pictures to read again (a stream with one
+    // sequence header at its start): then it decodes from here on itself, and the log stays short.
+    if (!me.stale || at(me.cursor).freshStart || me.cursor - me.replayFrom < maxAhead_) return takeAt(me, me.cursor);
+  }
+  // A fresh start may be one the other side decoded further on (this side dropped a picture, or
+  // went its own way on damaged bytes): it picks up there.
+  if (!me.pendingAfter && startsWithSequenceHeader(bytes)) {
+    for (std::size_t i = std::max(me.cursor, base_); i < end(); ++i) {
+      if (at(i).freshStart && same(at(i), bytes, th)) {
+        ++counters_.rejoined;
+        return takeAt(me, i);
+      }
+    }
+  }
+  if (me.cursor < end() && !me.diverged) {
+    ++counters_.divergences;
+    me.diverged = true;
+  }
+  return std::nullopt;
+}
+
+std::optional<SharedDecodes::Taken> SharedDecodes::takeAt(Side& me, std::size_t index) {
+  Entry& e = at(index);
+  // What its decoder must decode again before it decodes itself: from this entry if it is a fresh
+  // start, else from the first entry it did not decode (its decoder's state is the one before it).
+  if (e.freshStart) {
+    me.replayFrom = index;
+    me.replayFresh = true;
+  } else if (!me.stale) {
+    me.replayFrom = index;
+    me.replayFresh = false;
+  }
+  me.stale = true;
+  me.cursor = index + 1;
+  me.diverged = false;
+  me.pendingAfter = e.pendingAfter;
+  Taken taken = std::move(*e.result);
+  e.result.reset();
+  imageBytes_ -= taken.image ? taken.image->pixels.size() : 0;
+  ++counters_.taken;
+  trim();
+  return taken;
+}
+
+void SharedDecodes::prepare(int side, std::unique_ptr<Decoder>& decoder, const DecoderOptions& options,
+                            std::span<const std::uint8_t> bytes) {
+  Side& me = sides_.at(static_cast<std::size_t>(side));
+  if (!me.stale) return;
+  me.stale = false;
+  const bool fresh = !me.pendingAfter && startsWithSequenceHeader(bytes);
+  // A decoder with a field pending would take the next field picture as its second: a new one has none.
+  if ((fresh || me.replayFresh) && decoder->fieldPending()) decoder = std::make_unique<Decoder>(options);
+  if (!fresh) {
+    for (std::size_t i = me.replayFrom; i < me.cursor; ++i) {
+      decoder->decode(at(i).bytes);
+      ++counters_.replayed;
+    }
+  }
+  trim();
+}
+
+void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscThresholds th, bool pendingBefore,
+                            const Decoder& decoder, IdecDecode decode, std::shared_ptr<Rgba8Image> image) {
+  const auto s = static_cast<std::size_t>(side);
+  Side& me = sides_.at(s);
+  Side& other = sides_.at(1 - s);
+  ++counters_.decoded;
+  me.pendingAfter = decoder.fieldPending();
+  if (me.diverged || me.cursor != end()) return;  // not in step with the log's last entry
+  const std::size_t bytesNeeded = image ? image->pixels.size() : 0;
+  while (end() - other.cursor >= maxAhead_ || imageBytes_ + bytesNeeded > maxImageBytes_) {
+    if (!other.diverged || other.cursor >= end()) {
+      // The other side is in step but far behind: this side keeps its decodes, and is no longer
+      // in step with the log (the other side offers its own once it reached the end).
+      me.diverged = true;
+      ++counters_.heldBack;
+      return;
+    }
+    // The other side went its own way: it gives up its oldest chance to pick up again.
+    Entry& oldest = at(other.cursor);
+    if (oldest.result) {
+      imageBytes_ -= oldest.result->image ? oldest.result->image->pixels.size() : 0;
+      oldest.result.reset();
+    }
+    ++other.cursor;
+    trim();
+  }
+  Entry e;
+  e.bytes.assign(bytes.begin(), bytes.end());
+  e.th = th;
+  e.freshStart = !pendingBefore && startsWithSequenceHeader(bytes);
+  e.pendingAfter = me.pendingAfter;
+  imageBytes_ += bytesNeeded;
+  e.result = Taken{std::move(decode), std::move(image)};
+  log_.push_back(std::move(e));
+  me.cursor = end();
+  trim();
+}
+
+// Drops the entries neither side can still take or decode again.
+void SharedDecodes::trim() {
+  std::size_t keep = end();
+  for (const Side& s : sides_) keep = std::min(keep, s.stale ? s.replayFrom : s.cursor);
+  while (base_ < keep) {
+    if (log_.front().result && log_.front().result->image) imageBytes_ -= log_.front().result->image->pixels.size();
+    log_.pop_front();
+    ++base_;
+  }
+}
+
+}  // namespace vbim::ipu

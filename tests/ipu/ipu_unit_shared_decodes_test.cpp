@@ -1,0 +1,203 @@
+// Two IPUs sharing their decodes (ipu/ipu_unit_shared_decodes.hpp, issue #31) give each caller
+// the same pictures, reports and ticks as two IPUs that decode everything themselves: when one
+// side is late, drops pictures, is given damaged bytes or pictures without a sequence header of
+// their own (so the decoder's past matters), and when the log's limit makes the side ahead keep
+// its decodes. The sharing must take place where it can.
+#include "ipu/ipu_unit_shared_decodes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ipu/ipu_unit.hpp"
+#include "ipu/start_code.hpp"
+#include "tests/ipu/support/libav_mpeg.hpp"
+
+namespace vbim::ipu {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+struct Step {
+  Bytes bytes;
+  Tick at = 0;  // decoded at this tick or as soon as the IPU is free after it
+};
+
+struct Decoded {
+  TimedPicture timed;
+  Rgba8Image image;
+};
+
+struct Outcome {
+  std::vector<Decoded> a, b;
+  SharedDecodes::Counters counters;
+};
+
+Task<void> feed(Scheduler& s, IpuUnit& unit, const std::vector<Step>& steps, std::vector<Decoded>& out) {
+  for (const Step& step : steps) {
+    if (s.now() < step.at) co_await s.until(step.at);
+    auto image = std::make_shared<Rgba8Image>();
+    Decoded d;
+    d.timed = co_await unit.decode(kSharedIdecStream, step.bytes, image);
+    d.image = *image;
+    out.push_back(std::move(d));
+  }
+}
+
+Outcome play(const std::vector<Step>& a, const std::vector<Step>& b, bool share, std::size_t maxAhead = 64) {
+  Scheduler s;
+  IpuUnit ua(s, IpuParams{});
+  IpuUnit ub(s, IpuParams{});
+  SharedDecodes shared(maxAhead);
+  if (share) {
+    ua.shareDecodes(shared, 0);
+    ub.shareDecodes(shared, 1);
+  }
+  Outcome o;
+  s.spawn("a", feed(s, ua, a, o.a));
+  s.spawn("b", feed(s, ub, b, o.b));
+  s.run();
+  o.counters = shared.counters();
+  return o;
+}
+
+void expectSame(const std::vector<Decoded>& got, const std::vector<Decoded>& want, const char* side) {
+  ASSERT_EQ(got.size(), want.size()) << side;
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    const TimedPicture& g = got[i].timed;
+    const TimedPicture& w = want[i].timed;
+    SCOPED_TRACE(std::string(side) + " picture " + std::to_string(i));
+    EXPECT_EQ(g.report.produced, w.report.produced);
+    EXPECT_EQ(g.report.undecodable, w.report.undecodable);
+    EXPECT_EQ(g.report.macroblocksDecoded, w.report.macroblocksDecoded);
+    EXPECT_EQ(g.report.macroblocksConcealed, w.report.macroblocksConcealed);
+    EXPECT_EQ(g.report.issueCount, w.report.issueCount);
+    EXPECT_EQ(g.report.describe(), w.report.describe());
+    EXPECT_EQ(g.started, w.started);
+    EXPECT_EQ(g.finished, w.finished);
+    EXPECT_EQ(g.idecCommands, w.idecCommands);
+    EXPECT_EQ(g.outputQwords, w.outputQwords);
+    EXPECT_EQ(g.displayed, w.displayed);
+    EXPECT_EQ(got[i].image.width, want[i].image.width);
+    EXPECT_EQ(got[i].image.height, want[i].image.height);
+    EXPECT_TRUE(got[i].image.pixels == want[i].image.pixels);
+  }
+}
+
+// Plays both ways and compares; returns the shared play's counters.
+SharedDecodes::Counters expectSameAsUnshared(const std::vector<Step>& a, const std::vector<Step>& b,
+                                             std::size_t maxAhead = 64) {
+  const Outcome own = play(a, b, false, maxAhead);
+  const Outcome shared = play(a, b, true, maxAhead);
+  expectSame(shared.a, own.a, "side 0");
+  expectSame(shared.b, own.b, "side 1");
+  EXPECT_EQ(own.counters.decoded + own.counters.taken, 0);
+  EXPECT_EQ(shared.counters.decoded + shared.counters.taken, static_cast<std::int64_t>(a.size() + b.size()));
+  return shared.counters;
+}
+
+std::vector<Bytes> pictures(int width, int height, int frames, testing::Content content) {
+  testing::EncodeOptions o;
+  o.width = width;
+  o.height = height;
+  o.frames = frames;
+  o.quantiser = 4;
+  o.content = content;
+  return testing::encodePictures(o);
+}
+
+// The picture without its sequence header (and extension): the decoder keeps the one it read last.
+Bytes withoutSequenceHeader(const Bytes& b) {
+  std::size_t pos = findStartCode(b.data(), b.size(), 0);
+  while (pos + 3 < b.size() && (b[pos + 3] == 0xB3 || b[pos + 3] == 0xB5)) {
+    pos = findStartCode(b.data(), b.size(), pos + 4);
+  }
+  return Bytes(b.begin() + static_cast<std::ptrdiff_t>(pos), b.end());
+}
+
+// Flips bits in the middle of the picture's slice data.
+Bytes damaged(Bytes b) {
+  for (std::size_t i = b.size() / 2; i < b.size() / 2 + 24 && i < b.size(); i += 3) b[i] ^= 0x5A;
+  return b;
+}
+
+std::vector<Step> steps(const std::vector<Bytes>& pics, Tick start, Tick every) {
+  std::vector<Step> out;
+  for (std::size_t i = 0; i < pics.size(); ++i) out.push_back(Step{pics[i], start + static_cast<Tick>(i) * every});
+  return out;
+}
+
+constexpr Tick kEvery = fromMs(5);
+
+TEST(SharedDecodes, StartsWithSequenceHeader) {
+  const std::vector<Bytes> pics = pictures(64, 48, 1, testing::Content::kBusy);
+  EXPECT_TRUE(startsWithSequenceHeader(pics[0]));
+  EXPECT_FALSE(startsWithSequenceHeader(withoutSequenceHeader(pics[0])));
+  Bytes broken = pics[0];
+  broken.resize(6);  // the header cut short does not parse
+  EXPECT_FALSE(startsWithSequenceHeader(broken));
+  EXPECT_FALSE(startsWithSequenceHeader({}));
+}
+
+TEST(SharedDecodes, ALateSideTakesEveryPictureOfTheOther) {
+  const std::vector<Bytes> pics = pictures(64, 48, 10, testing::Content::kBusy);
+  const SharedDecodes::Counters c = expectSameAsUnshared(steps(pics, 0, kEvery), steps(pics, fromMs(23), kEvery));
+  EXPECT_EQ(c.decoded, 10);
+  EXPECT_EQ(c.taken, 10);
+  EXPECT_EQ(c.divergences, 0);
+}
+
+TEST(SharedDecodes, SidesThatOvertakeEachOtherTakeTurns) {
+  const std::vector<Bytes> pics = pictures(72, 40, 12, testing::Content::kLightmap);  // cropped macroblocks
+  std::vector<Step> a = steps(pics, 0, kEvery);
+  std::vector<Step> b = steps(pics, fromMs(12), kEvery);
+  for (std::size_t i = 6; i < a.size(); ++i) a[i].at += fromMs(40);  // a stalls: b leads from picture 6
+  const SharedDecodes::Counters c = expectSameAsUnshared(a, b);
+  EXPECT_EQ(c.decoded, 12);
+  EXPECT_EQ(c.taken, 12);
+}
+
+TEST(SharedDecodes, ASideThatDropsOrIsGivenDamagedPicturesPicksUpAgain) {
+  const std::vector<Bytes> pics = pictures(64, 48, 12, testing::Content::kNoise);
+  std::vector<Bytes> late = pics;
+  late[3] = damaged(late[3]);
+  late.erase(late.begin() + 7);  // dropped, as a hard-skip run drops a late picture
+  const SharedDecodes::Counters c = expectSameAsUnshared(steps(pics, 0, kEvery), steps(late, fromMs(31), kEvery));
+  // The damaged picture is its own; the next one and the one after the gap are found further on.
+  EXPECT_EQ(c.divergences, 1);
+  EXPECT_EQ(c.rejoined, 2);
+  EXPECT_EQ(c.taken, 10);
+}
+
+TEST(SharedDecodes, PicturesWithoutTheirOwnSequenceHeaderAreDecodedAgainBeforeADivergence) {
+  std::vector<Bytes> pics = pictures(64, 48, 10, testing::Content::kBusy);
+  for (std::size_t i = 1; i < pics.size(); ++i) pics[i] = withoutSequenceHeader(pics[i]);
+  std::vector<Bytes> late = pics;
+  late[6] = damaged(late[6]);
+  const SharedDecodes::Counters c = expectSameAsUnshared(steps(pics, 0, kEvery), steps(late, fromMs(17), kEvery));
+  EXPECT_EQ(c.divergences, 1);
+  EXPECT_EQ(c.taken, 6);
+  EXPECT_EQ(c.replayed, 6) << "the late side's decoder must read pictures 0-5 before it decodes picture 6";
+}
+
+TEST(SharedDecodes, AStaleDecoderNeverHasMoreThanTheLimitToReadAgain) {
+  std::vector<Bytes> pics = pictures(64, 48, 12, testing::Content::kBusy);
+  for (std::size_t i = 1; i < pics.size(); ++i) pics[i] = withoutSequenceHeader(pics[i]);
+  const SharedDecodes::Counters c =
+      expectSameAsUnshared(steps(pics, 0, kEvery), steps(pics, fromMs(7), kEvery), /*maxAhead=*/4);
+  EXPECT_EQ(c.taken, 4);
+  EXPECT_EQ(c.replayed, 4) << "the late side reads pictures 0-3 again, then decodes the rest itself";
+}
+
+TEST(SharedDecodes, TheSideAheadKeepsItsDecodesPastTheLimit) {
+  const std::vector<Bytes> pics = pictures(64, 48, 12, testing::Content::kSmooth);
+  const SharedDecodes::Counters c =
+      expectSameAsUnshared(steps(pics, 0, kEvery), steps(pics, fromMs(200), kEvery), /*maxAhead=*/4);
+  EXPECT_GT(c.heldBack, 0);
+  EXPECT_EQ(c.taken, 4);
+}
+
+}  // namespace
+}  // namespace vbim::ipu
