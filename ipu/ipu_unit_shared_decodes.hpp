@@ -18,7 +18,9 @@
 //     or any later one (a run that dropped a picture picks up again at its next one).
 // A side that took decodes has a stale decoder. Before it decodes again itself it is brought up to
 // date: nothing to do when its next bytes are a fresh start, otherwise the entries it took since
-// its last fresh start are decoded again (without the RGB32 output). Only the IDEC path (intra
+// its last fresh start are decoded again (without the RGB32 output); a side that would have more
+// than maxAhead entries to decode again (a stream with one sequence header at its start) decodes
+// itself from there on, so neither the log nor a replay grows with the run. Only the IDEC path (intra
 // pictures, fresh store) is shared; P and B pictures (the BDEC flow, whose reference frames carry
 // the whole GOP) are each IPU's own.
 //
