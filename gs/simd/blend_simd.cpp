@@ -81,6 +81,22 @@ struct HalfChange {
   }
 };
 
+// FIX 64's pass over one row of a tile or span: blends s into d whole vectors at a time from byte i
+// on, and keeps in rowA / rowB the largest s - d and d - s per byte lane (HalfChange turns them
+// into the change and the settled mark). Leaves i at the first byte of the scalar tail.
+template <class D8, class Blend, class V>
+HWY_INLINE void halfTrackRow(D8 d8, const Blend& blend, const std::uint8_t* HWY_RESTRICT s,
+                             std::uint8_t* HWY_RESTRICT d, std::size_t bytes, std::size_t& i, V& rowA, V& rowB) {
+  const std::size_t step = hn::Lanes(d8);
+  for (; i + step <= bytes; i += step) {
+    const auto sv = hn::LoadU(d8, s + i);
+    const auto dv = hn::LoadU(d8, d + i);
+    rowA = hn::Max(rowA, hn::SaturatedSub(sv, dv));
+    rowB = hn::Max(rowB, hn::SaturatedSub(dv, sv));
+    hn::StoreU(blend(sv, dv), d8, d + i);
+  }
+}
+
 // The row loop of every kernel: `rows` spans of `pixels`, each vector's result given by
 // `blend(s, d)`, the last pixels of a span by the scalar reference, the change reduced once at the
 // end (a 64x32 tile is one call). kSettle: rows marked in *settled are skipped, blended rows left at
@@ -106,13 +122,7 @@ HWY_INLINE int blendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstS
     std::size_t i = 0;
     if constexpr (kHalfTrack) {
       auto rowA = hn::Zero(d8), rowB = hn::Zero(d8);
-      for (; i + step <= bytes; i += step) {
-        const auto s = hn::LoadU(d8, src + i);
-        const auto d = hn::LoadU(d8, dst + i);
-        rowA = hn::Max(rowA, hn::SaturatedSub(s, d));
-        rowB = hn::Max(rowB, hn::SaturatedSub(d, s));
-        hn::StoreU(blend(s, d), d8, dst + i);
-      }
+      halfTrackRow(d8, blend, src, dst, bytes, i, rowA, rowB);
       accA = hn::Max(accA, rowA);
       accB = hn::Max(accB, rowB);
       if constexpr (kSettle) off = half.off(rowA, rowB);
@@ -324,13 +334,7 @@ void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_R
         std::size_t i = 0;
         if constexpr (Blend::kHalf) {
           auto rowA = hn::Zero(d8), rowB = hn::Zero(d8);
-          for (; i + step <= bytes; i += step) {
-            const auto sv = hn::LoadU(d8, s + i);
-            const auto dv = hn::LoadU(d8, d + i);
-            rowA = hn::Max(rowA, hn::SaturatedSub(sv, dv));
-            rowB = hn::Max(rowB, hn::SaturatedSub(dv, sv));
-            hn::StoreU(blend(sv, dv), d8, d + i);
-          }
+          halfTrackRow(d8, blend, s, d, bytes, i, rowA, rowB);
           hn::Store(hn::Max(hn::Load(d8, acc + t * step), rowA), d8, acc + t * step);
           hn::Store(hn::Max(hn::Load(d8, accB + t * step), rowB), d8, accB + t * step);
           off = half.off(rowA, rowB);
