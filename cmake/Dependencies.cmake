@@ -39,6 +39,12 @@ if(NOT VBIM_MODEL_ONLY)
   endif()
   vbim_require_pkgconfig(OSMESA libosmesa6-dev osmesa)
   vbim_require_pkgconfig(HWY libhwy-dev libhwy)
+  # Highway's headers without libhwy.so: the product's kernels dispatch through runtime/simd/targets.hpp,
+  # because loading libhwy.so costs every process 4-7 ms of start-up (its timer calibration). Only
+  # tests and benchmarks that compare with Highway's own target detection link PkgConfig::HWY.
+  add_library(vbim_hwy_headers INTERFACE)
+  target_include_directories(vbim_hwy_headers INTERFACE ${HWY_INCLUDE_DIRS})
+  target_compile_options(vbim_hwy_headers INTERFACE ${HWY_CFLAGS_OTHER})
   vbim_require_config(glm libglm-dev)
   # Image output of the lean `vbim` tool (imageio/, its lean part): small libraries, not OpenImageIO.
   vbim_require_pkgconfig(PNG libpng-dev libpng)

@@ -71,7 +71,7 @@ foreach(_folder IN LISTS _vbim_header_folders)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vbim/${_folder}
           FILES_MATCHING PATTERN "*.hpp"
           PATTERN "blend_simd.hpp" EXCLUDE  # gs/: Highway kernels
-          PATTERN "simd" EXCLUDE            # ipu/simd/: Highway kernels
+          PATTERN "simd" EXCLUDE            # ipu/simd/, runtime/simd/: Highway kernels and their dispatch
           PATTERN "authoring" EXCLUDE       # streams/authoring/: FFmpeg, OpenImageIO
           PATTERN "disc" EXCLUDE            # streams/disc/: disc images (xorriso, the player)
           PATTERN "outputs" EXCLUDE         # sweep/outputs/: the tables and figures (nlohmann_json, PLplot)

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "hwy/targets.h"
+#include "runtime/simd/targets.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -285,16 +286,13 @@ void BM_GopDecodeTargets(benchmark::State& state) {
     std::unique_ptr<Ours> dec;
   };
   std::deque<Target> targets;  // stable addresses: each Kernels points at its McKernels
-  for (const std::int64_t t : hwy::SupportedAndGeneratedTargets()) {
-    if (t == HWY_SCALAR || t == HWY_EMU128) continue;
-    hwy::SetSupportedTargetsForTest(t);
+  vbim::simd::forEachTarget(HWY_TARGETS & ~(HWY_SCALAR | HWY_EMU128), [&](std::int64_t t) {
     Target& x = targets.emplace_back();
     x.name = hwy::TargetName(t);
     x.mc = vbim::ipu::simdMcKernelsOfCurrentTarget();
     x.kernels = vbim::ipu::simdKernelsOfCurrentTarget();
     x.kernels.mc = &x.mc;
-  }
-  hwy::SetSupportedTargetsForTest(0);
+  });
   // To RGBA, also the best target's decode with each narrower target's colour conversion
   // (csc_<TARGET>), to tell the conversion's share of a difference from the decode's.
   const std::size_t wholeTargets = targets.size();

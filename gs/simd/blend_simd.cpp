@@ -453,14 +453,15 @@ HWY_AFTER_NAMESPACE();
 
 #include "gs/simd/blend_simd.hpp"
 #include "gs/simd/compare_simd.hpp"
+#include "runtime/simd/targets.hpp"
 
 namespace vbim::gs::simd {
 
-HWY_EXPORT(blendSpan);
-HWY_EXPORT(blendSpanDelta);
-HWY_EXPORT(blendRectDelta);
-HWY_EXPORT(blendHashRows);
-HWY_EXPORT(targetNameHere);
+VBIM_SIMD_EXPORT(blendSpan);
+VBIM_SIMD_EXPORT(blendSpanDelta);
+VBIM_SIMD_EXPORT(blendRectDelta);
+VBIM_SIMD_EXPORT(blendHashRows);
+VBIM_SIMD_EXPORT(targetNameHere);
 
 namespace {
 
@@ -472,16 +473,16 @@ namespace {
 // instructions lower the core's clock for a while after they run and close port 1's vector unit,
 // which costs the code between the blends (decode, scheduler) more than the wider vectors save. [A]
 // that other AVX-512 CPUs behave alike; the bytes are the same on every target.
-// Asked once: hwy::SupportedTargets() runs CPUID each time (it was 44 % of a play when asked per call).
+// Asked once: CPUID is slow in a virtual machine (asked per call, it was 44 % of a play).
 bool avx2PreferredOnThisCpu() {
 #if HWY_TARGETS & HWY_AVX2
-  const std::int64_t supported = hwy::SupportedTargets();
+  const std::int64_t supported = vbim::simd::supportedTargets();
   return (supported & HWY_AVX2) != 0 && (supported & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
 #else
   return false;
 #endif
 }
-std::atomic<bool> targetForced{false};  // forEachTarget is running: Highway's dispatch decides
+std::atomic<bool> targetForced{false};  // forEachTarget is running: the forced target decides
 bool avx2Preferred() {
   static const bool onThisCpu = avx2PreferredOnThisCpu();
   return onThisCpu && !targetForced.load(std::memory_order_relaxed);
@@ -494,20 +495,20 @@ void dispatchBlend(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixel
     return;
   }
 #endif
-  HWY_DYNAMIC_DISPATCH(blendSpan)(dst, src, pixels, spec);
+  VBIM_SIMD_DISPATCH(blendSpan)(dst, src, pixels, spec);
 }
 int dispatchBlendDelta(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, const BlendSpec& spec) {
 #if HWY_TARGETS & HWY_AVX2
   if (avx2Preferred()) return N_AVX2::blendSpanDelta(dst, src, pixels, spec);
 #endif
-  return HWY_DYNAMIC_DISPATCH(blendSpanDelta)(dst, src, pixels, spec);
+  return VBIM_SIMD_DISPATCH(blendSpanDelta)(dst, src, pixels, spec);
 }
 int dispatchBlendRectDelta(std::uint8_t* dst, std::size_t dstStride, const std::uint8_t* src, std::size_t srcStride,
                            std::size_t pixels, std::size_t rows, const BlendSpec& spec, std::uint32_t* settled) {
 #if HWY_TARGETS & HWY_AVX2
   if (avx2Preferred()) return N_AVX2::blendRectDelta(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
 #endif
-  return HWY_DYNAMIC_DISPATCH(blendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
+  return VBIM_SIMD_DISPATCH(blendRectDelta)(dst, dstStride, src, srcStride, pixels, rows, spec, settled);
 }
 void dispatchBlendHashRows(std::uint8_t* dst, const std::uint8_t* src, std::size_t pixels, std::size_t rows,
                            std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled, int* delta,
@@ -518,10 +519,10 @@ void dispatchBlendHashRows(std::uint8_t* dst, const std::uint8_t* src, std::size
     return;
   }
 #endif
-  HWY_DYNAMIC_DISPATCH(blendHashRows)(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
+  VBIM_SIMD_DISPATCH(blendHashRows)(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
 }
 const char* targetName() {
-  return avx2Preferred() ? hwy::TargetName(HWY_AVX2) : HWY_DYNAMIC_DISPATCH(targetNameHere)();
+  return avx2Preferred() ? hwy::TargetName(HWY_AVX2) : VBIM_SIMD_DISPATCH(targetNameHere)();
 }
 }  // namespace
 
@@ -535,12 +536,10 @@ const BlendKernels& kernels() {
 void forEachTarget(const std::function<void(const std::string& target)>& fn) {
   (void)kernels();  // name the normal dispatch choice before any target is forced
   targetForced = true;
-  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    hwy::SetSupportedTargetsForTest(target);
-    fn(targetName());
-  }
-  hwy::SetSupportedTargetsForTest(0);
-  targetForced = false;
+  struct Release {
+    ~Release() { targetForced = false; }
+  } release;
+  vbim::simd::forEachTarget(HWY_TARGETS, [&](std::int64_t) { fn(targetName()); });
 }
 
 }  // namespace vbim::gs::simd

@@ -1,6 +1,6 @@
-// SIMD blend kernels, chosen at run time by Highway's dynamic dispatch (never -march=native: the
+// SIMD blend kernels, chosen at run time (runtime/simd/targets.hpp; never -march=native: the
 // build must run anywhere, valgrind included). Lives in its own target, vbim_gs_simd, because the
-// dispatch needs libhwy; the model (vbim_gs) takes any BlendKernels and defaults to the scalar
+// kernels need Highway's headers; the model (vbim_gs) takes any BlendKernels and defaults to the scalar
 // reference. The tests prove every compiled target bit-identical to gs/blend.hpp.
 #pragma once
 

@@ -59,14 +59,15 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 #include "gs/simd/compare_simd.hpp"
+#include "runtime/simd/targets.hpp"
 
 namespace vbim::gs::simd {
 
-HWY_EXPORT(compareRectHere);
+VBIM_SIMD_EXPORT(compareRectHere);
 
 ByteDifference compareRect(const std::uint8_t* a, std::size_t aStride, const std::uint8_t* b, std::size_t bStride,
                            std::size_t bytes, std::size_t rows) {
-  return HWY_DYNAMIC_DISPATCH(compareRectHere)(a, aStride, b, bStride, bytes, rows);
+  return VBIM_SIMD_DISPATCH(compareRectHere)(a, aStride, b, bStride, bytes, rows);
 }
 
 }  // namespace vbim::gs::simd

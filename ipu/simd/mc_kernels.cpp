@@ -152,12 +152,14 @@ McKernels mcTable() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include "runtime/simd/targets.hpp"
+
 namespace vbim::ipu {
 
-HWY_EXPORT(mcTable);
+VBIM_SIMD_EXPORT(mcTable);
 
 McKernels simdMcKernelsOfCurrentTarget() {
-  return HWY_DYNAMIC_DISPATCH(mcTable)();
+  return VBIM_SIMD_DISPATCH(mcTable)();
 }
 
 const McKernels& simdMcKernels() {

@@ -8,7 +8,7 @@ namespace vbim::ipu {
 
 const McKernels& simdMcKernels();
 // The kernels of the best target allowed at this moment, not cached: tests run them on every target
-// (hwy::SetSupportedTargetsForTest).
+// (vbim::simd::setTargetsForTest).
 McKernels simdMcKernelsOfCurrentTarget();
 
 }  // namespace vbim::ipu

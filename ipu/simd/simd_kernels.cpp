@@ -679,40 +679,42 @@ Kernels kernelTable() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include "runtime/simd/targets.hpp"
+
 namespace vbim::ipu {
 
-HWY_EXPORT(idctImpl);
-HWY_EXPORT(idctPcsx2CopyImpl);
-HWY_EXPORT(idctPcsx2AddImpl);
-HWY_EXPORT(idctLibmpeg2CopyImpl);
-HWY_EXPORT(idctLibmpeg2AddImpl);
-HWY_EXPORT(cscRowsImpl);
-HWY_EXPORT(kernelTable);
+VBIM_SIMD_EXPORT(idctImpl);
+VBIM_SIMD_EXPORT(idctPcsx2CopyImpl);
+VBIM_SIMD_EXPORT(idctPcsx2AddImpl);
+VBIM_SIMD_EXPORT(idctLibmpeg2CopyImpl);
+VBIM_SIMD_EXPORT(idctLibmpeg2AddImpl);
+VBIM_SIMD_EXPORT(cscRowsImpl);
+VBIM_SIMD_EXPORT(kernelTable);
 
 void idctSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  HWY_DYNAMIC_DISPATCH(idctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+  VBIM_SIMD_DISPATCH(idctImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
 }
 
 void idctPcsx2Simd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  HWY_DYNAMIC_DISPATCH(idctPcsx2CopyImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+  VBIM_SIMD_DISPATCH(idctPcsx2CopyImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
 }
 void idctPcsx2AddSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  HWY_DYNAMIC_DISPATCH(idctPcsx2AddImpl)(block, rowMask & 0x3FF, colMask & 0xFF, dst, stride);
+  VBIM_SIMD_DISPATCH(idctPcsx2AddImpl)(block, rowMask & 0x3FF, colMask & 0xFF, dst, stride);
 }
 void idctLibmpeg2Simd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  HWY_DYNAMIC_DISPATCH(idctLibmpeg2CopyImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
+  VBIM_SIMD_DISPATCH(idctLibmpeg2CopyImpl)(block, rowMask & 0x1FF, colMask & 0xFF, dst, stride);
 }
 void idctLibmpeg2AddSimd(const std::int16_t* block, unsigned rowMask, unsigned colMask, std::uint8_t* dst, int stride) {
-  HWY_DYNAMIC_DISPATCH(idctLibmpeg2AddImpl)(block, rowMask & 0x3FF, colMask & 0xFF, dst, stride);
+  VBIM_SIMD_DISPATCH(idctLibmpeg2AddImpl)(block, rowMask & 0x3FF, colMask & 0xFF, dst, stride);
 }
 
 void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::uint8_t* cb, const std::uint8_t* cr,
                        int width, std::uint8_t* rgba, int rgbaStride, CscThresholds th) {
-  HWY_DYNAMIC_DISPATCH(cscRowsImpl)(y, yStride, rows, cb, cr, width, rgba, rgbaStride, th.th0, th.th1);
+  VBIM_SIMD_DISPATCH(cscRowsImpl)(y, yStride, rows, cb, cr, width, rgba, rgbaStride, th.th0, th.th1);
 }
 
 Kernels simdKernelsOfCurrentTarget() {
-  Kernels k = HWY_DYNAMIC_DISPATCH(kernelTable)();
+  Kernels k = VBIM_SIMD_DISPATCH(kernelTable)();
   k.mc = &simdMcKernels();
   return k;
 }
@@ -724,7 +726,7 @@ const Kernels& simdKernels() {
 }
 
 const char* simdTargetName() {
-  const std::int64_t targets = hwy::SupportedTargets() & HWY_TARGETS;
+  const std::int64_t targets = vbim::simd::supportedTargets() & HWY_TARGETS;
   return hwy::TargetName(targets & -targets);  // the best target has the lowest bit
 }
 

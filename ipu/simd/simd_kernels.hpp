@@ -21,7 +21,7 @@ void cscRowsRgba32Simd(const std::uint8_t* y, int yStride, int rows, const std::
 // The kernels of the best target, picked once (plain function pointers, no dispatch per call).
 const Kernels& simdKernels();
 // The kernels of the best target allowed at this moment, not cached: tests run them on every
-// target (hwy::SetSupportedTargetsForTest). Motion compensation stays simdMcKernels().
+// target (vbim::simd::setTargetsForTest). Motion compensation stays simdMcKernels().
 Kernels simdKernelsOfCurrentTarget();
 // The instruction set the dispatch picked ("AVX2", "AVX3", "SSE4", ...).
 const char* simdTargetName();

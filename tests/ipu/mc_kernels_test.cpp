@@ -10,6 +10,7 @@
 
 #include "ipu/mc_kernels.hpp"
 #include "ipu/simd/mc_kernels.hpp"
+#include "runtime/simd/targets.hpp"
 
 namespace vbim::ipu {
 namespace {
@@ -17,13 +18,11 @@ namespace {
 // Runs f(kernels) once per instruction set this binary has code for and the machine runs.
 template <class F>
 void forEachTarget(F&& f) {
-  for (std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    hwy::SetSupportedTargetsForTest(target);
+  vbim::simd::forEachTarget(HWY_TARGETS, [&](std::int64_t target) {
     SCOPED_TRACE(hwy::TargetName(target));
     const McKernels k = simdMcKernelsOfCurrentTarget();
     f(k);
-  }
-  hwy::SetSupportedTargetsForTest(0);
+  });
 }
 
 TEST(IpuMcKernels, PredictMatchesScalar) {

@@ -11,6 +11,7 @@
 #include "ipu/idct.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "ipu/simd/simd_kernels.hpp"
+#include "runtime/simd/targets.hpp"
 #include "tests/ipu/support/idct_blocks.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 
@@ -21,12 +22,10 @@ using testing::Lcg;
 
 template <class F>
 void forEachTarget(F&& f) {
-  for (std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    hwy::SetSupportedTargetsForTest(target);
+  vbim::simd::forEachTarget(HWY_TARGETS, [&](std::int64_t target) {
     SCOPED_TRACE(hwy::TargetName(target));
     f();
-  }
-  hwy::SetSupportedTargetsForTest(0);
+  });
 }
 
 TEST(IpuSimd, IdctMatchesScalar) {
