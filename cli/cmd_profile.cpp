@@ -62,6 +62,7 @@ void runProfile(const runs::ProfileRequest& r, const runs::Reencoder& reencode) 
     checkInterrupted();
     lines << count->next() << runs::stallSearchLine(row) << "\n";
   };
+  progress.beforeCommit = checkInterrupted;  // a Ctrl-C while the tables and plots were written
   const runs::ProfileResult result = runs::profileRun(r, reencode, progress);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (r.json) {

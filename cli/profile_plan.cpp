@@ -9,6 +9,7 @@
 
 #include "cli/command.hpp"
 #include "cli/common_options.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "help/status_text.hpp"
 #include "runs/play_json.hpp"
@@ -78,6 +79,7 @@ void runPlan(const PlanOptions& o, const sweep::StreamTranscoder& transcode) {
   observer.onCaseDone = [&progress](const sweep::CaseRecord& rec) { progress.done(rec); };
   observer.onCasesEnd = [&progress] { progress.end(); };
   observer.onWarning = [](const std::string& line) { std::cerr << "vbim profile: " << line << "\n"; };
+  observer.beforeCommit = checkInterrupted;  // a Ctrl-C while the tables and plots were written
   const runs::PlanResult result = runs::planRun(o.request, p, transcode, observer);
   if (o.request.json) {
     if (result.jsonReplaced) std::cerr << "vbim profile: " << runs::kNotUtf8Warning << "\n";

@@ -45,6 +45,11 @@ class PlanModeRun {
   }
   std::vector<CaseRecord> runCases(const std::vector<PlanCase>& cases, unsigned jobs, bool measuring) const;
   sweep::PlanSummary writeOutputs(const std::vector<CaseRecord>& records, OutputDir& dir, std::ostream& text) const;
+  // The outputs take their names, unless the observer stops the run first.
+  void commit(OutputDir& dir) const {
+    if (observer_.beforeCommit) observer_.beforeCommit();
+    dir.commit();
+  }
 
   const PlanRequest& r_;
   const LoadedPlan& p_;
@@ -70,7 +75,7 @@ std::vector<CaseRecord> PlanModeRun::runCases(const std::vector<PlanCase>& cases
 sweep::PlanSummary PlanModeRun::writeOutputs(const std::vector<CaseRecord>& records, OutputDir& dir,
                                              std::ostream& text) const {
   sweep::PlanSummary s = sweep::writePlanOutputs(p_, records, dir.directory(), dir.finalPath());
-  dir.commit();
+  commit(dir);
   for (const std::string& line : s.lines) text << line << "\n";
   text << "Open:\n";
   for (const std::string& w : s.written) text << "  " << w << "\n";
@@ -104,7 +109,7 @@ PlanResult PlanModeRun::shard() {
   OutputDir dir(fs::path(r_.out) / shard.name, r_.force);
   const std::vector<CaseRecord> records = runCases(shard.cases, jobs(), false);
   const std::size_t failed = sweep::writeShard(p_, shard.k, shard.n, records, dir.directory());
-  dir.commit();
+  commit(dir);
   std::ostringstream text;
   text << "shard " << shard.k << "/" << shard.n << ": cases " << shard.first << ".."
        << (shard.last == shard.first ? shard.first : shard.last - 1) << ", " << failed << " failed -> "
@@ -138,7 +143,7 @@ PlanResult PlanModeRun::emitSlurm() {
   const sweep::SlurmRequest request{r_.shards, r_.partition, r_.account, r_.cpusPerTask};
   const sweep::EmittedSlurm e = sweep::emitSlurmJob(p_, r_.plan, request, sweep::thisProgram(), dir.directory(),
                                                     finalDir, [this](const PlanCase& c) { runCases({c}, 1, true); });
-  dir.commit();
+  commit(dir);
   const std::string script = (finalDir / "sweep.sbatch").string();
   std::ostringstream text;
   text << "wrote " << script << ": " << e.job.shards << " array tasks, --time " << sweep::hms(e.job.seconds)

@@ -52,6 +52,9 @@ struct PlanObserver {
   // A warning as it arises (more jobs than cores, failed or stuck cases, failed shards merged), one
   // line without the command's prefix.
   std::function<void(const std::string&)> onWarning;
+  // Once the outputs are written, just before they take their names: a throw here (the command's
+  // Ctrl-C check) leaves no output, as a stop during the cases does.
+  std::function<void()> beforeCommit;
 };
 
 struct PlanResult {

@@ -114,6 +114,7 @@ ProfileResult profileRun(const ProfileRequest& r, const Reencoder& reencode, con
   }
   for (const std::string& w : writeProfileOutputs(result.data, dir.directory()))
     result.written.push_back((dir.finalPath() / w).string());
+  if (observer.beforeCommit) observer.beforeCommit();
   dir.commit();
   return result;
 }

@@ -51,6 +51,9 @@ bool reencodes(const ProfileRequest& r);
 struct ProfileObserver {
   std::function<void(std::size_t total)> onStart;
   sweep::SweepObserver sweep;
+  // Once the outputs are written, just before they take their names: a throw here (the command's
+  // Ctrl-C check) leaves no output.
+  std::function<void()> beforeCommit;
 };
 
 struct ProfileResult {

@@ -3,8 +3,10 @@
 // a merge (and one that lacks a shard), and a Slurm job array with its measured cases.
 #include "runs/plan_run.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -137,6 +139,50 @@ TEST(PlanRun, ShardsMergeAndAMissingShardIsItsOwnError) {
   const PlanResult merged = planRun(m, loadPlan(m), {}, {});
   EXPECT_NE(merged.text.find("merged 2 shards, 2 cases\n"), std::string::npos) << merged.text;
   EXPECT_TRUE(fs::exists(fs::path(m.out) / "cases.csv"));
+}
+
+// The command's Ctrl-C check runs once the outputs are written: a stop there leaves no output in
+// any mode, and nothing beside it (the temporary directory goes too).
+TEST(PlanRun, AStopJustBeforeTheOutputsTakeTheirNamesLeavesNothing) {
+  const Scratch s;
+  PlanObserver stop;
+  int asked = 0;
+  stop.beforeCommit = [&asked] {
+    ++asked;
+    throw std::runtime_error("stop");
+  };
+  const auto left = [&s] {
+    std::vector<std::string> names;
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(s.dir)) {
+      names.push_back(fs::relative(e.path(), s.dir).string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  PlanRequest here;
+  here.plan = s.plan(planText());
+  here.out = (s.dir / "out").string();
+  here.jobs = 1;
+  EXPECT_THROW(planRun(here, loadPlan(here), {}, stop), std::runtime_error);
+  EXPECT_EQ(left(), std::vector<std::string>{"plan.toml"});
+  // A shard: the shards' directory, which every shard shares, stays, without the shard in it.
+  PlanRequest shard = here;
+  shard.shard = "1/2";
+  EXPECT_THROW(planRun(shard, loadPlan(shard), {}, stop), std::runtime_error);
+  EXPECT_EQ(left(), (std::vector<std::string>{"out", "plan.toml"}));
+  fs::remove(s.dir / "out");
+  PlanRequest slurm;
+  slurm.plan = here.plan;
+  slurm.emitSlurm = (s.dir / "slurm").string();
+  EXPECT_THROW(planRun(slurm, loadPlan(slurm), {}, stop), std::runtime_error);
+  EXPECT_EQ(left(), std::vector<std::string>{"plan.toml"});
+  EXPECT_EQ(asked, 3);
+  // Without the stop the same request runs to the end.
+  PlanObserver go;
+  go.beforeCommit = [&asked] { ++asked; };
+  planRun(here, loadPlan(here), {}, go);
+  EXPECT_EQ(asked, 4);
+  EXPECT_TRUE(fs::exists(s.dir / "out" / "cases.csv"));
 }
 
 TEST(PlanRun, ASlurmJobIsSizedFromCasesMeasuredOneAtATime) {
