@@ -13,8 +13,6 @@
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
-#include <bit>
-
 #include "gs/blend.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -231,20 +229,16 @@ struct HalfBlend {
   static constexpr bool kHalf = true;
   static constexpr bool kKeep = kKeepAlpha;
   using D8 = hn::ScalableTag<std::uint8_t>;
-  hn::Vec<D8> one;
-  hn::Mask<D8> alpha;
+  hn::Vec<D8> one, alpha;
   HalfBlend() {
     const D8 d8;
     const hn::Repartition<std::uint32_t, D8> d32;
     one = hn::Set(d8, 1);
-    alpha = hn::MaskFromVec(hn::BitCast(d8, hn::Set(d32, 0xFF000000u)));  // byte 3 of each little-endian pixel
+    alpha = hn::BitCast(d8, hn::Set(d32, 0xFF000000u));  // byte 3 of each little-endian pixel
   }
-  // The alpha byte by one select (a byte blend on AVX2, a masked move on AVX-512) rather than
-  // and/andnot/or: two vector operations fewer of the eleven FIX 64 spends per vector with its
-  // tracking, on ports the hash's multiplies share in the fused kernel.
   HWY_INLINE hn::Vec<D8> operator()(hn::Vec<D8> s, hn::Vec<D8> d) const {
     const auto half = hn::Sub(hn::AverageRound(s, d), hn::And(hn::Xor(s, d), one));
-    return hn::IfThenElse(alpha, kKeepAlpha ? d : s, half);
+    return hn::Or(hn::AndNot(alpha, half), hn::And(alpha, kKeepAlpha ? d : s));
   }
 };
 
@@ -297,38 +291,9 @@ struct RowHash {
   }
 };
 
-// One tile's part of a row in the fused kernel: each vector blended, with what the tile keeps of
-// it: FIX 64 the maxima of s - d (a) and d - s (b) (HalfChange); any other blend its change (a,
-// accumulated over the call) and its fixed-point test (b, per row).
-template <class D8, class Blend>
-struct TrackedSpan {
-  hn::Vec<D8> a, b;
-  HWY_INLINE void blend(D8 d8, const Blend& blend, const FixedPointTest<D8>& fixed, const std::uint8_t* HWY_RESTRICT s,
-                        std::uint8_t* HWY_RESTRICT d) {
-    const auto sv = hn::LoadU(d8, s);
-    const auto dv = hn::LoadU(d8, d);
-    if constexpr (Blend::kHalf) {
-      a = hn::Max(a, hn::SaturatedSub(sv, dv));
-      b = hn::Max(b, hn::SaturatedSub(dv, sv));
-      hn::StoreU(blend(sv, dv), d8, d);
-    } else {
-      const auto r = blend(sv, dv);
-      a = hn::Max(a, hn::Or(hn::SaturatedSub(r, dv), hn::SaturatedSub(dv, r)));
-      b = hn::Or(b, fixed.off(sv, r));
-      hn::StoreU(r, d8, d);
-    }
-  }
-};
-
-// BlendHashRowsFn (gs/blend.hpp), row by row. A row's unsettled tiles (its settled bits clear) are
-// taken from a bit set, so a settled tile costs no branch of its own: which tiles are settled
-// follows the picture, and a branch per tile was mispredicted often enough to cost about what
-// blending the skipped tiles would have. The row above is folded into the chain in the same loop,
-// one row behind: its bytes were stored a row ago, so the chain's loads find them in L1 instead of
-// waiting on the stores just made, and each step of the loop has both a vector blend
-// (throughput-bound) and two 32-byte blocks of the chain (latency-bound: four multiply chains) to
-// overlap. What the blend leaves of the row above is folded after it, and the last row after the
-// loop. Each tile's change is kept as a vector (a byte maximum) and reduced once per call.
+// BlendHashRowsFn (gs/blend.hpp): row by row, each tile's part of the row blended (skipped where its
+// settled bit is set) and folded into the chain right after, while it is in L1. Each tile's change
+// is kept as a vector (a byte maximum) and reduced once per call.
 template <class Blend>
 void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT src, std::size_t pixels,
                        std::size_t rows, std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled,
@@ -337,20 +302,14 @@ void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_R
   const D8 d8;
   const std::size_t step = hn::Lanes(d8);
   const std::size_t tiles = (pixels + tilePixels - 1) / tilePixels;
-  constexpr std::size_t kMaxTiles = 64;  // a row's tiles are one 64-bit set
+  constexpr std::size_t kMaxTiles = 64;
   constexpr std::size_t kMaxLanes = 64;
-  // Rows fold in registers when they are whole words.
-  const bool rowWise = chain != nullptr && pixels % 2 == 0;
+  // Rows fold in registers when they are whole words and every tile but the last whole blocks.
+  const bool rowWise = chain != nullptr && pixels % 2 == 0 && tilePixels % 8 == 0;
   if (tiles > kMaxTiles || step > kMaxLanes) {
     blendHashRowsScalar(dst, src, pixels, rows, tilePixels, spec, settled, delta, chain);
     return;
   }
-  // A step of the interleaved loop: one cache line, whole vectors and two whole hash blocks.
-  constexpr std::size_t kUnit = 64;
-  const bool interleave = kUnit % step == 0;
-  const std::size_t stride = pixels * 4;
-  // The bytes of a row that the blend's loop may fold (whole steps); finish() folds the rest.
-  const std::size_t foldable = rowWise && interleave ? stride / kUnit * kUnit : 0;
   // Per tile, its bytes' largest change; for FIX 64 the largest distances Cs - Cd (acc) and Cd - Cs
   // (accB) instead, turned into the change at the end (HalfChange).
   HWY_ALIGN std::uint8_t acc[kMaxTiles * kMaxLanes];
@@ -361,57 +320,52 @@ void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_R
   }
   const FixedPointTest<D8> fixed(d8, spec);
   const HalfChange<D8, Blend::kKeep> half(d8);
-  RowHash h{HashChain{}};
-  // y == rows only folds the last row.
-  for (std::size_t y = 0; y < rows + (rowWise ? 1 : 0); ++y) {
-    const std::uint8_t* hrow = rowWise && y > 0 ? dst + (y - 1) * stride : nullptr;
-    if (hrow != nullptr) h = RowHash(*chain);
-    const std::size_t hashLimit = hrow != nullptr ? foldable : 0;
-    std::size_t hashed = 0;  // bytes of hrow folded
-    std::uint64_t todo = 0;  // the tiles this row blends
-    if (y < rows) {
-      for (std::size_t t = 0; t < tiles; ++t) todo |= std::uint64_t{((settled[t] >> y) & 1u) ^ 1u} << t;
-    }
-    while (todo != 0) {
-      const auto t = static_cast<std::size_t>(std::countr_zero(todo));
-      todo &= todo - 1;
-      const std::size_t x0 = t * tilePixels;
+  const std::size_t stride = pixels * 4;
+  for (std::size_t y = 0; y < rows; ++y) {
+    std::uint8_t* drow = dst + y * stride;
+    const std::uint8_t* srow = src + y * stride;
+    RowHash h(rowWise ? *chain : HashChain{});
+    for (std::size_t t = 0, x0 = 0; t < tiles; ++t, x0 += tilePixels) {
       const std::size_t bytes = std::min(tilePixels, pixels - x0) * 4;
-      std::uint8_t* d = dst + y * stride + 4 * x0;
-      const std::uint8_t* s = src + y * stride + 4 * x0;
-      TrackedSpan<D8, Blend> span{hn::Zero(d8), hn::Zero(d8)};
-      if constexpr (!Blend::kHalf) span.a = hn::Load(d8, acc + t * step);
-      std::size_t i = 0;
-      if (interleave) {
-        for (; i + kUnit <= bytes; i += kUnit) {
-          for (std::size_t k = 0; k < kUnit; k += step) span.blend(d8, blend, fixed, s + i + k, d + i + k);
-          if (hashed < hashLimit) {
-            h.blocks(hrow + hashed, kUnit);
-            hashed += kUnit;
+      std::uint8_t* d = drow + 4 * x0;
+      const std::uint8_t* s = srow + 4 * x0;
+      if (((settled[t] >> y) & 1u) == 0) {
+        auto off = hn::Zero(d8);
+        std::size_t i = 0;
+        if constexpr (Blend::kHalf) {
+          auto rowA = hn::Zero(d8), rowB = hn::Zero(d8);
+          halfTrackRow(d8, blend, s, d, bytes, i, rowA, rowB);
+          hn::Store(hn::Max(hn::Load(d8, acc + t * step), rowA), d8, acc + t * step);
+          hn::Store(hn::Max(hn::Load(d8, accB + t * step), rowB), d8, accB + t * step);
+          off = half.off(rowA, rowB);
+        } else {
+          auto change = hn::Load(d8, acc + t * step);
+          for (; i + step <= bytes; i += step) {
+            const auto sv = hn::LoadU(d8, s + i);
+            const auto dv = hn::LoadU(d8, d + i);
+            const auto r = blend(sv, dv);
+            change = hn::Max(change, hn::Or(hn::SaturatedSub(r, dv), hn::SaturatedSub(dv, r)));
+            off = hn::Or(off, fixed.off(sv, r));
+            hn::StoreU(r, d8, d + i);
           }
+          hn::Store(change, d8, acc + t * step);
+        }
+        bool tailFixed = true;
+        if (i < bytes) {
+          const std::size_t rest = (bytes - i) / 4;
+          delta[t] = std::max(delta[t], blendSpanDeltaScalar(d + i, s + i, rest, spec));
+          tailFixed = spanAtFixedPoint(d + i, s + i, rest, spec);
+        }
+        if (tailFixed && hn::AllTrue(d8, hn::Eq(off, hn::Zero(d8)))) settled[t] |= 1u << y;
+      }
+      if (rowWise) {
+        if (t + 1 < tiles) {
+          h.blocks(d, bytes);
+        } else {
+          h.finish(d, bytes, stride / 8, *chain);
         }
       }
-      for (; i + step <= bytes; i += step) span.blend(d8, blend, fixed, s + i, d + i);
-      auto off = hn::Zero(d8);
-      if constexpr (Blend::kHalf) {
-        hn::Store(hn::Max(hn::Load(d8, acc + t * step), span.a), d8, acc + t * step);
-        hn::Store(hn::Max(hn::Load(d8, accB + t * step), span.b), d8, accB + t * step);
-        off = half.off(span.a, span.b);
-      } else {
-        hn::Store(span.a, d8, acc + t * step);
-        off = span.b;
-      }
-      bool tailFixed = true;
-      if (i < bytes) {
-        const std::size_t rest = (bytes - i) / 4;
-        delta[t] = std::max(delta[t], blendSpanDeltaScalar(d + i, s + i, rest, spec));
-        tailFixed = spanAtFixedPoint(d + i, s + i, rest, spec);
-      }
-      // Marked without a branch (whether a row settles is as unpredictable as whether it was).
-      const bool rowFixed = tailFixed & hn::AllTrue(d8, hn::Eq(off, hn::Zero(d8)));
-      settled[t] |= std::uint32_t{rowFixed} << y;
     }
-    if (hrow != nullptr) h.finish(hrow + hashed, stride - hashed, stride / 8, *chain);
   }
   for (std::size_t t = 0; t < tiles; ++t) {
     if constexpr (Blend::kHalf) {

@@ -242,10 +242,10 @@ TEST(BlendSimd, BlendHashRowsMatchesScalarOnEveryTarget) {
   });
 }
 
-// The fused kernel at the shapes a play gives it: 512-pixel rows of eight 64-pixel tiles (a 512x512
-// lightmap's tile row) and rows of exactly 64 tiles (the most a row's tile set holds), blended
-// several times toward the same frame so that rows settle unevenly from tile to tile (the kernel
-// takes a row's unsettled tiles from a bit set and folds the row above while it blends), then
+// The fused kernel at the shapes a play gives it, which the random rounds above do not reach:
+// 512-pixel rows of eight 64-pixel tiles (a 512x512 lightmap's tile row) and rows of exactly 64
+// tiles (the most the kernel takes before it hands a row to the scalar reference), blended several
+// times toward the same frame so that rows settle unevenly from tile to tile and pass to pass, then
 // toward a new frame; every target against the scalar reference, the chain's lanes included.
 TEST(BlendSimd, BlendHashRowsMatchesScalarOnPlayShapes) {
   Rng rng(512);
