@@ -47,7 +47,8 @@ void addReplay(CLI::App& app) {
   cmd->add_option("--format", r->format, "Image format: png or exr")
       ->check(oneOf("--format", {"png", "exr"}))
       ->capture_default_str();
-  cmd->add_option("--alpha", r->alpha, "Alpha of the pictures: opaque (255) or gs (the texels as in VRAM)")
+  cmd->add_option("--alpha", r->alpha,
+                  "Alpha of the pictures: opaque (RGB, no alpha) or gs (RGBA, the texels as in VRAM)")
       ->check(CLI::IsMember({"opaque", "gs"}))
       ->capture_default_str();
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");

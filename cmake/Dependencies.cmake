@@ -48,6 +48,8 @@ if(NOT VBIM_MODEL_ONLY)
   vbim_require_config(glm libglm-dev)
   # Image output of the lean `vbim` tool (imageio/, its lean part): small libraries, not OpenImageIO.
   vbim_require_pkgconfig(PNG libpng-dev libpng)
+  # The checksums of level-0 PNGs, which imageio/stored_png.cpp writes without libpng.
+  vbim_require_pkgconfig(DEFLATE libdeflate-dev libdeflate)
   vbim_require_pkgconfig(OPENEXR libopenexr-dev OpenEXR)
 
   # Plots (plots/): PLplot and its cairo driver (PNG and SVG devices). PLplot loads the driver at run

@@ -18,6 +18,7 @@
 
 #include "imageio/error.hpp"
 #include "imageio/replace_file.hpp"
+#include "imageio/stored_png.hpp"
 
 namespace vbim::imageio {
 
@@ -178,8 +179,7 @@ bool encodeWithLibpng(Job& job, BlockPool& pool) {
   return true;
 }
 
-void encodeInto(ImageView<std::uint8_t> image, int level, const fs::path& name, std::vector<std::uint8_t>& out,
-                std::size_t& size, BlockPool& pool) {
+void checkShape(ImageView<std::uint8_t> image, int level, const fs::path& name) {
   if (image.width <= 0 || image.height <= 0) {
     throw ImageIoError(name.string() + ": cannot write a " + std::to_string(image.width) + "x" +
                        std::to_string(image.height) + " image (expected a positive size)");
@@ -192,6 +192,10 @@ void encodeInto(ImageView<std::uint8_t> image, int level, const fs::path& name, 
     throw ImageIoError(name.string() + ": PNG compression level " + std::to_string(level) + " (expected 0 to " +
                        std::to_string(kMaxPngLevel) + ")");
   }
+}
+
+void encodeWithLibpngInto(ImageView<std::uint8_t> image, int level, const fs::path& name,
+                          std::vector<std::uint8_t>& out, std::size_t& size, BlockPool& pool) {
   Job job;
   job.image = image;
   job.level = level;
@@ -200,6 +204,19 @@ void encodeInto(ImageView<std::uint8_t> image, int level, const fs::path& name, 
     throw ImageIoError(name.string() + ": cannot encode the PNG: " + std::string(job.message.data()));
   }
   size = job.size;
+}
+
+// Level 0 without libpng where stored_png.hpp can (same bytes, stored_png.hpp says why).
+void encodeInto(ImageView<std::uint8_t> image, int level, const fs::path& name, std::vector<std::uint8_t>& out,
+                std::size_t& size, BlockPool& pool) {
+  checkShape(image, level, name);
+  if (level == 0 && fitsStoredPng(image)) {
+    size = storedPngSize(image);
+    if (out.size() < size) out.resize(size);
+    writeStoredPng(image, out.data());
+    return;
+  }
+  encodeWithLibpngInto(image, level, name, out, size, pool);
 }
 
 // The bytes and blocks of one thread's pictures, kept between them (BlockPool says why).
@@ -221,6 +238,16 @@ std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, co
   std::vector<std::uint8_t> png;
   std::size_t size = 0;
   encodeInto(image, level, name, png, size, pool);
+  png.resize(size);
+  return png;
+}
+
+std::vector<std::uint8_t> encodePngWithLibpng(ImageView<std::uint8_t> image, int level, const fs::path& name) {
+  BlockPool pool;
+  std::vector<std::uint8_t> png;
+  std::size_t size = 0;
+  checkShape(image, level, name);
+  encodeWithLibpngInto(image, level, name, png, size, pool);
   png.resize(size);
   return png;
 }

@@ -19,10 +19,15 @@ namespace vbim::imageio {
 inline constexpr int kMaxPngLevel = 9;  // zlib's highest
 
 // The PNG bytes of 8-bit grey (1 channel), grey + alpha (2), RGB (3) or RGBA (4) samples, tagged
-// sRGB. `level` 0: stored deflate blocks, every row unfiltered; 1 to 9: zlib's level of that
-// number, every row filtered Up. Throws ImageIoError naming `name` for a bad shape or level, or
-// what libpng reported.
+// sRGB. `level` 0: stored deflate blocks, every row unfiltered (written by stored_png.hpp, libpng's
+// bytes without libpng); 1 to 9: zlib's level of that number, every row filtered Up. Throws
+// ImageIoError naming `name` for a bad shape or level, or what libpng reported.
 std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, const std::filesystem::path& name);
+
+// encodePng's bytes, always by libpng: at level 0 encodePng writes the same bytes itself
+// (stored_png.hpp), and is tested against this.
+std::vector<std::uint8_t> encodePngWithLibpng(ImageView<std::uint8_t> image, int level,
+                                              const std::filesystem::path& name);
 
 // encodePng's bytes written to `path` under a temporary name and renamed into place
 // (replace_file.hpp); libpng's and zlib's memory is kept per thread for the next picture. Throws

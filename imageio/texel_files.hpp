@@ -1,7 +1,9 @@
 // A lightmap or sky picture of a run (the GS's 8-bit texels) as a file: PNG, or EXR (8-bit texels as
-// 0..1 floats). Alpha 255 unless `gsAlpha`: viewers then show the picture as the GS uses it (the
-// lightmap's alpha is not blended on screen); with `gsAlpha` the texels are written as they are in
-// VRAM (0x80 is the GS's 1.0: GS User's Manual, ALPHA register), the bytes hashes.txt hashes.
+// 0..1 floats). RGB, no alpha channel, unless `gsAlpha`: viewers then show the picture as the GS
+// uses it (the lightmap's alpha is not blended on screen), and an opaque picture has no alpha to
+// write (a quarter fewer bytes than alpha 255 everywhere, which vbim play wrote until issue #31);
+// with `gsAlpha` the texels are written as they are in VRAM, RGBA (0x80 is the GS's 1.0: GS User's
+// Manual, ALPHA register), the bytes hashes.txt hashes.
 #pragma once
 
 #include <filesystem>
@@ -20,8 +22,8 @@ struct TexelFileFormat {
   int pngLevel = kDefaultTexelPngLevel;  // 0 to kMaxPngLevel (png_encoder.hpp)
 };
 
-// `texels` is the caller's copy: unless format.gsAlpha its alpha is set to 255 in place (no second
-// copy). Throws ImageIoError when the file cannot be written.
+// `texels` is the caller's copy: unless format.gsAlpha it is packed to RGB in place (no second
+// copy), and is no longer a valid Rgba8Image's pixels after. Throws ImageIoError when the file cannot be written.
 void writeTexelImage(const std::filesystem::path& path, Rgba8Image& texels, const TexelFileFormat& format);
 
 }  // namespace vbim::imageio

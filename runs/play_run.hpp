@@ -32,7 +32,7 @@ struct PlayRequest {
   std::vector<std::string> at;
   std::string format = "png";
   int pngLevel = imageio::kDefaultTexelPngLevel;  // --png-level: 0 stored, 1 to 9 compressed (zlib)
-  std::string alpha = "opaque";                   // pictures' alpha: opaque (255) or gs (the texels as in VRAM)
+  std::string alpha = "opaque";                   // pictures' alpha: opaque (RGB, none) or gs (the texels as in VRAM)
   std::vector<std::string> branches;              // "12.5s=1": switch to variant 1 at 12.5 s
   bool force = false;
   bool json = false;  // PlayResult::summary as JSON (runs/play_json.hpp)
@@ -63,8 +63,8 @@ using PlayProgressFn = std::function<void(double played, double total)>;
 // config::gsConfigMessage says it) and RunFailure (runs/error.hpp) when an output cannot be written.
 PlayResult playRun(const PlayRequest& r, const PlayProgressFn& onSecond);
 
-// A lightmap or sky picture of a run: PNG (at format.pngLevel) or EXR, alpha 255 unless
-// format.gsAlpha (the texels as in VRAM; set in place in `texels`, the caller's copy). Throws
+// A lightmap or sky picture of a run: PNG (at format.pngLevel) or EXR, RGB (opaque) unless
+// format.gsAlpha (RGBA, the texels as in VRAM); `texels`, the caller's copy, is packed in place. Throws
 // RunFailure when it cannot be written.
 void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const imageio::TexelFileFormat& format);
 

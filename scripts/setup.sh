@@ -18,7 +18,7 @@ PACKAGES=(
   # the generated completions are loaded in real shells by the same test
   man-db bash-completion zsh
   # media around the model: images, encoding, the comparison decoders, ffprobe
-  libopenimageio-dev libpng-dev libopenexr-dev
+  libopenimageio-dev libpng-dev libdeflate-dev libopenexr-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libmpeg2-4-dev
   # libmpeg2 as a program: `vbim decode` is checked against `mpeg2dec -c` (tests/ipu/cli_decode_test.cpp)
