@@ -19,6 +19,7 @@
 
 #include "imageio/error.hpp"
 #include "imageio/png_encoder.hpp"
+#include "tests/imageio/libpng_decode.hpp"
 
 namespace vbim::imageio {
 namespace {
@@ -49,16 +50,7 @@ Image<std::uint8_t> picture(int w, int h, int channels) {
 
 // libpng's reading of the bytes, in the channel layout they were written with.
 std::vector<std::uint8_t> decode(const std::vector<std::uint8_t>& png, int channels, int& w, int& h) {
-  png_image im{};
-  im.version = PNG_IMAGE_VERSION;
-  if (png_image_begin_read_from_memory(&im, png.data(), png.size()) == 0) return {};
-  static const png_uint_32 kFormat[] = {0, PNG_FORMAT_GRAY, PNG_FORMAT_GA, PNG_FORMAT_RGB, PNG_FORMAT_RGBA};
-  im.format = kFormat[channels];
-  std::vector<std::uint8_t> out(PNG_IMAGE_SIZE(im));
-  if (png_image_finish_read(&im, nullptr, out.data(), 0, nullptr) == 0) return {};
-  w = static_cast<int>(im.width);
-  h = static_cast<int>(im.height);
-  return out;
+  return testing::decodeWithLibpng(png, channels, &w, &h);
 }
 
 std::vector<std::string> chunkTypes(const std::vector<std::uint8_t>& png) {

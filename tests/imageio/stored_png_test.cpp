@@ -12,6 +12,7 @@
 
 #include "imageio/png_encoder.hpp"
 #include "imageio/stored_png.hpp"
+#include "tests/imageio/libpng_decode.hpp"
 
 namespace vbim::imageio {
 namespace {
@@ -33,14 +34,7 @@ std::string shape(int w, int h, int channels) {
 
 // libpng's reading of the bytes in the channel layout they were written with; empty if it fails.
 std::vector<std::uint8_t> decode(const std::vector<std::uint8_t>& png, int channels) {
-  png_image im{};
-  im.version = PNG_IMAGE_VERSION;
-  if (png_image_begin_read_from_memory(&im, png.data(), png.size()) == 0) return {};
-  static const png_uint_32 kFormat[] = {0, PNG_FORMAT_GRAY, PNG_FORMAT_GA, PNG_FORMAT_RGB, PNG_FORMAT_RGBA};
-  im.format = kFormat[channels];
-  std::vector<std::uint8_t> out(PNG_IMAGE_SIZE(im));
-  if (png_image_finish_read(&im, nullptr, out.data(), 0, nullptr) == 0) return {};
-  return out;
+  return testing::decodeWithLibpng(png, channels);
 }
 
 void expectLibpngsBytes(int w, int h, int channels) {
