@@ -67,14 +67,17 @@ class BlockLengths {
   std::size_t waiting_ = 0;  // handed to zlib and not yet in a block
 };
 
+// A row in the zlib stream: its filter byte and its samples.
+std::size_t rowBytes(ImageView<std::uint8_t> image) {
+  return 1 + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels);
+}
+
 std::size_t dataSize(ImageView<std::uint8_t> image) {
-  const std::size_t rowBytes = 1 + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels);
-  return rowBytes * static_cast<std::size_t>(image.height);
+  return rowBytes(image) * static_cast<std::size_t>(image.height);
 }
 
 std::size_t idatSize(ImageView<std::uint8_t> image) {
-  BlockLengths lengths(1 + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels),
-                       static_cast<std::size_t>(image.height));
+  BlockLengths lengths(rowBytes(image), static_cast<std::size_t>(image.height));
   std::size_t blocks = 0;
   for (bool last = false; !last; ++blocks) lengths.next(last);
   return kZlibHeader + blocks * kBlockHeader + dataSize(image) + kAdler;
@@ -173,8 +176,7 @@ void writeStoredPng(ImageView<std::uint8_t> image, std::uint8_t* out) {
   p = beginChunk(p, idatSize(image), "IDAT");
   const auto header = zlibHeader(dataSize(image));
   p = std::copy(header.begin(), header.end(), p);
-  BlockLengths lengths(1 + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels),
-                       static_cast<std::size_t>(image.height));
+  BlockLengths lengths(rowBytes(image), static_cast<std::size_t>(image.height));
   RowStream rows(image);
   std::uint32_t adler = 1;  // RFC 1950, 8.2: Adler-32 starts at 1
   for (bool last = false; !last;) {

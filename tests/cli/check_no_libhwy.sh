@@ -1,5 +1,5 @@
 #!/bin/sh
-# The programs must not load libhwy.so: its static initializer costs every start 4-7 ms of CPU
+# The programs must not load libhwy.so: its static initializer costs every start 4-6 ms of CPU
 # (runtime/simd/targets.hpp). Each program given must be a dynamic program whose NEEDED list names
 # no libhwy. Exit 1 with the finding otherwise.
 set -eu
