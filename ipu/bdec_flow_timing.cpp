@@ -111,6 +111,7 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
   Tick bdecDone = e;
   Tick fromFree = out.defer(t.arrival);
   std::vector<Tick> takes(dout + 1, t.arrival);  // when output qword y - Dout left, by index mod (Dout + 1)
+  Tick lastTake = t.arrival;                     // the latest of `takes` (they only grow)
   // outCount mod (Dout + 1) and (outCount + 1) mod (Dout + 1), stepped instead of divided per qword.
   std::size_t slot = 0;
   std::size_t nextSlot = 1 % (dout + 1);
@@ -151,14 +152,32 @@ void planFlow(const FlowPicture& f, const IpuParams& p, const EeFlowCosts& ee, c
                                       feed.readThrough(m.needQwords, start));
         // The IPU pushes a qword a cycle once there is room; fromIPU writes each to scratchpad.
         Tick q = decoded;
-        for (int y = 0; y < kBdecQwords; ++y) {
+        const bool keepsUp = !t.stepEveryQword && outPeriod >= 0 && outPeriod <= 1 && fromFree <= decoded &&
+                             lastTake <= decoded && out.clear(decoded, decoded + kBdecQwords + outPeriod);
+        if (keepsUp) {
+          // fromIPU keeps up with the pushes (a period of at most one cycle) and has taken every
+          // earlier qword, and no stall falls inside: the loop below would find room for every qword
+          // and take each the cycle it is pushed. Only the last Dout + 1 takes stay in the ring.
+          const int firstKept = std::max(0, kBdecQwords - static_cast<int>(dout + 1));
+          slot = (slot + static_cast<std::size_t>(firstKept)) % (dout + 1);
+          for (int y = firstKept; y < kBdecQwords; ++y) {
+            takes[slot] = decoded + y;
+            if (++slot == dout + 1) slot = 0;
+          }
+          nextSlot = slot + 1 == dout + 1 ? 0 : slot + 1;
+          q = decoded + kBdecQwords;
+          lastTake = q - 1;
+          fromFree = lastTake + outPeriod;
+        }
+        for (int y = 0; !keepsUp && y < kBdecQwords; ++y) {
           const Tick room = takes[nextSlot];  // qword y - Dout has left
           if (room > q) {
             q = room;
             ++t.outputStalls;
           }
           const Tick resumed = q <= fromFree ? fromFree : out.defer(q);
-          takes[slot] = std::max(q, fromFree);
+          lastTake = std::max(q, fromFree);
+          takes[slot] = lastTake;
           fromFree = out.defer(resumed + outPeriod);
           q += 1;
           slot = nextSlot;

@@ -51,6 +51,9 @@ struct FlowSpan {
 struct FlowTiming {
   Tick arrival = 0;             // the EE starts the picture (after the previous command)
   bool recordCommands = false;  // fill `commands`
+  // Step every BDEC output qword through the output FIFO, also where fromIPU keeps up and the
+  // result is known without it (the reference the shortcut is tested against).
+  bool stepEveryQword = false;
   // Out.
   Tick decodeEnd = 0;             // the last macroblock is predicted and stored
   Tick inFree = 0;                // toIPU after its last qword

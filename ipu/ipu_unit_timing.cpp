@@ -140,6 +140,29 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
   const bool drainKeepsUp =
       dout_ >= static_cast<std::uint64_t>(qpr) && qpr * outPeriod <= p_.csc_cycles_per_mb / kRowsPerMacroblock;
 
+  // A CSC command from EE memory (the BDEC flow's display frame): every macroblock pops the same
+  // number of input qwords at no decode cost and goes through the drain stretch below. Once one
+  // leaves the channels and FIFOs as the one before it did, shifted by its own length, each later
+  // one repeats it shifted again (the recurrence is max and +, which commute with a shift), as long
+  // as no DMA stall reaches the times it reads: the rest of the command follows without stepping
+  // its qwords (1,152 macroblocks of 88 qwords each per 512x512 + 256x128 frame). The qword log
+  // (recordQwords) is stepped in full.
+  const std::uint32_t cscStep = mbs > 0 ? c.needQwords[0] : 0;
+  bool repeats = c.csc && drainKeepsUp && !recordQwords && mbs > 2 && cscStep > 0;
+  for (std::size_t i = 0; repeats && i < mbs; ++i) {
+    repeats = c.restart[i] == 0 && c.needQwords[i] == cscStep * static_cast<std::uint32_t>(i + 1);
+  }
+  bool haveBefore = false;  // steadyBefore_ holds the state after the macroblock before
+  Tick beforeFloor = 0;     // the earliest of that state's times, from which it reads on
+  auto steadyState = [&](std::vector<Tick>& s, Tick end) {
+    s.clear();
+    s.push_back(inFree - end);
+    s.push_back(fromFree - end);
+    s.push_back(lastResume - end);
+    for (std::uint64_t j = 0; j < din_; ++j) s.push_back(pops[(inSlot + j) % din_] - end);
+    for (std::uint64_t j = 0; j < ring; ++j) s.push_back(takes[(takeSlot + j) % ring] - end);
+  };
+
   // The core: per macroblock its cost spread over the input qwords it pops, then CSC row by row.
   Tick t = std::max(st_.coreFree, arrival) + (c.csc ? 0 : p_.idec_start_cycles);
   std::uint32_t pulled = 0;
@@ -197,9 +220,39 @@ void IpuTimeline::plan(CommandTiming& c, const DmaStalls& in, const DmaStalls& o
         lastResume = t + (qpr - 1) * outPeriod;
         fromFree = t + qpr * outPeriod;
         c.mbEnd[i] = t;
+        if (repeats) {
+          steadyState(steadyNow_, t);
+          if (haveBefore && steadyNow_ == steadyBefore_ && in.clearFrom(beforeFloor) && out.clearFrom(beforeFloor)) {
+            const Tick period = t - c.mbEnd[i - 1];
+            const std::uint64_t left = mbs - 1 - i;
+            for (std::size_t j = i + 1; j < mbs; ++j) {
+              const Tick shift = period * static_cast<Tick>(j - i);
+              c.mbBegin[j] = c.mbBegin[i] + shift;
+              c.mbDecoded[j] = c.mbDecoded[i] + shift;
+              c.mbEnd[j] = c.mbEnd[i] + shift;
+            }
+            t += period * static_cast<Tick>(left);
+            inFree = t + steadyNow_[0];
+            fromFree = t + steadyNow_[1];
+            lastResume = t + steadyNow_[2];
+            inSlot = (inSlot + left * cscStep) % din_;
+            takeSlot = (takeSlot + left * perMacroblock) % ring;
+            pushSlot = takeSlot;
+            for (std::uint64_t j = 0; j < din_; ++j) pops[(inSlot + j) % din_] = t + steadyNow_[3 + j];
+            for (std::uint64_t j = 0; j < ring; ++j) takes[(takeSlot + j) % ring] = t + steadyNow_[3 + din_ + j];
+            pulled += static_cast<std::uint32_t>(left) * cscStep;
+            pushed += left * perMacroblock;
+            taken += left * perMacroblock;
+            break;
+          }
+          std::swap(steadyNow_, steadyBefore_);
+          haveBefore = true;
+          beforeFloor = std::min({inFree, fromFree, t});
+        }
         continue;
       }
     }
+    haveBefore = false;
     for (int row = 0; row < kRowsPerMacroblock; ++row) {
       t += p_.csc_cycles_per_mb * (row + 1) / kRowsPerMacroblock - p_.csc_cycles_per_mb * row / kRowsPerMacroblock;
       const Tick ready = t;

@@ -43,6 +43,8 @@ class DmaStalls {
   bool add(Tick now, Tick duration);
   // No stall holds any time in [from, to].
   bool clear(Tick from, Tick to) const { return windows_.empty() || clearSlow(from, to); }
+  // No stall holds any time from `from` on (so defer(t) == t for every t >= from).
+  bool clearFrom(Tick from) const { return windows_.empty() || windows_.back().to < from; }
   // The time a wake-up due at t happens.
   Tick defer(Tick t) const {
     if (windows_.empty() || t < windows_.front().from) return t;
@@ -129,6 +131,10 @@ class IpuTimeline {
   std::uint64_t dout_;
   State st_;
   std::vector<Tick> outPushes_;  // Q of output qwords not yet taken, by index mod (Dout + 1)
+  // A CSC command's steady state (plan): the channels and FIFOs after one macroblock and after the
+  // one before it, relative to each one's end.
+  std::vector<Tick> steadyNow_;
+  std::vector<Tick> steadyBefore_;
 };
 
 }  // namespace vbim::ipu
