@@ -78,9 +78,10 @@ struct PresenterCounters {
   std::int64_t uploadSetupQwords = 0;  // their GIFtags and register writes
   std::int64_t tilesBlended = 0;       // host work (convergence-aware mode skips the rest)
   std::int64_t tilesSkipped = 0;
-  std::int64_t tilesCopied = 0;    // taken from a twin instead of blended (followTwin)
-  std::int64_t tilesMirrored = 0;  // blends the run made for this mirroring reference (followTwin)
-  std::int64_t mirrorStops = 0;    // times the mirroring reference took its own bytes back
+  std::int64_t tilesCopied = 0;       // taken from a twin instead of blended (followTwin)
+  std::int64_t tilesMirrored = 0;     // blends the run made for this mirroring reference (followTwin)
+  std::int64_t mirrorStops = 0;       // times the mirroring reference stopped (and took its own bytes back)
+  std::int64_t mirrorRowsCopied = 0;  // lightmap rows it copied back from the run when it stopped
   Tick gsBusy = 0;
   Tick slip = 0;   // play-late: how far the schedule has slipped
   int maxPop = 0;  // largest pop, not counting the first frame copied into the empty lightmap
@@ -233,6 +234,10 @@ class Presenter {
   bool mayMirror_ = false;
   Tick lastBlendAt_ = -1;  // when this presenter last blended (or was asked to, mirroring)
   bool mirror_ = false;
+  // While mirroring, the rows [mirrorRow0_, mirrorRow1_) hold every blend the run made for this
+  // presenter: the only rows where its lightmap and this one's came apart since the mirror began.
+  int mirrorRow0_ = 0;
+  int mirrorRow1_ = 0;
   Waiting waiting_;
   // The run: whether its target holds the bytes of the reference's waiting blend's source, as last
   // found for the two generations (a frame's image does not change once decoded).

@@ -54,9 +54,11 @@ struct Case {
 struct Outcome {
   std::vector<VsyncRow> rows;
   Rgba8Image lightmap, sky, refLightmap, refSky;
-  std::int64_t copied = 0;    // tiles copied by either pipeline's presenters
-  std::int64_t mirrored = 0;  // tiles whose blend the reference took from the run's (mirroring)
-  std::int64_t stops = 0;     // times the mirroring reference took its own bytes back
+  std::int64_t copied = 0;      // tiles copied by either pipeline's presenters
+  std::int64_t mirrored = 0;    // tiles whose blend the reference took from the run's (mirroring)
+  std::int64_t stops = 0;       // times the mirroring reference took its own bytes back
+  std::int64_t rowsCopied = 0;  // lightmap rows it copied back from the run when it stopped
+  int height = 0;               // the lightmap's
   std::vector<gs::VsyncRecord> refRecords, refSkyRecords;
   std::int64_t decodesTaken = 0;  // decodes one IPU took from the other
 };
@@ -94,7 +96,9 @@ Outcome play(const Case& c, bool share, bool mirror, bool shareDecodes) {
     o.copied += pl->lightmap().counters().tilesCopied + pl->sky()->counters().tilesCopied;
     o.mirrored += pl->lightmap().counters().tilesMirrored + pl->sky()->counters().tilesMirrored;
     o.stops += pl->lightmap().counters().mirrorStops + pl->sky()->counters().mirrorStops;
+    o.rowsCopied += pl->lightmap().counters().mirrorRowsCopied + pl->sky()->counters().mirrorRowsCopied;
   }
+  o.height = o.lightmap.height;
   EXPECT_EQ(p.sharedDecodes() != nullptr, shareDecodes);
   if (p.sharedDecodes() != nullptr) o.decodesTaken = p.sharedDecodes()->counters().taken;
   return o;
@@ -174,10 +178,13 @@ void expectSameBytes(const Case& c) {
       EXPECT_GT(mirroring.mirrored, 1000) << "the reference should mirror the run while in step";
     }
   }
-  // Each stop copies the whole lightmap: a few per divergence, never one per blend.
+  // A few stops per divergence, never one per blend; each copies back only the rows the run blended
+  // for the reference while it mirrored, so never more than a few lightmaps' worth in all.
   EXPECT_LT(mirroring.stops, 40);
+  EXPECT_LT(mirroring.rowsCopied, 40 * mirroring.height);
   if (c.expectStops) {
     EXPECT_GT(mirroring.stops, 0) << "the late stall should make the reference take its bytes back";
+    EXPECT_GT(mirroring.rowsCopied, 0) << "it mirrored the run's blends, so it takes their rows back";
   }
 }
 
