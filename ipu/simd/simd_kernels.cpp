@@ -232,7 +232,8 @@ void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
 }
 
 // One row of the libmpeg2-family row pass (Pcsx2: PCSX2's IPU form, else libmpeg2 0.5.1's) into
-// out[0..7], each result truncated to 16 bits and sign-extended, as the decoders store it.
+// out[0..7] as 32-bit results; the decoders store their low 16 bits, which is all the column pass
+// reads of them.
 template <bool Pcsx2>
 HWY_INLINE void mpeg2Row(const std::int16_t* row, std::int32_t* out) {
   const hn::CappedTag<std::int32_t, 8> d;
@@ -260,47 +261,55 @@ HWY_INLINE void mpeg2Row(const std::int16_t* row, std::int32_t* out) {
     o = hn::IfThenElse(hn::MaskFromVec(hn::LoadU(d, T.rotated + n0)), r, o);
     const auto neg = hn::LoadU(d, T.negated + n0);
     o = hn::Sub(hn::Xor(o, neg), neg);
-    const auto x = hn::ShiftRight<kShift>(hn::Add(e, o));
-    hn::StoreU(hn::ShiftRight<16>(hn::ShiftLeft<16>(x)), d, out + n0);
+    // Not truncated here: the column pass takes each result's low 16 bits into its 16-bit pairs.
+    hn::StoreU(hn::ShiftRight<kShift>(hn::Add(e, o)), d, out + n0);
   }
+}
+
+// Rows a and b as 16-bit pairs: the low 16 bits of a's lane in the even, of b's in the odd 16-bit
+// lane (one shift and a pblendw on x86). The 16-bit truncation the decoders' block store does
+// between the passes comes with it.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE hn::Vec<hn::Repartition<std::int16_t, D>> pairOf(D /*d*/, V a, V b) {
+  const hn::Repartition<std::int16_t, D> d16;
+  return hn::OddEven(hn::BitCast(d16, hn::ShiftLeft<16>(b)), hn::BitCast(d16, a));
+}
+
+// ka * a + kb * b for each pair (a, b): pmaddwd on x86, exact in 32 bits (|k| < 2^15, so no pair
+// reaches its one overflow case), as the scalar code's sum of two 16 x 16 products is.
+template <std::int32_t Ka, std::int32_t Kb, class D, class V16>
+HWY_INLINE hn::Vec<D> madd(D d, V16 pair) {
+  const hn::Repartition<std::int16_t, D> d16;
+  constexpr auto k = static_cast<std::int32_t>(static_cast<std::uint32_t>(Ka & 0xFFFF) |
+                                               (static_cast<std::uint32_t>(Kb & 0xFFFF) << 16));
+  auto s1 = hn::Zero(d);
+  const auto s0 = hn::ReorderWidenMulAccumulate(d, pair, hn::BitCast(d16, hn::Set(d, k)), hn::Zero(d), s1);
+  return hn::RearrangeToOddPlusEven(s0, s1);
 }
 
 // The column pass on columns c0 .. c0 + N - 1 of the row results t (rows R and below are zero,
 // except row 7 in t7 when T7, R < 8: the mismatch toggle alone in row 7): out[y] = the 16-bit
 // result of output row y, before any clip. Sums wrap as the scalar code's, so their order is free.
+// Every product pair of the scalar pass is one pairwise multiply-add on rows paired as 16-bit
+// lanes (x1, x7), (x3, x5), (x2, x6), (x0, x4): pmaddwd where 32-bit multiplies (pmulld, two uops
+// and a long latency on Intel) took each product alone. With no row 4, x0 is paired with the
+// constant 32, so that 2048 * 32 is the pass's bias 65536.
 template <bool Pcsx2, int R, bool T7, class D, class V = hn::Vec<D>>
 HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7, std::size_t c0, V* out) {
   constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
+  const hn::Repartition<std::int16_t, D> d16;
   const auto x = [&](int r) { return hn::LoadU(d, t + static_cast<std::ptrdiff_t>(8 * r) + c0); };
   const auto k = [&](int c) { return hn::Set(d, c); };
   const V x0 = x(0), x1 = x(1);
-  const V d0 = hn::Add(hn::ShiftLeft<11>(x0), k(65536));
-  // Rows 0 and 1 only (R = 2): the even part is d0 and the odd sums are o0 and o1 alone.
-  V a0 = d0, a1 = d0, a2 = d0, a3 = d0;
-  V o0 = hn::Mul(k(kW1), x1), o1 = hn::Mul(k(kW7), x1);
-  if constexpr (T7 && R < 8) {
-    // Row 7's terms, as the R = 8 case below adds them.
-    const V x7 = hn::LoadU(d, t7 + c0);
-    o0 = hn::Add(o0, hn::Mul(k(kW7), x7));
-    o1 = hn::Sub(o1, hn::Mul(k(kW1), x7));
-  }
-  V b0 = o0, b3 = o1, u = o0, v = o1, b1, b2;
-  if constexpr (R > 2) {
-    const V x2 = x(2), x3 = x(3);
-    V e0 = d0, e1 = d0, e2 = hn::Mul(k(kW2), x2), e3 = hn::Mul(k(kW6), x2);
-    V o2 = hn::Mul(k(kW3), x3), o3 = hn::Mul(k(-kW5), x3);
-    if constexpr (R > 4) {
-      const V x4 = x(4), x5 = x(5), x6 = x(6), x7 = x(7);
-      const V d4 = hn::ShiftLeft<11>(x4);
-      e0 = hn::Add(d0, d4);
-      e1 = hn::Sub(d0, d4);
-      e2 = hn::Add(e2, hn::Mul(k(kW6), x6));
-      e3 = hn::Sub(e3, hn::Mul(k(kW2), x6));
-      o0 = hn::Add(o0, hn::Mul(k(kW7), x7));
-      o1 = hn::Sub(o1, hn::Mul(k(kW1), x7));
-      o2 = hn::Add(o2, hn::Mul(k(kW5), x5));
-      o3 = hn::Add(o3, hn::Mul(k(kW3), x5));
-    }
+  V a0, a1, a2, a3, b0, b3, u, v, b1, b2;
+  if constexpr (R > 4) {
+    const auto p04 = pairOf(d, x0, x(4)), p26 = pairOf(d, x(2), x(6));
+    const auto p17 = pairOf(d, x1, x(7)), p35 = pairOf(d, x(3), x(5));
+    const V e0 = hn::Add(madd<2048, 2048>(d, p04), k(65536));
+    const V e1 = hn::Add(madd<2048, -2048>(d, p04), k(65536));
+    const V e2 = madd<kW2, kW6>(d, p26), e3 = madd<kW6, -kW2>(d, p26);
+    const V o0 = madd<kW1, kW7>(d, p17), o1 = madd<kW7, -kW1>(d, p17);
+    const V o2 = madd<kW3, kW5>(d, p35), o3 = madd<-kW5, kW3>(d, p35);
     a0 = hn::Add(e0, e2);
     a1 = hn::Add(e1, e3);
     a2 = hn::Sub(e1, e3);
@@ -309,6 +318,32 @@ HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7,
     b3 = hn::Add(o1, o3);
     u = hn::Sub(o0, o2);
     v = hn::Sub(o1, o3);
+  } else {
+    static_assert(T7, "the 2- and 4-row forms take row 7 from its precomputed row pass");
+    const auto p0 = hn::OddEven(hn::BitCast(d16, k(32 << 16)), hn::BitCast(d16, x0));
+    const V d0 = madd<2048, 2048>(d, p0);  // x0 * 2048 + 65536
+    // Row 7's terms, as the R = 8 case adds them (t7 holds 16-bit values).
+    const auto p17 = pairOf(d, x1, hn::LoadU(d, t7 + c0));
+    const V o0 = madd<kW1, kW7>(d, p17), o1 = madd<kW7, -kW1>(d, p17);
+    if constexpr (R > 2) {
+      // Rows 2 and 3 as one pair, each multiplied alone (the other factor 0).
+      const auto p23 = pairOf(d, x(2), x(3));
+      const V e2 = madd<kW2, 0>(d, p23), e3 = madd<kW6, 0>(d, p23);
+      const V o2 = madd<0, kW3>(d, p23), o3 = madd<0, -kW5>(d, p23);
+      a0 = hn::Add(d0, e2);
+      a1 = hn::Add(d0, e3);
+      a2 = hn::Sub(d0, e3);
+      a3 = hn::Sub(d0, e2);
+      b0 = hn::Add(o0, o2);
+      b3 = hn::Add(o1, o3);
+      u = hn::Sub(o0, o2);
+      v = hn::Sub(o1, o3);
+    } else {
+      // Rows 0 and 1 only: the even part is d0 and the odd sums are o0 and o1 alone.
+      a0 = a1 = a2 = a3 = d0;
+      b0 = u = o0;
+      b3 = v = o1;
+    }
   }
   if constexpr (Pcsx2) {
     u = hn::ShiftRight<8>(u);
