@@ -75,6 +75,7 @@ struct Mpeg2Tables {
   // [libmpeg2 0.5.1's form][F[7][7] = +1, -1, no toggle]: the row pass of row 7 when the mismatch
   // toggle is its only coefficient, as mpeg2Row computes it (same steps, in constexpr integers), so
   // the kernel need not load row 7 the parser has just written; zeros when there is no toggle.
+  // Each value is held in the high 16 bits, where the column pass pairs it with row 1.
   alignas(64) std::int32_t toggleRow[2][3][8]{};
   constexpr Mpeg2Tables() {
     constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
@@ -113,7 +114,8 @@ struct Mpeg2Tables {
           if (n == 1 || n == 2 || n == 5 || n == 6) o = form ? (o >> 8) * 181 : (o * 181) >> 8;
           if (n == 5 || n == 6) o = -o;
           const int x = ((form ? 2048 : 128) + o) >> (form ? 12 : 8);
-          toggleRow[form][neg][n] = static_cast<std::int16_t>(x);
+          toggleRow[form][neg][n] =
+              static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint16_t>(x)) << 16);
         }
       }
     }
@@ -287,18 +289,18 @@ HWY_INLINE hn::Vec<D> madd(D d, V16 pair) {
   return hn::RearrangeToOddPlusEven(s0, s1);
 }
 
-// The column pass on columns c0 .. c0 + N - 1 of the row results t (rows R and below are zero,
-// except row 7 in t7 when T7, R < 8: the mismatch toggle alone in row 7): out[y] = the 16-bit
+// The column pass on columns c0 .. c0 + N - 1 of the row results rows[0 .. R - 1] (rows R and below
+// are zero, except row 7 in t7 when T7, R < 8: the mismatch toggle alone in row 7): out[y] = the 16-bit
 // result of output row y, before any clip. Sums wrap as the scalar code's, so their order is free.
 // Every product pair of the scalar pass is one pairwise multiply-add on rows paired as 16-bit
 // lanes (x1, x7), (x3, x5), (x2, x6), (x0, x4): pmaddwd where 32-bit multiplies (pmulld, two uops
 // and a long latency on Intel) took each product alone. With no row 4, x0 is paired with the
 // constant 32, so that 2048 * 32 is the pass's bias 65536.
 template <bool Pcsx2, int R, bool T7, class D, class V = hn::Vec<D>>
-HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7, std::size_t c0, V* out) {
+HWY_INLINE void mpeg2Columns(D d, const V* rows, const std::int32_t* t7, std::size_t c0, V* out) {
   constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
   const hn::Repartition<std::int16_t, D> d16;
-  const auto x = [&](int r) { return hn::LoadU(d, t + static_cast<std::ptrdiff_t>(8 * r) + c0); };
+  const auto x = [&](int r) { return rows[r]; };
   const auto k = [&](int c) { return hn::Set(d, c); };
   const V x0 = x(0), x1 = x(1);
   V a0, a1, a2, a3, b0, b3, u, v, b1, b2;
@@ -322,8 +324,8 @@ HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7,
     static_assert(T7, "the 2- and 4-row forms take row 7 from its precomputed row pass");
     const auto p0 = hn::OddEven(hn::BitCast(d16, k(32 << 16)), hn::BitCast(d16, x0));
     const V d0 = madd<2048, 2048>(d, p0);  // x0 * 2048 + 65536
-    // Row 7's terms, as the R = 8 case adds them (t7 holds 16-bit values).
-    const auto p17 = pairOf(d, x1, hn::LoadU(d, t7 + c0));
+    // Row 7's terms, as the R = 8 case adds them (t7 holds them in its high 16 bits).
+    const auto p17 = hn::OddEven(hn::BitCast(d16, hn::LoadU(d, t7 + c0)), hn::BitCast(d16, x1));
     const V o0 = madd<kW1, kW7>(d, p17), o1 = madd<kW7, -kW1>(d, p17);
     if constexpr (R > 2) {
       // Rows 2 and 3 as one pair, each multiplied alone (the other factor 0).
@@ -393,6 +395,46 @@ HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, s
 }
 #endif
 
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+// The row pass of rows a and b together, one per 128-bit block, into ra and rb (lane n = output n,
+// 32-bit results whose low 16 bits the column pass takes). A block's four lanes hold a0..a3 (even
+// part with the bias) and b0, u + v, u - v, b3 (odd part, from the first four lanes of the tables
+// mpeg2Row uses), the 181/256 step on the middle two; outputs 0..3 are a + b, outputs 4..7 are
+// a - b in reverse lane order. Two rows share each shuffle and multiply that mpeg2Row spends on one,
+// and no lane needs the negation of outputs 5 and 6; the two block permutes at the end put each
+// row's halves together.
+template <bool Pcsx2>
+HWY_INLINE void mpeg2RowPair(const std::int16_t* block, int a, int b, hn::Vec256<std::int32_t>& ra,
+                             hn::Vec256<std::int32_t>& rb) {
+  const hn::Full256<std::int32_t> d;
+  const hn::Full256<std::int16_t> d16;
+  const hn::Full256<std::uint8_t> d8;
+  const hn::Full128<std::int16_t> h16;
+  const auto& T = simd_detail::kMpeg2;
+  auto v = hn::Combine(d16, hn::LoadU(h16, block + static_cast<std::ptrdiff_t>(8 * b)),
+                       hn::LoadU(h16, block + static_cast<std::ptrdiff_t>(8 * a)));
+  if constexpr (!Pcsx2) v = hn::ShiftLeft<4>(v);  // libmpeg2 0.5.1 holds coefficients x16 (in 16 bits)
+  const auto ordered = hn::BitCast(d, hn::TableLookupBytes(hn::BitCast(d8, v), hn::LoadDup128(d8, T.pairs)));
+  const auto madd4 = [&](decltype(ordered) pair, const std::int16_t* k) {
+    auto s1 = hn::Zero(d);
+    const auto s0 = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, pair), hn::LoadDup128(d16, k), hn::Zero(d), s1);
+    return hn::RearrangeToOddPlusEven(s0, s1);
+  };
+  const auto e =
+      hn::Add(hn::Add(madd4(hn::Broadcast<0>(ordered), T.even04), madd4(hn::Broadcast<1>(ordered), T.even26)),
+              hn::Set(d, Pcsx2 ? 128 : 2048));
+  auto o = hn::Add(madd4(hn::Broadcast<2>(ordered), T.odd17), madd4(hn::Broadcast<3>(ordered), T.odd35));
+  const auto k181 = hn::Set(d, 181);
+  const auto r = Pcsx2 ? hn::ShiftRight<8>(hn::Mul(o, k181)) : hn::Mul(hn::ShiftRight<8>(o), k181);
+  o = hn::Vec256<std::int32_t>{_mm256_blend_epi32(o.raw, r.raw, 0x66)};  // lanes 1 and 2 of each block
+  constexpr int kShift = Pcsx2 ? 8 : 12;
+  const auto lo = hn::ShiftRight<kShift>(hn::Add(e, o));
+  const auto hi = hn::ShiftRight<kShift>(hn::Shuffle0123(hn::Sub(e, o)));
+  ra = hn::ConcatLowerLower(d, hi, lo);
+  rb = hn::ConcatUpperUpper(d, hi, lo);
+}
+#endif
+
 // The whole transform; with Add the result is added to dst, else it replaces it (both clamped).
 // T7 (R < 8): row 7 goes into the column pass's odd part from its precomputed row pass: that of
 // F[7][7] = +-1 alone in row 7 and column 7 (mismatch control) with `toggle`, else zeros.
@@ -401,7 +443,6 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* 
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
-  alignas(64) std::int32_t t[8 * R];
   // Row 7's precomputed pass, [F[7][7] < 0] with the toggle, [2] without, by arithmetic: written as
   // `toggle ? (block[63] < 0) : 2`, GCC 12 made it a branch on the toggle, which follows the parity
   // of the coefficients' sum: a coin toss on most 2- and 4-row residual blocks.
@@ -411,22 +452,25 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* 
   // Every row through the pass, without a branch on which rows are zero or hold x0 alone (the pass
   // gives 0 and x0 * 8 there): on busy pictures those branches were coin tosses, for the residual
   // blocks of P and B pictures and the 8-row intra blocks alike.
-  for (int r = 0; r < R; ++r) {
-    mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
-  }
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
   if constexpr (sizeof(hn::Vec<decltype(d)>) == 32) {
-    // All 8 columns in one vector per row.
-    hn::Vec<decltype(d)> res[8];
-    mpeg2Columns<Pcsx2, R, T7>(d, t, t7, 0, res);
+    // Two rows per row pass, all 8 columns in one vector per row for the column pass.
+    hn::Vec<decltype(d)> x[8], res[8];
+    for (int r = 0; r < R; r += 2) mpeg2RowPair<Pcsx2>(block, r, r + 1, x[r], x[r + 1]);
+    mpeg2Columns<Pcsx2, R, T7>(d, x, t7, 0, res);
     store4Rows<Add>(res, dst, stride);
     store4Rows<Add>(res + 4, dst + 4 * static_cast<std::ptrdiff_t>(stride), stride);
     return;
   }
 #endif
+  alignas(64) std::int32_t t[8 * R];
+  for (int r = 0; r < R; ++r) {
+    mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
+  }
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
-    hn::Vec<decltype(d)> res[8];
-    mpeg2Columns<Pcsx2, R, T7>(d, t, t7, c0, res);
+    hn::Vec<decltype(d)> x[8], res[8];
+    for (int r = 0; r < R; ++r) x[r] = hn::LoadU(d, t + static_cast<std::ptrdiff_t>(8 * r) + c0);
+    mpeg2Columns<Pcsx2, R, T7>(d, x, t7, c0, res);
     for (int y = 0; y < 8; ++y) {
       std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride + c0;
       auto v = res[y];
