@@ -72,6 +72,11 @@ struct Mpeg2Tables {
   alignas(64) std::int32_t rotated[8]{};  // -1 in lanes 1, 2, 5, 6: the 181/256 step applies
   alignas(64) std::int32_t negated[8]{};  // -1 in lanes 5, 6: that step's result is subtracted
   alignas(16) std::uint8_t pairs[16]{};   // the row's bytes reordered to x0 x4 x2 x6 x1 x7 x3 x5
+  // The same for two rows in one 256-bit vector (mpeg2RowPair): in each 128-bit block the first four
+  // lanes of even04, even26, odd17, odd35, and pairs. Full-width tables: GCC 12 builds a duplicated
+  // 128-bit load as a load and a vinserti128, which takes the shuffle port.
+  alignas(32) std::int16_t quad[4][16]{};
+  alignas(32) std::uint8_t pairs2[32]{};
   // [libmpeg2 0.5.1's form][F[7][7] = +1, -1, no toggle]: the row pass of row 7 when the mismatch
   // toggle is its only coefficient, as mpeg2Row computes it (same steps, in constexpr integers), so
   // the kernel need not load row 7 the parser has just written; zeros when there is no toggle.
@@ -123,6 +128,13 @@ struct Mpeg2Tables {
     for (int i = 0; i < 8; ++i) {
       pairs[2 * i] = static_cast<std::uint8_t>(2 * kOrder[i]);
       pairs[2 * i + 1] = static_cast<std::uint8_t>(2 * kOrder[i] + 1);
+    }
+    for (int i = 0; i < 16; ++i) {
+      quad[0][i] = even04[i % 8];
+      quad[1][i] = even26[i % 8];
+      quad[2][i] = odd17[i % 8];
+      quad[3][i] = odd35[i % 8];
+      pairs2[i] = pairs2[16 + i] = pairs[i];
     }
   }
 };
@@ -396,34 +408,31 @@ HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, s
 #endif
 
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
-// The row pass of rows a and b together, one per 128-bit block, into ra and rb (lane n = output n,
-// 32-bit results whose low 16 bits the column pass takes). A block's four lanes hold a0..a3 (even
-// part with the bias) and b0, u + v, u - v, b3 (odd part, from the first four lanes of the tables
-// mpeg2Row uses), the 181/256 step on the middle two; outputs 0..3 are a + b, outputs 4..7 are
-// a - b in reverse lane order. Two rows share each shuffle and multiply that mpeg2Row spends on one,
-// and no lane needs the negation of outputs 5 and 6; the two block permutes at the end put each
-// row's halves together.
+// The row pass of two adjacent rows (rows[0..15], one load) together, one per 128-bit block, into
+// ra and rb (lane n = output n, 32-bit results whose low 16 bits the column pass takes). A block's
+// four lanes hold a0..a3 (even part with the bias) and b0, u + v, u - v, b3 (odd part, from the
+// first four lanes of the tables mpeg2Row uses), the 181/256 step on the middle two; outputs 0..3
+// are a + b, outputs 4..7 are a - b in reverse lane order. Two rows share each shuffle and multiply
+// that mpeg2Row spends on one, and no lane needs the negation of outputs 5 and 6; two block
+// permutes at the end put each row's halves together.
 template <bool Pcsx2>
-HWY_INLINE void mpeg2RowPair(const std::int16_t* block, int a, int b, hn::Vec256<std::int32_t>& ra,
-                             hn::Vec256<std::int32_t>& rb) {
+HWY_INLINE void mpeg2RowPair(const std::int16_t* rows, hn::Vec256<std::int32_t>& ra, hn::Vec256<std::int32_t>& rb) {
   const hn::Full256<std::int32_t> d;
   const hn::Full256<std::int16_t> d16;
   const hn::Full256<std::uint8_t> d8;
-  const hn::Full128<std::int16_t> h16;
   const auto& T = simd_detail::kMpeg2;
-  auto v = hn::Combine(d16, hn::LoadU(h16, block + static_cast<std::ptrdiff_t>(8 * b)),
-                       hn::LoadU(h16, block + static_cast<std::ptrdiff_t>(8 * a)));
+  auto v = hn::LoadU(d16, rows);
   if constexpr (!Pcsx2) v = hn::ShiftLeft<4>(v);  // libmpeg2 0.5.1 holds coefficients x16 (in 16 bits)
-  const auto ordered = hn::BitCast(d, hn::TableLookupBytes(hn::BitCast(d8, v), hn::LoadDup128(d8, T.pairs)));
+  const auto ordered = hn::BitCast(d, hn::TableLookupBytes(hn::BitCast(d8, v), hn::Load(d8, T.pairs2)));
   const auto madd4 = [&](decltype(ordered) pair, const std::int16_t* k) {
     auto s1 = hn::Zero(d);
-    const auto s0 = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, pair), hn::LoadDup128(d16, k), hn::Zero(d), s1);
+    const auto s0 = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, pair), hn::Load(d16, k), hn::Zero(d), s1);
     return hn::RearrangeToOddPlusEven(s0, s1);
   };
   const auto e =
-      hn::Add(hn::Add(madd4(hn::Broadcast<0>(ordered), T.even04), madd4(hn::Broadcast<1>(ordered), T.even26)),
+      hn::Add(hn::Add(madd4(hn::Broadcast<0>(ordered), T.quad[0]), madd4(hn::Broadcast<1>(ordered), T.quad[1])),
               hn::Set(d, Pcsx2 ? 128 : 2048));
-  auto o = hn::Add(madd4(hn::Broadcast<2>(ordered), T.odd17), madd4(hn::Broadcast<3>(ordered), T.odd35));
+  auto o = hn::Add(madd4(hn::Broadcast<2>(ordered), T.quad[2]), madd4(hn::Broadcast<3>(ordered), T.quad[3]));
   const auto k181 = hn::Set(d, 181);
   const auto r = Pcsx2 ? hn::ShiftRight<8>(hn::Mul(o, k181)) : hn::Mul(hn::ShiftRight<8>(o), k181);
   o = hn::Vec256<std::int32_t>{_mm256_blend_epi32(o.raw, r.raw, 0x66)};  // lanes 1 and 2 of each block
@@ -456,7 +465,7 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* 
   if constexpr (sizeof(hn::Vec<decltype(d)>) == 32) {
     // Two rows per row pass, all 8 columns in one vector per row for the column pass.
     hn::Vec<decltype(d)> x[8], res[8];
-    for (int r = 0; r < R; r += 2) mpeg2RowPair<Pcsx2>(block, r, r + 1, x[r], x[r + 1]);
+    for (int r = 0; r < R; r += 2) mpeg2RowPair<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), x[r], x[r + 1]);
     mpeg2Columns<Pcsx2, R, T7>(d, x, t7, 0, res);
     store4Rows<Add>(res, dst, stride);
     store4Rows<Add>(res + 4, dst + 4 * static_cast<std::ptrdiff_t>(stride), stride);
