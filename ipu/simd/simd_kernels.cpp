@@ -398,12 +398,13 @@ HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, s
   const __m256i rows = _mm256_permutevar8x32_epi32(bytes, _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7));
   const __m128i ab = _mm256_castsi256_si128(rows);
   const __m128i cd = _mm256_extracti128_si256(rows, 1);
-  // The high halves through movq as well: _mm_storeh_pd stores through a double*, which UBSan
-  // rightly calls a misaligned store (rows start at any byte).
+  // The high halves by movhps (a store alone, where a shift down first takes the shuffle port).
+  // Not _mm_storeh_pd: GCC 12 writes it as a store through a double*, which UBSan rightly calls
+  // misaligned (rows start at any byte); _mm_storeh_pi is a builtin, no typed access.
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), ab);
-  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + stride), _mm_unpackhi_epi64(ab, ab));
+  _mm_storeh_pi(reinterpret_cast<__m64*>(p + stride), _mm_castsi128_ps(ab));
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 2 * stride), cd);
-  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 3 * stride), _mm_unpackhi_epi64(cd, cd));
+  _mm_storeh_pi(reinterpret_cast<__m64*>(p + 3 * stride), _mm_castsi128_ps(cd));
 }
 #endif
 
