@@ -72,9 +72,15 @@ struct Mpeg2Tables {
   alignas(64) std::int32_t rotated[8]{};  // -1 in lanes 1, 2, 5, 6: the 181/256 step applies
   alignas(64) std::int32_t negated[8]{};  // -1 in lanes 5, 6: that step's result is subtracted
   alignas(16) std::uint8_t pairs[16]{};   // the row's bytes reordered to x0 x4 x2 x6 x1 x7 x3 x5
+  // The same for two rows in one 256-bit vector (mpeg2RowPair): in each 128-bit block the first four
+  // lanes of even04, even26, odd17, odd35, and pairs. Full-width tables: GCC 12 builds a duplicated
+  // 128-bit load as a load and a vinserti128, which takes the shuffle port.
+  alignas(32) std::int16_t quad[4][16]{};
+  alignas(32) std::uint8_t pairs2[32]{};
   // [libmpeg2 0.5.1's form][F[7][7] = +1, -1, no toggle]: the row pass of row 7 when the mismatch
   // toggle is its only coefficient, as mpeg2Row computes it (same steps, in constexpr integers), so
   // the kernel need not load row 7 the parser has just written; zeros when there is no toggle.
+  // Each value is held in the high 16 bits, where the column pass pairs it with row 1.
   alignas(64) std::int32_t toggleRow[2][3][8]{};
   constexpr Mpeg2Tables() {
     constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
@@ -113,7 +119,8 @@ struct Mpeg2Tables {
           if (n == 1 || n == 2 || n == 5 || n == 6) o = form ? (o >> 8) * 181 : (o * 181) >> 8;
           if (n == 5 || n == 6) o = -o;
           const int x = ((form ? 2048 : 128) + o) >> (form ? 12 : 8);
-          toggleRow[form][neg][n] = static_cast<std::int16_t>(x);
+          toggleRow[form][neg][n] =
+              static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint16_t>(x)) << 16);
         }
       }
     }
@@ -121,6 +128,13 @@ struct Mpeg2Tables {
     for (int i = 0; i < 8; ++i) {
       pairs[2 * i] = static_cast<std::uint8_t>(2 * kOrder[i]);
       pairs[2 * i + 1] = static_cast<std::uint8_t>(2 * kOrder[i] + 1);
+    }
+    for (int i = 0; i < 16; ++i) {
+      quad[0][i] = even04[i % 8];
+      quad[1][i] = even26[i % 8];
+      quad[2][i] = odd17[i % 8];
+      quad[3][i] = odd35[i % 8];
+      pairs2[i] = pairs2[16 + i] = pairs[i];
     }
   }
 };
@@ -232,7 +246,8 @@ void idctImpl(const std::int16_t* block, unsigned rowMask, unsigned colMask, std
 }
 
 // One row of the libmpeg2-family row pass (Pcsx2: PCSX2's IPU form, else libmpeg2 0.5.1's) into
-// out[0..7], each result truncated to 16 bits and sign-extended, as the decoders store it.
+// out[0..7] as 32-bit results; the decoders store their low 16 bits, which is all the column pass
+// reads of them.
 template <bool Pcsx2>
 HWY_INLINE void mpeg2Row(const std::int16_t* row, std::int32_t* out) {
   const hn::CappedTag<std::int32_t, 8> d;
@@ -260,47 +275,55 @@ HWY_INLINE void mpeg2Row(const std::int16_t* row, std::int32_t* out) {
     o = hn::IfThenElse(hn::MaskFromVec(hn::LoadU(d, T.rotated + n0)), r, o);
     const auto neg = hn::LoadU(d, T.negated + n0);
     o = hn::Sub(hn::Xor(o, neg), neg);
-    const auto x = hn::ShiftRight<kShift>(hn::Add(e, o));
-    hn::StoreU(hn::ShiftRight<16>(hn::ShiftLeft<16>(x)), d, out + n0);
+    // Not truncated here: the column pass takes each result's low 16 bits into its 16-bit pairs.
+    hn::StoreU(hn::ShiftRight<kShift>(hn::Add(e, o)), d, out + n0);
   }
 }
 
-// The column pass on columns c0 .. c0 + N - 1 of the row results t (rows R and below are zero,
-// except row 7 in t7 when T7, R < 8: the mismatch toggle alone in row 7): out[y] = the 16-bit
+// Rows a and b as 16-bit pairs: the low 16 bits of a's lane in the even, of b's in the odd 16-bit
+// lane (one shift and a pblendw on x86). The 16-bit truncation the decoders' block store does
+// between the passes comes with it.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE hn::Vec<hn::Repartition<std::int16_t, D>> pairOf(D /*d*/, V a, V b) {
+  const hn::Repartition<std::int16_t, D> d16;
+  return hn::OddEven(hn::BitCast(d16, hn::ShiftLeft<16>(b)), hn::BitCast(d16, a));
+}
+
+// ka * a + kb * b for each pair (a, b): pmaddwd on x86, exact in 32 bits (|k| < 2^15, so no pair
+// reaches its one overflow case), as the scalar code's sum of two 16 x 16 products is.
+template <std::int32_t Ka, std::int32_t Kb, class D, class V16>
+HWY_INLINE hn::Vec<D> madd(D d, V16 pair) {
+  const hn::Repartition<std::int16_t, D> d16;
+  constexpr auto k = static_cast<std::int32_t>(static_cast<std::uint32_t>(Ka & 0xFFFF) |
+                                               (static_cast<std::uint32_t>(Kb & 0xFFFF) << 16));
+  auto s1 = hn::Zero(d);
+  const auto s0 = hn::ReorderWidenMulAccumulate(d, pair, hn::BitCast(d16, hn::Set(d, k)), hn::Zero(d), s1);
+  return hn::RearrangeToOddPlusEven(s0, s1);
+}
+
+// The column pass on columns c0 .. c0 + N - 1 of the row results rows[0 .. R - 1] (rows R and below
+// are zero, except row 7 in t7 when T7, R < 8: the mismatch toggle alone in row 7): out[y] = the 16-bit
 // result of output row y, before any clip. Sums wrap as the scalar code's, so their order is free.
+// Every product pair of the scalar pass is one pairwise multiply-add on rows paired as 16-bit
+// lanes (x1, x7), (x3, x5), (x2, x6), (x0, x4): pmaddwd where 32-bit multiplies (pmulld, two uops
+// and a long latency on Intel) took each product alone. With no row 4, x0 is paired with the
+// constant 32, so that 2048 * 32 is the pass's bias 65536.
 template <bool Pcsx2, int R, bool T7, class D, class V = hn::Vec<D>>
-HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7, std::size_t c0, V* out) {
+HWY_INLINE void mpeg2Columns(D d, const V* rows, const std::int32_t* t7, std::size_t c0, V* out) {
   constexpr int kW1 = 2841, kW2 = 2676, kW3 = 2408, kW5 = 1609, kW6 = 1108, kW7 = 565;
-  const auto x = [&](int r) { return hn::LoadU(d, t + static_cast<std::ptrdiff_t>(8 * r) + c0); };
+  const hn::Repartition<std::int16_t, D> d16;
+  const auto x = [&](int r) { return rows[r]; };
   const auto k = [&](int c) { return hn::Set(d, c); };
   const V x0 = x(0), x1 = x(1);
-  const V d0 = hn::Add(hn::ShiftLeft<11>(x0), k(65536));
-  // Rows 0 and 1 only (R = 2): the even part is d0 and the odd sums are o0 and o1 alone.
-  V a0 = d0, a1 = d0, a2 = d0, a3 = d0;
-  V o0 = hn::Mul(k(kW1), x1), o1 = hn::Mul(k(kW7), x1);
-  if constexpr (T7 && R < 8) {
-    // Row 7's terms, as the R = 8 case below adds them.
-    const V x7 = hn::LoadU(d, t7 + c0);
-    o0 = hn::Add(o0, hn::Mul(k(kW7), x7));
-    o1 = hn::Sub(o1, hn::Mul(k(kW1), x7));
-  }
-  V b0 = o0, b3 = o1, u = o0, v = o1, b1, b2;
-  if constexpr (R > 2) {
-    const V x2 = x(2), x3 = x(3);
-    V e0 = d0, e1 = d0, e2 = hn::Mul(k(kW2), x2), e3 = hn::Mul(k(kW6), x2);
-    V o2 = hn::Mul(k(kW3), x3), o3 = hn::Mul(k(-kW5), x3);
-    if constexpr (R > 4) {
-      const V x4 = x(4), x5 = x(5), x6 = x(6), x7 = x(7);
-      const V d4 = hn::ShiftLeft<11>(x4);
-      e0 = hn::Add(d0, d4);
-      e1 = hn::Sub(d0, d4);
-      e2 = hn::Add(e2, hn::Mul(k(kW6), x6));
-      e3 = hn::Sub(e3, hn::Mul(k(kW2), x6));
-      o0 = hn::Add(o0, hn::Mul(k(kW7), x7));
-      o1 = hn::Sub(o1, hn::Mul(k(kW1), x7));
-      o2 = hn::Add(o2, hn::Mul(k(kW5), x5));
-      o3 = hn::Add(o3, hn::Mul(k(kW3), x5));
-    }
+  V a0, a1, a2, a3, b0, b3, u, v, b1, b2;
+  if constexpr (R > 4) {
+    const auto p04 = pairOf(d, x0, x(4)), p26 = pairOf(d, x(2), x(6));
+    const auto p17 = pairOf(d, x1, x(7)), p35 = pairOf(d, x(3), x(5));
+    const V e0 = hn::Add(madd<2048, 2048>(d, p04), k(65536));
+    const V e1 = hn::Add(madd<2048, -2048>(d, p04), k(65536));
+    const V e2 = madd<kW2, kW6>(d, p26), e3 = madd<kW6, -kW2>(d, p26);
+    const V o0 = madd<kW1, kW7>(d, p17), o1 = madd<kW7, -kW1>(d, p17);
+    const V o2 = madd<kW3, kW5>(d, p35), o3 = madd<-kW5, kW3>(d, p35);
     a0 = hn::Add(e0, e2);
     a1 = hn::Add(e1, e3);
     a2 = hn::Sub(e1, e3);
@@ -309,6 +332,32 @@ HWY_INLINE void mpeg2Columns(D d, const std::int32_t* t, const std::int32_t* t7,
     b3 = hn::Add(o1, o3);
     u = hn::Sub(o0, o2);
     v = hn::Sub(o1, o3);
+  } else {
+    static_assert(T7, "the 2- and 4-row forms take row 7 from its precomputed row pass");
+    const auto p0 = hn::OddEven(hn::BitCast(d16, k(32 << 16)), hn::BitCast(d16, x0));
+    const V d0 = madd<2048, 2048>(d, p0);  // x0 * 2048 + 65536
+    // Row 7's terms, as the R = 8 case adds them (t7 holds them in its high 16 bits).
+    const auto p17 = hn::OddEven(hn::BitCast(d16, hn::LoadU(d, t7 + c0)), hn::BitCast(d16, x1));
+    const V o0 = madd<kW1, kW7>(d, p17), o1 = madd<kW7, -kW1>(d, p17);
+    if constexpr (R > 2) {
+      // Rows 2 and 3 as one pair, each multiplied alone (the other factor 0).
+      const auto p23 = pairOf(d, x(2), x(3));
+      const V e2 = madd<kW2, 0>(d, p23), e3 = madd<kW6, 0>(d, p23);
+      const V o2 = madd<0, kW3>(d, p23), o3 = madd<0, -kW5>(d, p23);
+      a0 = hn::Add(d0, e2);
+      a1 = hn::Add(d0, e3);
+      a2 = hn::Sub(d0, e3);
+      a3 = hn::Sub(d0, e2);
+      b0 = hn::Add(o0, o2);
+      b3 = hn::Add(o1, o3);
+      u = hn::Sub(o0, o2);
+      v = hn::Sub(o1, o3);
+    } else {
+      // Rows 0 and 1 only: the even part is d0 and the odd sums are o0 and o1 alone.
+      a0 = a1 = a2 = a3 = d0;
+      b0 = u = o0;
+      b3 = v = o1;
+    }
   }
   if constexpr (Pcsx2) {
     u = hn::ShiftRight<8>(u);
@@ -349,12 +398,50 @@ HWY_INLINE void store4Rows(const hn::Vec256<std::int32_t>* v, std::uint8_t* p, s
   const __m256i rows = _mm256_permutevar8x32_epi32(bytes, _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7));
   const __m128i ab = _mm256_castsi256_si128(rows);
   const __m128i cd = _mm256_extracti128_si256(rows, 1);
-  // The high halves through movq as well: _mm_storeh_pd stores through a double*, which UBSan
-  // rightly calls a misaligned store (rows start at any byte).
+  // The high halves by movhps (a store alone, where a shift down first takes the shuffle port).
+  // Not _mm_storeh_pd: GCC 12 writes it as a store through a double*, which UBSan rightly calls
+  // misaligned (rows start at any byte); _mm_storeh_pi is a builtin, no typed access.
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), ab);
-  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + stride), _mm_unpackhi_epi64(ab, ab));
+  _mm_storeh_pi(reinterpret_cast<__m64*>(p + stride), _mm_castsi128_ps(ab));
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 2 * stride), cd);
-  _mm_storel_epi64(reinterpret_cast<__m128i*>(p + 3 * stride), _mm_unpackhi_epi64(cd, cd));
+  _mm_storeh_pi(reinterpret_cast<__m64*>(p + 3 * stride), _mm_castsi128_ps(cd));
+}
+#endif
+
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+// The row pass of two adjacent rows (rows[0..15], one load) together, one per 128-bit block, into
+// ra and rb (lane n = output n, 32-bit results whose low 16 bits the column pass takes). A block's
+// four lanes hold a0..a3 (even part with the bias) and b0, u + v, u - v, b3 (odd part, from the
+// first four lanes of the tables mpeg2Row uses), the 181/256 step on the middle two; outputs 0..3
+// are a + b, outputs 4..7 are a - b in reverse lane order. Two rows share each shuffle and multiply
+// that mpeg2Row spends on one, and no lane needs the negation of outputs 5 and 6; two block
+// permutes at the end put each row's halves together.
+template <bool Pcsx2>
+HWY_INLINE void mpeg2RowPair(const std::int16_t* rows, hn::Vec256<std::int32_t>& ra, hn::Vec256<std::int32_t>& rb) {
+  const hn::Full256<std::int32_t> d;
+  const hn::Full256<std::int16_t> d16;
+  const hn::Full256<std::uint8_t> d8;
+  const auto& T = simd_detail::kMpeg2;
+  auto v = hn::LoadU(d16, rows);
+  if constexpr (!Pcsx2) v = hn::ShiftLeft<4>(v);  // libmpeg2 0.5.1 holds coefficients x16 (in 16 bits)
+  const auto ordered = hn::BitCast(d, hn::TableLookupBytes(hn::BitCast(d8, v), hn::Load(d8, T.pairs2)));
+  const auto madd4 = [&](decltype(ordered) pair, const std::int16_t* k) {
+    auto s1 = hn::Zero(d);
+    const auto s0 = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, pair), hn::Load(d16, k), hn::Zero(d), s1);
+    return hn::RearrangeToOddPlusEven(s0, s1);
+  };
+  const auto e =
+      hn::Add(hn::Add(madd4(hn::Broadcast<0>(ordered), T.quad[0]), madd4(hn::Broadcast<1>(ordered), T.quad[1])),
+              hn::Set(d, Pcsx2 ? 128 : 2048));
+  auto o = hn::Add(madd4(hn::Broadcast<2>(ordered), T.quad[2]), madd4(hn::Broadcast<3>(ordered), T.quad[3]));
+  const auto k181 = hn::Set(d, 181);
+  const auto r = Pcsx2 ? hn::ShiftRight<8>(hn::Mul(o, k181)) : hn::Mul(hn::ShiftRight<8>(o), k181);
+  o = hn::Vec256<std::int32_t>{_mm256_blend_epi32(o.raw, r.raw, 0x66)};  // lanes 1 and 2 of each block
+  constexpr int kShift = Pcsx2 ? 8 : 12;
+  const auto lo = hn::ShiftRight<kShift>(hn::Add(e, o));
+  const auto hi = hn::ShiftRight<kShift>(hn::Shuffle0123(hn::Sub(e, o)));
+  ra = hn::ConcatLowerLower(d, hi, lo);
+  rb = hn::ConcatUpperUpper(d, hi, lo);
 }
 #endif
 
@@ -366,7 +453,6 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* 
   const hn::CappedTag<std::int32_t, 8> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
-  alignas(64) std::int32_t t[8 * R];
   // Row 7's precomputed pass, [F[7][7] < 0] with the toggle, [2] without, by arithmetic: written as
   // `toggle ? (block[63] < 0) : 2`, GCC 12 made it a branch on the toggle, which follows the parity
   // of the coefficients' sum: a coin toss on most 2- and 4-row residual blocks.
@@ -376,22 +462,25 @@ HWY_INLINE void mpeg2Rows(const std::int16_t* block, bool toggle, std::uint8_t* 
   // Every row through the pass, without a branch on which rows are zero or hold x0 alone (the pass
   // gives 0 and x0 * 8 there): on busy pictures those branches were coin tosses, for the residual
   // blocks of P and B pictures and the 8-row intra blocks alike.
-  for (int r = 0; r < R; ++r) {
-    mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
-  }
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
   if constexpr (sizeof(hn::Vec<decltype(d)>) == 32) {
-    // All 8 columns in one vector per row.
-    hn::Vec<decltype(d)> res[8];
-    mpeg2Columns<Pcsx2, R, T7>(d, t, t7, 0, res);
+    // Two rows per row pass, all 8 columns in one vector per row for the column pass.
+    hn::Vec<decltype(d)> x[8], res[8];
+    for (int r = 0; r < R; r += 2) mpeg2RowPair<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), x[r], x[r + 1]);
+    mpeg2Columns<Pcsx2, R, T7>(d, x, t7, 0, res);
     store4Rows<Add>(res, dst, stride);
     store4Rows<Add>(res + 4, dst + 4 * static_cast<std::ptrdiff_t>(stride), stride);
     return;
   }
 #endif
+  alignas(64) std::int32_t t[8 * R];
+  for (int r = 0; r < R; ++r) {
+    mpeg2Row<Pcsx2>(block + static_cast<std::ptrdiff_t>(8 * r), t + static_cast<std::ptrdiff_t>(8 * r));
+  }
   for (std::size_t c0 = 0; c0 < 8; c0 += N) {
-    hn::Vec<decltype(d)> res[8];
-    mpeg2Columns<Pcsx2, R, T7>(d, t, t7, c0, res);
+    hn::Vec<decltype(d)> x[8], res[8];
+    for (int r = 0; r < R; ++r) x[r] = hn::LoadU(d, t + static_cast<std::ptrdiff_t>(8 * r) + c0);
+    mpeg2Columns<Pcsx2, R, T7>(d, x, t7, c0, res);
     for (int y = 0; y < 8; ++y) {
       std::uint8_t* p = dst + static_cast<std::ptrdiff_t>(y) * stride + c0;
       auto v = res[y];

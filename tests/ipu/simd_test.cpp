@@ -176,6 +176,52 @@ TEST(IpuSimd, TightMasksAndToggleMatchScalar) {
   });
 }
 
+// The 2- and 4-row forms of the libmpeg2-family kernels with row results beyond 16 bits: both
+// decoders store the row pass in 16 bits (wrapping), and the kernels take those low 16 bits into
+// the column pass's 16-bit pairs. Rows below R at the extremes with the signs of one output
+// column's basis (row results ~ +-122,000), with and without the mismatch toggle in row 7.
+TEST(IpuSimd, ShortFormsWrapRowResultsAsScalar) {
+  // The row result at the chosen column, |sum_u F[u] B(u, x)| / 256 with B(0) = 2048 and
+  // |B(u)| = 2048 sqrt(2) |cos((2x + 1) u pi / 16)|: beyond int16, so the test reaches the wrap.
+  for (int x0 = 0; x0 < 8; ++x0) {
+    double sum = 2048;
+    for (int u = 1; u < 8; ++u) sum += 2048 * std::sqrt(2.0) * std::abs(std::cos((2 * x0 + 1) * u * M_PI / 16));
+    ASSERT_GT(2047 * sum / 256, 65536.0) << "column " << x0;
+  }
+  forEachTarget([] {
+    const Kernels target = simdKernelsOfCurrentTarget();
+    for (IdctKind kind : {IdctKind::Pcsx2, IdctKind::Libmpeg2}) {
+      SCOPED_TRACE(idctKindName(kind));
+      const IdctKernels& s = scalarKernels().idctOf(kind);
+      const IdctKernels& v = target.idctOf(kind);
+      for (int rowsUsed : {2, 4})
+        for (int x0 = 0; x0 < 8; ++x0)
+          for (int sign : {1, -1})
+            for (int toggle : {0, 1, -1}) {
+              std::int16_t blk[64] = {};
+              for (int r = 0; r < rowsUsed; ++r)
+                for (int u = 0; u < (toggle ? 7 : 8); ++u) {
+                  const double c = std::cos((2 * x0 + 1) * u * M_PI / 16) * ((r & 1) ? -sign : sign);
+                  blk[8 * r + u] = static_cast<std::int16_t>(c >= 0 ? 2047 : -2047);
+                }
+              blk[63] = static_cast<std::int16_t>(toggle);
+              const unsigned rows = ((1u << rowsUsed) - 1) | (toggle ? kIdctToggleOnly : 0u);
+              const unsigned cols = toggle ? 0x7Fu : 0xFFu;
+              std::uint8_t a[64], c[64];
+              s.copy(blk, rows, cols, a, 8);
+              v.copy(blk, rows, cols, c, 8);
+              for (int i = 0; i < 64; ++i)
+                ASSERT_EQ(a[i], c[i]) << "copy, rows " << rowsUsed << " column " << x0 << " toggle " << toggle;
+              for (int i = 0; i < 64; ++i) a[i] = c[i] = static_cast<std::uint8_t>(37 * i);
+              s.add(blk, rows, cols, a, 8);
+              v.add(blk, rows, cols, c, 8);
+              for (int i = 0; i < 64; ++i)
+                ASSERT_EQ(a[i], c[i]) << "add, rows " << rowsUsed << " column " << x0 << " toggle " << toggle;
+            }
+    }
+  });
+}
+
 TEST(IpuSimd, CscMatchesScalar) {
   forEachTarget([] {
     Lcg rng{11};
