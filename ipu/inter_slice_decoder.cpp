@@ -73,8 +73,18 @@ class InterSliceDecoder {
   bool vector(int s, int r, bool fieldFormat, int& mvx, int& mvy, int* dmv);
   bool motionVectors(int s, int motionType);
   bool concealmentVectors();
+  // What every block of a macroblock reads: set up once per macroblock instead of once per block
+  // (GCC reloaded each through `this` for every block).
+  struct BlockTables {
+    const DctCodeEntry* shortCodes;  // intra or non-intra short codes (B.14 or B.15)
+    const DctCodeEntry* longCodes;   // 12..16-bit codes
+    const DctCodeEobEntry* first;    // non-intra: the first code of a block ('1s' is run 0, level 1)
+    const DctCodeEobEntry* next;     // non-intra: the codes after it
+    const InterScanSlot* slots;      // intra or non-intra matrix
+    int scale;                       // quantiser_scale
+  };
   template <bool Intra, bool Mpeg1>
-  bool parseBlock(BitReader& br, int b, IssueKind& why);
+  bool parseBlock(BitReader& br, const BlockTables& bt, int b, IssueKind& why);
   template <bool Mpeg1>
   bool parseBlocks(bool intra, IssueKind& why);
   void predictAndStore(bool parsed);
@@ -237,13 +247,19 @@ bool InterSliceDecoder::parseBlocks(bool intra, IssueKind& why) {
   bool ok = true;
   std::memset(mb_.rowMask, 0, sizeof mb_.rowMask);
   std::memset(mb_.colMask, 0, sizeof mb_.colMask);
+  const BlockTables bt{t_.dctShort[(intra && !Mpeg1 && pp_.intraVlcFormat) ? 1 : 0],
+                       t_.dctLong,
+                       t_.dctNonIntra[0],
+                       t_.dctNonIntra[1],
+                       scan_[intra ? 1 : 0].data(),
+                       scale_};
   // The coded blocks one by one, the next from the highest pattern bit left (bit 5 is block 0):
   // one branch on the count instead of one on every block's bit, which a busy P or B picture
   // makes unpredictable.
   for (unsigned pattern = mb_.pattern & 0x3Fu; pattern != 0 && ok;) {
     const int b = std::countl_zero(pattern) - 26;
     pattern &= ~(32u >> b);
-    ok = intra ? parseBlock<true, Mpeg1>(br, b, why) : parseBlock<false, Mpeg1>(br, b, why);
+    ok = intra ? parseBlock<true, Mpeg1>(br, bt, b, why) : parseBlock<false, Mpeg1>(br, bt, b, why);
   }
   br_ = br;
   return ok;
@@ -253,7 +269,8 @@ bool InterSliceDecoder::parseBlocks(bool intra, IssueKind& why) {
 // first code may be '1s' (run 0, level 1). Leaves the IDCT's masks and flags (ipu/kernels.hpp) in
 // mb_.rowMask / mb_.colMask.
 template <bool Intra, bool Mpeg1>
-[[gnu::always_inline]] inline bool InterSliceDecoder::parseBlock(BitReader& br, int b, IssueKind& why) {
+[[gnu::always_inline]] inline bool InterSliceDecoder::parseBlock(BitReader& br, const BlockTables& bt, int b,
+                                                                 IssueKind& why) {
   std::int16_t* blk = mb_.block[b];
   unsigned parity = 0;
   unsigned masks = 0;
@@ -279,11 +296,11 @@ template <bool Intra, bool Mpeg1>
     parity = static_cast<unsigned>(dc);
     i = 0;
   }
-  const DctCodeEntry* shortCodes = t_.dctShort[(Intra && !Mpeg1 && pp_.intraVlcFormat) ? 1 : 0];
-  const DctCodeEntry* longCodes = t_.dctLong;
-  const DctCodeEobEntry* codes = t_.dctNonIntra[0];
-  const InterScanSlot* slots = scan_[Intra ? 1 : 0].data();
-  const int scale = scale_;
+  const DctCodeEntry* shortCodes = bt.shortCodes;
+  const DctCodeEntry* longCodes = bt.longCodes;
+  const DctCodeEobEntry* codes = bt.first;
+  const InterScanSlot* slots = bt.slots;
+  const int scale = bt.scale;
   constexpr int k = Intra ? 0 : 1;  // the non-intra (2 QF + sign(QF)) term
   // Places the coefficient (2 x magnitude + k) x weight x scale at the slot; signMask is 0 or -1.
   auto placeAt = [&](const InterScanSlot& slot, int twoLevel, int signMask) {
@@ -326,7 +343,7 @@ template <bool Intra, bool Mpeg1>
       // the first of a block in the table with '1s' for run 0, level 1.
       for (; n < 4; ++n) {
         const DctCodeEobEntry e = codes[br.peek(VlcTables::kDctShortBits)];
-        codes = t_.dctNonIntra[1];
+        codes = bt.next;
         if (e.level == 0) {
           // An end of block alone (after a code too long to share the lookup with it), or any
           // other symbol: one at a time below.
