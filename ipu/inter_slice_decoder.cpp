@@ -30,18 +30,14 @@ class InterSliceDecoder {
         mc_(ip.mc ? *ip.mc : scalarMcKernels()),
         br_(begin, end),
         offset_(offset),
-        out_(out) {
+        out_(out),
+        tracing_(out.trace != nullptr),
+        scan_(ip.scanSlots) {
     frame_ = ip.pictureStructure == 3;
     for (int s = 0; s < 2; ++s) {
       fValid_[s] = ip.fCode[s][0] >= 1 && ip.fCode[s][0] <= 9 && ip.fCode[s][1] >= 1 && ip.fCode[s][1] <= 9;
     }
     parity_ = ip.pictureStructure == 2 ? 1 : 0;
-    for (int i = 0; i < 64; ++i) {
-      const int pos = pp.scan[i];
-      const auto mask = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
-      scan_[0][i] = {ip.nonIntraMatrix[pos], static_cast<std::uint8_t>(pos), mask};
-      scan_[1][i] = {pp.intraMatrix[pos], static_cast<std::uint8_t>(pos), mask};
-    }
   }
 
   void run(int code);
@@ -77,8 +73,18 @@ class InterSliceDecoder {
   bool vector(int s, int r, bool fieldFormat, int& mvx, int& mvy, int* dmv);
   bool motionVectors(int s, int motionType);
   bool concealmentVectors();
+  // What every block of a macroblock reads: set up once per macroblock instead of once per block
+  // (GCC reloaded each through `this` for every block).
+  struct BlockTables {
+    const DctCodeEntry* shortCodes;  // intra or non-intra short codes (B.14 or B.15)
+    const DctCodeEntry* longCodes;   // 12..16-bit codes
+    const DctCodeEobEntry* first;    // non-intra: the first code of a block ('1s' is run 0, level 1)
+    const DctCodeEobEntry* next;     // non-intra: the codes after it
+    const InterScanSlot* slots;      // intra or non-intra matrix
+    int scale;                       // quantiser_scale
+  };
   template <bool Intra, bool Mpeg1>
-  bool parseBlock(BitReader& br, int b, IssueKind& why);
+  bool parseBlock(BitReader& br, const BlockTables& bt, int b, IssueKind& why);
   template <bool Mpeg1>
   bool parseBlocks(bool intra, IssueKind& why);
   void predictAndStore(bool parsed);
@@ -92,6 +98,10 @@ class InterSliceDecoder {
   BitReader br_;
   std::size_t offset_;
   const SliceOutput& out_;
+  // The timing model's trace is wanted: the EE's reads (vdec_, fdec_) and the bit positions of the
+  // macroblock are counted only then (a branch the whole slice takes the same way).
+  bool tracing_;
+  const InterScanSlots& scan_;
   bool frame_ = true;
   // Per direction: both f_codes are 1..9 (checked once per slice, not per vector: four compares
   // per vector, and the chain of them mispredicted ~12k times per decode of the bench clip).
@@ -106,14 +116,6 @@ class InterSliceDecoder {
   int vdec_ = 0;
   int fdec_ = 0;
   std::uint8_t skippedPredictions_ = 0;  // predictions of each skipped macroblock before this one
-  // Per scan position, [non-intra / intra]: the matrix weight at it, its raster index, and its row
-  // bit (bits 0-7) and column bit (bits 8-15) for the IDCT's masks; one lookup once the run is known.
-  struct ScanSlot {
-    std::uint8_t weight;
-    std::uint8_t pos;
-    std::uint16_t mask;
-  };
-  ScanSlot scan_[2][64];
 };
 
 // One motion_vector(r, s) (§6.2.5.3) and its reconstruction (§7.6.3.1); a field-format vector of a
@@ -136,9 +138,11 @@ bool InterSliceDecoder::vector(int s, int r, bool fieldFormat, int& mvx, int& mv
     br_.skip(len);
   }
   // libmpeg: a VDEC per motion_code and per dmvector, an FDEC per motion_residual (r_size > 0 and
-  // motion_code != 0, which is a delta != 0).
-  vdec_ += dmv ? 4 : 2;
-  fdec_ += (fx > 1 && dx != 0 ? 1 : 0) + (fy > 1 && dy != 0 ? 1 : 0);
+  // motion_code != 0, which is a delta != 0). Only the trace reads them.
+  if (tracing_) {
+    vdec_ += dmv ? 4 : 2;
+    fdec_ += (fx > 1 && dx != 0 ? 1 : 0) + (fy > 1 && dy != 0 ? 1 : 0);
+  }
   const bool halfVertical = fieldFormat && frame_;
   mvx = wrapVector(pmv_[r][s][0], dx, fx);
   mvy = wrapVector(halfVertical ? pmv_[r][s][1] >> 1 : pmv_[r][s][1], dy, fy);
@@ -243,13 +247,19 @@ bool InterSliceDecoder::parseBlocks(bool intra, IssueKind& why) {
   bool ok = true;
   std::memset(mb_.rowMask, 0, sizeof mb_.rowMask);
   std::memset(mb_.colMask, 0, sizeof mb_.colMask);
+  const BlockTables bt{t_.dctShort[(intra && !Mpeg1 && pp_.intraVlcFormat) ? 1 : 0],
+                       t_.dctLong,
+                       t_.dctNonIntra[0],
+                       t_.dctNonIntra[1],
+                       scan_[intra ? 1 : 0].data(),
+                       scale_};
   // The coded blocks one by one, the next from the highest pattern bit left (bit 5 is block 0):
   // one branch on the count instead of one on every block's bit, which a busy P or B picture
   // makes unpredictable.
   for (unsigned pattern = mb_.pattern & 0x3Fu; pattern != 0 && ok;) {
     const int b = std::countl_zero(pattern) - 26;
     pattern &= ~(32u >> b);
-    ok = intra ? parseBlock<true, Mpeg1>(br, b, why) : parseBlock<false, Mpeg1>(br, b, why);
+    ok = intra ? parseBlock<true, Mpeg1>(br, bt, b, why) : parseBlock<false, Mpeg1>(br, bt, b, why);
   }
   br_ = br;
   return ok;
@@ -259,7 +269,8 @@ bool InterSliceDecoder::parseBlocks(bool intra, IssueKind& why) {
 // first code may be '1s' (run 0, level 1). Leaves the IDCT's masks and flags (ipu/kernels.hpp) in
 // mb_.rowMask / mb_.colMask.
 template <bool Intra, bool Mpeg1>
-[[gnu::always_inline]] inline bool InterSliceDecoder::parseBlock(BitReader& br, int b, IssueKind& why) {
+[[gnu::always_inline]] inline bool InterSliceDecoder::parseBlock(BitReader& br, const BlockTables& bt, int b,
+                                                                 IssueKind& why) {
   std::int16_t* blk = mb_.block[b];
   unsigned parity = 0;
   unsigned masks = 0;
@@ -285,14 +296,14 @@ template <bool Intra, bool Mpeg1>
     parity = static_cast<unsigned>(dc);
     i = 0;
   }
-  const DctCodeEntry* shortCodes = t_.dctShort[(Intra && !Mpeg1 && pp_.intraVlcFormat) ? 1 : 0];
-  const DctCodeEntry* longCodes = t_.dctLong;
-  const DctCodeEobEntry* codes = t_.dctNonIntra[0];
-  const ScanSlot* slots = scan_[Intra ? 1 : 0];
-  const int scale = scale_;
+  const DctCodeEntry* shortCodes = bt.shortCodes;
+  const DctCodeEntry* longCodes = bt.longCodes;
+  const DctCodeEobEntry* codes = bt.first;
+  const InterScanSlot* slots = bt.slots;
+  const int scale = bt.scale;
   constexpr int k = Intra ? 0 : 1;  // the non-intra (2 QF + sign(QF)) term
   // Places the coefficient (2 x magnitude + k) x weight x scale at the slot; signMask is 0 or -1.
-  auto placeAt = [&](const ScanSlot& slot, int twoLevel, int signMask) {
+  auto placeAt = [&](const InterScanSlot& slot, int twoLevel, int signMask) {
     int v;
     if constexpr (Mpeg1) {
       // 11172-2 §2.4.4.1-2.4.4.3: then towards an odd value.
@@ -317,23 +328,22 @@ template <bool Intra, bool Mpeg1>
     return true;
   };
   // A non-intra table's signed +-(2 x level + 1).
-  auto placeSigned = [&](const ScanSlot& slot, int level) {
+  auto placeSigned = [&](const InterScanSlot& slot, int level) {
     const int signMask = level >> 31;
     placeAt(slot, (level ^ signMask) - signMask, signMask);
   };
-  br.topUp();  // at least 56 bits
   // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
   // ends within 16 bits; the caller checks for overrun once per macroblock.
   bool done = false;
   while (!done) {
-    br.topUp();
+    br.topUp();  // at least 56 bits
     int n = 0;
     if constexpr (!Intra) {
       // Up to four codes (code, sign and EOB at most 11 bits each) need no look at the bit count;
       // the first of a block in the table with '1s' for run 0, level 1.
       for (; n < 4; ++n) {
         const DctCodeEobEntry e = codes[br.peek(VlcTables::kDctShortBits)];
-        codes = t_.dctNonIntra[1];
+        codes = bt.next;
         if (e.level == 0) {
           // An end of block alone (after a code too long to share the lookup with it), or any
           // other symbol: one at a time below.
@@ -501,7 +511,7 @@ void InterSliceDecoder::run(int code) {
       return;
     }
     // libmpeg: one VDEC per address increment code (escapes included) and one for macroblock_type.
-    vdec_ = 2 + (inc - 1) / 33;
+    if (tracing_) vdec_ = 2 + (inc - 1) / 33;
     fdec_ = 0;
     const int skippedBefore = first ? 0 : inc - 1;
     if (!first && inc > 1) {
@@ -573,7 +583,7 @@ void InterSliceDecoder::run(int code) {
         std::memset(pmv_, 0, sizeof pmv_);
       }
       mb_.pattern = 0x3F;
-      blockStart = br_.position();
+      if (tracing_) blockStart = br_.position();
     } else {
       resetDc();
       if (ip_.codingType == 2 && !(type.value & kMbForward)) {
@@ -583,7 +593,7 @@ void InterSliceDecoder::run(int code) {
       if (type.value & kMbForward) ok = motionVectors(0, motionType);
       if (ok && (type.value & kMbBackward)) ok = motionVectors(1, motionType);
       mb_.pattern = 0;
-      blockStart = br_.position();
+      if (tracing_) blockStart = br_.position();
       if (ok && (type.value & kMbPattern)) {
         const InterVlcEntry cbp = it_.codedBlockPattern[br_.peek(9)];
         ok = cbp.len != 0;
@@ -609,9 +619,9 @@ void InterSliceDecoder::run(int code) {
     }
     prevType_ = mb_.type;
     predictAndStore(true);
-    const std::size_t end = br_.position();
-    recordMacroblock(out_.trace, address, end, mbStart, offset_);
-    if (out_.trace) {
+    if (tracing_) {
+      const std::size_t end = br_.position();
+      recordMacroblock(out_.trace, address, end, mbStart, offset_);
       MacroblockBits& r = out_.trace->back();
       r.vdec = static_cast<std::uint8_t>(std::min(vdec_, 255));
       r.fdec = static_cast<std::uint8_t>(std::min(fdec_, 255));
@@ -628,6 +638,15 @@ void InterSliceDecoder::run(int code) {
 }
 
 }  // namespace
+
+void prepareScanSlots(InterParams& ip, const PictureParams& pp) {
+  for (int i = 0; i < 64; ++i) {
+    const int pos = pp.scan[i];
+    const auto mask = static_cast<std::uint16_t>((1u << (pos >> 3)) | (1u << (8 + (pos & 7))));
+    ip.scanSlots[0][i] = {ip.nonIntraMatrix[pos], static_cast<std::uint8_t>(pos), mask};
+    ip.scanSlots[1][i] = {pp.intraMatrix[pos], static_cast<std::uint8_t>(pos), mask};
+  }
+}
 
 void decodeInterSlice(const PictureParams& pp, const InterParams& ip, int code, const std::uint8_t* begin,
                       const std::uint8_t* end, std::size_t offset, const SliceOutput& out) {

@@ -128,6 +128,7 @@ void Decoder::beginPicture(PictureReport& report, std::size_t offset) {
     ip.refs.backward = pic_.codingType == 3 ? frames_.backward() : nullptr;
     ip.refs.current = &store;
     ip.mc = kernels().mc;
+    prepareScanSlots(ip, p);
   }
   report.macroblocks += p.mbWidth * p.mbRows;
   // One row of flags per cache line multiple, so jobs on neighbouring rows never share a line.

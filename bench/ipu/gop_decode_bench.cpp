@@ -254,12 +254,21 @@ BENCHMARK(BM_GopDecode)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.5);
 
+// One decode of the clip, never inlined, so that a profiler can count it alone (without the clip's
+// encode at bench start): valgrind --tool=callgrind --toggle-collect='*countedDecode*' ...
+template <class D>
+[[gnu::noinline]] std::uint64_t countedDecode(D& d, const Clip& c) {
+  return d.run(c);
+}
+
 // Ours alone to YCbCr (with the default IDCT, or IdctKind::Libmpeg2) or to RGBA, for profiling:
 // perf record -g build/bench/ipu/bench_ipu_gop_decode --benchmark_filter=BM_GopDecodeOurs/...
+// One decode ahead of the loop, so that every counted decode finds its frames allocated.
 void BM_GopDecodeOurs(benchmark::State& state) {
   const Clip& c = clip(state.range(0) != 0, static_cast<int>(state.range(1)));
   Ours ours(state.range(2) != 0 ? vbim::ipu::IdctKind::Libmpeg2 : vbim::ipu::kDefaultIdct, state.range(3) != 0);
-  for (auto _ : state) benchmark::DoNotOptimize(ours.run(c));
+  benchmark::DoNotOptimize(ours.run(c));
+  for (auto _ : state) benchmark::DoNotOptimize(countedDecode(ours, c));
   state.SetItemsProcessed(state.iterations() * kFrames);
 }
 BENCHMARK(BM_GopDecodeOurs)
@@ -270,6 +279,25 @@ BENCHMARK(BM_GopDecodeOurs)
     ->Args({1, 4, 0, 0})
     ->Args({0, 4, 0, 1})
     ->Args({0, 2, 0, 1})
+    ->Unit(benchmark::kMillisecond);
+
+// libmpeg2 alone to YCbCr, the same clips, to compare whole-decode counts with BM_GopDecodeOurs
+// (its symbols are stripped, so a profile of it gives totals, not functions):
+// valgrind --tool=callgrind --toggle-collect='*countedDecode*' --branch-sim=yes --cache-sim=yes
+//   build/bench/ipu/bench_ipu_gop_decode --benchmark_filter=BM_GopDecodeLibmpeg2/... --benchmark_min_time=0.001
+void BM_GopDecodeLibmpeg2(benchmark::State& state) {
+  const Clip& c = clip(state.range(0) != 0, static_cast<int>(state.range(1)));
+  mpeg2_accel(MPEG2_ACCEL_DETECT);
+  LibMpeg2 m2;
+  benchmark::DoNotOptimize(m2.run(c));
+  for (auto _ : state) benchmark::DoNotOptimize(countedDecode(m2, c));
+  state.SetItemsProcessed(state.iterations() * kFrames);
+}
+BENCHMARK(BM_GopDecodeLibmpeg2)
+    ->ArgNames({"interlaced", "q"})
+    ->Args({0, 4})
+    ->Args({0, 2})
+    ->Args({1, 4})
     ->Unit(benchmark::kMillisecond);
 
 // Our decode with each Highway target's kernels (IDCT, motion compensation, CSC) on the same bytes, in
