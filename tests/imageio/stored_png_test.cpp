@@ -52,7 +52,8 @@ void expectLibpngsBytes(int w, int h, int channels) {
 // The RGB of RGBA texels packed as the rows are written (the path opaque frames take) is libpng's
 // file of the RGB packed byte by byte beforehand: the blocks now cut the packed rows inside texels.
 void expectLibpngsBytesOfRgb(int w, int h) {
-  const Image<std::uint8_t> rgba = picture(w, h, 4, static_cast<std::uint32_t>(w * 104729 + h));
+  const Image<std::uint8_t> rgba =
+      picture(w, h, 4, static_cast<std::uint32_t>(w) * 104729u + static_cast<std::uint32_t>(h));
   Image<std::uint8_t> rgb(w, h, 3);
   packRgbOfRgbaReference(rgba.samples.data(), rgba.samples.size() / 4, rgb.samples.data());
   const std::vector<std::uint8_t> libpng = encodePngWithLibpng(rgb.view(), 0, "x.png");
