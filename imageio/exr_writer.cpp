@@ -28,7 +28,7 @@ const char* channelName(int channels, int c) {
 }
 
 template <typename Sample>
-void writeSamples(const fs::path& temporary, int width, int height, int channels, Imf::PixelType type,
+void writeSamples(const fs::path& target, int width, int height, int channels, Imf::PixelType type,
                   const Sample* samples) {
   Imf::Header header(width, height);
   // Both lossless. PIZ (wavelet) is OpenEXR's choice for half-float pictures (ImfRgbaFile.h's
@@ -43,14 +43,14 @@ void writeSamples(const fs::path& temporary, int width, int height, int channels
     char* base = reinterpret_cast<char*>(const_cast<Sample*>(samples + c));
     frame.insert(channelName(channels, c), Imf::Slice(type, base, xStride, yStride));
   }
-  Imf::OutputFile file(temporary.c_str(), header);
+  Imf::OutputFile file(target.c_str(), header);
   file.setFrameBuffer(frame);
   file.writePixels(height);
 }
 
 }  // namespace
 
-void writeExr(const fs::path& path, ImageView<float> image, ExrSamples stored) {
+void writeExr(const fs::path& path, ImageView<float> image, ExrSamples stored, FilePlacement placement) {
   if (image.width <= 0 || image.height <= 0) {
     throw ImageIoError(path.string() + ": cannot write a " + std::to_string(image.width) + "x" +
                        std::to_string(image.height) + " image (expected a positive size)");
@@ -59,13 +59,13 @@ void writeExr(const fs::path& path, ImageView<float> image, ExrSamples stored) {
     throw ImageIoError(path.string() + ": cannot write " + std::to_string(image.channels) +
                        " channel(s) as OpenEXR (expected 1 to 4)");
   }
-  writeThenRename(path, [&](const fs::path& temporary) {
+  writePlaced(path, placement, [&](const fs::path& file) {
     try {
       if (stored == ExrSamples::Float) {
-        writeSamples(temporary, image.width, image.height, image.channels, Imf::FLOAT, image.samples);
+        writeSamples(file, image.width, image.height, image.channels, Imf::FLOAT, image.samples);
       } else {
         const std::vector<half> halves(image.samples, image.samples + image.sampleCount());
-        writeSamples(temporary, image.width, image.height, image.channels, Imf::HALF, halves.data());
+        writeSamples(file, image.width, image.height, image.channels, Imf::HALF, halves.data());
       }
     } catch (const std::exception& e) {
       throw ImageIoError(path.string() + ": cannot write the OpenEXR file: " + e.what());

@@ -20,6 +20,11 @@ struct ImageView {
   }
 };
 
+// Which samples of an 8-bit image a writer puts in the file: all of them as they are, or the first
+// three of each 4-channel pixel (RGB of RGBA), packed as the file's rows are written: one pass over
+// the pixels, no packed copy of them (issue #31: vbim play's opaque frames).
+enum class FileChannels { AsGiven, RgbOfRgba };
+
 template <typename T>
 struct Image {
   int width = 0;

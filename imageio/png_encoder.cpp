@@ -1,6 +1,8 @@
 #include "imageio/png_encoder.hpp"
 
+#include <fcntl.h>
 #include <png.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -18,6 +20,7 @@
 
 #include "imageio/error.hpp"
 #include "imageio/replace_file.hpp"
+#include "imageio/rgb_pack.hpp"
 #include "imageio/stored_png.hpp"
 
 namespace vbim::imageio {
@@ -179,7 +182,7 @@ bool encodeWithLibpng(Job& job, BlockPool& pool) {
   return true;
 }
 
-void checkShape(ImageView<std::uint8_t> image, int level, const fs::path& name) {
+void checkShape(ImageView<std::uint8_t> image, int level, const fs::path& name, FileChannels channels) {
   if (image.width <= 0 || image.height <= 0) {
     throw ImageIoError(name.string() + ": cannot write a " + std::to_string(image.width) + "x" +
                        std::to_string(image.height) + " image (expected a positive size)");
@@ -187,6 +190,10 @@ void checkShape(ImageView<std::uint8_t> image, int level, const fs::path& name) 
   if (image.channels < 1 || image.channels > 4) {
     throw ImageIoError(name.string() + ": cannot write " + std::to_string(image.channels) +
                        " channel(s) as a PNG (expected 1 to 4)");
+  }
+  if (channels == FileChannels::RgbOfRgba && image.channels != 4) {
+    throw ImageIoError(name.string() + ": cannot write the RGB of " + std::to_string(image.channels) +
+                       " channel(s) (expected RGBA, 4)");
   }
   if (level < 0 || level > kMaxPngLevel) {
     throw ImageIoError(name.string() + ": PNG compression level " + std::to_string(level) + " (expected 0 to " +
@@ -206,15 +213,22 @@ void encodeWithLibpngInto(ImageView<std::uint8_t> image, int level, const fs::pa
   size = job.size;
 }
 
-// Level 0 without libpng where stored_png.hpp can (same bytes, stored_png.hpp says why).
-void encodeInto(ImageView<std::uint8_t> image, int level, const fs::path& name, std::vector<std::uint8_t>& out,
-                std::size_t& size, BlockPool& pool) {
-  checkShape(image, level, name);
-  if (level == 0 && fitsStoredPng(image)) {
-    size = storedPngSize(image);
+// Level 0 without libpng where stored_png.hpp can (same bytes, stored_png.hpp says why). Otherwise
+// libpng, given RgbOfRgba's samples packed into `rgb` first.
+void encodeInto(ImageView<std::uint8_t> image, int level, const fs::path& name, FileChannels channels,
+                std::vector<std::uint8_t>& out, std::size_t& size, BlockPool& pool, std::vector<std::uint8_t>& rgb) {
+  checkShape(image, level, name, channels);
+  if (level == 0 && fitsStoredPng(image, channels)) {
+    size = storedPngSize(image, channels);
     if (out.size() < size) out.resize(size);
-    writeStoredPng(image, out.data());
+    writeStoredPng(image, out.data(), channels);
     return;
+  }
+  if (channels == FileChannels::RgbOfRgba) {
+    const std::size_t texels = image.sampleCount() / 4;
+    rgb.resize(texels * 3);
+    packRgbOfRgba(image.samples, texels, rgb.data());
+    image = {image.width, image.height, 3, rgb.data()};
   }
   encodeWithLibpngInto(image, level, name, out, size, pool);
 }
@@ -223,6 +237,7 @@ void encodeInto(ImageView<std::uint8_t> image, int level, const fs::path& name, 
 struct Scratch {
   BlockPool pool;
   std::vector<std::uint8_t> png;
+  std::vector<std::uint8_t> rgb;  // RgbOfRgba's samples for libpng
 };
 
 thread_local Scratch tScratch;
@@ -233,11 +248,13 @@ std::string lastError() {
 
 }  // namespace
 
-std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, const fs::path& name) {
+std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, const fs::path& name,
+                                    FileChannels channels) {
   BlockPool pool;
   std::vector<std::uint8_t> png;
+  std::vector<std::uint8_t> rgb;
   std::size_t size = 0;
-  encodeInto(image, level, name, png, size, pool);
+  encodeInto(image, level, name, channels, png, size, pool, rgb);
   png.resize(size);
   return png;
 }
@@ -246,25 +263,35 @@ std::vector<std::uint8_t> encodePngWithLibpng(ImageView<std::uint8_t> image, int
   BlockPool pool;
   std::vector<std::uint8_t> png;
   std::size_t size = 0;
-  checkShape(image, level, name);
+  checkShape(image, level, name, FileChannels::AsGiven);
   encodeWithLibpngInto(image, level, name, png, size, pool);
   png.resize(size);
   return png;
 }
 
-void writePngAtLevel(const fs::path& path, ImageView<std::uint8_t> image, int level) {
+void writePngAtLevel(const fs::path& path, ImageView<std::uint8_t> image, int level, FileChannels channels,
+                     FilePlacement placement) {
   Scratch& s = tScratch;
   std::size_t size = 0;
-  encodeInto(image, level, path, s.png, size, s.pool);
-  writeThenRename(path, [&](const fs::path& temporary) {
-    std::FILE* f = std::fopen(temporary.c_str(), "wb");
-    if (f == nullptr) throw ImageIoError(path.string() + ": cannot create the file: " + lastError());
-    const bool written = std::fwrite(s.png.data(), 1, size, f) == size;
-    const std::string writeError = written ? "" : lastError();
-    const bool closed = std::fclose(f) == 0;
-    if (!written || !closed) {
-      throw ImageIoError(path.string() + ": cannot write the PNG: " + (written ? lastError() : writeError));
+  encodeInto(image, level, path, channels, s.png, size, s.pool, s.rgb);
+  // One write() of the whole file (stdio wrote its last bytes by a second one at fclose).
+  writePlaced(path, placement, [&](const fs::path& file) {
+    const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) throw ImageIoError(path.string() + ": cannot create the file: " + lastError());
+    std::size_t done = 0;
+    std::string writeError;
+    while (done < size) {
+      const ssize_t n = ::write(fd, s.png.data() + done, size - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        writeError = n < 0 ? lastError() : "nothing written";
+        break;
+      }
+      done += static_cast<std::size_t>(n);
     }
+    const bool closed = ::close(fd) == 0;
+    if (writeError.empty() && !closed) writeError = lastError();
+    if (!writeError.empty()) throw ImageIoError(path.string() + ": cannot write the PNG: " + writeError);
   });
 }
 

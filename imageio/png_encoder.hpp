@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "imageio/image_view.hpp"
+#include "imageio/replace_file.hpp"
 
 namespace vbim::imageio {
 
@@ -20,18 +21,22 @@ inline constexpr int kMaxPngLevel = 9;  // zlib's highest
 
 // The PNG bytes of 8-bit grey (1 channel), grey + alpha (2), RGB (3) or RGBA (4) samples, tagged
 // sRGB. `level` 0: stored deflate blocks, every row unfiltered (written by stored_png.hpp, libpng's
-// bytes without libpng); 1 to 9: zlib's level of that number, every row filtered Up. Throws
+// bytes without libpng); 1 to 9: zlib's level of that number, every row filtered Up. `channels`:
+// the samples as given, or an RGB PNG of a 4-channel image's first three (image_view.hpp). Throws
 // ImageIoError naming `name` for a bad shape or level, or what libpng reported.
-std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, const std::filesystem::path& name);
+std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, const std::filesystem::path& name,
+                                    FileChannels channels = FileChannels::AsGiven);
 
 // encodePng's bytes, always by libpng: at level 0 encodePng writes the same bytes itself
 // (stored_png.hpp), and is tested against this.
 std::vector<std::uint8_t> encodePngWithLibpng(ImageView<std::uint8_t> image, int level,
                                               const std::filesystem::path& name);
 
-// encodePng's bytes written to `path` under a temporary name and renamed into place
-// (replace_file.hpp); libpng's and zlib's memory is kept per thread for the next picture. Throws
-// ImageIoError naming the file.
-void writePngAtLevel(const std::filesystem::path& path, ImageView<std::uint8_t> image, int level);
+// encodePng's bytes written to `path`, by default under a temporary name and renamed into place
+// (replace_file.hpp: `placement`); libpng's and zlib's memory is kept per thread for the next
+// picture. Throws ImageIoError naming the file.
+void writePngAtLevel(const std::filesystem::path& path, ImageView<std::uint8_t> image, int level,
+                     FileChannels channels = FileChannels::AsGiven,
+                     FilePlacement placement = FilePlacement::TemporaryThenRename);
 
 }  // namespace vbim::imageio

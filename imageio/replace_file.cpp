@@ -30,4 +30,19 @@ void writeThenRename(const fs::path& path, const std::function<void(const fs::pa
   }
 }
 
+void writePlaced(const fs::path& path, FilePlacement placement,
+                 const std::function<void(const fs::path& file)>& write) {
+  if (placement == FilePlacement::TemporaryThenRename) {
+    writeThenRename(path, write);
+    return;
+  }
+  try {
+    write(path);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(path, ignored);
+    throw;
+  }
+}
+
 }  // namespace vbim::imageio

@@ -6,6 +6,8 @@
 #include <array>
 #include <cstring>
 
+#include "imageio/rgb_pack.hpp"
+
 namespace vbim::imageio {
 
 namespace {
@@ -104,12 +106,15 @@ std::uint8_t* endChunk(std::uint8_t* chunkType, std::uint8_t* end) {
 }
 
 // The rows as the zlib stream's data: filter byte 0 (None) and the row's samples, row after row;
-// `take` copies the next `count` bytes of it.
+// `take` packs (RgbOfRgba) or copies the next `count` bytes of it. A piece may start or end inside
+// a texel (the stored blocks are cut by byte counts).
 class RowStream {
  public:
-  explicit RowStream(ImageView<std::uint8_t> image)
+  RowStream(ImageView<std::uint8_t> image, FileChannels channels)
       : samples_(image.samples),
-        stride_(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels)) {}
+        packing_(channels == FileChannels::RgbOfRgba),
+        sourceStride_(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels)),
+        stride_(packing_ ? static_cast<std::size_t>(image.width) * 3 : sourceStride_) {}
   std::uint8_t* take(std::uint8_t* out, std::size_t count) {
     while (count > 0) {
       if (inRow_ == 0) {
@@ -119,12 +124,16 @@ class RowStream {
         continue;
       }
       const std::size_t n = std::min(count, stride_ + 1 - inRow_);
-      std::memcpy(out, samples_ + (inRow_ - 1), n);
+      if (packing_) {
+        packPiece(inRow_ - 1, n, out);
+      } else {
+        std::memcpy(out, samples_ + (inRow_ - 1), n);
+      }
       out += n;
       count -= n;
       inRow_ += n;
       if (inRow_ == stride_ + 1) {
-        samples_ += stride_;
+        samples_ += sourceStride_;
         inRow_ = 0;
       }
     }
@@ -132,14 +141,46 @@ class RowStream {
   }
 
  private:
+  // Bytes [from, from + n) of the current row's RGB samples, from its RGBA texels.
+  void packPiece(std::size_t from, std::size_t n, std::uint8_t* out) const {
+    const std::uint8_t* texel = samples_ + from / 3 * 4;
+    std::size_t c = from % 3;
+    for (; n > 0 && c != 0; --n) {  // the end of a texel the last piece began
+      *out++ = texel[c];
+      if (++c == 3) {
+        c = 0;
+        texel += 4;
+      }
+    }
+    const std::size_t whole = n / 3;
+    packRgbOfRgba(texel, whole, out);
+    out += whole * 3;
+    texel += whole * 4;
+    for (c = 0; c < n - whole * 3; ++c) *out++ = texel[c];  // the start of a texel the next piece ends
+  }
+
   const std::uint8_t* samples_;  // the current row's
-  std::size_t stride_;
-  std::size_t inRow_ = 0;  // bytes of the current row's filter byte and samples taken
+  bool packing_;
+  std::size_t sourceStride_;  // bytes of a row of `samples_`
+  std::size_t stride_;        // bytes of a row's samples in the PNG
+  std::size_t inRow_ = 0;     // bytes of the current row's filter byte and samples taken
 };
+
+// The PNG's shape: RgbOfRgba's RGB (the samples pointer then is not the PNG's rows).
+ImageView<std::uint8_t> pngShape(ImageView<std::uint8_t> image, FileChannels channels) {
+  if (channels == FileChannels::RgbOfRgba) image.channels = 3;
+  return image;
+}
+
+// How much of the rows is packed or copied before its checksums are taken: small enough that the
+// piece is still in the first-level cache (48 KiB on Ice Lake) with the texels it came from.
+constexpr std::size_t kPiece = 8192;
 
 }  // namespace
 
-bool fitsStoredPng(ImageView<std::uint8_t> image) {
+bool fitsStoredPng(ImageView<std::uint8_t> image, FileChannels channels) {
+  if (channels == FileChannels::RgbOfRgba && image.channels != 4) return false;
+  image = pngShape(image, channels);
   constexpr int kLibpngMaxSide = 1'000'000;      // PNG_USER_WIDTH_MAX, PNG_USER_HEIGHT_MAX (pnglibconf.h)
   constexpr std::size_t kMaxChunk = 0x7fffffff;  // PNG_UINT_31_MAX
   if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4) return false;
@@ -148,12 +189,14 @@ bool fitsStoredPng(ImageView<std::uint8_t> image) {
   return rows + rows / 4096 + 64 <= kMaxChunk;  // png_encoder.cpp's compression buffer, uncapped
 }
 
-std::size_t storedPngSize(ImageView<std::uint8_t> image) {
+std::size_t storedPngSize(ImageView<std::uint8_t> image, FileChannels channels) {
+  image = pngShape(image, channels);
   return kSignature.size() + (kChunkFraming + kIhdrData) + (kChunkFraming + kSrgbData) +
          (kChunkFraming + idatSize(image)) + kChunkFraming;
 }
 
-void writeStoredPng(ImageView<std::uint8_t> image, std::uint8_t* out) {
+void writeStoredPng(ImageView<std::uint8_t> source, std::uint8_t* out, FileChannels channels) {
+  const ImageView<std::uint8_t> image = pngShape(source, channels);
   std::uint8_t* p = std::copy(kSignature.begin(), kSignature.end(), out);
 
   std::uint8_t* type = p + 4;
@@ -172,13 +215,16 @@ void writeStoredPng(ImageView<std::uint8_t> image, std::uint8_t* out) {
   *p++ = 0;  // perceptual
   p = endChunk(type, p);
 
+  // The IDAT chunk's CRC-32 is taken piece by piece with the Adler-32, `checked` being how far.
   type = p + 4;
   p = beginChunk(p, idatSize(image), "IDAT");
   const auto header = zlibHeader(dataSize(image));
   p = std::copy(header.begin(), header.end(), p);
   BlockLengths lengths(rowBytes(image), static_cast<std::size_t>(image.height));
-  RowStream rows(image);
+  RowStream rows(source, channels);
   std::uint32_t adler = 1;  // RFC 1950, 8.2: Adler-32 starts at 1
+  std::uint32_t crc = 0;
+  const std::uint8_t* checked = type;
   for (bool last = false; !last;) {
     const std::size_t length = lengths.next(last);
     *p++ = last ? 1 : 0;  // BFINAL, BTYPE 00 (stored)
@@ -186,12 +232,18 @@ void writeStoredPng(ImageView<std::uint8_t> image, std::uint8_t* out) {
     *p++ = static_cast<std::uint8_t>(length >> 8);
     *p++ = static_cast<std::uint8_t>(~length);
     *p++ = static_cast<std::uint8_t>(~length >> 8);
-    std::uint8_t* data = p;
-    p = rows.take(p, length);
-    adler = libdeflate_adler32(adler, data, length);
+    for (std::size_t left = length; left > 0;) {
+      const std::size_t n = std::min(left, kPiece);
+      std::uint8_t* data = p;
+      p = rows.take(p, n);
+      adler = libdeflate_adler32(adler, data, n);
+      crc = libdeflate_crc32(crc, checked, static_cast<std::size_t>(p - checked));
+      checked = p;
+      left -= n;
+    }
   }
   p = putU32(p, adler);
-  p = endChunk(type, p);
+  p = putU32(p, libdeflate_crc32(crc, checked, static_cast<std::size_t>(p - checked)));
 
   type = p + 4;
   p = beginChunk(p, 0, "IEND");

@@ -15,17 +15,22 @@
 
 namespace vbim::imageio {
 
+// `channels` says which samples of `image` the PNG holds (image_view.hpp): RgbOfRgba needs a
+// 4-channel image and writes an RGB PNG, the bytes writeStoredPng writes for the packed RGB samples.
+
 // Whether writeStoredPng can write `image` (8-bit, 1 to 4 channels, a positive size): false past
 // libpng's default limit of a million pixels a side, where libpng refuses the picture, and where
 // png_encoder.cpp's compression buffer (one IDAT chunk) would pass 2^31 - 1 bytes and libpng would
 // split the data over several IDAT chunks. png_encoder.cpp leaves those to libpng.
-bool fitsStoredPng(ImageView<std::uint8_t> image);
+bool fitsStoredPng(ImageView<std::uint8_t> image, FileChannels channels = FileChannels::AsGiven);
 
 // The size of the PNG writeStoredPng writes (fitsStoredPng(image) must hold).
-std::size_t storedPngSize(ImageView<std::uint8_t> image);
+std::size_t storedPngSize(ImageView<std::uint8_t> image, FileChannels channels = FileChannels::AsGiven);
 
 // Writes the PNG to `out`, storedPngSize(image) bytes: the signature, IHDR, sRGB (perceptual), one
 // IDAT chunk (a zlib stream of stored blocks: every row as filter byte 0 then its samples), IEND.
-void writeStoredPng(ImageView<std::uint8_t> image, std::uint8_t* out);
+// The samples are read once: each piece of the rows is packed (RgbOfRgba) or copied into `out` and
+// both checksums taken over it while it is in the core's first-level cache.
+void writeStoredPng(ImageView<std::uint8_t> image, std::uint8_t* out, FileChannels channels = FileChannels::AsGiven);
 
 }  // namespace vbim::imageio

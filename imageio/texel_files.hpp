@@ -8,6 +8,7 @@
 
 #include <filesystem>
 
+#include "imageio/replace_file.hpp"
 #include "runtime/image.hpp"
 
 namespace vbim::imageio {
@@ -22,8 +23,11 @@ struct TexelFileFormat {
   int pngLevel = kDefaultTexelPngLevel;  // 0 to kMaxPngLevel (png_encoder.hpp)
 };
 
-// `texels` is the caller's copy: unless format.gsAlpha it is packed to RGB in place (no second
-// copy), and is no longer a valid Rgba8Image's pixels after. Throws ImageIoError when the file cannot be written.
-void writeTexelImage(const std::filesystem::path& path, Rgba8Image& texels, const TexelFileFormat& format);
+// `texels` is the caller's copy: for an EXR without format.gsAlpha it is packed to RGB in place
+// (no second copy), and is no longer a valid Rgba8Image's pixels after (a PNG packs as it writes
+// its rows). `placement`: replace_file.hpp (a run's frames are InStagedDirectory). Throws
+// ImageIoError when the file cannot be written.
+void writeTexelImage(const std::filesystem::path& path, Rgba8Image& texels, const TexelFileFormat& format,
+                     FilePlacement placement = FilePlacement::TemporaryThenRename);
 
 }  // namespace vbim::imageio

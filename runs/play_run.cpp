@@ -33,7 +33,7 @@ namespace vbim::runs {
 
 void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const imageio::TexelFileFormat& format) {
   try {
-    imageio::writeTexelImage(path, texels, format);
+    imageio::writeTexelImage(path, texels, format, imageio::FilePlacement::InStagedDirectory);
   } catch (const imageio::ImageIoError& e) {
     throw RunFailure(e.what());
   }

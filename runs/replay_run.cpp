@@ -96,7 +96,7 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
     const imageio::TexelFileFormat format{r.format == "exr", r.alpha == "gs", imageio::kDefaultTexelPngLevel};
-    Rgba8Image copy = lm;  // the writer packs it to RGB in place
+    Rgba8Image copy = lm;  // the writer's (an EXR is packed to RGB in place)
     writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), copy, format);
     if (sky != nullptr) {
       copy = *sky;

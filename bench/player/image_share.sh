@@ -13,7 +13,17 @@
 #   image_share.sh VBIM [BATCHES] [RUNS] [WORKDIR]
 # WORKDIR (default: a temporary directory under TMPDIR) is where the plays write: the file system
 # counts (creating and filling 34 files is most of the pictures' cost at level 0), so the script
-# prints which one it is.
+# prints which one it is. Each play writes a directory of its own (play.PID.N), none replacing
+# another (--force) and none removed while plays run: ext4 without a journal (this machine's root)
+# skips, at every file it creates, each free inode of the directory's block group deleted in the
+# last 60 s, or 360 s while that inode's table block is not yet written back (fs/ext4/ialloc.c,
+# recently_deleted(), RECENTCY_MIN and RECENTCY_DIRTY). After a few thousand deletions there, a
+# play's pictures took 3-10x the CPU (perf: 25-40 % of the picture thread in that search,
+# 2026-12-05), so plays that replaced each other measured their own deletions. With a WORKDIR
+# given the plays' directories stay (remove WORKDIR after the last run of a comparison: deleting
+# them is what would cost the next runs); without one they go with the temporary directory at the
+# end. Other programs deleting files in the same group (tests under /tmp) still count: a new
+# directory at the file system's top level gets a group of its own (ext4's Orlov allocator).
 set -eu
 vbim=${1:?usage: image_share.sh VBIM [BATCHES] [RUNS] [WORKDIR]}
 batches=${2:-3}
@@ -40,8 +50,10 @@ TOML
 
 median() { sort -n | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
-# play NAME ARGS...: RUNS plays; appends the CPU seconds to $work/NAME.cpu and the picture thread's
-# milliseconds to $work/NAME.pic (0 without pictures).
+# play NAME ARGS...: RUNS plays, each into a new directory ($last: the last one's); appends the CPU
+# seconds to $work/NAME.cpu and the picture thread's milliseconds to $work/NAME.pic (0 without
+# pictures).
+n=0
 play() {
   name=$1
   shift
@@ -49,7 +61,9 @@ play() {
   : >"$work/$name.pic"
   i=0
   while [ "$i" -lt "$runs" ]; do
-    out=$("$vbim" play "$sample" --duration 60s "$@" --force --out "$work/run")
+    n=$((n + 1))
+    last="$work/play.$$.$n"
+    out=$("$vbim" play "$sample" --duration 60s "$@" --force --out "$last")
     # "played 60.0 s of X (N vsyncs) in W s of host time (..x real time), C s of CPU time (Rx real time)":
     # the seconds from the x-real-time figure, finer than the printed time.
     echo "$out" | sed -n 's/.* of CPU time (\([0-9.]*\)x real time).*/\1/p' | awk '{ printf "%.6f\n", 60 / $1 }' >>"$work/$name.cpu"
@@ -83,7 +97,7 @@ echo "PNG level: bytes of the 34 files, picture thread's CPU per lightmap + sky 
 for level in 0 1 2 3 4 6 9; do
   # shellcheck disable=SC2086
   play level $shots --png-level "$level"
-  bytes=$(cat "$work"/run/frames/*.png | wc -c)
+  bytes=$(cat "$last"/frames/*.png | wc -c)
   pic=$(median <"$work/level.pic")
   awk -v l="$level" -v b="$bytes" -v p="$pic" 'BEGIN { printf "level %2d: %8d bytes, %.2f ms a pair\n", l, b, p / 17 }'
 done

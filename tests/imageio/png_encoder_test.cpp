@@ -211,5 +211,40 @@ TEST(PngEncoder, FailuresNameTheFileAndLeaveNothing) {
   fs::remove_all(dir);
 }
 
+// In a staged directory (a run's, replace_file.hpp) the file is written under its own name: no
+// temporary beside it, the same bytes; a write that fails removes what it wrote under that name.
+TEST(PngEncoder, InAStagedDirectoryTheFileIsWrittenUnderItsOwnName) {
+  const fs::path dir = scratch();
+  const Image<std::uint8_t> img = picture(33, 17, 4);
+  for (const int level : {0, 1}) {
+    const fs::path file = dir / "f.png";
+    writePngAtLevel(file, img.view(), level, FileChannels::RgbOfRgba, FilePlacement::InStagedDirectory);
+    EXPECT_EQ(slurp(file), encodePng(img.view(), level, "f.png", FileChannels::RgbOfRgba)) << level;
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    EXPECT_EQ(names, std::vector<std::string>{"f.png"}) << level;
+    fs::remove(file);
+  }
+  if (fs::exists("/dev/full")) {
+    const fs::path full = dir / "full.png";
+    fs::create_symlink("/dev/full", full);
+    try {
+      writePngAtLevel(full, img.view(), 0, FileChannels::AsGiven, FilePlacement::InStagedDirectory);
+      ADD_FAILURE() << "a write to /dev/full succeeded";
+    } catch (const ImageIoError& e) {
+      EXPECT_NE(std::string(e.what()).find(full.string() + ": cannot write the PNG"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(fs::symlink_status(full)));
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << fs::directory_iterator(dir)->path();
+  fs::remove_all(dir);
+}
+
+// RgbOfRgba asks for a 4-channel image.
+TEST(PngEncoder, RgbOfRgbaNeedsFourChannels) {
+  const Image<std::uint8_t> img = picture(4, 4, 3);
+  EXPECT_THROW(encodePng(img.view(), 0, "x.png", FileChannels::RgbOfRgba), ImageIoError);
+}
+
 }  // namespace
 }  // namespace vbim::imageio

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "imageio/png_encoder.hpp"
+#include "imageio/rgb_pack.hpp"
 #include "imageio/stored_png.hpp"
 #include "tests/imageio/libpng_decode.hpp"
 
@@ -45,7 +46,26 @@ void expectLibpngsBytes(int w, int h, int channels) {
   writeStoredPng(img.view(), ours.data());
   ASSERT_EQ(ours.size(), libpng.size()) << shape(w, h, channels);
   EXPECT_TRUE(ours == libpng) << shape(w, h, channels);
-  EXPECT_EQ(encodePng(img.view(), 0, "x.png"), libpng) << shape(w, h, channels);  // the path frames take
+  EXPECT_EQ(encodePng(img.view(), 0, "x.png"), libpng) << shape(w, h, channels);
+}
+
+// The RGB of RGBA texels packed as the rows are written (the path opaque frames take) is libpng's
+// file of the RGB packed byte by byte beforehand: the blocks now cut the packed rows inside texels.
+void expectLibpngsBytesOfRgb(int w, int h) {
+  const Image<std::uint8_t> rgba =
+      picture(w, h, 4, static_cast<std::uint32_t>(w) * 104729u + static_cast<std::uint32_t>(h));
+  Image<std::uint8_t> rgb(w, h, 3);
+  packRgbOfRgbaReference(rgba.samples.data(), rgba.samples.size() / 4, rgb.samples.data());
+  const std::vector<std::uint8_t> libpng = encodePngWithLibpng(rgb.view(), 0, "x.png");
+  ASSERT_TRUE(fitsStoredPng(rgba.view(), FileChannels::RgbOfRgba)) << shape(w, h, 4);
+  ASSERT_EQ(storedPngSize(rgba.view(), FileChannels::RgbOfRgba), libpng.size()) << shape(w, h, 4);
+  std::vector<std::uint8_t> ours(libpng.size());
+  writeStoredPng(rgba.view(), ours.data(), FileChannels::RgbOfRgba);
+  EXPECT_TRUE(ours == libpng) << shape(w, h, 4);
+  EXPECT_EQ(encodePng(rgba.view(), 0, "x.png", FileChannels::RgbOfRgba), libpng) << shape(w, h, 4);
+  // Levels 1 to 9 hand libpng the packed samples.
+  EXPECT_EQ(encodePng(rgba.view(), 1, "x.png", FileChannels::RgbOfRgba), encodePng(rgb.view(), 1, "x.png"))
+      << shape(w, h, 4);
 }
 
 TEST(StoredPng, TheBytesAreLibpngsForEveryChannelCount) {
@@ -96,6 +116,18 @@ TEST(StoredPng, EveryRowLengthInASweepIsLibpngs) {
   for (int channels = 1; channels <= 4; ++channels) {
     for (int w = 1; w <= 700; w += 23) expectLibpngsBytes(w, 16'000 / (w * channels + 1) + 45, channels);
   }
+}
+
+// Every offset in a texel at which a block can begin or end, over widths whose packed rows take the
+// data over several blocks, and the demo's picture sizes.
+TEST(StoredPng, RgbOfRgbaIsLibpngsFileOfThePackedSamples) {
+  for (int w = 1; w <= 700; w += 23) expectLibpngsBytesOfRgb(w, 16'000 / (w * 3 + 1) + 45);
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{
+           {1, 1}, {2, 3}, {256, 256}, {128, 64}, {512, 512}, {256, 128}, {21845, 3}, {21846, 2}, {30000, 2}}) {
+    expectLibpngsBytesOfRgb(w, h);
+  }
+  const std::uint8_t sample = 0;
+  EXPECT_FALSE(fitsStoredPng({4, 4, 3, &sample}, FileChannels::RgbOfRgba));  // RGBA needed
 }
 
 TEST(StoredPng, LibpngReadsTheSamplesBack) {
