@@ -25,9 +25,7 @@ void packRgbOfRgba(const std::uint8_t* rgba, std::size_t texels, std::uint8_t* r
       std::memcpy(rgb + i * 3 + 8, &rest, 4);
     }
   }
-  for (; i < texels; ++i) {
-    for (std::size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = rgba[i * 4 + c];
-  }
+  packRgbOfRgbaReference(rgba + i * 4, texels - i, rgb + i * 3);
 }
 
 void packRgbOfRgbaReference(const std::uint8_t* rgba, std::size_t texels, std::uint8_t* rgb) {

@@ -23,11 +23,10 @@ struct TexelFileFormat {
   int pngLevel = kDefaultTexelPngLevel;  // 0 to kMaxPngLevel (png_encoder.hpp)
 };
 
-// `texels` is the caller's copy: for an EXR without format.gsAlpha it is packed to RGB in place
-// (no second copy), and is no longer a valid Rgba8Image's pixels after (a PNG packs as it writes
-// its rows). `placement`: replace_file.hpp (a run's frames are InStagedDirectory). Throws
-// ImageIoError when the file cannot be written.
-void writeTexelImage(const std::filesystem::path& path, Rgba8Image& texels, const TexelFileFormat& format,
+// `texels` is only read (a PNG packs RGB as it writes its rows, an EXR as it scales to floats).
+// `placement`: replace_file.hpp (a run's frames are InStagedDirectory). Throws ImageIoError when the
+// file cannot be written.
+void writeTexelImage(const std::filesystem::path& path, const Rgba8Image& texels, const TexelFileFormat& format,
                      FilePlacement placement = FilePlacement::TemporaryThenRename);
 
 }  // namespace vbim::imageio

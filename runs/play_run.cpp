@@ -31,7 +31,8 @@
 
 namespace vbim::runs {
 
-void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const imageio::TexelFileFormat& format) {
+void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels,
+                   const imageio::TexelFileFormat& format) {
   try {
     imageio::writeTexelImage(path, texels, format, imageio::FilePlacement::InStagedDirectory);
   } catch (const imageio::ImageIoError& e) {

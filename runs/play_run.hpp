@@ -64,11 +64,11 @@ using PlayProgressFn = std::function<void(double played, double total)>;
 PlayResult playRun(const PlayRequest& r, const PlayProgressFn& onSecond);
 
 // A lightmap or sky picture of a run: PNG (at format.pngLevel) or EXR, RGB (opaque) unless
-// format.gsAlpha (RGBA, the texels as in VRAM); `texels` is the caller's copy (imageio/texel_files.hpp).
+// format.gsAlpha (RGBA, the texels as in VRAM); `texels` is only read.
 // `path` is in a run's directory while an OutputDir stages it (play, replay): the file is written
 // under its own name, no temporary of its own and no rename (imageio/replace_file.hpp), as nothing
 // in the staged directory is seen before OutputDir::commit renames it whole, and a failed or
 // interrupted run removes it whole. Throws RunFailure when it cannot be written.
-void writeRunImage(const std::filesystem::path& path, Rgba8Image& texels, const imageio::TexelFileFormat& format);
+void writeRunImage(const std::filesystem::path& path, const Rgba8Image& texels, const imageio::TexelFileFormat& format);
 
 }  // namespace vbim::runs

@@ -96,12 +96,8 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
     const imageio::TexelFileFormat format{r.format == "exr", r.alpha == "gs", imageio::kDefaultTexelPngLevel};
-    Rgba8Image copy = lm;  // the writer's (an EXR is packed to RGB in place)
-    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), copy, format);
-    if (sky != nullptr) {
-      copy = *sky;
-      writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), copy, format);
-    }
+    writeRunImage(dir.path("frames") / (std::string("lightmap_") + name + "." + r.format), lm, format);
+    if (sky != nullptr) writeRunImage(dir.path("frames") / (std::string("sky_") + name + "." + r.format), *sky, format);
   });
   try {
     replay->run();
