@@ -40,7 +40,7 @@ if(NOT VBIM_MODEL_ONLY)
   vbim_require_pkgconfig(OSMESA libosmesa6-dev osmesa)
   vbim_require_pkgconfig(HWY libhwy-dev libhwy)
   # Highway's headers without libhwy.so: the product's kernels dispatch through runtime/simd/targets.hpp,
-  # because loading libhwy.so costs every process 4-7 ms of start-up (its timer calibration). Only
+  # because loading libhwy.so costs every process 4-6 ms of CPU at start-up (its timer calibration, docs/sweeps.md). Only
   # tests and benchmarks that compare with Highway's own target detection link PkgConfig::HWY.
   add_library(vbim_hwy_headers INTERFACE)
   target_include_directories(vbim_hwy_headers INTERFACE ${HWY_INCLUDE_DIRS})
