@@ -5,6 +5,10 @@
 # build's medians over RUNS demos of the CPU and wall figures. Each demo also authors its stream
 # (not counted in the play's figures).
 #   demo_speed_ab.sh BEFORE_VBIM AFTER_VBIM [BATCHES] [RUNS]
+# Each demo writes a directory of its own under the temporary directory (TMPDIR), none replacing
+# another and none removed while demos run: on ext4 without a journal, every file created skips the
+# inodes of its block group freed in the last minutes (image_share.sh says more), so demos that
+# replaced the last one's 34 pictures with --force measured their own deletions.
 set -eu
 before=${1:?usage: demo_speed_ab.sh BEFORE_VBIM AFTER_VBIM [BATCHES] [RUNS]}
 after=${2:?usage: demo_speed_ab.sh BEFORE_VBIM AFTER_VBIM [BATCHES] [RUNS]}
@@ -17,11 +21,13 @@ median() { sort -n | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]
 
 demo() {  # NAME VBIM
   # "played 60.0 s of day.vbim (N vsyncs) in W s of host time (..x real time), C s of CPU time (..x real time)"
-  line=$("$2" demo --out "$work/demo" --force | grep '^played ' | head -n 1)
+  n=$((n + 1))
+  line=$("$2" demo --out "$work/demo.$n" | grep '^played ' | head -n 1)
   echo "$line" | sed -n 's/.* of host time (\([0-9.]*\)x real time).*/\1/p' >>"$work/wall-$1"
   echo "$line" | sed -n 's/.* of CPU time (\([0-9.]*\)x real time).*/\1/p' >>"$work/cpu-$1"
 }
 
+n=0
 b=1
 while [ "$b" -le "$batches" ]; do
   rm -f "$work"/wall-* "$work"/cpu-*
