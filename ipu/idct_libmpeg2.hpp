@@ -1,9 +1,10 @@
 // The two integer 8x8 inverse DCTs of the libmpeg2 family, as plain functions of raster-order
 // coefficients, written from the arithmetic those decoders perform (facts read, no code copied):
 //
-// - idctPcsx2: the form PCSX2's IPU uses (pcsx2/IPU/mpeg2lib/Idct.cpp, derived from libmpeg2
-//   0.4): coefficients as dequantised, row pass rounding with +128 and >> 8, the odd part's
-//   sqrt(1/2) factor (181/256) applied after the sum in rows and to pre-shifted terms in columns.
+// - idctPcsx2: the form PCSX2's IPU uses (IDCT_Block in pcsx2/IPU/IPU_MultiISA.cpp, formerly
+//   mpeg2lib/Idct.cpp; derived from libmpeg2 0.4): coefficients as dequantised, row pass rounding
+//   with +128 and >> 8, the odd part's sqrt(1/2) factor (181/256) applied after the sum in rows and
+//   to pre-shifted terms in columns.
 // - idctLibmpeg2: the C IDCT of libmpeg2 0.5.1 (Debian's libmpeg2-4 and `mpeg2dec -c`), which
 //   holds coefficients scaled by 16 (4 fractional bits): row pass +2048 and >> 12, the 181/256
 //   factor applied to pre-shifted terms in both passes.
