@@ -117,9 +117,21 @@ bool Presenter::waitForTwin(const Rgba8Image& source, const BlendSpec& spec, std
   }
   if (mirror_ && waiting_.pending) stopMirroring();  // a second blend before the run made the first
   if (!mirror_) {
-    // Only when the run has not blended yet in this tick: a run that blends first (strip mode) would
-    // make every mirror stop at its next blend, with a copy of the whole lightmap each time.
+    // Only when the run has not blended yet in this tick (the player puts the reference's processes
+    // in the scheduler's first lane, so it has not): a run that blends first would make every
+    // mirror stop at its next blend.
     if (twin_->lastBlendAt_ >= sched_.now()) return false;
+    // Nor while the run shows another frame (a run behind after a stall): its next blend would stop
+    // the mirror again at once, at every vsync until the two show the same frame. By number only:
+    // a mirror that starts in vain costs nothing, and the run's blend is checked when it is taken.
+    const Target& shown = twin_->target_;
+    if (!shown.image || shown.seq != target_.seq || shown.variant != target_.variant) return false;
+    // Nor while the run's GS work is not in step with this one's (in strip mode it can run some
+    // strips behind, or part of one, e.g. while its EE has more to upload): the run's last blend
+    // must have ended where this one begins (the previous strip, or the previous vsync's last), at
+    // the tick of this presenter's own last blend.
+    if (twin_->lastBlendAt_ != prevBlendAt_) return false;
+    if (twin_->lastBlendY1_ != y0 && !(y0 == 0 && twin_->lastBlendY1_ == lightmap_.height)) return false;
     const std::vector<std::uint64_t>& mine = blender_.tileChanges();
     const std::vector<std::uint64_t>& theirs = twin_->blender_.tileChanges();
     for (std::size_t i = 0; i < mine.size(); ++i) {
@@ -390,7 +402,9 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
     co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));
     if (tr != nullptr) tr->span(track_, t, sched_.now(), blendLabel);
     TiledBlender::Result r;
+    prevBlendAt_ = lastBlendAt_;
     lastBlendAt_ = sched_.now();
+    lastBlendY1_ = y1;
     if (!waitForTwin(source, spec, id, y0, y1)) {
       // The run: a mirroring reference waiting for this blend takes it afterwards; else it has its
       // own bytes again by now, and the two share tiles as usual.

@@ -233,6 +233,8 @@ class Presenter {
   bool sameSeen_ = false;
   bool mayMirror_ = false;
   Tick lastBlendAt_ = -1;  // when this presenter last blended (or was asked to, mirroring)
+  int lastBlendY1_ = 0;    // the end of the rows it blended then
+  Tick prevBlendAt_ = -1;  // when it blended before that
   bool mirror_ = false;
   // While mirroring, the rows [mirrorRow0_, mirrorRow1_) hold every blend the run made for this
   // presenter: the only rows where its lightmap and this one's came apart since the mirror began.

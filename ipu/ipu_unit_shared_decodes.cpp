@@ -66,6 +66,7 @@ std::optional<SharedDecodes::Taken> SharedDecodes::takeAt(Side& me, std::size_t 
   me.cursor = index + 1;
   me.diverged = false;
   me.pendingAfter = e.pendingAfter;
+  me.previous = e.bytes;
   Taken taken = std::move(*e.result);
   e.result.reset();
   imageBytes_ -= taken.image ? taken.image->pixels.size() : 0;
@@ -98,6 +99,24 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   Side& other = sides_.at(1 - s);
   ++counters_.decoded;
   me.pendingAfter = decoder.fieldPending();
+  // A side that went its own way, or fell behind, offers its decode again when it is a fresh start
+  // for both sides (the other has read the whole log and waits for no second field): whatever either
+  // side decoded before, the other's decode of these bytes would give this result (see the header),
+  // so the other can take it as its next entry, and both are in step from here on. Without this a
+  // side that is always first at a tick (the reference, in the scheduler's first lane) and once went
+  // its own way would never pick up again: it looks for the other's decode before the other made it.
+  // Only when the two are level: the log's last entry is the picture this side had before this one
+  // (the other decoded it after this side did). A side behind the other picks up again in take().
+  const bool level = end() > base_ && at(end() - 1).bytes == me.previous;
+  const bool rejoin = (me.diverged || me.cursor != end()) && other.cursor == end() && !other.pendingAfter &&
+                      !pendingBefore && level && startsWithSequenceHeader(bytes);
+  me.previous.assign(bytes.begin(), bytes.end());
+  if (rejoin) {
+    ++counters_.offeredAgain;
+    me.diverged = false;
+    me.stale = false;
+    me.cursor = end();
+  }
   if (me.diverged || me.cursor != end()) return;  // not in step with the log's last entry
   const std::size_t bytesNeeded = image ? image->pixels.size() : 0;
   while (end() - other.cursor >= maxAhead_ || imageBytes_ + bytesNeeded > maxImageBytes_) {

@@ -73,12 +73,13 @@ class SharedDecodes {
   static constexpr std::size_t kDefaultMaxImageBytes = std::size_t{16} << 20;
 
   struct Counters {
-    std::int64_t decoded = 0;      // decodes made by a side itself
-    std::int64_t taken = 0;        // decodes a side took from the other
-    std::int64_t replayed = 0;     // entries decoded again to bring a stale decoder up to date
-    std::int64_t divergences = 0;  // a side's bytes were not the ones the other side decoded next
-    std::int64_t rejoined = 0;     // taken at a fresh start after a divergence or a skipped picture
-    std::int64_t heldBack = 0;     // decodes not offered: the other side was maxAhead behind
+    std::int64_t decoded = 0;       // decodes made by a side itself
+    std::int64_t taken = 0;         // decodes a side took from the other
+    std::int64_t replayed = 0;      // entries decoded again to bring a stale decoder up to date
+    std::int64_t divergences = 0;   // a side's bytes were not the ones the other side decoded next
+    std::int64_t rejoined = 0;      // taken at a fresh start after a divergence or a skipped picture
+    std::int64_t heldBack = 0;      // decodes not offered: the other side was maxAhead behind
+    std::int64_t offeredAgain = 0;  // fresh starts offered by a side that was out of step (publish)
   };
   // A decode taken from the other side: the image is the other side's and is never written again.
   struct Taken {
@@ -116,12 +117,13 @@ class SharedDecodes {
     std::optional<Taken> result;  // until taken; later only the bytes are kept (for replays)
   };
   struct Side {
-    std::size_t cursor = 0;      // log index of the entry after the last one decoded or taken in step
-    bool diverged = false;       // its state is not the one after entry cursor - 1
-    bool pendingAfter = false;   // after its last decode (taken or made), a field was pending
-    bool stale = false;          // took decodes its decoder did not make
-    std::size_t replayFrom = 0;  // with stale: the first entry its decoder must decode again
-    bool replayFresh = false;    // that entry is a fresh start
+    std::size_t cursor = 0;              // log index of the entry after the last one decoded or taken in step
+    bool diverged = false;               // its state is not the one after entry cursor - 1
+    bool pendingAfter = false;           // after its last decode (taken or made), a field was pending
+    bool stale = false;                  // took decodes its decoder did not make
+    std::size_t replayFrom = 0;          // with stale: the first entry its decoder must decode again
+    bool replayFresh = false;            // that entry is a fresh start
+    std::vector<std::uint8_t> previous;  // the bytes of its last picture, decoded or taken (publish)
   };
   static bool same(const Entry& e, std::span<const std::uint8_t> bytes, CscThresholds th);
   Entry& at(std::size_t index) { return log_[index - base_]; }

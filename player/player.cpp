@@ -32,6 +32,8 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
   main_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, &options_.faults, options_.seed,
                                      options_.kernels, &tracer_, "", /*hashChain=*/true);
   if (options_.reference && !options_.faults.faults.empty()) {
+    // The reference's processes go first at any tick both pipelines share (runTo), from the start.
+    const Scheduler::LaneScope first(sched_, Lane::First);
     ref_ = std::make_unique<Pipeline>(sched_, disc, stream_, options_.config, nullptr, options_.seed, options_.kernels,
                                       nullptr, "ref.");
     if (options_.shareDecodes) {
@@ -63,10 +65,17 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
 void Player::runTo(Tick t) {
   if (!started_) {
     started_ = true;
-    // The reference's processes first: at a tick where both presenters blend, the reference's
-    // blend comes first and can wait for the run's (gs::Presenter::followTwin, mirroring). The two
-    // pipelines share no simulated state, so the order changes nothing in either.
-    if (ref_) ref_->start(options_.duration);
+    // The reference's processes in the first lane: at every tick where both presenters blend, the
+    // reference's blend comes first and can wait for the run's (gs::Presenter::followTwin,
+    // mirroring). Spawn order alone kept that only until the two drifted apart within a tick: a run
+    // with no frame yet (a stall at spin-up) finished its vsyncs first, and from then on its strips
+    // were blended first at every tick, so a strip-mode reference never mirrored. The two pipelines
+    // share no simulated state, and within a lane the order is as if the other did not exist
+    // (runtime/scheduler.hpp), so the lanes change nothing in either.
+    if (ref_) {
+      const Scheduler::LaneScope first(sched_, Lane::First);
+      ref_->start(options_.duration);
+    }
     main_->start(options_.duration);
     sched_.spawn("player.record", record(*this));
   }

@@ -7,7 +7,7 @@
 
 namespace vbim {
 
-Scheduler::Scheduler() : ready_(64) {}
+Scheduler::Scheduler() = default;
 
 Scheduler::~Scheduler() {
   // Frames of unfinished processes are destroyed with the scheduler. Nested Task frames are owned
@@ -22,6 +22,7 @@ Process& Scheduler::spawn(std::string name, Task<void> task) {
   proc->name_ = std::move(name);
   proc->root_ = task.release();
   proc->root_.promise().rootDone = &proc->done_;
+  proc->lane_ = laneOf(nullptr);
   Process& p = *proc;
   processes_.push_back(std::move(proc));
   pushReady(p.root_.address(), &p);
@@ -33,7 +34,7 @@ void Scheduler::scheduleAt(Tick t, void* target, Process* p) {
     pushReady(target, p);
     return;
   }
-  heapPush(makeKey(t, seq_++), target, p);
+  heapPush(makeKey(t, laneOf(p), seq_++), target, p);
 }
 
 // A binary min-heap with hole-based sifting, the kernel's hottest path after direct continuation
@@ -72,34 +73,41 @@ Scheduler::Entry Scheduler::heapPop() {
 }
 
 void Scheduler::pushReady(void* target, Process* p) {
-  if (readyCount() == ready_.size()) {
+  const Lane lane = laneOf(p);
+  ReadyRing& r = ready_[static_cast<unsigned>(lane)];
+  if (r.count() == r.slots.size()) {
     // Grow the ring, keeping FIFO order.
-    std::vector<Entry> bigger(ready_.size() * 2);
-    for (std::size_t i = 0; i < readyCount(); ++i) bigger[i] = ready_[(readyHead_ + i) & (ready_.size() - 1)];
-    readyTail_ = readyCount();
-    readyHead_ = 0;
-    ready_.swap(bigger);
+    std::vector<Entry> bigger(r.slots.size() * 2);
+    for (std::size_t i = 0; i < r.count(); ++i) bigger[i] = r.slots[(r.head + i) & (r.slots.size() - 1)];
+    r.tail = r.count();
+    r.head = 0;
+    r.slots.swap(bigger);
   }
-  ready_[readyTail_ & (ready_.size() - 1)] = Entry{makeKey(now_, seq_++), target, p};
-  ++readyTail_;
+  r.slots[r.tail & (r.slots.size() - 1)] = Entry{makeKey(now_, lane, seq_++), target, p};
+  ++r.tail;
 }
 
 void Scheduler::notifyAt(Event& e, Tick t) {
   scheduleAt(t, &e, nullptr);
 }
 
-// Entries already in the heap at time now_ were scheduled before time reached now_, so they come
-// before anything made ready at now_: (time, insertion order) holds without comparing sequences.
+// Entries of a lane already in the heap at time now_ were scheduled before time reached now_, so
+// they come before anything of that lane made ready at now_: (time, lane, insertion order) holds
+// without comparing sequences. The heap's front at now_ is of the first lane if any entry there is;
+// one of the normal lane waits only for the first lane's ready entries.
 bool Scheduler::popNext(Tick limit, Entry& out) {
-  if (!heap_.empty() && heap_.front().time() <= now_) {
+  ReadyRing& first = ready_[0];
+  if (!heap_.empty() && heap_.front().time() <= now_ && (first.count() == 0 || heap_.front().lane() == 0)) {
     out = heapPop();
     return true;
   }
-  if (readyCount() != 0) {
-    out = ready_[readyHead_ & (ready_.size() - 1)];
-    ++readyHead_;
-    if (readyHead_ == readyTail_) readyHead_ = readyTail_ = 0;
-    return true;
+  for (ReadyRing& r : ready_) {
+    if (r.count() != 0) {
+      out = r.slots[r.head & (r.slots.size() - 1)];
+      ++r.head;
+      if (r.head == r.tail) r.head = r.tail = 0;
+      return true;
+    }
   }
   if (heap_.empty() || heap_.front().time() > limit) return false;
   out = heapPop();

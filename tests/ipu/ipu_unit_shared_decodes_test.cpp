@@ -2,13 +2,16 @@
 // the same pictures, reports and ticks as two IPUs that decode everything themselves: when one
 // side is late, drops pictures, is given damaged bytes or pictures without a sequence header of
 // their own (so the decoder's past matters), and when the log's limit makes the side ahead keep
-// its decodes. The sharing must take place where it can.
+// its decodes, and when the side that went its own way is first at every tick. The sharing must take
+// place where it can.
 #include "ipu/ipu_unit_shared_decodes.hpp"
 
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ipu/ipu_unit.hpp"
@@ -46,9 +49,15 @@ Task<void> feed(Scheduler& s, IpuUnit& unit, const std::vector<Step>& steps, std
   }
 }
 
-Outcome play(const std::vector<Step>& a, const std::vector<Step>& b, bool share, std::size_t maxAhead = 64) {
+// aFirst: side a's IPU and feeder in the scheduler's first lane, so that at any tick both share a
+// is first (the player's reference and run); else in spawn order as their work leaves them.
+Outcome play(const std::vector<Step>& a, const std::vector<Step>& b, bool share, std::size_t maxAhead = 64,
+             bool aFirst = false) {
   Scheduler s;
+  std::optional<Scheduler::LaneScope> lane;
+  if (aFirst) lane.emplace(s, Lane::First);
   IpuUnit ua(s, IpuParams{});
+  lane.reset();
   IpuUnit ub(s, IpuParams{});
   SharedDecodes shared(maxAhead);
   if (share) {
@@ -56,7 +65,9 @@ Outcome play(const std::vector<Step>& a, const std::vector<Step>& b, bool share,
     ub.shareDecodes(shared, 1);
   }
   Outcome o;
+  if (aFirst) lane.emplace(s, Lane::First);
   s.spawn("a", feed(s, ua, a, o.a));
+  lane.reset();
   s.spawn("b", feed(s, ub, b, o.b));
   s.run();
   o.counters = shared.counters();
@@ -88,9 +99,9 @@ void expectSame(const std::vector<Decoded>& got, const std::vector<Decoded>& wan
 
 // Plays both ways and compares; returns the shared play's counters.
 SharedDecodes::Counters expectSameAsUnshared(const std::vector<Step>& a, const std::vector<Step>& b,
-                                             std::size_t maxAhead = 64) {
-  const Outcome own = play(a, b, false, maxAhead);
-  const Outcome shared = play(a, b, true, maxAhead);
+                                             std::size_t maxAhead = 64, bool aFirst = false) {
+  const Outcome own = play(a, b, false, maxAhead, aFirst);
+  const Outcome shared = play(a, b, true, maxAhead, aFirst);
   expectSame(shared.a, own.a, "side 0");
   expectSame(shared.b, own.b, "side 1");
   EXPECT_EQ(own.counters.decoded + own.counters.taken, 0);
@@ -189,6 +200,26 @@ TEST(SharedDecodes, AStaleDecoderNeverHasMoreThanTheLimitToReadAgain) {
       expectSameAsUnshared(steps(pics, 0, kEvery), steps(pics, fromMs(7), kEvery), /*maxAhead=*/4);
   EXPECT_EQ(c.taken, 4);
   EXPECT_EQ(c.replayed, 4) << "the late side reads pictures 0-3 again, then decodes the rest itself";
+}
+
+// Side 0 is first at every tick it shares with side 1 (as the player's reference, in the scheduler's
+// first lane, is with the run). Side 1 once decodes two pictures in the other order, the second of
+// them ahead of side 0: side 0 does not find its next picture where the log has side 1's and goes its
+// own way, and from then on, level with side 1 but always first, it looks for each picture before
+// side 1 has decoded it. It picks up again only by offering its own fresh starts, which side 1 takes.
+TEST(SharedDecodes, ASideFirstAtEveryTickThatWentItsOwnWayOffersItsFreshStartsAgain) {
+  const std::vector<Bytes> pics = pictures(64, 48, 12, testing::Content::kBusy);
+  const std::vector<Step> first = steps(pics, 0, kEvery);
+  std::vector<Step> second = steps(pics, 0, kEvery);
+  std::swap(second[2], second[3]);
+  second[2].at = fromMs(7);   // picture 3, ahead of side 0's picture 2
+  second[3].at = fromMs(12);  // picture 2
+  const SharedDecodes::Counters c = expectSameAsUnshared(first, second, 64, /*aFirst=*/true);
+  EXPECT_GE(c.offeredAgain, 1);
+  // Side 1 takes pictures 0-1 and 5-11, side 0 takes picture 3 (found ahead); 2 and 4 are decoded
+  // by both. Without the offers side 0 would take nothing after picture 3, nor side 1 after 1.
+  EXPECT_EQ(c.taken, 10) << "decoded " << c.decoded << ", divergences " << c.divergences << ", rejoined " << c.rejoined
+                         << ", offered again " << c.offeredAgain;
 }
 
 TEST(SharedDecodes, TheSideAheadKeepsItsDecodesPastTheLimit) {
