@@ -83,10 +83,11 @@ void addReplay(CLI::App& app) {
     } else {
       std::cout << result.report;
     }
-    if (result.differs)
+    if (result.differs) {
       throw Exit(1, "the replay differs from " + *result.differs +
                         (r->json ? " (the first difference is the JSON's compare.first_difference)"
                                  : " (the first difference is above)"));
+    }
   });
 }
 

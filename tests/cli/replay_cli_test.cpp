@@ -242,7 +242,7 @@ TEST_F(Replay, JsonSaysWhatTheReportSays) {
   EXPECT_EQ(j["output"]["directory"], (dir_ / "json").string());
 }
 
-TEST_F(Replay, JsonOfAnEqualReplayAndOfALogThatIsRefused) {
+TEST_F(Replay, JsonOfAnEqualReplayOfANameThatIsNotUtf8AndOfALogThatIsRefused) {
   const std::string log = (dir_ / "play/arrivals.csv").string();
   const Result r = runToFile("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "play").string() +
                                  " --json -q --out " + (dir_ / "a").string(),
@@ -254,6 +254,18 @@ TEST_F(Replay, JsonOfAnEqualReplayAndOfALogThatIsRefused) {
   EXPECT_EQ(j["compare"]["equal"], true);
   EXPECT_EQ(j["compare"]["first_difference"], nullptr);
   EXPECT_EQ(j["output"]["images_written"], 0);
+  // A log whose name is not UTF-8: its bytes become U+FFFD, and stderr says so.
+  const fs::path odd = dir_ / std::string("arrivals\xff.csv");
+  fs::copy_file(log, odd);
+  const Result o =
+      runToFile("replay " + kStream + " --arrivals '" + odd.string() + "' --json --out " + (dir_ / "o").string(),
+                dir_ / "o.json");
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("vbim replay: warning: text from the input is not UTF-8"), std::string::npos) << o.output;
+  EXPECT_NE(
+      nlohmann::json::parse(vbim::testing::readFileBytes(dir_ / "o.json"))["arrivals"]["path"].get<std::string>().find(
+          "arrivals\xef\xbf\xbd.csv"),
+      std::string::npos);
   // A log refused as bad input: exit 2, its message, nothing on stdout and nothing written.
   std::ofstream(dir_ / "bad.csv") << "vsync,stream,frame\n0,lightmap:0,x\n";
   const Result bad = runToFile(
