@@ -2,14 +2,15 @@
 # The corruption harness (issue #16): damaged copies of the sample streams (tests/streams/corruption/
 # corrupt_stream.cpp: bit flips, zeroed runs, truncation, dropped/duplicated/reordered sectors,
 # sectors lost at ring-bank boundaries, mangled pack/PES/sequence/descriptor headers, damage in the
-# sky stream) through `vbim info`, `vbim info --json`, `vbim decode`, `vbim decode --json`, `vbim play`
-# and `vbim play --json`. Every run must end with exit 0 (play: stats.json written, concealment counted
-# there; decode --json: its document counts the files the directory holds), or exit 1/2 with a message
-# on stderr; info --json, decode --json and play --json print valid UTF-8 JSON on stdout, also with
-# exit 2; never a signal, a hang (timeout), std::terminate or a sanitizer report. decode --json writes
-# each stream in one --format, cycled by the stream's number: yuv and rgba (as cheap as the text
-# decode's yuv) for seven in eight, png and exr (libpng and OpenEXR: 20-30 ms a frame, 0.5-1 s a
-# stream) for one in sixteen each, so every format meets damaged frames at a small cost.
+# sky stream) through `vbim info`, `vbim info --json`, `vbim decode` (as text or with --json),
+# `vbim play` and `vbim play --json`. Every run must end with exit 0 (play: stats.json written,
+# concealment counted there; decode --json: its document counts the files the directory holds), or
+# exit 1/2 with a message on stderr; info --json, decode --json and play --json print valid UTF-8
+# JSON on stdout, also with exit 2; never a signal, a hang (timeout), std::terminate or a sanitizer
+# report. Each stream is decoded once (a decode under ASan costs about what a play does), in a
+# --format and a mode cycled by the stream's number: --json for three in four, the text summary for
+# the fourth; yuv and rgba mostly, png and exr (libpng and OpenEXR: 20-30 ms a frame, 0.5-1 s a
+# stream) for one in sixteen each, so every format and both modes meet damaged frames.
 #
 #   scripts/corruption-check.sh BUILD_DIR [SEEDS_PER_KIND] [VALGRIND_SEEDS]
 #
@@ -42,7 +43,10 @@ export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 "$vbim" author --synthetic clear,overcast --synthetic-frames 30 --gop 12 --b-frames 2 --loop 6 \
   --out "$work/gop12.vbim" >/dev/null
 # Generate the damaged streams.
-formats=(png yuv rgba yuv rgba yuv rgba yuv exr yuv rgba yuv rgba yuv rgba yuv)
+# decode's --format and mode by the stream's number: --json three times in four, every format
+# with --json over 16 streams (png and exr once each), the text summary as yuv or rgba.
+decodes=("png json" "yuv json" "rgba json" "yuv text" "rgba json" "yuv json" "rgba json" "rgba text"
+  "exr json" "yuv json" "rgba json" "yuv text" "rgba json" "yuv json" "yuv json" "rgba text")
 n=0
 for sample in streams/samples/*.vbim "$work/gop12.vbim"; do
   for kind in "${kinds[@]}"; do
@@ -51,7 +55,7 @@ for sample in streams/samples/*.vbim "$work/gop12.vbim"; do
       rc=0
       "$corrupt" "$sample" "$out" "$kind" "$seed" || rc=$?
       if [ "$rc" = 0 ]; then
-        echo "${formats[n % 16]}" >"${out%.vbim}.format"  # decode --json's --format for this stream
+        echo "${decodes[n % 16]}" >"${out%.vbim}.decode"  # decode's --format and mode for this stream
         n=$((n + 1))
       elif [ "$rc" != 3 ]; then exit 1; fi
     done
@@ -85,18 +89,21 @@ export checkJson
 
 # One stream through the commands; prints a line per failure.
 check_one() {
-  local s="$1" vbim="$2" wrap="${3:-}" cmds="${4:-info json decode decodejson play playjson}" base rc log format
+  local s="$1" vbim="$2" wrap="${3:-}" cmds="${4:-info json decode play playjson}" base rc log format mode
   local docs=() line
   base="${s%.vbim}"
-  format=$(cat "$base.format")
+  read -r format mode <"$base.decode"
+  # decode --json is checked as its own command (decodejson): its document below.
+  [ "$mode" = json ] && cmds="${cmds/decode/decodejson}"
   for cmd in $cmds; do
     log="$base.$cmd.log"
     rc=0
     case "$cmd" in
       info) timeout 120 $wrap "$vbim" info "$s" >"$log" 2>&1 || rc=$? ;;
       json) timeout 120 $wrap "$vbim" info --json "$s" >"$base.$cmd.json" 2>"$log" || rc=$? ;;
-      decode) timeout 120 $wrap "$vbim" decode "$s" --format yuv --force --out "$base.decoded" >"$log" 2>&1 || rc=$? ;;
-      decodejson) timeout 120 $wrap "$vbim" decode "$s" --format "$format" --json --force --out "$base.jsondecoded" \
+      decode) timeout 120 $wrap "$vbim" decode "$s" --format "$format" --force --out "$base.decoded" >"$log" 2>&1 ||
+        rc=$? ;;
+      decodejson) timeout 120 $wrap "$vbim" decode "$s" --format "$format" --json --force --out "$base.decoded" \
         >"$base.$cmd.json" 2>"$log" || rc=$? ;;
       play) timeout 300 $wrap "$vbim" play "$s" --duration 4s --force --out "$base.played" >"$log" 2>&1 || rc=$? ;;
       # The --json summary alone (no --out): the document is all of stdout.
@@ -120,19 +127,19 @@ check_one() {
     fi
   done
   if [ "${#docs[@]}" -gt 0 ]; then
-    python3 "$checkJson" "$base.jsondecoded" "$format" "${docs[@]}" 2>&1 | while IFS= read -r line; do
+    python3 "$checkJson" "$base.decoded" "$format" "${docs[@]}" 2>&1 | while IFS= read -r line; do
       echo "FAIL ${line%%:*} $(basename "$s"): ${line#*: }"
       sed -n 1,30p "$base.${line%%:*}.log" 2>/dev/null | sed 's/^/    /'
     done
   fi
-  rm -rf "$base.decoded" "$base.jsondecoded" "$base.played" "$base".*.json
+  rm -rf "$base.decoded" "$base.played" "$base".*.json
 }
 export -f check_one
 
 start=$(date +%s)
 failures=$(find "$work" -name '*.vbim' -print0 | sort -z |
   xargs -0 -P "$(nproc)" -I{} bash -c 'check_one "$1" "$2"' _ {} "$vbim")
-echo "corruption-check: $n streams x (info, info --json, decode, decode --json, play, play --json) in $(( $(date +%s) - start )) s"
+echo "corruption-check: $n streams x (info, info --json, decode or decode --json, play, play --json) in $(( $(date +%s) - start )) s"
 if [ "$vgSeeds" -gt 0 ]; then
   [ -x build/cli/vbim ] || { echo "corruption-check: build/cli/vbim (Release) is missing for valgrind" >&2; exit 2; }
   start=$(date +%s)
