@@ -7,10 +7,13 @@
 #include <string>
 
 #include "cli/command.hpp"
+#include "cli/common_options.hpp"
+#include "cli/exit_status.hpp"
 #include "cli/host_threads.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
 #include "runs/decode_run.hpp"
+#include "runs/play_json.hpp"
 
 namespace vbim::cli {
 namespace {
@@ -24,8 +27,15 @@ void run(const runs::DecodeRequest& r) {
     progress.finish();  // a report starts on a line of its own
     std::cerr << "vbim decode: " << line << "\n";
   };
-  const std::string summary = runs::decodeRun(r, observer);
-  std::cout << summary;
+  const runs::DecodeResult result = runs::decodeRun(r, observer);
+  progress.finish();
+  if (r.json) {
+    if (result.jsonReplaced) std::cerr << "vbim decode: " << runs::kNotUtf8Warning << "\n";
+    requestedOut() << result.summary;  // also under --quiet, and also when --strict fails below
+  } else if (result.strictFailure.empty()) {
+    std::cout << result.summary;
+  }
+  if (!result.strictFailure.empty()) throw Exit(kExitBadInput, result.strictFailure);
 }
 
 }  // namespace
@@ -58,10 +68,13 @@ void addDecode(CLI::App& app) {
       ->check(CLI::Range(0, 511));
   cmd->add_flag("--force", o->force, "Replace a non-empty output directory");
   cmd->add_flag("--strict", o->strict, "Fail (exit 2) if any picture needed concealment");
+  cmd->add_flag("--json", o->json,
+                "Print the summary as JSON on stdout, with every damaged picture (docs/cli.md, \"JSON summaries\")");
   cmd->footer(
       "Examples:\n"
       "  vbim decode streams/samples/day_clear.vbim --out frames/\n"
-      "  vbim decode streams/samples/day_clear.vbim --out frames/ --format exr --threads 2\n");
+      "  vbim decode streams/samples/day_clear.vbim --out frames/ --format exr --threads 2\n"
+      "  vbim decode streams/samples/day_clear.vbim --out frames/ --json\n");
   cmd->callback([o] { run(*o); });
 }
 

@@ -10,6 +10,7 @@
 #include "cli/common_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress.hpp"
+#include "runs/play_json.hpp"
 #include "runs/replay_run.hpp"
 
 namespace vbim::cli {
@@ -52,11 +53,15 @@ void addReplay(CLI::App& app) {
       ->check(CLI::IsMember({"opaque", "gs"}))
       ->capture_default_str();
   cmd->add_flag("--force", r->force, "Replace a non-empty output directory");
+  cmd->add_flag("--json", r->json,
+                "Print the summary as JSON on stdout: late and unshown arrivals, --compare's first difference "
+                "(docs/cli.md, \"JSON summaries\")");
   cmd->add_option("-o,--out", r->out, "Output directory (written complete or not at all)")->required();
   cmd->footer(
       "Examples:\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --out replayed/\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --duration 10s --out replayed/\n"
+      "  vbim replay streams/samples/day_clear.vbim --arrivals run/arrivals.csv --out replayed/ --json\n"
       "  vbim replay disc.iso --file '\\DATA\\DAY.VBI;1' --arrivals run-iso/arrivals.csv --out replayed-iso/\n"
       "  vbim replay streams/samples/day_clear.vbim --arrivals port-log.csv --compare port-hashes.txt --out "
       "replayed/\n"
@@ -72,9 +77,17 @@ void addReplay(CLI::App& app) {
         runs::replayRun(*r, [](const std::string& warning) { std::cerr << "warning: " << warning << "\n"; });
     r->progress = nullptr;
     bar.finish();
-    std::cout << result.report;
-    if (result.differs)
-      throw Exit(1, "the replay differs from " + *result.differs + " (the first difference is above)");
+    if (r->json) {
+      if (result.jsonReplaced) std::cerr << "vbim replay: " << runs::kNotUtf8Warning << "\n";
+      requestedOut() << result.report;  // also under --quiet, and before the exit 1 of a difference
+    } else {
+      std::cout << result.report;
+    }
+    if (result.differs) {
+      throw Exit(1, "the replay differs from " + *result.differs +
+                        (r->json ? " (the first difference is the JSON's compare.first_difference)"
+                                 : " (the first difference is above)"));
+    }
   });
 }
 

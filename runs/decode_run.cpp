@@ -1,7 +1,10 @@
 #include "runs/decode_run.hpp"
 
+#include <filesystem>
 #include <sstream>
+#include <system_error>
 
+#include "runs/decode_json.hpp"
 #include "runs/output_dir.hpp"
 #include "streams/decode/decode_input.hpp"
 #include "streams/decode/frame_files.hpp"
@@ -10,7 +13,34 @@
 
 namespace vbim::runs {
 
-std::string decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
+namespace {
+
+// The frame files a committed output directory holds, and their bytes.
+void countFiles(DecodeOutput& out) {
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(out.directory, ec)) {
+    if (!e.is_regular_file(ec)) continue;
+    ++out.files;
+    out.bytes += e.file_size(ec);
+  }
+}
+
+std::string summaryLine(const DecodeRequest& r, const streams::DecodeSummary& s, const std::string& directory) {
+  std::ostringstream line;
+  line << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
+       << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << directory << "/ as " << r.format;
+  if (s.issues) line << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
+  if (s.skippedPictures) {
+    line << ", " << s.skippedPictures << (s.skippedPictures == 1 ? " picture" : " pictures")
+         << " skipped (cannot be decoded)";
+  }
+  line << "\n";
+  return line.str();
+}
+
+}  // namespace
+
+DecodeResult decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
   streams::DecodeOptions options;
   options.threads = r.threads;
   options.idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);
@@ -29,20 +59,20 @@ std::string decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
       [&observer](const std::string& line) {
         if (observer.onReport) observer.onReport(line);
       });
-  if (r.strict && s.issues > 0)
-    throw Error(name + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)");
-  dir.commit();
-  std::ostringstream line;
-  line << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
-       << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << dir.finalPath().string() << "/ as "
-       << r.format;
-  if (s.issues) line << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
-  if (s.skippedPictures) {
-    line << ", " << s.skippedPictures << (s.skippedPictures == 1 ? " picture" : " pictures")
-         << " skipped (cannot be decoded)";
+  DecodeResult result;
+  DecodeOutput out;
+  out.directory = dir.finalPath().string();
+  if (r.strict && s.issues > 0) {
+    // Nothing is committed: the temporary directory goes with `dir`.
+    result.strictFailure = name + s.streamLabel + ": " + std::to_string(s.issues) + " issues (--strict)";
+  } else {
+    dir.commit();
+    out.written = true;
+    countFiles(out);
   }
-  line << "\n";
-  return line.str();
+  result.summary = r.json ? decodeSummaryJson(r, in, name, s, out, result.strictFailure, result.jsonReplaced)
+                          : summaryLine(r, s, out.directory);
+  return result;
 }
 
 }  // namespace vbim::runs

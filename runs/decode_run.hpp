@@ -21,7 +21,16 @@ struct DecodeRequest {
   unsigned threads = 0;
   bool force = false;
   bool strict = false;   // a decode issue (a concealed picture) fails the run, and nothing is written
+  bool json = false;     // DecodeResult::summary as JSON (runs/decode_json.hpp)
   int th0 = 0, th1 = 0;  // SETTH
+};
+
+struct DecodeResult {
+  std::string summary;        // the summary line, or with `json` the JSON document
+  bool jsonReplaced = false;  // `json`: bytes of the inputs not UTF-8 written as U+FFFD (kNotUtf8Warning)
+  // Under `strict`, a stream with decode issues: the failure (exit 2), and nothing was written;
+  // the summary says what was found all the same. Empty otherwise.
+  std::string strictFailure;
 };
 
 // What the caller is told while the pictures are decoded (each may be empty).
@@ -30,9 +39,10 @@ struct DecodeObserver {
   std::function<void(const std::string& line)> onReport;  // a decode issue, said as it is found
 };
 
-// Decodes into `out`; returns the summary line (pictures, size, MPEG-1 or -2, stream, directory,
-// format, and any issues with the macroblocks concealed). Throws vbim::Error for bad input (the
-// file, the stream id, an existing --out, issues under `strict`).
-std::string decodeRun(const DecodeRequest& r, const DecodeObserver& observer);
+// Decodes into `out`; returns the summary (pictures, size, MPEG-1 or -2, stream, directory, format,
+// and any issues with the macroblocks concealed). Throws vbim::Error for bad input (the file, the
+// stream id, an existing --out); issues under `strict` are DecodeResult::strictFailure, which the
+// caller makes an error after printing the summary (a --json document lists the damage).
+DecodeResult decodeRun(const DecodeRequest& r, const DecodeObserver& observer);
 
 }  // namespace vbim::runs

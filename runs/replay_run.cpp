@@ -19,6 +19,7 @@
 #include "runs/error.hpp"
 #include "runs/output_dir.hpp"
 #include "runs/play_run.hpp"
+#include "runs/replay_json.hpp"
 #include "streams/disc/stream_disc.hpp"
 
 namespace vbim::runs {
@@ -68,6 +69,9 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
   if (!r.durationGiven) o.vsyncs = log.vsyncs;  // the run's own length, when the log says it
   const auto replay = std::make_unique<Replay>(std::span<const std::uint8_t>(file), r.stream, log.arrivals, o);
   ReplayNotes notes(*replay, log, r.arrivals);
+  ReplayFacts facts;
+  facts.fileOnDisc = disc.image ? disc.file.path : std::string();
+  facts.policy = o.config.gs.catchup;
   OutputDir dir(r.out, r.force);
   std::ofstream hashes(dir.path("hashes.txt"), std::ios::binary);
   std::ofstream timeline(dir.path("timeline.csv"), std::ios::binary);
@@ -82,6 +86,8 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
     hashes << hashesLine(row);
     timeline << replayTimelineLine(row, *replay);
     notes.add(row);
+    if (row.lightmap.targetSeq >= 0) facts.shown.emplace(false, row.lightmap.variant, row.lightmap.targetSeq);
+    if (row.sky && row.sky->targetSeq >= 0) facts.shown.emplace(true, row.sky->variant, row.sky->targetSeq);
     ++rows;
     if (r.progress && rows % 60 == 0) {
       try {
@@ -91,8 +97,12 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
         throw;
       }
     }
-    if (expected && difference.empty()) difference = hashDifference(*expected, row, notes);
+    if (expected && difference.empty()) {
+      difference = hashDifference(*expected, row, notes);
+      if (!difference.empty()) facts.firstDifference = row;
+    }
     if (r.every <= 0 || row.vsync % r.every != 0) return;
+    facts.imagesWritten += sky != nullptr ? 2 : 1;
     char name[64];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(row.vsync));
     const imageio::TexelFileFormat format{r.format == "exr", r.alpha == "gs", imageio::kDefaultTexelPngLevel};
@@ -111,6 +121,13 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
   if (!timeline) throw RunFailure(dir.path("timeline.csv").string() + ": cannot write");
   dir.commit();
 
+  ReplayResult result;
+  if (expected && !difference.empty()) result.differs = expected->origin;
+  if (r.json) {
+    facts.vsyncs = rows;
+    result.report = replaySummaryJson(r, *replay, log, facts, expected, result.jsonReplaced);
+    return result;
+  }
   std::ostringstream out;
   out << "replayed " << rows << " vsyncs of " << r.stream << " from " << r.arrivals
       << (r.frames.empty() ? "" : " with the frames of " + r.frames) << " into " << r.out;
@@ -122,7 +139,6 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
   out << late.size() << " arrival(s) late or never shown" << (late.empty() ? "" : ":") << "\n";
   for (std::size_t i = 0; i < late.size() && i < kListed; ++i) out << "  " << late[i] << "\n";
   if (late.size() > kListed) out << "  ... and " << late.size() - kListed << " more (timeline.csv)\n";
-  ReplayResult result;
   if (expected) {
     if (difference.empty() && static_cast<std::int64_t>(expected->hashes.size()) > rows) {
       out << "note: " << expected->origin << " has " << expected->hashes.size() - static_cast<std::size_t>(rows)
@@ -132,7 +148,6 @@ ReplayResult replayRun(const ReplayRequest& r, const std::function<void(const st
       out << "every hash equals " << expected->origin << " (" << rows << " vsyncs)\n";
     } else {
       out << difference;
-      result.differs = expected->origin;
     }
   }
   result.report = out.str();

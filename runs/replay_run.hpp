@@ -27,6 +27,7 @@ struct ReplayRequest {
   std::string format = "png";
   std::string alpha = "opaque";
   bool force = false;
+  bool json = false;  // ReplayResult::report as JSON (runs/replay_json.hpp)
   std::string out;
   // Called every 60 vsyncs with the vsyncs presented and the total (0 when only --duration says
   // it): the command's progress line, and where Ctrl-C stops it (cli/interrupt.hpp).
@@ -34,8 +35,9 @@ struct ReplayRequest {
 };
 
 struct ReplayResult {
-  std::string report;                  // what was replayed, the late arrivals, the comparison
+  std::string report;                  // what was replayed, the late arrivals, the comparison (`json`: the document)
   std::optional<std::string> differs;  // with `compare`: the origin whose hashes differ, if any
+  bool jsonReplaced = false;           // `json`: bytes of the inputs not UTF-8 written as U+FFFD (kNotUtf8Warning)
 };
 
 // `warn` gets each warning about the arrival log (an unknown row, ...) before the replay runs.

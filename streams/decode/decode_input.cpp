@@ -10,11 +10,12 @@
 namespace vbim::streams {
 
 DecodeInput readDecodeInput(const std::string& input, const std::string& file) {
-  DecodeInput in{{}, input};
+  DecodeInput in{{}, input, {}};
   if (isIsoImage(input) || !file.empty()) {
     const StreamDisc disc = openStreamDisc(input, file);
     in.bytes = readDiscFile(*disc.disc, disc.file);
     in.name += " " + disc.file.path;
+    in.fileOnDisc = disc.file.path;
     return in;
   }
   std::ifstream f(input, std::ios::binary);

@@ -13,7 +13,8 @@ namespace vbim::streams {
 
 struct DecodeInput {
   std::vector<std::uint8_t> bytes;
-  std::string name;  // how messages name it: the path, and on an image the file on it
+  std::string name;        // how messages name it: the path, and on an image the file on it
+  std::string fileOnDisc;  // the file on an ISO 9660 image ("\\DATA\\DAY.VBI;1"), or empty
 };
 
 // `input` as it is, or, when it is an ISO 9660 image or `file` is given (--file), the stream `file`

@@ -27,10 +27,14 @@ const char* extensionOf(FrameFileFormat format) {
 FrameFileWriter::FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds)
     : directory_(std::move(directory)), format_(format), thresholds_(thresholds) {}
 
-void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
+std::string frameFileName(int frame, FrameFileFormat format) {
   char name[64];
-  std::snprintf(name, sizeof name, "frame_%05d.%s", frame, extensionOf(format_));
-  const std::filesystem::path path = directory_ / name;
+  std::snprintf(name, sizeof name, "frame_%05d.%s", frame, extensionOf(format));
+  return name;
+}
+
+void FrameFileWriter::write(int frame, const ipu::Decoder& decoder) {
+  const std::filesystem::path path = directory_ / frameFileName(frame, format_);
   // The frame due for display (display order), else the one decoded last.
   const ipu::FrameStore& fs = decoder.displayFrame() ? *decoder.displayFrame() : decoder.frame();
   const int w = decoder.displayFrame() ? decoder.displayWidth() : decoder.width();

@@ -20,6 +20,8 @@ enum class FrameFileFormat { Png, Exr, Yuv, Rgba };
 
 // "png", "exr", "yuv", "rgba": the file name extension.
 const char* extensionOf(FrameFileFormat format);
+// "frame_00042.png": the file frame number `frame` is written as.
+std::string frameFileName(int frame, FrameFileFormat format);
 
 class FrameFileWriter {
  public:

@@ -1,5 +1,6 @@
 #include "streams/decode/stream_decode.hpp"
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -37,6 +38,31 @@ VideoElementaryStream videoOf(std::span<const std::uint8_t> file, const std::str
               "(expected 00 00 01 BA or 00 00 01 B3)");
 }
 
+// Which frame number each damaged picture is written as. The decoder shows frames in display order
+// from its three frame stores (ipu/reference_frames.hpp), so the pictures decoded into a store since
+// it was last shown are the ones its next display carries (two fields make one frame).
+class FrameNumbers {
+ public:
+  // Before decoding a picture: whether it may be the second field of the frame begun last.
+  void beforePicture(const ipu::Decoder& d) { fieldStore_ = d.fieldPending() ? &d.frame() : nullptr; }
+  // After it was decoded into d.frame(): `damaged` is its index in the summary's list, or -1.
+  void decoded(const ipu::Decoder& d, int damaged) {
+    std::vector<int>& in = pending_[&d.frame()];
+    if (&d.frame() != fieldStore_) in.clear();  // a new frame: what the store held was never shown
+    if (damaged >= 0) in.push_back(damaged);
+  }
+  // The display frame is written as frame number `frame`.
+  void shown(const ipu::Decoder& d, int frame, std::vector<DamagedPicture>& damaged) {
+    std::vector<int>& in = pending_[d.displayFrame()];
+    for (const int i : in) damaged[static_cast<std::size_t>(i)].frame = frame;
+    in.clear();
+  }
+
+ private:
+  const ipu::FrameStore* fieldStore_ = nullptr;
+  std::map<const ipu::FrameStore*, std::vector<int>> pending_;
+};
+
 }  // namespace
 
 DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string& name, const DecodeOptions& options,
@@ -53,13 +79,37 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
   if (options.threads > 1) pool = std::make_unique<WorkerPool>(options.threads - 1);
 
   DecodeSummary summary;
+  summary.containerDefects = video.defects;
+  summary.streamId = video.streamId;
   if (video.streamId) summary.streamLabel = " (video stream " + hexId(*video.streamId) + ")";
   const std::string source = name + summary.streamLabel;
   std::string firstSkipped;  // why the first picture that could not be decoded was skipped
+  FrameNumbers numbers;
+  const auto show = [&] {
+    numbers.shown(decoder, summary.frames, summary.damaged);
+    frames(summary.frames++, decoder);
+  };
   for (const ipu::AccessUnit& au : ipu::splitAccessUnits(video.bytes)) {
     const auto bytes = std::span(video.bytes).subspan(au.offset, au.size);
+    numbers.beforePicture(decoder);
     const ipu::PictureReport r = pool ? decoder.decode(bytes, *pool) : decoder.decode(bytes);
     summary.issues += r.issueCount;
+    if (!r.produced && !r.undecodable && r.clean()) continue;  // no picture in these bytes
+    const int picture = summary.pictures++;
+    int damagedIndex = -1;
+    if (r.undecodable || r.issueCount > 0 || r.macroblocksConcealed > 0) {
+      damagedIndex = static_cast<int>(summary.damaged.size());
+      DamagedPicture& p = summary.damaged.emplace_back();
+      p.picture = picture;
+      p.codingType = r.pictureCodingType;
+      p.fileOffset = video.fileOffsetOf(au.offset);
+      p.skipped = r.undecodable;
+      p.issueCount = r.issueCount;
+      p.macroblocks = r.macroblocks;
+      p.macroblocksConcealed = r.macroblocksConcealed;
+      for (const ipu::DecodeIssue& is : r.issues)
+        p.issues.push_back({is.kind, video.fileOffsetOf(au.offset + is.byteOffset), is.mbX, is.mbY});
+    }
     if (r.undecodable) {
       // A picture header the decoder cannot use (damaged, or a sequence it does not support): the
       // picture is skipped and the decode goes on, as libmpeg2 and libavcodec do; the pictures that
@@ -74,10 +124,11 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
       ++summary.skippedPictures;
       continue;
     }
+    if (r.produced) numbers.decoded(decoder, damagedIndex);
     for (const ipu::DecodeIssue& is : r.issues) {
       std::string line = source + ": byte " + std::to_string(video.fileOffsetOf(au.offset + is.byteOffset));
       if (is.mbX >= 0) {
-        line += ", picture " + std::to_string(summary.frames) + " macroblock (" + std::to_string(is.mbX) + "," +
+        line += ", picture " + std::to_string(picture) + " macroblock (" + std::to_string(is.mbX) + "," +
                 std::to_string(is.mbY) + ")";
       }
       diagnostics(line + ": " + ipu::issueName(is.kind));
@@ -87,9 +138,9 @@ DecodeSummary decodeStream(std::span<const std::uint8_t> file, const std::string
     summary.concealedMacroblocks += r.macroblocksConcealed;
     // Frames leave in display order (§6.1.1.11): B frames at once, I and P frames when the next
     // one is complete, the last at the end.
-    if (decoder.displayFrame()) frames(summary.frames++, decoder);
+    if (decoder.displayFrame()) show();
   }
-  while (decoder.flushDisplay()) frames(summary.frames++, decoder);
+  while (decoder.flushDisplay()) show();
   if (summary.frames == 0) {
     if (!firstSkipped.empty()) throw Error(firstSkipped);
     if (!decoder.hasSequence()) throw Error(source + ": no sequence header: nothing can be decoded");

@@ -1,6 +1,7 @@
 // vbim replay explains a schedule (docs/porting.md, "Replay"): with frames 5-8 of play's arrivals
 // delayed by 250 vsyncs it lists the late and unshown arrivals, writes timeline.csv, and --compare
-// names the first vsync that differs from play's run with the frame due, the target and lateness.
+// names the first vsync that differs from play's run with the frame due, the target and lateness;
+// --json says the same as one document on stdout (docs/cli.md, "JSON summaries").
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "tests/support/run_command.hpp"
 #include "tests/support/scratch.hpp"
@@ -54,6 +57,12 @@ class Replay : public ::testing::Test {
   }
   fs::path dir_;
 };
+
+// `vbim args` (from the source tree) with stdout into `out`: the result holds stderr alone.
+Result runToFile(const std::string& args, const fs::path& out) {
+  return vbim::testing::runCommand("cd '" + std::string(VBIM_SOURCE_DIR) + "' && { " + VBIM_BINARY + " " + args +
+                                   " > '" + out.string() + "'; }");
+}
 
 std::vector<std::string> lines(const fs::path& p) {
   std::ifstream in(p);
@@ -164,6 +173,108 @@ TEST_F(Replay, MalformedLogsAreRefusedOrWarnedWithTheirLine) {
   EXPECT_NE(gap.output.find("warning: "), std::string::npos) << gap.output;
   EXPECT_NE(gap.output.find("lightmap frame 5 never arrives (the log goes on at frame 6)"), std::string::npos)
       << gap.output;
+}
+
+// The document holds what the text report says: the same late and unshown arrivals, each with its
+// line, due vsync and lateness, and the first difference with both hashes and what the presenters
+// showed; it is printed before the exit 1 of a difference.
+TEST_F(Replay, JsonSaysWhatTheReportSays) {
+  const fs::path log = delayed(5, 8, 250);
+  const std::string args =
+      "replay " + kStream + " --arrivals " + log.string() + " --compare " + (dir_ / "play").string() + " --every 300 ";
+  const Result text = run(args + "--out " + (dir_ / "text").string());
+  ASSERT_EQ(text.status, 1) << text.output;
+  const Result r = runToFile(args + "--json --out " + (dir_ / "json").string(), dir_ / "replay.json");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("vbim replay: the replay differs from " + (dir_ / "play" / "hashes.txt").string()),
+            std::string::npos)
+      << r.output;
+  const nlohmann::json j = nlohmann::json::parse(vbim::testing::readFileBytes(dir_ / "replay.json"));
+  EXPECT_EQ(j["stream"]["path"], kStream);
+  EXPECT_EQ(j["stream"]["file"], nullptr);
+  EXPECT_EQ(j["arrivals"]["path"], log.string());
+  EXPECT_EQ(j["arrivals"]["rows"], lines(log).size() - 2);  // less the header and the end row
+  EXPECT_EQ(j["policy"], "blend-through");
+  const std::vector<std::string> hashes = lines(dir_ / "json/hashes.txt");
+  EXPECT_EQ(j["vsyncs"], hashes.size());
+  EXPECT_EQ(j["arrivals"]["end_row_vsyncs"], hashes.size());
+  EXPECT_EQ(j["missing_pictures"], 0);
+  EXPECT_FALSE(j["arrivals"]["warnings"].empty());
+  for (const auto& w : j["arrivals"]["warnings"]) {
+    EXPECT_NE(r.output.find("warning: " + w.get<std::string>()), std::string::npos) << w;
+  }
+  // Both streams' frames 5-8: the text's count, and each line as the text says it.
+  const auto& late = j["late_or_unshown"];
+  ASSERT_EQ(late.size(), 8u) << late.dump(2);
+  EXPECT_NE(text.output.find("8 arrival(s) late or never shown"), std::string::npos) << text.output;
+  for (const auto& a : late) {
+    const std::int64_t f = a["frame"].get<std::int64_t>();
+    EXPECT_EQ(a["arrived_vsync"], 521 + 60 * (f - 5)) << a;
+    EXPECT_EQ(a["due_vsync"], 330 + 60 * (f - 5)) << a;
+    EXPECT_EQ(a["late_vsyncs"], 191) << a;
+    EXPECT_EQ(a["never_shown"], f > 5) << a;
+    const std::string said = log.string() + ":" + std::to_string(a["line"].get<int>()) + ": " +
+                             a["stream"].get<std::string>() + ":0 frame " + std::to_string(f) + " arrived at vsync " +
+                             std::to_string(a["arrived_vsync"].get<int>()) + ", due at vsync " +
+                             std::to_string(a["due_vsync"].get<int>()) + ": 191 vsyncs late";
+    EXPECT_NE(text.output.find(said), std::string::npos) << said << "\n" << text.output;
+  }
+  const auto& c = j["compare"];
+  EXPECT_EQ(c["with"], (dir_ / "play" / "hashes.txt").string());
+  EXPECT_EQ(c["equal"], false);
+  EXPECT_EQ(c["vsyncs_compared"], hashes.size());
+  const auto& d = c["first_difference"];
+  EXPECT_EQ(d["vsync"], 330);
+  EXPECT_DOUBLE_EQ(d["time_s"].get<double>(), 5.5055);
+  EXPECT_EQ(d["expected_line"], 331);
+  EXPECT_EQ(hashes[330], "330 5.505500 " + d["replay_hash"].get<std::string>());
+  EXPECT_EQ(lines(dir_ / "play/hashes.txt")[330], "330 5.505500 " + d["expected_hash"].get<std::string>());
+  EXPECT_EQ(d["lightmap"]["due_frame"], 5);
+  EXPECT_EQ(d["lightmap"]["target_frame"], 4);
+  EXPECT_EQ(d["lightmap"]["behind"], true);
+  EXPECT_EQ(d["lightmap"]["due_frame_arrives_vsync"], 521);
+  EXPECT_EQ(d["lightmap"]["target_late_vsyncs"], 0);
+  EXPECT_NE(text.output.find("lightmap: frame 5 due, target frame 4"), std::string::npos) << text.output;
+  // Pictures every 300 vsyncs, lightmap and sky: as many as the frames directory holds.
+  std::size_t pictures = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_ / "json/frames")) ++pictures;
+  EXPECT_EQ(j["output"]["images_written"], pictures);
+  EXPECT_EQ(j["output"]["directory"], (dir_ / "json").string());
+}
+
+TEST_F(Replay, JsonOfAnEqualReplayOfANameThatIsNotUtf8AndOfALogThatIsRefused) {
+  const std::string log = (dir_ / "play/arrivals.csv").string();
+  const Result r = runToFile("replay " + kStream + " --arrivals " + log + " --compare " + (dir_ / "play").string() +
+                                 " --json -q --out " + (dir_ / "a").string(),
+                             dir_ / "a.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, "");  // -q: no warnings here, and the document is on stdout
+  const nlohmann::json j = nlohmann::json::parse(vbim::testing::readFileBytes(dir_ / "a.json"));
+  EXPECT_EQ(j["late_or_unshown"], nlohmann::json::array());
+  EXPECT_EQ(j["compare"]["equal"], true);
+  EXPECT_EQ(j["compare"]["first_difference"], nullptr);
+  EXPECT_EQ(j["output"]["images_written"], 0);
+  // A log whose name is not UTF-8: its bytes become U+FFFD, and stderr says so.
+  const fs::path odd = dir_ / std::string("arrivals\xff.csv");
+  fs::copy_file(log, odd);
+  const Result o =
+      runToFile("replay " + kStream + " --arrivals '" + odd.string() + "' --json --out " + (dir_ / "o").string(),
+                dir_ / "o.json");
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("vbim replay: warning: text from the input is not UTF-8"), std::string::npos) << o.output;
+  EXPECT_NE(
+      nlohmann::json::parse(vbim::testing::readFileBytes(dir_ / "o.json"))["arrivals"]["path"].get<std::string>().find(
+          "arrivals\xef\xbf\xbd.csv"),
+      std::string::npos);
+  // A log refused as bad input: exit 2, its message, nothing on stdout and nothing written.
+  std::ofstream(dir_ / "bad.csv") << "vsync,stream,frame\n0,lightmap:0,x\n";
+  const Result bad = runToFile(
+      "replay " + kStream + " --arrivals " + (dir_ / "bad.csv").string() + " --json --out " + (dir_ / "b").string(),
+      dir_ / "b.json");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("bad.csv:2:"), std::string::npos) << bad.output;
+  EXPECT_EQ(vbim::testing::readFileBytes(dir_ / "b.json"), "");
+  EXPECT_FALSE(fs::exists(dir_ / "b"));
 }
 
 }  // namespace

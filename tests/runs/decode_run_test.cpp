@@ -40,7 +40,9 @@ TEST(DecodeRun, EveryPictureIsAFileAndTheLineSaysHowMany) {
   DecodeObserver observer;
   observer.onPicture = [&pictures] { ++pictures; };
   observer.onReport = [](const std::string& line) { ADD_FAILURE() << "the sample decodes cleanly: " << line; };
-  const std::string line = decodeRun(r, observer);
+  const DecodeResult result = decodeRun(r, observer);
+  EXPECT_EQ(result.strictFailure, "");
+  const std::string& line = result.summary;
   ASSERT_GT(pictures, 0);
   EXPECT_EQ(filesIn(r.out), static_cast<std::size_t>(pictures));
   EXPECT_EQ(line.rfind("decoded " + std::to_string(pictures) + " pictures ", 0), 0u) << line;

@@ -13,6 +13,7 @@
 #include "streams/decode/frame_files.hpp"
 #include "streams/decode/stream_decode.hpp"
 #include "streams/video_elementary_stream.hpp"
+#include "tests/ipu/support/field_picture_writer.hpp"
 #include "tests/ipu/support/libav_mpeg.hpp"
 #include "tests/streams/program_stream_builder.hpp"
 
@@ -206,6 +207,56 @@ TEST(StreamsDecode, APictureThatCannotBeDecodedIsSkippedAndTheRestDecoded) {
   for (const std::string& l : m.lines) named += l.find("; picture skipped") != std::string::npos;
   EXPECT_EQ(named, 20u) << joined(m.lines);
   EXPECT_NE(joined(m.lines).find("counted, not listed"), std::string::npos);
+}
+
+// The picture start codes (00 00 01 00) of an elementary stream, in file order.
+std::vector<std::size_t> pictureStarts(const Bytes& es) {
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i + 3 < es.size(); ++i)
+    if (es[i] == 0 && es[i + 1] == 0 && es[i + 2] == 1 && es[i + 3] == 0) at.push_back(i);
+  return at;
+}
+
+// The summary keeps each damaged picture with the frame it was written as: two field pictures make
+// one frame, so either field's damage is that frame's, and the pictures after it keep counting.
+TEST(StreamsDecode, ADamagedFieldIsNamedByTheFrameItCompletes) {
+  ipu::testing::FieldStreamOptions o;
+  o.dualPrime = false;
+  o.pictures = 2;  // an I frame, then two P frames of two fields each: five pictures, three frames
+  const Bytes clean = ipu::testing::makeFieldStream(o);
+  const std::vector<std::size_t> starts = pictureStarts(clean);
+  ASSERT_EQ(starts.size(), 5u);
+  const Decoded whole = decode(clean);
+  EXPECT_EQ(whole.summary.pictures, 5);
+  EXPECT_EQ(whole.summary.frames, 3);
+  EXPECT_TRUE(whole.summary.damaged.empty()) << joined(whole.lines);
+  for (const std::size_t field : {1u, 2u, 3u, 4u}) {
+    SCOPED_TRACE("field picture " + std::to_string(field));
+    Bytes bad = clean;
+    const std::size_t mid = (starts[field] + (field + 1 < starts.size() ? starts[field + 1] : bad.size())) / 2;
+    for (std::size_t i = mid; i < mid + 6; ++i) bad[i] ^= 0xFF;
+    const Decoded d = decode(bad);
+    ASSERT_EQ(d.summary.damaged.size(), 1u) << joined(d.lines);
+    const DamagedPicture& p = d.summary.damaged[0];
+    EXPECT_EQ(p.picture, static_cast<int>(field));
+    EXPECT_EQ(p.codingType, 2);
+    EXPECT_EQ(p.fileOffset, starts[field]);
+    EXPECT_EQ(p.frame, static_cast<int>(field + 1) / 2);  // fields 1 and 2 make frame 1, 3 and 4 frame 2
+    EXPECT_FALSE(p.skipped);
+    ASSERT_FALSE(p.issues.empty());
+    EXPECT_EQ(p.issueCount, p.issues.size());
+    for (const LocatedIssue& i : p.issues) {
+      EXPECT_GE(i.fileOffset, mid);
+      EXPECT_NE(joined(d.lines).find("byte " + std::to_string(i.fileOffset) + ", picture " + std::to_string(field)),
+                std::string::npos)
+          << joined(d.lines);
+    }
+    // The frame named is the first that differs from the undamaged decode.
+    ASSERT_GE(p.frame, 0);
+    ASSERT_LT(p.frame, static_cast<int>(d.frames.size()));
+    for (std::size_t f = 0; f < static_cast<std::size_t>(p.frame); ++f) EXPECT_EQ(d.frames[f], whole.frames[f]) << f;
+    EXPECT_NE(d.frames[static_cast<std::size_t>(p.frame)], whole.frames[static_cast<std::size_t>(p.frame)]);
+  }
 }
 
 TEST(StreamsDecode, WritesFramesAsFiles) {
