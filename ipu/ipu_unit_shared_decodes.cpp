@@ -66,7 +66,7 @@ std::optional<SharedDecodes::Taken> SharedDecodes::takeAt(Side& me, std::size_t 
   me.cursor = index + 1;
   me.diverged = false;
   me.pendingAfter = e.pendingAfter;
-  me.previous = e.bytes;
+  me.previous.clear();  // its last picture is in the log now
   Taken taken = std::move(*e.result);
   e.result.reset();
   imageBytes_ -= taken.image ? taken.image->pixels.size() : 0;
@@ -107,17 +107,21 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   // its own way would never pick up again: it looks for the other's decode before the other made it.
   // Only when the two are level: the log's last entry is the picture this side had before this one
   // (the other decoded it after this side did). A side behind the other picks up again in take().
-  const bool level = end() > base_ && at(end() - 1).bytes == me.previous;
+  // The byte comparisons last, so a side in step compares nothing.
   const bool rejoin = (me.diverged || me.cursor != end()) && other.cursor == end() && !other.pendingAfter &&
-                      !pendingBefore && level && startsWithSequenceHeader(bytes);
-  me.previous.assign(bytes.begin(), bytes.end());
+                      !pendingBefore && end() > base_ && at(end() - 1).bytes == me.previous &&
+                      startsWithSequenceHeader(bytes);
   if (rejoin) {
     ++counters_.offeredAgain;
     me.diverged = false;
     me.stale = false;
     me.cursor = end();
   }
-  if (me.diverged || me.cursor != end()) return;  // not in step with the log's last entry
+  if (me.diverged || me.cursor != end()) {           // not in step with the log's last entry
+    me.previous.assign(bytes.begin(), bytes.end());  // for the next publish's level test
+    return;
+  }
+  me.previous.clear();
   const std::size_t bytesNeeded = image ? image->pixels.size() : 0;
   while (end() - other.cursor >= maxAhead_ || imageBytes_ + bytesNeeded > maxImageBytes_) {
     if (!other.diverged || other.cursor >= end()) {
@@ -125,6 +129,7 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
       // in step with the log (the other side offers its own once it reached the end).
       me.diverged = true;
       ++counters_.heldBack;
+      me.previous.assign(bytes.begin(), bytes.end());
       return;
     }
     // The other side went its own way: it gives up its oldest chance to pick up again.

@@ -123,7 +123,7 @@ class SharedDecodes {
     bool stale = false;                  // took decodes its decoder did not make
     std::size_t replayFrom = 0;          // with stale: the first entry its decoder must decode again
     bool replayFresh = false;            // that entry is a fresh start
-    std::vector<std::uint8_t> previous;  // the bytes of its last picture, decoded or taken (publish)
+    std::vector<std::uint8_t> previous;  // its last picture's bytes if decoded out of step (publish)
   };
   static bool same(const Entry& e, std::span<const std::uint8_t> bytes, CscThresholds th);
   Entry& at(std::size_t index) { return log_[index - base_]; }
