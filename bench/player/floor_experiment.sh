@@ -18,6 +18,10 @@ vbim=${1:?usage: floor_experiment.sh VBIM [BATCHES] [RUNS] [WORKDIR]}
 batches=${2:-3}
 runs=${3:-5}
 work=${4:-}
+if [ ! -f "$vbim" ] || [ ! -x "$vbim" ]; then
+  echo "floor_experiment: $vbim is not an executable file (expected a built vbim, e.g. build/cli/vbim)" >&2
+  exit 2
+fi
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 seconds=${PLAY_SPEED_SECONDS:-600}
@@ -27,6 +31,8 @@ cleanup() {
   rm -rf "$scratch"
 }
 trap cleanup EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM  # the EXIT trap removes the worktree on Ctrl-C too
 [ -n "$work" ] || work="$scratch/streams"
 mkdir -p "$work"
 
