@@ -104,7 +104,7 @@ void Presenter::followTwin(Presenter& twin, TwinTiles& equal, bool runSide, bool
 }
 
 void Presenter::settleTwin() {
-  if (mirror_ && waiting_.pending) stopMirroring();
+  if (mirror_ && !waiting_.empty()) stopMirroring();
 }
 
 // The reference, asked to blend rows [y0, y1) of `source`: whether the blend waits for the run's
@@ -115,23 +115,20 @@ bool Presenter::waitForTwin(const Rgba8Image& source, const BlendSpec& spec, std
       (opt_.tracer != nullptr && opt_.tracer->enabled())) {
     return false;
   }
-  if (mirror_ && waiting_.pending) stopMirroring();  // a second blend before the run made the first
   if (!mirror_) {
-    // Only when the run has not blended yet in this tick (the player puts the reference's processes
-    // in the scheduler's first lane, so it has not): a run that blends first would make every
-    // mirror stop at its next blend.
-    if (twin_->lastBlendAt_ >= sched_.now()) return false;
-    // Nor while the run shows another frame (a run behind after a stall): its next blend would stop
+    // Not while the run shows another frame (a run behind after a stall): its next blend would stop
     // the mirror again at once, at every vsync until the two show the same frame. By number only:
     // a mirror that starts in vain costs nothing, and the run's blend is checked when it is taken.
     const Target& shown = twin_->target_;
     if (!shown.image || shown.seq != target_.seq || shown.variant != target_.variant) return false;
-    // Nor while the run's GS work is not in step with this one's (in strip mode it can run some
-    // strips behind, or part of one, e.g. while its EE has more to upload): the run's last blend
-    // must have ended where this one begins (the previous strip, or the previous vsync's last), at
-    // the tick of this presenter's own last blend.
-    if (twin_->lastBlendAt_ != prevBlendAt_) return false;
-    if (twin_->lastBlendY1_ != y0 && !(y0 == 0 && twin_->lastBlendY1_ == lightmap_.height)) return false;
+    // Nor while the run's GS work is not where this one's was before this blend: its last blend
+    // must be this presenter's last (same vsync, same rows), so that its next is this one. A run
+    // some strips behind (its EE had more to upload) or ahead would make every mirror stop at its
+    // next blend. Only the place, not the tick: a run whose GS work of every vsync comes a fixed
+    // time after the reference's (its sky drawn first) mirrors, its blends queued (waiting_). A run
+    // that already made this blend in this tick is ahead too (the player puts the reference's
+    // processes in the scheduler's first lane, so at a tick both blend, the reference asks first).
+    if (twin_->lastBlend_ != prevBlend_) return false;
     const std::vector<std::uint64_t>& mine = blender_.tileChanges();
     const std::vector<std::uint64_t>& theirs = twin_->blender_.tileChanges();
     for (std::size_t i = 0; i < mine.size(); ++i) {
@@ -142,45 +139,48 @@ bool Presenter::waitForTwin(const Rgba8Image& source, const BlendSpec& spec, std
     mirrorRow1_ = 0;
     blender_.forgetAllRecords();  // the run must not copy from bytes this presenter stops writing
   }
-  waiting_ =
-      Waiting{true, target_.image, spec, id, y0, y1, open_ != nullptr ? open_->vsync : last_.vsync, targetGeneration_};
+  waiting_.push_back(
+      Waiting{target_.image, spec, id, y0, y1, open_ != nullptr ? open_->vsync : last_.vsync, targetGeneration_});
   return true;
 }
 
-// The run, about to blend rows [y0, y1) of `source`: whether the mirroring reference waits for this
-// very blend (same rows, spec and source bytes). Otherwise the reference takes its own bytes back
-// first, while the run's lightmap still holds the bytes it mirrors.
+// The run, about to blend rows [y0, y1) of `source`: whether the mirroring reference's oldest
+// waiting blend is this very one (same rows, spec and source bytes). Otherwise the reference takes
+// its own bytes back first, while the run's lightmap still holds the bytes it mirrors.
 bool Presenter::twinTakes(const Rgba8Image& source, const BlendSpec& spec, std::uint64_t id, int y0, int y1) {
   if (twin_ == nullptr || !twin_->mirror_) return false;
   Presenter& ref = *twin_;
-  const Waiting& w = ref.waiting_;
-  if (w.pending && w.y0 == y0 && w.y1 == y1 && w.sourceId == id && w.spec == spec) {
-    if (targetGeneration_ != takeSeenOwn_ || w.generation != takeSeenTwin_) {
-      takeSeenOwn_ = targetGeneration_;
-      takeSeenTwin_ = w.generation;
-      takeSame_ = w.source.get() == &source || (w.source->sameSize(source) && w.source->pixels == source.pixels);
+  if (!ref.waiting_.empty()) {
+    const Waiting& w = ref.waiting_.front();
+    if (w.y0 == y0 && w.y1 == y1 && w.sourceId == id && w.spec == spec) {
+      if (targetGeneration_ != takeSeenOwn_ || w.generation != takeSeenTwin_) {
+        takeSeenOwn_ = targetGeneration_;
+        takeSeenTwin_ = w.generation;
+        takeSame_ = w.source.get() == &source || (w.source->sameSize(source) && w.source->pixels == source.pixels);
+      }
+      if (takeSame_) return true;
     }
-    if (takeSame_) return true;
   }
   ref.stopMirroring();
   return false;
 }
 
-// The reference, after the run made the blend it waited for.
+// The reference, after the run made the oldest blend it waited for.
 void Presenter::takeFromTwin() {
-  const int pop = blender_.takeTwinBlend(twin_->blender_, *twinTiles_, twinRunSide_, waiting_.sourceId, waiting_.spec,
-                                         waiting_.y0, waiting_.y1);
-  const int ty0 = waiting_.y0 / kTileHeight;
-  const int ty1 = (std::min(waiting_.y1, lightmap_.height) + kTileHeight - 1) / kTileHeight;
+  const Waiting& w = waiting_.front();
+  const int pop = blender_.takeTwinBlend(twin_->blender_, *twinTiles_, twinRunSide_, w.sourceId, w.spec, w.y0, w.y1);
+  const int ty0 = w.y0 / kTileHeight;
+  const int ty1 = (std::min(w.y1, lightmap_.height) + kTileHeight - 1) / kTileHeight;
   counters_.tilesMirrored += static_cast<std::int64_t>(ty1 - ty0) * blender_.tilesX();
   mirrorRow0_ = std::min(mirrorRow0_, ty0 * kTileHeight);
   mirrorRow1_ = std::max(mirrorRow1_, std::min(ty1 * kTileHeight, lightmap_.height));
-  waiting_.pending = false;
-  waiting_.source.reset();
-  addPop(waiting_.vsync, pop);
+  const std::int64_t vsync = w.vsync;
+  waiting_.pop_front();
+  addPop(vsync, pop);
 }
 
-// The reference takes its own bytes back: the run's as they are (the same), then the waiting blend.
+// The reference takes its own bytes back: the run's as they are (the same), then the waiting blends
+// in the order it was asked for them.
 void Presenter::stopMirroring() {
   if (!mirror_) return;
   mirror_ = false;
@@ -199,14 +199,13 @@ void Presenter::stopMirroring() {
     counters_.mirrorRowsCopied += mirrorRow1_ - mirrorRow0_;
     blender_.invalidate();
   }
-  if (!waiting_.pending) return;
-  waiting_.pending = false;
-  const TiledBlender::Result r =
-      blender_.blend(lightmap_, *waiting_.source, waiting_.spec, waiting_.sourceId, waiting_.y0, waiting_.y1);
-  waiting_.source.reset();
-  counters_.tilesBlended += r.tilesBlended;
-  counters_.tilesSkipped += r.tilesSkipped;
-  addPop(waiting_.vsync, r.pop);
+  for (; !waiting_.empty(); waiting_.pop_front()) {
+    const Waiting& w = waiting_.front();
+    const TiledBlender::Result r = blender_.blend(lightmap_, *w.source, w.spec, w.sourceId, w.y0, w.y1);
+    counters_.tilesBlended += r.tilesBlended;
+    counters_.tilesSkipped += r.tilesSkipped;
+    addPop(w.vsync, r.pop);
+  }
 }
 
 // A blend that waited for the run adds its pop to the vsync it was asked at.
@@ -402,9 +401,8 @@ Task<void> Presenter::drawAll(const BlendSpec& spec, bool newTarget, VsyncRecord
     co_await sched_.delay(timing_.spriteDraw(w, y1 - y0));
     if (tr != nullptr) tr->span(track_, t, sched_.now(), blendLabel);
     TiledBlender::Result r;
-    prevBlendAt_ = lastBlendAt_;
-    lastBlendAt_ = sched_.now();
-    lastBlendY1_ = y1;
+    prevBlend_ = lastBlend_;
+    lastBlend_ = BlendPlace{rec.vsync, y1};
     if (!waitForTwin(source, spec, id, y0, y1)) {
       // The run: a mirroring reference waiting for this blend takes it afterwards; else it has its
       // own bytes again by now, and the two share tiles as usual.

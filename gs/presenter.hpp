@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -188,7 +189,6 @@ class Presenter {
   bool sameSourceAsTwin();
   // Mirroring (followTwin): a blend of the reference waiting for the run's.
   struct Waiting {
-    bool pending = false;
     std::shared_ptr<const Rgba8Image> source;
     BlendSpec spec;
     std::uint64_t sourceId = 0;
@@ -232,15 +232,24 @@ class Presenter {
   std::uint64_t sameSeenOwn_ = ~std::uint64_t{0};
   bool sameSeen_ = false;
   bool mayMirror_ = false;
-  Tick lastBlendAt_ = -1;  // when this presenter last blended (or was asked to, mirroring)
-  int lastBlendY1_ = 0;    // the end of the rows it blended then
-  Tick prevBlendAt_ = -1;  // when it blended before that
+  // Where this presenter's GS work stands: the vsync and the end of the rows of its last blend (or
+  // of the last it was asked for, mirroring), and of the one before that. Two presenters at the same
+  // place have made the same blends since their targets last changed (mirroring's start rule).
+  struct BlendPlace {
+    std::int64_t vsync = -1;
+    int y1 = 0;
+    bool operator==(const BlendPlace&) const = default;
+  };
+  BlendPlace lastBlend_;
+  BlendPlace prevBlend_;
   bool mirror_ = false;
   // While mirroring, the rows [mirrorRow0_, mirrorRow1_) hold every blend the run made for this
   // presenter: the only rows where its lightmap and this one's came apart since the mirror began.
   int mirrorRow0_ = 0;
   int mirrorRow1_ = 0;
-  Waiting waiting_;
+  // The blends the reference was asked for and the run has not made yet, oldest first: the run's GS
+  // work may run behind the reference's by some strips (e.g. when its sky goes first on the GS).
+  std::deque<Waiting> waiting_;
   // The run: whether its target holds the bytes of the reference's waiting blend's source, as last
   // found for the two generations (a frame's image does not change once decoded).
   std::uint64_t takeSeenOwn_ = ~std::uint64_t{0};
