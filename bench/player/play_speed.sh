@@ -15,6 +15,8 @@
 # B pictures through the BDEC flow; the goal is 500x real time in CPU time).
 # PLAY_SPEED_STREAMS (default "512 256 512gop") picks the lines, e.g. "512" for the first alone
 # (play_speed_ab.sh alternates two builds on it).
+# PLAY_SPEED_FAULTS, a fault plan file (e.g. bench/player/fault-plan.toml), is given to every play as
+# --faults: the fault plays, with their fault-free reference run beside the run (issue #31).
 set -eu
 vbim=${1:?usage: play_speed.sh VBIM [RUNS] [WORKDIR] [THREADS]}
 runs=${2:-5}
@@ -26,6 +28,11 @@ if [ -z "$work" ]; then
 fi
 mkdir -p "$work"
 seconds=${PLAY_SPEED_SECONDS:-600}
+faults=${PLAY_SPEED_FAULTS:-}
+if [ -n "$faults" ] && [ ! -f "$faults" ]; then
+  echo "play_speed.sh: PLAY_SPEED_FAULTS: no fault plan file at '$faults'" >&2
+  exit 2
+fi
 
 # A 512x512 lightmap next to two 640x448 frame buffers fits VRAM only with strip uploads and a
 # 256x128 sky texture (docs/player.md, "Speed and memory").
@@ -44,7 +51,9 @@ author() {  # NAME SIZE SKY_WIDTH [AUTHOR OPTIONS]
 median() { sort -n | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo "?")
-echo "vbim play, ${seconds} s simulated, default options, --threads $threads, $runs runs each; load average $load before"
+faultNote=""
+[ -n "$faults" ] && faultNote=", --faults $faults"
+echo "vbim play, ${seconds} s simulated, default options, --threads $threads$faultNote, $runs runs each; load average $load before"
 cp "$work/512.toml" "$work/512gop.toml"
 for name in ${PLAY_SPEED_STREAMS:-512 256 512gop}; do
   size=${name%gop}
@@ -57,8 +66,9 @@ for name in ${PLAY_SPEED_STREAMS:-512 256 512gop}; do
   : >"$work/wall$name"
   i=0
   while [ "$i" -lt "$runs" ]; do
+    # shellcheck disable=SC2086 # the fault option is one word or none
     line=$("$vbim" play "$work/ta$name.vbim" --config "$work/$name.toml" --duration "${seconds}s" --force \
-      --threads "$threads" --out "$work/run$name" | head -n 1)
+      --threads "$threads" ${faults:+--faults "$faults"} --out "$work/run$name" | head -n 1)
     # "played 600.0 s of X (N vsyncs) in W s of host time (..x real time), C s of CPU time (..x real time)"
     # The x-real-time figures, not the times: those are printed to 10 ms, too coarse for short plays.
     echo "$line" | sed -n 's/.* of host time (\([0-9.]*\)x real time).*/\1/p' >>"$work/wall$name"
@@ -69,6 +79,7 @@ for name in ${PLAY_SPEED_STREAMS:-512 256 512gop}; do
   wall=$(median <"$work/wall$name")
   gop=""
   [ "$name" = 512gop ] && gop=", GOP 12 with 2 B pictures"
+  [ -n "$faults" ] && gop="$gop, with the fault plan"
   awk -v s="$size" -v g="$gop" -v t="$seconds" -v c="$cpu" -v w="$wall" 'BEGIN {
     printf "%dx%d + %dx%d%s: CPU %.3f s (%.0fx real time), wall %.3f s (%.0fx real time)\n", s, s, s / 2, s / 4, g, t / c, c, t / w, w }'
 done
