@@ -104,7 +104,7 @@ void Presenter::followTwin(Presenter& twin, TwinTiles& equal, bool runSide, bool
 }
 
 void Presenter::settleTwin() {
-  if (mirror_ && !waiting_.empty()) stopMirroring();
+  if (mirror_ && !waitingEmpty()) stopMirroring();
 }
 
 // The reference, asked to blend rows [y0, y1) of `source`: whether the blend waits for the run's
@@ -150,8 +150,8 @@ bool Presenter::waitForTwin(const Rgba8Image& source, const BlendSpec& spec, std
 bool Presenter::twinTakes(const Rgba8Image& source, const BlendSpec& spec, std::uint64_t id, int y0, int y1) {
   if (twin_ == nullptr || !twin_->mirror_) return false;
   Presenter& ref = *twin_;
-  if (!ref.waiting_.empty()) {
-    const Waiting& w = ref.waiting_.front();
+  if (!ref.waitingEmpty()) {
+    const Waiting& w = ref.waitingFront();
     if (w.y0 == y0 && w.y1 == y1 && w.sourceId == id && w.spec == spec) {
       if (targetGeneration_ != takeSeenOwn_ || w.generation != takeSeenTwin_) {
         takeSeenOwn_ = targetGeneration_;
@@ -167,7 +167,7 @@ bool Presenter::twinTakes(const Rgba8Image& source, const BlendSpec& spec, std::
 
 // The reference, after the run made the oldest blend it waited for.
 void Presenter::takeFromTwin() {
-  const Waiting& w = waiting_.front();
+  const Waiting& w = waitingFront();
   const int pop = blender_.takeTwinBlend(twin_->blender_, *twinTiles_, twinRunSide_, w.sourceId, w.spec, w.y0, w.y1);
   const int ty0 = w.y0 / kTileHeight;
   const int ty1 = (std::min(w.y1, lightmap_.height) + kTileHeight - 1) / kTileHeight;
@@ -175,8 +175,16 @@ void Presenter::takeFromTwin() {
   mirrorRow0_ = std::min(mirrorRow0_, ty0 * kTileHeight);
   mirrorRow1_ = std::max(mirrorRow1_, std::min(ty1 * kTileHeight, lightmap_.height));
   const std::int64_t vsync = w.vsync;
-  waiting_.pop_front();
+  popWaiting();
   addPop(vsync, pop);
+}
+
+void Presenter::popWaiting() {
+  waiting_[waitingHead_].source.reset();
+  if (++waitingHead_ == waiting_.size()) {
+    waiting_.clear();
+    waitingHead_ = 0;
+  }
 }
 
 // The reference takes its own bytes back: the run's as they are (the same), then the waiting blends
@@ -199,8 +207,8 @@ void Presenter::stopMirroring() {
     counters_.mirrorRowsCopied += mirrorRow1_ - mirrorRow0_;
     blender_.invalidate();
   }
-  for (; !waiting_.empty(); waiting_.pop_front()) {
-    const Waiting& w = waiting_.front();
+  for (; !waitingEmpty(); popWaiting()) {
+    const Waiting& w = waitingFront();
     const TiledBlender::Result r = blender_.blend(lightmap_, *w.source, w.spec, w.sourceId, w.y0, w.y1);
     counters_.tilesBlended += r.tilesBlended;
     counters_.tilesSkipped += r.tilesSkipped;

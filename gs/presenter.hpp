@@ -23,7 +23,6 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -249,7 +248,13 @@ class Presenter {
   int mirrorRow1_ = 0;
   // The blends the reference was asked for and the run has not made yet, oldest first: the run's GS
   // work may run behind the reference's by some strips (e.g. when its sky goes first on the GS).
-  std::deque<Waiting> waiting_;
+  // A vector read from waitingHead_ (emptied when all are read), not a deque: no allocation per
+  // blend once it has held a vsync's strips.
+  std::vector<Waiting> waiting_;
+  std::size_t waitingHead_ = 0;
+  bool waitingEmpty() const { return waitingHead_ == waiting_.size(); }
+  const Waiting& waitingFront() const { return waiting_[waitingHead_]; }
+  void popWaiting();
   // The run: whether its target holds the bytes of the reference's waiting blend's source, as last
   // found for the two generations (a frame's image does not change once decoded).
   std::uint64_t takeSeenOwn_ = ~std::uint64_t{0};
