@@ -137,15 +137,16 @@ class Presenter {
   //
   // Mirroring: once every tile of the reference's lightmap is known equal to the run's, the
   // reference (runSide false) stops writing its own: lightmap() is then the run's, and each blend
-  // it is asked for waits until the run blends. The run's next blend, if it is the same (same source
-  // bytes, spec and rows), is taken as the reference's (TiledBlender::takeTwinBlend: counts, pop,
-  // no bytes); anything else first gives the reference its own bytes again (the run's copied, then
-  // the waiting blend made), and so does settleTwin(). No copy and no second blend while the two
-  // agree; the same bytes, counts and pops as blending. Not with a tracer or onVsync on the
-  // reference (their pop would be read before the run's blend).
+  // it is asked for waits, in order, until the run blends. The run's next blend, if it is the
+  // oldest waiting one (same source bytes, spec and rows), is taken as the reference's
+  // (TiledBlender::takeTwinBlend: counts, pop, no bytes); anything else first gives the reference
+  // its own bytes again (the run's copied, then the waiting blends made), and so does
+  // settleTwin(). No copy and no second blend while the two agree; the same bytes, counts and pops
+  // as blending. Not with a tracer or onVsync on the reference (their pop would be read before the
+  // run's blend).
   // mirror false: the reference never mirrors (each blend made or copied as above).
   void followTwin(Presenter& twin, TwinTiles& equal, bool runSide, bool mirror = true);
-  // The reference: a blend still waiting for the run's is made now (the run will not make it; the
+  // The reference: the blends still waiting for the run's are made now (the run will not make it; the
   // player calls this once every presenter has presented a vsync, before reading the lightmaps).
   void settleTwin();
   bool mirroring() const { return mirror_; }
