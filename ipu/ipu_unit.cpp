@@ -5,6 +5,7 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "ipu/block_walker.hpp"
@@ -80,7 +81,8 @@ StreamId IpuUnit::openStream(DecodePath path) {
 
 Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
                                    CscThresholds th) {
-  if (share_ == nullptr || streams_.at(stream).path != DecodePath::kIdec) {
+  const Stream& st = streams_.at(stream);
+  if (st.path == DecodePath::kIdec ? share_ == nullptr : st.flowShare == nullptr) {
     co_return co_await decodeUnshared(stream, bytes, out, th);
   }
   // Through the shared decodes, so they know what this decoder was given; the image may be the
@@ -191,6 +193,8 @@ void IpuUnit::shareDecodes(SharedDecodes& shared, int side) {
 Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t> bytes,
                                    std::shared_ptr<Rgba8Image>& out, CscThresholds th) {
   Stream& st = streams_.at(stream);
+  if (st.path == DecodePath::kBdec && st.flowShare != nullptr)
+    co_return co_await decodeFlowShared(stream, bytes, out, th);
   if (share_ == nullptr || st.path != DecodePath::kIdec || hasPredictedPicture(bytes)) {
     co_return co_await decodeUnshared(stream, bytes, *out, th);
   }
@@ -230,8 +234,96 @@ Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t
   co_return co_await submitIdec(shared, std::move(result), bytes, taken->decode, th, *out);
 }
 
+// The BDEC flow through shared decodes: the twin's decode of the same picture after the same
+// pictures (its report, macroblock trace and displayed image) when it made it first, else this
+// IPU's own, offered to the twin. The flow's timing is planned from the trace either way.
+Task<TimedPicture> IpuUnit::decodeFlowShared(StreamId stream, std::span<const std::uint8_t> bytes,
+                                             std::shared_ptr<Rgba8Image>& out, CscThresholds th) {
+  Stream& st = streams_.at(stream);
+  SharedDecodes& share = *st.flowShare;
+  TimedPicture result;
+  result.started = s_.now();
+  const auto shared = std::make_shared<Command>(s_);
+  Command& cmd = *shared;
+  cmd.arrival = s_.now();
+  std::optional<SharedDecodes::Taken> taken = share.take(st.flowSide, bytes, th);
+  if (!taken) {
+    share.prepare(st.flowSide, st.decoder, streamOptions(options_, p_, st.path), bytes);
+    Decoder& dec = *st.decoder;
+    const bool pendingBefore = dec.fieldPending();
+    PictureReport report = dec.decode(bytes, runner_);
+    taken.emplace(SharedDecodes::Taken{idecDecodeOf(dec), nullptr});
+    IdecDecode& d = taken->decode;
+    d.report = std::move(report);
+    const FrameStore* shown = d.report.produced ? dec.displayFrame() : nullptr;
+    d.shown = shown != nullptr;
+    if (shown != nullptr) {
+      // Into out's buffer, whole macroblocks as the unshared path converts them, then cropped to the
+      // display size as submit() would (a new image: the old one may be the twin's).
+      d.mbWidth = shown->mbWidth;
+      d.mbHeight = shown->mbHeight;
+      d.width = dec.displayWidth();
+      d.height = dec.displayHeight();
+      convertToRgba32(*shown, shown->mbWidth * 16, shown->mbHeight * 16, th, *out, dec.kernels().cscRow);
+      taken->image = out;
+      if (out->width != d.width || out->height != d.height) {
+        auto cropped = std::make_shared<Rgba8Image>(d.width, d.height);
+        for (int y = 0; y < d.height; ++y)
+          std::memcpy(cropped->row(y), out->row(y), static_cast<std::size_t>(d.width) * 4);
+        taken->image = std::move(cropped);
+      }
+    }
+    share.publish(st.flowSide, bytes, th, pendingBefore, dec, taken->decode, taken->image);
+  }
+  const IdecDecode& d = taken->decode;
+  result.report = d.report;
+  if (!result.report.produced) {
+    result.finished = s_.now();
+    co_return result;
+  }
+  const bool fieldDct = d.sequence.mpeg2 && d.picture.pictureStructure == 3 && !d.picture.framePredFrameDct;
+  cmd.flow = true;
+  cmd.flowWork = buildFlow(bytes, d.trace, result.report.pictureCodingType == 1, fieldDct);
+  int width = 0;
+  int height = 0;
+  if (d.shown) {
+    width = d.width;
+    height = d.height;
+    result.outputQwords = stageCscTiming(cmd, d.mbWidth, d.mbHeight);
+    cmd.inPlace = true;  // the image is taken->image, `out` from here on
+    out = taken->image;  // the caller reads it only once this returns
+  }
+  co_return co_await submit(shared, std::move(result), *out, width, height);
+}
+
+void IpuUnit::shareFlowDecodes(StreamId stream, SharedDecodes& shared, int side) {
+  Stream& st = streams_.at(stream);
+  if (st.path != DecodePath::kBdec) throw std::logic_error("shareFlowDecodes: not a BDEC stream");
+  st.flowShare = &shared;
+  st.flowSide = side;
+  shared.attach(side, &st.decoder);
+  if (recordCommands_) {
+    shared.leave(side, st.decoder, streamOptions(options_, p_, st.path));
+    st.flowShare = nullptr;
+  }
+}
+
+void IpuUnit::recordCommands() {
+  recordCommands_ = true;
+  for (Stream& st : streams_) {
+    if (st.flowShare == nullptr) continue;
+    st.flowShare->leave(st.flowSide, st.decoder, streamOptions(options_, p_, st.path));
+    st.flowShare = nullptr;
+  }
+}
+
 Task<TimedPicture> IpuUnit::flush(StreamId stream, Rgba8Image& out, CscThresholds th) {
   Stream& st = streams_.at(stream);
+  // The end changes the decoder outside the shared log: up to date first, then its own.
+  if (st.flowShare != nullptr) {
+    st.flowShare->leave(st.flowSide, st.decoder, streamOptions(options_, p_, st.path));
+    st.flowShare = nullptr;
+  }
   TimedPicture result;
   result.started = s_.now();
   result.finished = s_.now();
@@ -253,8 +345,12 @@ std::int64_t IpuUnit::stageDisplayCsc(Command& cmd, const Decoder& dec, const Fr
   cmd.staged = std::move(out);
   out = Rgba8Image{};
   convertToRgba32(shown, shown.mbWidth * 16, shown.mbHeight * 16, th, cmd.staged, dec.kernels().cscRow);
+  return stageCscTiming(cmd, shown.mbWidth, shown.mbHeight);
+}
+
+std::int64_t IpuUnit::stageCscTiming(Command& cmd, int mbWidth, int mbHeight) const {
   cmd.hasCsc = true;
-  const std::size_t mbs = static_cast<std::size_t>(shown.mbWidth) * shown.mbHeight;
+  const std::size_t mbs = static_cast<std::size_t>(mbWidth) * mbHeight;
   cmd.timing.csc = true;
   cmd.timing.qwordsPerRow = qwordsPerRow();
   cmd.timing.inQwords = static_cast<std::uint32_t>(mbs) * kCscInQwordsPerMacroblock;

@@ -106,6 +106,7 @@ class IpuUnit {
   void stallInputDma(Tick duration);
   void stallOutputDma(Tick duration);
   DecodePath decodePath(StreamId stream) const { return streams_.at(stream).path; }
+  StreamId streamCount() const { return streams_.size(); }  // the streams are 0 .. streamCount() - 1
   const Decoder& decoder(StreamId stream = kSharedIdecStream) const { return *streams_.at(stream).decoder; }
   // Slice-parallel decode on host threads (null: on the calling thread). Same bytes and ticks
   // either way: only the host's wall time changes.
@@ -124,8 +125,13 @@ class IpuUnit {
   // of `shared` (ipu/ipu_unit_shared_decodes.hpp): same bytes, ticks and reports either way; only
   // the host's work changes. decoder() may then be behind (the decodes it took were not its own).
   void shareDecodes(SharedDecodes& shared, int side);
-  // Fill TimedPicture::ctrl and ::issued from now on (the command log of `vbim play --trace-detail ipu`).
-  void recordCommands() { recordCommands_ = true; }
+  // The same for a kBdec stream, with its own `shared` (made with DecoderState::Kept; both IPUs'
+  // streams of the same pictures): the twin may take this IPU's decoder state to catch up.
+  void shareFlowDecodes(StreamId stream, SharedDecodes& shared, int side);
+  // Fill TimedPicture::ctrl and ::issued from now on (the command log of `vbim play --trace-detail
+  // ipu`). The BDEC flow's log reads this IPU's own decoder after each picture, so its kBdec streams
+  // stop sharing their decodes (SharedDecodes::leave).
+  void recordCommands();
 
   // Tests: keep when every qword entered and left each FIFO, one entry per command from now on.
   void recordQwords() { recordQwords_ = true; }
@@ -150,7 +156,7 @@ class IpuUnit {
     };
     std::vector<PlannedWord> planned;
     Rgba8Image staged;     // the IPU's output, whole macroblocks
-    bool inPlace = false;  // IDEC with shared decodes: the output is the caller's shared image, not `staged`
+    bool inPlace = false;  // with shared decodes: the output is the caller's shared image, not `staged`
     bool done = false;
     Event finishedEvent;
   };
@@ -158,10 +164,14 @@ class IpuUnit {
   struct Stream {
     DecodePath path;
     std::unique_ptr<Decoder> decoder;
+    SharedDecodes* flowShare = nullptr;  // kBdec with shareFlowDecodes
+    int flowSide = 0;
   };
   static Task<void> run(IpuUnit& u);
   Task<TimedPicture> decodeUnshared(StreamId stream, std::span<const std::uint8_t> bytes, Rgba8Image& out,
                                     CscThresholds th);
+  Task<TimedPicture> decodeFlowShared(StreamId stream, std::span<const std::uint8_t> bytes,
+                                      std::shared_ptr<Rgba8Image>& out, CscThresholds th);
   Task<TimedPicture> submitIdec(std::shared_ptr<Command> shared, TimedPicture result,
                                 std::span<const std::uint8_t> bytes, const IdecDecode& d, CscThresholds th,
                                 Rgba8Image& out);
@@ -174,6 +184,8 @@ class IpuUnit {
   // its timing (24 qwords in per macroblock from EE memory); returns the output qwords.
   std::int64_t stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
                                Rgba8Image& out) const;
+  // Its timing alone, for a frame of mbWidth x mbHeight macroblocks; returns the output qwords.
+  std::int64_t stageCscTiming(Command& cmd, int mbWidth, int mbHeight) const;
   // The command log of a finished command (recordCommands).
   void planIdecWords(Command& cmd, std::span<const std::uint8_t> bytes, const IdecDecode& d, CscThresholds th) const;
   void planFlowWords(Command& cmd, std::span<const std::uint8_t> bytes, const Decoder& dec) const;

@@ -29,6 +29,7 @@ bool SharedDecodes::same(const Entry& e, std::span<const std::uint8_t> bytes, Cs
 std::optional<SharedDecodes::Taken> SharedDecodes::take(int side, std::span<const std::uint8_t> bytes,
                                                         CscThresholds th) {
   Side& me = sides_.at(static_cast<std::size_t>(side));
+  if (me.left || sides_.at(1 - static_cast<std::size_t>(side)).left) return std::nullopt;
   if (!me.diverged && me.cursor < end() && same(at(me.cursor), bytes, th)) {
     // Unless its decoder would have more than maxAhead pictures to read again (a stream with one
     // sequence header at its start): then it decodes from here on itself, and the log stays short.
@@ -36,7 +37,7 @@ std::optional<SharedDecodes::Taken> SharedDecodes::take(int side, std::span<cons
   }
   // A fresh start may be one the other side decoded further on (this side dropped a picture, or
   // went its own way on damaged bytes): it picks up there.
-  if (!me.pendingAfter && startsWithSequenceHeader(bytes)) {
+  if (!kept_ && !me.pendingAfter && startsWithSequenceHeader(bytes)) {
     for (std::size_t i = std::max(me.cursor, base_); i < end(); ++i) {
       if (at(i).freshStart && same(at(i), bytes, th)) {
         ++counters_.rejoined;
@@ -71,16 +72,46 @@ std::optional<SharedDecodes::Taken> SharedDecodes::takeAt(Side& me, std::size_t 
   e.result.reset();
   imageBytes_ -= taken.image ? taken.image->pixels.size() : 0;
   ++counters_.taken;
+  // Kept state: a decoder far behind what its side took catches up while the other's is level, so
+  // that neither a replay nor the log grows while one side takes everything.
+  if (kept_ && me.cursor - me.replayFrom >= maxAhead_ / 2) copyFromLevel(static_cast<int>(&me - sides_.data()));
   trim();
   return taken;
 }
 
+bool SharedDecodes::copyFromLevel(int side) {
+  const auto s = static_cast<std::size_t>(side);
+  Side& me = sides_.at(s);
+  const Side& other = sides_.at(1 - s);
+  const std::unique_ptr<Decoder>* mine = decoders_.at(s);
+  const std::unique_ptr<Decoder>* theirs = decoders_.at(1 - s);
+  if (!kept_ || !me.stale || me.diverged || other.stale || other.diverged || other.left || other.cursor != me.cursor ||
+      mine == nullptr || theirs == nullptr || !*mine || !*theirs || (*theirs)->fieldPending()) {
+    return false;
+  }
+  (*mine)->copyStateFrom(**theirs);
+  me.stale = false;
+  ++counters_.statesCopied;
+  return true;
+}
+
 void SharedDecodes::prepare(int side, std::unique_ptr<Decoder>& decoder, const DecoderOptions& options,
                             std::span<const std::uint8_t> bytes) {
-  Side& me = sides_.at(static_cast<std::size_t>(side));
-  if (!me.stale) return;
+  const auto s = static_cast<std::size_t>(side);
+  Side& me = sides_.at(s);
+  if (!me.stale) {
+    // About to change its decoder: a stale other side level with it takes its state first, if that
+    // side's decoder is far behind (as in takeAt).
+    const Side& other = sides_.at(1 - s);
+    if (kept_ && other.stale && other.cursor - other.replayFrom >= maxAhead_ / 2) copyFromLevel(1 - side);
+    return;
+  }
+  if (copyFromLevel(side)) {
+    trim();
+    return;
+  }
   me.stale = false;
-  const bool fresh = !me.pendingAfter && startsWithSequenceHeader(bytes);
+  const bool fresh = !kept_ && !me.pendingAfter && startsWithSequenceHeader(bytes);
   // A decoder with a field pending would take the next field picture as its second: a new one has none.
   if ((fresh || me.replayFresh) && decoder->fieldPending()) decoder = std::make_unique<Decoder>(options);
   if (!fresh) {
@@ -99,6 +130,7 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   Side& other = sides_.at(1 - s);
   ++counters_.decoded;
   me.pendingAfter = decoder.fieldPending();
+  if (me.left || other.left) return;
   // A side that went its own way, or fell behind, offers its decode again when it is a fresh start
   // for both sides (the other has read the whole log and waits for no second field): whatever either
   // side decoded before, the other's decode of these bytes would give this result (see the header),
@@ -108,7 +140,7 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   // Only when the two are level: the log's last entry is the picture this side had before this one
   // (the other decoded it after this side did). A side behind the other picks up again in take().
   // The byte comparisons last, so a side in step compares nothing.
-  const bool rejoin = (me.diverged || me.cursor != end()) && other.cursor == end() && !other.pendingAfter &&
+  const bool rejoin = !kept_ && (me.diverged || me.cursor != end()) && other.cursor == end() && !other.pendingAfter &&
                       !pendingBefore && end() > base_ && at(end() - 1).bytes == me.previous &&
                       startsWithSequenceHeader(bytes);
   if (rejoin) {
@@ -117,8 +149,8 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
     me.stale = false;
     me.cursor = end();
   }
-  if (me.diverged || me.cursor != end()) {           // not in step with the log's last entry
-    me.previous.assign(bytes.begin(), bytes.end());  // for the next publish's level test
+  if (me.diverged || me.cursor != end()) {                       // not in step with the log's last entry
+    if (!kept_) me.previous.assign(bytes.begin(), bytes.end());  // for the next publish's level test
     return;
   }
   me.previous.clear();
@@ -129,7 +161,7 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
       // in step with the log (the other side offers its own once it reached the end).
       me.diverged = true;
       ++counters_.heldBack;
-      me.previous.assign(bytes.begin(), bytes.end());
+      if (!kept_) me.previous.assign(bytes.begin(), bytes.end());
       return;
     }
     // The other side went its own way: it gives up its oldest chance to pick up again.
@@ -144,7 +176,7 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   Entry e;
   e.bytes.assign(bytes.begin(), bytes.end());
   e.th = th;
-  e.freshStart = !pendingBefore && startsWithSequenceHeader(bytes);
+  e.freshStart = !kept_ && !pendingBefore && startsWithSequenceHeader(bytes);
   e.pendingAfter = me.pendingAfter;
   imageBytes_ += bytesNeeded;
   e.result = Taken{std::move(decode), std::move(image)};
@@ -153,10 +185,21 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   trim();
 }
 
-// Drops the entries neither side can still take or decode again.
+void SharedDecodes::leave(int side, std::unique_ptr<Decoder>& decoder, const DecoderOptions& options) {
+  Side& me = sides_.at(static_cast<std::size_t>(side));
+  if (me.left) return;
+  prepare(side, decoder, options, {});
+  me.left = true;
+  me.diverged = true;  // its decoder is no longer the log's: the other never takes its state
+  trim();
+}
+
+// Drops the entries neither side can still take or decode again (a side that left needs none).
 void SharedDecodes::trim() {
   std::size_t keep = end();
-  for (const Side& s : sides_) keep = std::min(keep, s.stale ? s.replayFrom : s.cursor);
+  for (const Side& s : sides_) {
+    if (!s.left) keep = std::min(keep, s.stale ? s.replayFrom : s.cursor);
+  }
   while (base_ < keep) {
     if (log_.front().result && log_.front().result->image) imageBytes_ -= log_.front().result->image->pixels.size();
     log_.pop_front();

@@ -20,9 +20,15 @@
 // date: nothing to do when its next bytes are a fresh start, otherwise the entries it took since
 // its last fresh start are decoded again (without the RGB32 output); a side that would have more
 // than maxAhead entries to decode again (a stream with one sequence header at its start) decodes
-// itself from there on, so neither the log nor a replay grows with the run. Only the IDEC path (intra
-// pictures, fresh store) is shared; P and B pictures (the BDEC flow, whose reference frames carry
-// the whole GOP) are each IPU's own.
+// itself from there on, so neither the log nor a replay grows with the run.
+//
+// The BDEC flow (P and B pictures; DecoderState::Kept, one log per stream) keeps its frames from
+// picture to picture, so nothing is a fresh start there: a side is in step or not, and one that went
+// its own way (damaged bytes) stays its own. A stale side is brought up to date by taking the other
+// side's decoder state (Decoder::copyStateFrom: its frame stores) when that side's decoder is at the
+// same entry and not stale, else by decoding again the entries since its decoder's own last one. So
+// that this stays short while one side takes everything, a side whose decoder is maxAhead/2 entries
+// stale takes the other's state whenever the two are level.
 //
 // Memory: the log holds the entries between the two sides: at most `maxAhead` of them, and images
 // of at most `maxImageBytes` not yet taken; past that, the side ahead keeps its decodes to itself
@@ -48,7 +54,8 @@
 
 namespace vbim::ipu {
 
-// What an IDEC command takes from the decode of its picture (ipu/ipu_unit.cpp).
+// What an IDEC command, or a picture of the BDEC flow, takes from the decode of its picture
+// (ipu/ipu_unit.cpp).
 struct IdecDecode {
   PictureReport report;
   std::vector<MacroblockBits> trace;
@@ -58,7 +65,14 @@ struct IdecDecode {
   int mbHeight = 0;
   int width = 0;  // display size
   int height = 0;
+  // BDEC flow: a frame became due for display (the image); mbWidth/mbHeight and width/height are
+  // then that frame's.
+  bool shown = true;
 };
+
+// Whether a decoder's state carries from picture to picture (the BDEC flow's reference frames) or
+// every picture starts afresh (IDEC: a mid-grey store, DecoderOptions::freshStorePerDecode).
+enum class DecoderState { FreshPerPicture, Kept };
 
 // The bytes' first start code is a sequence header that parses: the decoder takes every sequence
 // parameter from them.
@@ -80,6 +94,7 @@ class SharedDecodes {
     std::int64_t rejoined = 0;      // taken at a fresh start after a divergence or a skipped picture
     std::int64_t heldBack = 0;      // decodes not offered: the other side was maxAhead behind
     std::int64_t offeredAgain = 0;  // fresh starts offered by a side that was out of step (publish)
+    std::int64_t statesCopied = 0;  // DecoderState::Kept: a stale decoder given the other side's state
   };
   // A decode taken from the other side: the image is the other side's and is never written again.
   struct Taken {
@@ -87,10 +102,21 @@ class SharedDecodes {
     std::shared_ptr<Rgba8Image> image;
   };
 
-  explicit SharedDecodes(std::size_t maxAhead = kDefaultMaxAhead, std::size_t maxImageBytes = kDefaultMaxImageBytes)
-      : maxAhead_(maxAhead), maxImageBytes_(maxImageBytes) {}
+  explicit SharedDecodes(std::size_t maxAhead = kDefaultMaxAhead, std::size_t maxImageBytes = kDefaultMaxImageBytes,
+                         DecoderState state = DecoderState::FreshPerPicture)
+      : maxAhead_(maxAhead), maxImageBytes_(maxImageBytes), kept_(state == DecoderState::Kept) {}
   SharedDecodes(const SharedDecodes&) = delete;
   SharedDecodes& operator=(const SharedDecodes&) = delete;
+
+  // DecoderState::Kept: side `side`'s decoder (the IPU's stream holds it; it must outlive this), so
+  // that the other side can take its state. Without both, a stale side always decodes again.
+  void attach(int side, const std::unique_ptr<Decoder>* decoder) {
+    decoders_.at(static_cast<std::size_t>(side)) = decoder;
+  }
+  // `side` stops sharing: from now on it neither takes nor offers a decode, and the other side offers
+  // none. Its decoder is brought up to date first: it may be changed outside the log next (the end
+  // of a BDEC stream, Decoder::flushDisplay) or be needed whole (a command log reads it).
+  void leave(int side, std::unique_ptr<Decoder>& decoder, const DecoderOptions& options);
 
   // Side `side` (0 or 1) is about to decode `bytes` with thresholds `th`: the other side's decode of
   // them when it may take it (see above), else nothing (then: prepare, decode, publish).
@@ -124,11 +150,15 @@ class SharedDecodes {
     std::size_t replayFrom = 0;          // with stale: the first entry its decoder must decode again
     bool replayFresh = false;            // that entry is a fresh start
     std::vector<std::uint8_t> previous;  // its last picture's bytes if decoded out of step (publish)
+    bool left = false;                   // shares nothing any more (leave)
   };
   static bool same(const Entry& e, std::span<const std::uint8_t> bytes, CscThresholds th);
   Entry& at(std::size_t index) { return log_[index - base_]; }
   std::size_t end() const { return base_ + log_.size(); }
   std::optional<Taken> takeAt(Side& me, std::size_t index);
+  // DecoderState::Kept: `side`'s stale decoder takes the other side's state if the two are level
+  // (the other's decoder, not stale, has read the same entries); whether it did.
+  bool copyFromLevel(int side);
   void trim();
 
   std::size_t maxAhead_;
@@ -137,6 +167,8 @@ class SharedDecodes {
   std::deque<Entry> log_;
   std::size_t base_ = 0;  // log index of log_.front()
   std::array<Side, 2> sides_{};
+  bool kept_ = false;
+  std::array<const std::unique_ptr<Decoder>*, 2> decoders_{};
   Counters counters_;
 };
 

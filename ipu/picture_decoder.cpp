@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include "ipu/idct_libmpeg2.hpp"
@@ -294,6 +295,13 @@ void Decoder::beginFrame(int codingType, int mbw, int mbh) {
 void Decoder::completeFrame() {
   frames_.complete(frameType_, frameWidth_, frameHeight_);
   pendingField_ = 0;
+}
+
+void Decoder::copyStateFrom(const Decoder& other) {
+  if (&other == this) return;
+  if (other.fieldPending()) throw std::logic_error("Decoder::copyStateFrom: a field is pending");
+  *this = other;
+  concealFrom_ = nullptr;  // set again when the next frame begins (beginFrame); never read before
 }
 
 bool Decoder::flushDisplay() {

@@ -84,6 +84,12 @@ class Decoder {
   // A first field waits for its second: the next field picture of the other parity fills its frame
   // (ipu/ipu_unit_shared_decodes.hpp: then a picture after a sequence header still depends on the past).
   bool fieldPending() const { return pendingField_ != 0; }
+  // Takes `other`'s whole state (headers, frame stores, the frame due for display), as if this
+  // decoder had decoded what it did: the next decode of the same bytes gives the same result. Not
+  // while `other` has a field pending (its frame's concealment source is one of its own stores).
+  // Shared decodes of the BDEC flow (ipu/ipu_unit_shared_decodes.hpp) bring a stale decoder up to
+  // date this way instead of decoding its pictures again.
+  void copyStateFrom(const Decoder& other);
   const SequenceHeader& sequence() const { return seq_; }
   const PictureHeader& picture() const { return pic_; }
   // Display size of the picture last decoded into frame() (0 before the first). A sequence header

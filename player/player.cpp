@@ -40,6 +40,14 @@ Player::Player(iop::SectorSource& disc, const iop::DiscFile& file, PlayerOptions
       decodes_ = std::make_unique<ipu::SharedDecodes>();
       main_->ipu().shareDecodes(*decodes_, 0);
       ref_->ipu().shareDecodes(*decodes_, 1);
+      // Each BDEC stream (the two pipelines open the same streams in the same order) its own log.
+      for (ipu::StreamId id = 0; id < main_->ipu().streamCount(); ++id) {
+        if (main_->ipu().decodePath(id) != ipu::DecodePath::kBdec) continue;
+        flowDecodes_.push_back(std::make_unique<ipu::SharedDecodes>(
+            ipu::SharedDecodes::kDefaultMaxAhead, ipu::SharedDecodes::kDefaultMaxImageBytes, ipu::DecoderState::Kept));
+        main_->ipu().shareFlowDecodes(id, *flowDecodes_.back(), 0);
+        ref_->ipu().shareFlowDecodes(id, *flowDecodes_.back(), 1);
+      }
     }
     const gs::BlendKernels& k = options_.kernels.blend != nullptr ? *options_.kernels.blend : gs::scalarKernels();
     if (options_.shareReference) {

@@ -48,9 +48,10 @@ struct PlayerOptions {
   // are the same (gs::Presenter::followTwin, mirroring): no copy, no second blend. false: the
   // reference blends or copies each tile itself. Same bytes.
   bool mirrorReference = true;
-  // The run's IPU and the reference's share the decode of each intra picture both are given after
-  // the same history (ipu/ipu_unit_shared_decodes.hpp): one decodes, the other takes its picture,
-  // and both pipelines hold the same image. false: each IPU decodes every picture. Same bytes.
+  // The run's IPU and the reference's share the decode of each picture both are given after the
+  // same history (ipu/ipu_unit_shared_decodes.hpp; intra pictures, and P and B pictures of a BDEC
+  // stream while the two are in step): one decodes, the other takes its picture, and both
+  // pipelines hold the same image. false: each IPU decodes every picture. Same bytes.
   bool shareDecodes = true;
 };
 
@@ -121,6 +122,12 @@ class Player {
   Pipeline* reference() { return ref_.get(); }
   // With a reference and shareDecodes: what the two IPUs shared (tests), else null.
   const ipu::SharedDecodes* sharedDecodes() const { return decodes_.get(); }
+  // The same for each BDEC stream (P and B pictures), empty without them.
+  std::vector<const ipu::SharedDecodes*> sharedFlowDecodes() const {
+    std::vector<const ipu::SharedDecodes*> all;
+    for (const auto& d : flowDecodes_) all.push_back(d.get());
+    return all;
+  }
   const Tracer& tracer() const { return tracer_; }
   Tracer& tracer() { return tracer_; }  // e.g. to stream it to files (Tracer::streamTo) before the run
   const Scheduler& scheduler() const { return sched_; }
@@ -138,7 +145,8 @@ class Player {
   ee::ProbedStream stream_;
   Scheduler sched_;
   Tracer tracer_;
-  std::unique_ptr<ipu::SharedDecodes> decodes_;  // outlives both pipelines' IPUs
+  std::unique_ptr<ipu::SharedDecodes> decodes_;                   // outlives both pipelines' IPUs
+  std::vector<std::unique_ptr<ipu::SharedDecodes>> flowDecodes_;  // so do these
   std::unique_ptr<Pipeline> main_;
   std::unique_ptr<Pipeline> ref_;
   // The lag of the lightmap and of the sky against the reference (with ref_ only), and the tiles of

@@ -230,5 +230,136 @@ TEST(SharedDecodes, TheSideAheadKeepsItsDecodesPastTheLimit) {
   EXPECT_EQ(c.taken, 4);
 }
 
+// The BDEC flow (P and B pictures): each IPU's own kBdec stream, shared through a log of its own
+// (DecoderState::Kept). Same harness; a picture's image is compared when it was displayed.
+Task<void> feedFlow(Scheduler& s, IpuUnit& unit, StreamId stream, const std::vector<Step>& steps,
+                    std::vector<Decoded>& out) {
+  for (const Step& step : steps) {
+    if (s.now() < step.at) co_await s.until(step.at);
+    auto image = std::make_shared<Rgba8Image>();
+    Decoded d;
+    d.timed = co_await unit.decode(stream, step.bytes, image);
+    if (d.timed.displayed) d.image = *image;
+    out.push_back(std::move(d));
+  }
+}
+
+Outcome playFlow(const std::vector<Step>& a, const std::vector<Step>& b, bool share, std::size_t maxAhead = 64,
+                 bool aRecordsCommands = false) {
+  Scheduler s;
+  IpuUnit ua(s, IpuParams{});
+  IpuUnit ub(s, IpuParams{});
+  const StreamId sa = ua.openStream(DecodePath::kBdec);
+  const StreamId sb = ub.openStream(DecodePath::kBdec);
+  SharedDecodes shared(maxAhead, SharedDecodes::kDefaultMaxImageBytes, DecoderState::Kept);
+  if (share) {
+    ua.shareFlowDecodes(sa, shared, 0);
+    ub.shareFlowDecodes(sb, shared, 1);
+  }
+  if (aRecordsCommands) ua.recordCommands();
+  Outcome o;
+  s.spawn("a", feedFlow(s, ua, sa, a, o.a));
+  s.spawn("b", feedFlow(s, ub, sb, b, o.b));
+  s.run();
+  o.counters = shared.counters();
+  return o;
+}
+
+SharedDecodes::Counters expectFlowSameAsUnshared(const std::vector<Step>& a, const std::vector<Step>& b,
+                                                 std::size_t maxAhead = 64, bool aRecordsCommands = false) {
+  const Outcome own = playFlow(a, b, false, maxAhead, aRecordsCommands);
+  const Outcome shared = playFlow(a, b, true, maxAhead, aRecordsCommands);
+  expectSame(shared.a, own.a, "side 0");
+  expectSame(shared.b, own.b, "side 1");
+  EXPECT_EQ(own.counters.decoded + own.counters.taken, 0);
+  int displayed = 0;
+  for (const Decoded& d : own.a) displayed += d.timed.displayed ? 1 : 0;
+  EXPECT_GT(displayed, static_cast<int>(a.size()) / 2) << "most pictures should show a frame";
+  return shared.counters;
+}
+
+// GOPs of 6 with 2 B pictures, in stream (decode) order.
+std::vector<Bytes> gopPictures(int frames, testing::Content content = testing::Content::kBusy) {
+  testing::EncodeOptions o;
+  o.width = 64;
+  o.height = 48;
+  o.frames = frames;
+  o.gopSize = 6;
+  o.bFrames = 2;
+  o.quantiser = 4;
+  o.content = content;
+  return testing::encodePictures(o);
+}
+
+TEST(SharedFlowDecodes, ALateSideTakesEveryPictureOfTheOther) {
+  const std::vector<Bytes> pics = gopPictures(14);
+  const SharedDecodes::Counters c = expectFlowSameAsUnshared(steps(pics, 0, kEvery), steps(pics, fromMs(23), kEvery));
+  EXPECT_EQ(c.decoded, 14);
+  EXPECT_EQ(c.taken, 14);
+  EXPECT_EQ(c.replayed, 0);
+}
+
+// The side that took a's decodes leads after a stalls: its decoder takes a's state (the two are
+// level), never decoding a picture twice.
+TEST(SharedFlowDecodes, SidesThatOvertakeEachOtherTakeTurnsByTakingTheOthersState) {
+  const std::vector<Bytes> pics = gopPictures(16, testing::Content::kLightmap);
+  std::vector<Step> a = steps(pics, 0, kEvery);
+  std::vector<Step> b = steps(pics, fromMs(12), kEvery);
+  for (std::size_t i = 7; i < a.size(); ++i) a[i].at += fromMs(40);  // a stalls: b leads from picture 7
+  const SharedDecodes::Counters c = expectFlowSameAsUnshared(a, b);
+  EXPECT_EQ(c.decoded, 16);
+  EXPECT_EQ(c.taken, 16);
+  EXPECT_GE(c.statesCopied, 1);
+  EXPECT_EQ(c.replayed, 0);
+}
+
+// A late side given a damaged P picture goes its own way: its decoder, stale since the start, reads
+// the pictures before it again first (the other's state is further on).
+TEST(SharedFlowDecodes, ALateSideGivenADamagedPictureDecodesThePastAgainAndGoesItsOwnWay) {
+  const std::vector<Bytes> pics = gopPictures(14, testing::Content::kNoise);
+  std::vector<Bytes> late = pics;
+  late[6] = damaged(late[6]);
+  const SharedDecodes::Counters c = expectFlowSameAsUnshared(steps(pics, 0, kEvery), steps(late, fromMs(31), kEvery));
+  EXPECT_EQ(c.divergences, 1);
+  EXPECT_EQ(c.taken, 6);
+  EXPECT_EQ(c.replayed, 6) << "the late side's decoder must read pictures 0-5 before it decodes picture 6";
+  EXPECT_EQ(c.decoded, 14 + 8) << "no rejoining in the BDEC flow: its references carry the past";
+}
+
+// With a short log the late side takes at most the limit while its decoder is stale; level with the
+// other at the limit's half, it takes the other's state instead of growing the replay.
+TEST(SharedFlowDecodes, AStaleDecoderTakesTheOthersStateBeforeTheLimit) {
+  const std::vector<Bytes> pics = gopPictures(14);
+  std::vector<Step> a = steps(pics, 0, kEvery);
+  std::vector<Step> b = steps(pics, 0, kEvery);
+  for (Step& st : b) st.at += 1;  // one tick behind: level after each take
+  const SharedDecodes::Counters c = expectFlowSameAsUnshared(a, b, /*maxAhead=*/4);
+  EXPECT_EQ(c.taken, 14);
+  EXPECT_GE(c.statesCopied, 3);
+  EXPECT_EQ(c.replayed, 0);
+}
+
+// A side three pictures behind is never level with the other, so its decoder, stale, must not take
+// the other's state (three pictures further on): when it meets a damaged picture it reads the past
+// again from its own.
+TEST(SharedFlowDecodes, ALaggingSideNeverTakesTheStateOfASideAheadOfIt) {
+  const std::vector<Bytes> pics = gopPictures(14, testing::Content::kNoise);
+  std::vector<Bytes> late = pics;
+  late[9] = damaged(late[9]);
+  const SharedDecodes::Counters c =
+      expectFlowSameAsUnshared(steps(pics, 0, kEvery), steps(late, 3 * kEvery + 1, kEvery), /*maxAhead=*/8);
+  EXPECT_EQ(c.statesCopied, 0);
+  EXPECT_EQ(c.taken, 8) << "taken until its decoder is the limit behind";
+  EXPECT_GE(c.replayed, 1);
+}
+
+TEST(SharedFlowDecodes, AnIpuThatLogsItsCommandsSharesNothing) {
+  const std::vector<Bytes> pics = gopPictures(8);
+  const SharedDecodes::Counters c =
+      expectFlowSameAsUnshared(steps(pics, 0, kEvery), steps(pics, fromMs(9), kEvery), 64, /*aRecordsCommands=*/true);
+  EXPECT_EQ(c.taken, 0);
+  EXPECT_EQ(c.decoded, 8) << "side 1 decodes all 8 itself; side 0 left the log before its first";
+}
+
 }  // namespace
 }  // namespace vbim::ipu
