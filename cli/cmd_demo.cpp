@@ -34,7 +34,8 @@ void addDemo(CLI::App& app) {
       "  vbim demo --out dd/ --duration 20s\n");
   cmd->callback([r] {
     const runs::DemoResult result = runs::demoRun(
-        *r, [](const std::string& line) { std::cout << line; }, [](double, double) { checkInterrupted(); });
+        *r, [](const std::string& line) { std::cout << line; }, [](double, double) { checkInterrupted(); },
+        [] { checkInterrupted(); });
     printPlayResult(result.play);
     std::cout << "profile pass (plots, survivable-stall curve): " << static_cast<int>(result.profileSeconds * 10) / 10.0
               << " s of host time; rendered " << result.renderedFrames << " frames (" << result.renderContext << ")\n";

@@ -59,7 +59,10 @@ PlayRequest demoRequest() {
 }
 
 DemoResult demoRun(PlayRequest r, const std::function<void(const std::string& line)>& say,
-                   const PlayProgressFn& onSecond) {
+                   const PlayProgressFn& onSecond, const std::function<void()>& checkStop) {
+  const auto stopHere = [&checkStop] {
+    if (checkStop) checkStop();
+  };
   // The authored stream goes beside the output first and into it with the rest at commit.
   const fs::path out = outputPath(r.out);
   refuseExistingOutputDir(out, r.force);  // before minutes of work, not after
@@ -83,7 +86,7 @@ DemoResult demoRun(PlayRequest r, const std::function<void(const std::string& li
   DemoResult result;
   r.onRow = [&prof](const player::VsyncRow& row) { prof.onRow(row); };
   r.beforeCommit = [&](const OutputDir& dir) {
-    prof.write(r.disc, dir.directory());
+    prof.write(r.disc, dir.directory(), stopHere);
     std::error_code ec;
     fs::copy_file(stream.path, dir.path("day.vbim"), fs::copy_options::overwrite_existing, ec);
     if (ec) throw Error(dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());
@@ -94,7 +97,8 @@ DemoResult demoRun(PlayRequest r, const std::function<void(const std::string& li
       run.path = "..";  // render.json names the run as seen from render/, not the temporary directory
       render::RunRenderRequest request;
       if (run.authoring) render::applyAuthoring(*run.authoring, "authoring.json", request);
-      const render::RunRenderResult rendered = render::renderRun(run, request, dir.path("render"), [](int, int) {});
+      const render::RunRenderResult rendered =
+          render::renderRun(run, request, dir.path("render"), [&stopHere](int, int) { stopHere(); });
       result.renderedFrames = rendered.frames;
       result.renderContext = rendered.context;
     } catch (const render::RenderError& e) {

@@ -28,9 +28,12 @@ struct DemoResult {
 };
 
 // Runs the demo of `r` (from demoRequest()). `say` is given each line to show before the play ends
-// (what is being authored, its summary, what is played), in order. Throws vbim::Error on bad input,
-// RunFailure when an output cannot be written or the rendering fails.
+// (what is being authored, its summary, what is played), in order. `checkStop` is called between
+// the steps after the play (each stall search of the profile pass, each rendered frame), where
+// onSecond no longer is: it may throw to stop the demo (Ctrl-C), and the output is then not
+// written. Throws vbim::Error on bad input, RunFailure when an output cannot be written or the
+// rendering fails.
 DemoResult demoRun(PlayRequest r, const std::function<void(const std::string& line)>& say,
-                   const PlayProgressFn& onSecond);
+                   const PlayProgressFn& onSecond, const std::function<void()>& checkStop = {});
 
 }  // namespace vbim::runs

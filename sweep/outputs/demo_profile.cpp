@@ -24,7 +24,8 @@ void DemoProfile::onRow(const player::VsyncRow& row) {
   series_.push_back(s);
 }
 
-void DemoProfile::write(const std::string& disc, const std::filesystem::path& dir) {
+void DemoProfile::write(const std::string& disc, const std::filesystem::path& dir,
+                        const std::function<void()>& checkStop) {
   const auto wall0 = std::chrono::steady_clock::now();  // host time: the demo's summary only
   std::filesystem::create_directories(dir / "plots");
   const RingSize demoRing{player::PlatformConfig{}.iop.ring.bankmax, player::PlatformConfig{}.iop.ring.bufmax_sectors};
@@ -55,6 +56,7 @@ void DemoProfile::write(const std::string& disc, const std::filesystem::path& di
     c.config.iop.ring.bufmax_sectors = ring.bufmax;
     c.kernels = {&gs::simd::kernels(), &ipu::simdKernels()};
     for (Criterion crit : {Criterion::Late, Criterion::Pop}) {
+      if (checkStop) checkStop();
       rows.push_back(StallRow{stream->label, ring, c.config.gs.catchup, crit, longestSurvivableStall(c, search, crit)});
     }
   }

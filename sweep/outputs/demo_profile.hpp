@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,9 @@ class DemoProfile {
  public:
   // Every vsync row of the demo's run, in order.
   void onRow(const player::VsyncRow& row);
-  // Writes plots/ into `dir` (which exists); `disc` is the demo's stream file.
-  void write(const std::string& disc, const std::filesystem::path& dir);
+  // Writes plots/ into `dir` (which exists); `disc` is the demo's stream file. `checkStop` is called
+  // before each stall search (a few tenths of a second each); it may throw to stop.
+  void write(const std::string& disc, const std::filesystem::path& dir, const std::function<void()>& checkStop = {});
   // Host seconds write() took (the demo's summary only; never hashed).
   double seconds() const { return seconds_; }
 
