@@ -4,8 +4,10 @@
 # builds and diff the listings to show that a speed change moved no output byte (issue #31).
 # The plays: the samples with the committed fault plan of fault_play_speed.sh, the example plans,
 # several seeds, a branch, --threads 2, each catch-up policy, the blender without its
-# convergence shortcut, a catch-up FIX, a 512x512 stream in strip mode, and a stream of GOPs of 12
-# with 2 B pictures (whose decodes the run's and the reference's IPUs do not share).
+# convergence shortcut, a catch-up FIX, a 512x512 stream in strip mode, and streams of GOPs of 12
+# with 2 B pictures (whose decodes the run's and the reference's IPUs share): 256x256, 512x512 in
+# strip mode (the run's strips come after the reference's: the mirror's queue), two variants with a
+# branch, and the IPU command log (its IPU leaves the sharing).
 #   fault_play_outputs.sh VBIM [WORKDIR]  > listing.txt
 # WORKDIR keeps the authored streams between invocations; a temporary directory otherwise.
 set -eu
@@ -28,6 +30,10 @@ printf '[gs]\nupload_mode = "strips"\nsky_height = 128\n' >"$work/strips.toml"
   --out "$work/ta512.vbim" >/dev/null
 [ -f "$work/gop12.vbim" ] || "$vbim" author --procedural --size 256 --sky-width 128 --frame-count 24 --fps 1 \
   --gop 12 --b-frames 2 --out "$work/gop12.vbim" >/dev/null
+[ -f "$work/gop512.vbim" ] || "$vbim" author --procedural --size 512 --sky-width 256 --frame-count 24 --fps 1 \
+  --gop 12 --b-frames 2 --out "$work/gop512.vbim" >/dev/null
+[ -f "$work/gop-weather.vbim" ] || "$vbim" author --procedural --size 256 --sky-width 128 --frame-count 24 --fps 1 \
+  --weather clear,overcast --gop 12 --b-frames 2 --out "$work/gop-weather.vbim" >/dev/null
 
 play() {  # NAME DISC ARGS...
   name=$1 disc=$2
@@ -45,3 +51,6 @@ play hard-skip-unaware "$clear" --faults "$plan" --seed 5 --duration 90s --polic
 play play-late-catchup "$clear" --faults "$plan" --seed 6 --duration 90s --policy play-late --config "$work/catchup.toml"
 play strips512 "$work/ta512.vbim" --faults "$plan" --seed 8 --duration 60s --config "$work/strips.toml"
 play gop12 "$work/gop12.vbim" --faults "$plan" --seed 9 --duration 90s
+play gop512-strips "$work/gop512.vbim" --faults "$plan" --seed 10 --duration 90s --config "$work/strips.toml"
+play gop-branch "$work/gop-weather.vbim" --faults "$plan" --seed 11 --duration 90s --branch 30s=1 --branch 60s=0
+play gop12-ipu-log "$work/gop12.vbim" --faults "$plan" --seed 12 --duration 60s --trace-detail ipu
