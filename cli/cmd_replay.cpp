@@ -73,8 +73,8 @@ void addReplay(CLI::App& app) {
     r->progress = [&bar](std::int64_t done, std::int64_t total) {
       bar.show(static_cast<double>(done), static_cast<double>(total));
     };
-    const runs::ReplayResult result =
-        runs::replayRun(*r, [](const std::string& warning) { std::cerr << "warning: " << warning << "\n"; });
+    const runs::ReplayResult result = runs::replayRun(
+        *r, [](const std::string& warning) { std::cerr << "vbim replay: warning: " << warning << "\n"; });
     r->progress = nullptr;
     bar.finish();
     if (r->json) {
