@@ -130,7 +130,9 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   Side& other = sides_.at(1 - s);
   ++counters_.decoded;
   me.pendingAfter = decoder.fieldPending();
-  if (me.left || other.left) return;
+  // No one would take it: kept in the log it would only hold its image (16 MiB of them at most)
+  // for as long as the play lasts.
+  if (me.left || gone(other)) return;
   // A side that went its own way, or fell behind, offers its decode again when it is a fresh start
   // for both sides (the other has read the whole log and waits for no second field): whatever either
   // side decoded before, the other's decode of these bytes would give this result (see the header),
@@ -194,11 +196,11 @@ void SharedDecodes::leave(int side, std::unique_ptr<Decoder>& decoder, const Dec
   trim();
 }
 
-// Drops the entries neither side can still take or decode again (a side that left needs none).
+// Drops the entries neither side can still take or decode again (a side that is gone needs none).
 void SharedDecodes::trim() {
   std::size_t keep = end();
   for (const Side& s : sides_) {
-    if (!s.left) keep = std::min(keep, s.stale ? s.replayFrom : s.cursor);
+    if (!gone(s)) keep = std::min(keep, s.stale ? s.replayFrom : s.cursor);
   }
   while (base_ < keep) {
     if (log_.front().result && log_.front().result->image) imageBytes_ -= log_.front().result->image->pixels.size();

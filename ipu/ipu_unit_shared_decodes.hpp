@@ -24,7 +24,8 @@
 //
 // The BDEC flow (P and B pictures; DecoderState::Kept, one log per stream) keeps its frames from
 // picture to picture, so nothing is a fresh start there: a side is in step or not, and one that went
-// its own way (damaged bytes) stays its own. A stale side is brought up to date by taking the other
+// its own way (damaged bytes, or held back) stays its own, and what the other decodes from then on
+// is not logged. A stale side is brought up to date by taking the other
 // side's decoder state (Decoder::copyStateFrom: its frame stores) when that side's decoder is at the
 // same entry and not stale, else by decoding again the entries since its decoder's own last one. So
 // that this stays short while one side takes everything, a side whose decoder is maxAhead/2 entries
@@ -156,6 +157,9 @@ class SharedDecodes {
   Entry& at(std::size_t index) { return log_[index - base_]; }
   std::size_t end() const { return base_ + log_.size(); }
   std::optional<Taken> takeAt(Side& me, std::size_t index);
+  // Whether `s` can never take an entry again: it left, or (DecoderState::Kept, where nothing is a
+  // fresh start) it went its own way and its decoder has read again what it took.
+  bool gone(const Side& s) const { return s.left || (kept_ && s.diverged && !s.stale); }
   // DecoderState::Kept: `side`'s stale decoder takes the other side's state if the two are level
   // (the other's decoder, not stale, has read the same entries); whether it did.
   bool copyFromLevel(int side);

@@ -36,41 +36,59 @@ struct Decoded {
 struct Outcome {
   std::vector<Decoded> a, b;
   SharedDecodes::Counters counters;
+  std::size_t held = 0;  // entries the log still holds at the end
 };
 
-Task<void> feed(Scheduler& s, IpuUnit& unit, const std::vector<Step>& steps, std::vector<Decoded>& out) {
+// A picture's image is kept when it was displayed (always, on the IDEC path, when it was decoded).
+Task<void> feed(Scheduler& s, IpuUnit& unit, StreamId stream, const std::vector<Step>& steps,
+                std::vector<Decoded>& out) {
   for (const Step& step : steps) {
     if (s.now() < step.at) co_await s.until(step.at);
     auto image = std::make_shared<Rgba8Image>();
     Decoded d;
-    d.timed = co_await unit.decode(kSharedIdecStream, step.bytes, image);
-    d.image = *image;
+    d.timed = co_await unit.decode(stream, step.bytes, image);
+    if (d.timed.displayed) d.image = *image;
     out.push_back(std::move(d));
   }
 }
 
-// aFirst: side a's IPU and feeder in the scheduler's first lane, so that at any tick both share a
-// is first (the player's reference and run); else in spawn order as their work leaves them.
-Outcome play(const std::vector<Step>& a, const std::vector<Step>& b, bool share, std::size_t maxAhead = 64,
-             bool aFirst = false) {
+struct PlayOptions {
+  std::size_t maxAhead = 64;
+  // Side a's IPU and feeder in the scheduler's first lane, so that at any tick both share a is
+  // first (the player's reference and run); else in spawn order as their work leaves them.
+  bool aFirst = false;
+  // The BDEC flow: each IPU's own kBdec stream, shared through a log of its own (DecoderState::Kept).
+  bool flow = false;
+  bool aRecordsCommands = false;  // side a's IPU logs its commands (recordCommands)
+};
+
+Outcome play(const std::vector<Step>& a, const std::vector<Step>& b, bool share, const PlayOptions& opt = {}) {
   Scheduler s;
   std::optional<Scheduler::LaneScope> lane;
-  if (aFirst) lane.emplace(s, Lane::First);
+  if (opt.aFirst) lane.emplace(s, Lane::First);
   IpuUnit ua(s, IpuParams{});
   lane.reset();
   IpuUnit ub(s, IpuParams{});
-  SharedDecodes shared(maxAhead);
-  if (share) {
+  const StreamId sa = opt.flow ? ua.openStream(DecodePath::kBdec) : kSharedIdecStream;
+  const StreamId sb = opt.flow ? ub.openStream(DecodePath::kBdec) : kSharedIdecStream;
+  SharedDecodes shared(opt.maxAhead, SharedDecodes::kDefaultMaxImageBytes,
+                       opt.flow ? DecoderState::Kept : DecoderState::FreshPerPicture);
+  if (share && opt.flow) {
+    ua.shareFlowDecodes(sa, shared, 0);
+    ub.shareFlowDecodes(sb, shared, 1);
+  } else if (share) {
     ua.shareDecodes(shared, 0);
     ub.shareDecodes(shared, 1);
   }
+  if (opt.aRecordsCommands) ua.recordCommands();
   Outcome o;
-  if (aFirst) lane.emplace(s, Lane::First);
-  s.spawn("a", feed(s, ua, a, o.a));
+  if (opt.aFirst) lane.emplace(s, Lane::First);
+  s.spawn("a", feed(s, ua, sa, a, o.a));
   lane.reset();
-  s.spawn("b", feed(s, ub, b, o.b));
+  s.spawn("b", feed(s, ub, sb, b, o.b));
   s.run();
   o.counters = shared.counters();
+  o.held = shared.held();
   return o;
 }
 
@@ -100,8 +118,9 @@ void expectSame(const std::vector<Decoded>& got, const std::vector<Decoded>& wan
 // Plays both ways and compares; returns the shared play's counters.
 SharedDecodes::Counters expectSameAsUnshared(const std::vector<Step>& a, const std::vector<Step>& b,
                                              std::size_t maxAhead = 64, bool aFirst = false) {
-  const Outcome own = play(a, b, false, maxAhead, aFirst);
-  const Outcome shared = play(a, b, true, maxAhead, aFirst);
+  const PlayOptions opt{.maxAhead = maxAhead, .aFirst = aFirst};
+  const Outcome own = play(a, b, false, opt);
+  const Outcome shared = play(a, b, true, opt);
   expectSame(shared.a, own.a, "side 0");
   expectSame(shared.b, own.b, "side 1");
   EXPECT_EQ(own.counters.decoded + own.counters.taken, 0);
@@ -230,52 +249,27 @@ TEST(SharedDecodes, TheSideAheadKeepsItsDecodesPastTheLimit) {
   EXPECT_EQ(c.taken, 4);
 }
 
-// The BDEC flow (P and B pictures): each IPU's own kBdec stream, shared through a log of its own
-// (DecoderState::Kept). Same harness; a picture's image is compared when it was displayed.
-Task<void> feedFlow(Scheduler& s, IpuUnit& unit, StreamId stream, const std::vector<Step>& steps,
-                    std::vector<Decoded>& out) {
-  for (const Step& step : steps) {
-    if (s.now() < step.at) co_await s.until(step.at);
-    auto image = std::make_shared<Rgba8Image>();
-    Decoded d;
-    d.timed = co_await unit.decode(stream, step.bytes, image);
-    if (d.timed.displayed) d.image = *image;
-    out.push_back(std::move(d));
-  }
-}
-
-Outcome playFlow(const std::vector<Step>& a, const std::vector<Step>& b, bool share, std::size_t maxAhead = 64,
-                 bool aRecordsCommands = false) {
-  Scheduler s;
-  IpuUnit ua(s, IpuParams{});
-  IpuUnit ub(s, IpuParams{});
-  const StreamId sa = ua.openStream(DecodePath::kBdec);
-  const StreamId sb = ub.openStream(DecodePath::kBdec);
-  SharedDecodes shared(maxAhead, SharedDecodes::kDefaultMaxImageBytes, DecoderState::Kept);
-  if (share) {
-    ua.shareFlowDecodes(sa, shared, 0);
-    ub.shareFlowDecodes(sb, shared, 1);
-  }
-  if (aRecordsCommands) ua.recordCommands();
-  Outcome o;
-  s.spawn("a", feedFlow(s, ua, sa, a, o.a));
-  s.spawn("b", feedFlow(s, ub, sb, b, o.b));
-  s.run();
-  o.counters = shared.counters();
-  return o;
-}
-
-SharedDecodes::Counters expectFlowSameAsUnshared(const std::vector<Step>& a, const std::vector<Step>& b,
-                                                 std::size_t maxAhead = 64, bool aRecordsCommands = false) {
-  const Outcome own = playFlow(a, b, false, maxAhead, aRecordsCommands);
-  const Outcome shared = playFlow(a, b, true, maxAhead, aRecordsCommands);
+// The BDEC flow (P and B pictures): the same harness on each IPU's own kBdec stream.
+// The shared play's counters and the entries its log holds at the end.
+std::pair<SharedDecodes::Counters, std::size_t> expectFlowSameAsUnsharedHeld(const std::vector<Step>& a,
+                                                                             const std::vector<Step>& b,
+                                                                             std::size_t maxAhead = 64,
+                                                                             bool aRecordsCommands = false) {
+  const PlayOptions opt{.maxAhead = maxAhead, .flow = true, .aRecordsCommands = aRecordsCommands};
+  const Outcome own = play(a, b, false, opt);
+  const Outcome shared = play(a, b, true, opt);
   expectSame(shared.a, own.a, "side 0");
   expectSame(shared.b, own.b, "side 1");
   EXPECT_EQ(own.counters.decoded + own.counters.taken, 0);
   int displayed = 0;
   for (const Decoded& d : own.a) displayed += d.timed.displayed ? 1 : 0;
   EXPECT_GT(displayed, static_cast<int>(a.size()) / 2) << "most pictures should show a frame";
-  return shared.counters;
+  return {shared.counters, shared.held};
+}
+
+SharedDecodes::Counters expectFlowSameAsUnshared(const std::vector<Step>& a, const std::vector<Step>& b,
+                                                 std::size_t maxAhead = 64, bool aRecordsCommands = false) {
+  return expectFlowSameAsUnsharedHeld(a, b, maxAhead, aRecordsCommands).first;
 }
 
 // GOPs of 6 with 2 B pictures, in stream (decode) order.
@@ -319,11 +313,12 @@ TEST(SharedFlowDecodes, ALateSideGivenADamagedPictureDecodesThePastAgainAndGoesI
   const std::vector<Bytes> pics = gopPictures(14, testing::Content::kNoise);
   std::vector<Bytes> late = pics;
   late[6] = damaged(late[6]);
-  const SharedDecodes::Counters c = expectFlowSameAsUnshared(steps(pics, 0, kEvery), steps(late, fromMs(31), kEvery));
+  const auto [c, held] = expectFlowSameAsUnsharedHeld(steps(pics, 0, kEvery), steps(late, fromMs(31), kEvery));
   EXPECT_EQ(c.divergences, 1);
   EXPECT_EQ(c.taken, 6);
   EXPECT_EQ(c.replayed, 6) << "the late side's decoder must read pictures 0-5 before it decodes picture 6";
   EXPECT_EQ(c.decoded, 14 + 8) << "no rejoining in the BDEC flow: its references carry the past";
+  EXPECT_EQ(held, 0u) << "no one can take what the log would hold: it must not keep it (nor its images)";
 }
 
 // With a short log the late side takes at most the limit while its decoder is stale; level with the
