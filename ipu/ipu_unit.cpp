@@ -50,6 +50,16 @@ IdecDecode idecDecodeOf(const Decoder& dec) {
   return d;
 }
 
+// A shared decode's image: `whole` (whole macroblocks) when it has the picture's size, else a new
+// image of its top-left width x height, as submit() crops the unshared path's (never written back
+// into `whole`: it may be the twin's).
+std::shared_ptr<Rgba8Image> croppedTo(std::shared_ptr<Rgba8Image> whole, int width, int height) {
+  if (whole->width == width && whole->height == height) return whole;
+  auto cropped = std::make_shared<Rgba8Image>(width, height);
+  for (int y = 0; y < height; ++y) std::memcpy(cropped->row(y), whole->row(y), static_cast<std::size_t>(width) * 4);
+  return cropped;
+}
+
 // libmpeg's CSC command converts at most 0x3FF macroblocks (MBC is 11 bits; _MPEG_CSCImage
 // splits larger pictures).
 constexpr std::int64_t kCscMaxMacroblocks = 0x3FF;
@@ -215,13 +225,8 @@ Task<TimedPicture> IpuUnit::decode(StreamId stream, std::span<const std::uint8_t
     taken.emplace(SharedDecodes::Taken{idecDecodeOf(dec), out});
     taken->decode.report = std::move(report);
     const IdecDecode& d = taken->decode;
-    if (!d.report.produced) taken->image = nullptr;  // nothing to show: the image stays the caller's
-    if (d.report.produced && (out->width != d.width || out->height != d.height)) {
-      auto cropped = std::make_shared<Rgba8Image>(d.width, d.height);
-      for (int y = 0; y < d.height; ++y)
-        std::memcpy(cropped->row(y), out->row(y), static_cast<std::size_t>(d.width) * 4);
-      taken->image = std::move(cropped);
-    }
+    // Nothing to show: the image stays the caller's.
+    taken->image = d.report.produced ? croppedTo(out, d.width, d.height) : nullptr;
     share_->publish(shareSide_, bytes, th, pendingBefore, dec, taken->decode, taken->image);
   }
   result.report = taken->decode.report;
@@ -258,20 +263,13 @@ Task<TimedPicture> IpuUnit::decodeFlowShared(StreamId stream, std::span<const st
     const FrameStore* shown = d.report.produced ? dec.displayFrame() : nullptr;
     d.shown = shown != nullptr;
     if (shown != nullptr) {
-      // Into out's buffer, whole macroblocks as the unshared path converts them, then cropped to the
-      // display size as submit() would (a new image: the old one may be the twin's).
+      // Into out's buffer, whole macroblocks as the unshared path converts them, then cropped.
       d.mbWidth = shown->mbWidth;
       d.mbHeight = shown->mbHeight;
       d.width = dec.displayWidth();
       d.height = dec.displayHeight();
       convertToRgba32(*shown, shown->mbWidth * 16, shown->mbHeight * 16, th, *out, dec.kernels().cscRow);
-      taken->image = out;
-      if (out->width != d.width || out->height != d.height) {
-        auto cropped = std::make_shared<Rgba8Image>(d.width, d.height);
-        for (int y = 0; y < d.height; ++y)
-          std::memcpy(cropped->row(y), out->row(y), static_cast<std::size_t>(d.width) * 4);
-        taken->image = std::move(cropped);
-      }
+      taken->image = croppedTo(out, d.width, d.height);
     }
     share.publish(st.flowSide, bytes, th, pendingBefore, dec, taken->decode, taken->image);
   }
