@@ -60,9 +60,6 @@ PlayRequest demoRequest() {
 
 DemoResult demoRun(PlayRequest r, const std::function<void(const std::string& line)>& say,
                    const PlayProgressFn& onSecond, const std::function<void()>& checkStop) {
-  const auto stopHere = [&checkStop] {
-    if (checkStop) checkStop();
-  };
   // The authored stream goes beside the output first and into it with the rest at commit.
   const fs::path out = outputPath(r.out);
   refuseExistingOutputDir(out, r.force);  // before minutes of work, not after
@@ -86,7 +83,7 @@ DemoResult demoRun(PlayRequest r, const std::function<void(const std::string& li
   DemoResult result;
   r.onRow = [&prof](const player::VsyncRow& row) { prof.onRow(row); };
   r.beforeCommit = [&](const OutputDir& dir) {
-    prof.write(r.disc, dir.directory(), stopHere);
+    prof.write(r.disc, dir.directory(), checkStop);
     std::error_code ec;
     fs::copy_file(stream.path, dir.path("day.vbim"), fs::copy_options::overwrite_existing, ec);
     if (ec) throw Error(dir.path("day.vbim").string() + ": cannot copy the authored stream: " + ec.message());
@@ -98,7 +95,9 @@ DemoResult demoRun(PlayRequest r, const std::function<void(const std::string& li
       render::RunRenderRequest request;
       if (run.authoring) render::applyAuthoring(*run.authoring, "authoring.json", request);
       const render::RunRenderResult rendered =
-          render::renderRun(run, request, dir.path("render"), [&stopHere](int, int) { stopHere(); });
+          render::renderRun(run, request, dir.path("render"), [&checkStop](int, int) {
+            if (checkStop) checkStop();
+          });
       result.renderedFrames = rendered.frames;
       result.renderContext = rendered.context;
     } catch (const render::RenderError& e) {

@@ -66,7 +66,7 @@ for name in ${PLAY_SPEED_STREAMS:-512 256 512gop}; do
   : >"$work/wall$name"
   i=0
   while [ "$i" -lt "$runs" ]; do
-    # shellcheck disable=SC2086 # the fault option is one word or none
+    # ${faults:+...} unquoted: two words (--faults and the path, kept whole by its quotes) or none
     line=$("$vbim" play "$work/ta$name.vbim" --config "$work/$name.toml" --duration "${seconds}s" --force \
       --threads "$threads" ${faults:+--faults "$faults"} --out "$work/run$name" | head -n 1)
     # "played 600.0 s of X (N vsyncs) in W s of host time (..x real time), C s of CPU time (..x real time)"
