@@ -126,16 +126,16 @@ template <bool Mpeg1>
   unsigned masks = 0;
 
   // AC coefficients (§7.2.2, §7.3, §7.4.2-7.4.3).
-  const DctCodeEntry* shortCodes = t_.dctShort[pp_.intraVlcFormat ? 1 : 0];
+  const int format = pp_.intraVlcFormat ? 1 : 0;
+  const DctPairEntry* pairs = t_.dctPairs[format];
+  const DctCodeEntry* shortCodes = t_.dctShort[format];
   const DctCodeEntry* longCodes = t_.dctLong;
   // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
   // ends within 16 bits; the caller checks for overrun once per macroblock.
   int i = 0;
   // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
-  auto place = [&](int mag, int negative) {
-    if (i > 63) [[unlikely]]
-      return false;
-    const ScanSlot& slot = scan_[i];
+  // The value of the coefficient of magnitude mag at a scan slot (mag 0: zero).
+  auto value = [&](const ScanSlot& slot, int mag, int negative) {
     int v;
     if (Mpeg1) {
       // 11172-2 §2.4.4.1: (2 * level * quantizer_scale * W) / 16, then towards an odd value.
@@ -149,7 +149,14 @@ template <bool Mpeg1>
     const int signMask = -negative;
     const int limit = 2047 - signMask;
     v = v > limit ? limit : v;
-    v = (v ^ signMask) - signMask;
+    return (v ^ signMask) - signMask;
+  };
+  // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
+  auto place = [&](int mag, int negative) {
+    if (i > 63) [[unlikely]]
+      return false;
+    const ScanSlot& slot = scan_[i];
+    const int v = value(slot, mag, negative);
     blk[slot.pos] = static_cast<std::int16_t>(v);
     parity ^= static_cast<unsigned>(v);
     masks |= slot.mask;
@@ -157,22 +164,47 @@ template <bool Mpeg1>
   };
   for (;;) {
     br.topUp();  // at least 56 bits
-    // Up to four short codes (code and sign at most 11 bits each) need no look at the bit count.
-    DctCodeEntry s;
+    // Up to four lookups of one or two short codes (at most kDctPairBits bits each, with the EOB after them)
+    // need no look at the bit count.
     int k = 0;
+    bool ended = false;
     for (; k < 4; ++k) {
-      s = shortCodes[br.peek(VlcTables::kDctShortBits)];
-      if (s.level == 0) [[unlikely]]
+      const DctPairEntry p = pairs[br.peek(VlcTables::kDctPairBits)];
+      if (p.step1 == 0) [[unlikely]]
         break;
-      br.skipUnchecked(s.bits);
-      i += s.step;
-      if (!place(s.level, s.negative)) {
+      const int i1 = i + p.step1;
+      const int i2 = i1 + p.step2;  // i1 when there is no second code
+      if (i2 > 63) [[unlikely]] {
+        // Past the block: consume what the code-at-a-time reading had when it found that (the
+        // first code, or both), so the reported place is the same.
+        constexpr std::uint32_t kShortMask = (1u << VlcTables::kDctShortBits) - 1;
+        const int first = shortCodes[br.peek(VlcTables::kDctShortBits)].bits;
+        const int second = shortCodes[br.peek(first + VlcTables::kDctShortBits) & kShortMask].bits;
+        br.skipUnchecked(i1 > 63 ? first : first + second);
         why = IssueKind::kCoefficientOverrun;
         return Status::kError;
       }
+      br.skipUnchecked(p.bits);
+      // The second first: without one it is a zero at the first's slot, which the first then
+      // overwrites (no branch on how many codes the entry holds).
+      const ScanSlot& slot2 = scan_[i2];
+      const ScanSlot& slot1 = scan_[i1];
+      const int v2 = value(slot2, p.level2, p.negative2);
+      const int v1 = value(slot1, p.level1, p.negative1);
+      blk[slot2.pos] = static_cast<std::int16_t>(v2);
+      blk[slot1.pos] = static_cast<std::int16_t>(v1);
+      parity ^= static_cast<unsigned>(v1 ^ v2);
+      masks |= slot1.mask | slot2.mask;
+      i = i2;
+      if (p.eob) {
+        ended = true;
+        break;
+      }
     }
+    if (ended) break;
     if (k == 4) continue;
     // Any other symbol; at least 56 - 3 * 11 = 23 bits are left.
+    DctCodeEntry s = shortCodes[br.peek(VlcTables::kDctShortBits)];
     if (s.step == kDctKindLong) {
       // 12..16 bits and the sign: seven zeros, so the next 17 bits are the index.
       s = longCodes[br.peek(VlcTables::kDctLongBits)];

@@ -208,6 +208,46 @@ void fillDctNonIntra(DctCodeEobEntry (&table)[1 << VlcTables::kDctShortBits],
   }
 }
 
+// The pair table of an intra table from its short table: the symbol each index begins with, the
+// next one too when it is also a run/level code whose whole code lies in the index's remaining bits,
+// and an end of block after the last of them when that fits as well (a code's meaning is given by
+// its leading bits, the index's bits after it being don't-care, so a code that fits is read right).
+void fillDctPairs(DctPairEntry (&table)[1 << VlcTables::kDctPairBits],
+                  const DctCodeEntry (&codes)[1 << VlcTables::kDctShortBits]) {
+  constexpr int kBits = VlcTables::kDctPairBits;
+  constexpr int kDrop = kBits - VlcTables::kDctShortBits;  // the short table reads fewer bits
+  static_assert(kDrop >= 0);
+  constexpr std::uint32_t kAll = (1u << kBits) - 1;
+  // The symbol at bit `used` of index, if its whole code lies in the index.
+  auto next = [&](std::uint32_t index, int used) {
+    const DctCodeEntry c = codes[((index << used) & kAll) >> kDrop];
+    return c.bits != 0 && used + c.bits <= kBits ? c : DctCodeEntry{0, kDctKindInvalid, 0, 0};
+  };
+  auto isEob = [](const DctCodeEntry& c) { return c.level == 0 && c.step == kDctKindEob && c.bits != 0; };
+  for (std::uint32_t index = 0; index <= kAll; ++index) {
+    DctPairEntry& e = table[index];
+    e = DctPairEntry{0, 0, 0, 0, 0, 0, 0, 0};
+    const DctCodeEntry first = codes[index >> kDrop];
+    if (first.level == 0) continue;
+    e.bits = first.bits;
+    e.step1 = first.step;
+    e.level1 = first.level;
+    e.negative1 = first.negative;
+    DctCodeEntry after = next(index, e.bits);
+    if (after.level != 0) {
+      e.bits = static_cast<std::uint8_t>(e.bits + after.bits);
+      e.step2 = after.step;
+      e.level2 = after.level;
+      e.negative2 = after.negative;
+      after = next(index, e.bits);
+    }
+    if (isEob(after)) {
+      e.bits = static_cast<std::uint8_t>(e.bits + after.bits);
+      e.eob = 1;
+    }
+  }
+}
+
 VlcTables build() {
   VlcTables t{};
   fillDirect(t.mbAddressIncrement, 11, kB1);
@@ -220,6 +260,8 @@ VlcTables build() {
   // The long codes are the same in both tables.
   for (auto& e : t.dctLong) e = DctCodeEntry{0, kDctKindInvalid, 0, 0};
   fillDctCodes(t.dctLong, VlcTables::kDctLongBits, VlcTables::kDctShortBits, 16, kB14);
+  fillDctPairs(t.dctPairs[0], t.dctShort[0]);
+  fillDctPairs(t.dctPairs[1], t.dctShort[1]);
   fillDctNonIntra(t.dctNonIntra[0], t.dctShort[0], true);
   fillDctNonIntra(t.dctNonIntra[1], t.dctShort[0], false);
   return t;

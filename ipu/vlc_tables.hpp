@@ -42,6 +42,23 @@ struct DctCodeEobEntry {
   std::uint8_t eob;   // 1: an end of block follows the code (its bits are in `bits`)
 };
 
+// One or two run/level codes of B.14 / B.15 with their signs, and the end of block after them when
+// it fits, read from the next kDctPairBits bits in one lookup, for the intra AC loop: the codes of
+// a block are a serial chain (each code's length decides where the next begins), so taking two a
+// lookup halves the chain where a smooth lightmap's short codes come in pairs. step1 == 0: the next
+// symbol is no run/level code of the short table (an end of block alone, an escape, a long code or
+// an invalid one): look it up in dctShort. step2 == 0: one code only (level2 is then 0).
+struct DctPairEntry {
+  std::uint8_t bits;   // bits to consume: both codes with their signs, and the EOB if eob = 1
+  std::uint8_t step1;  // run + 1 of the first code; 0: none (see above)
+  std::uint8_t level1;
+  std::uint8_t negative1;
+  std::uint8_t step2;  // run + 1 of the second code; 0: none
+  std::uint8_t level2;
+  std::uint8_t negative2;
+  std::uint8_t eob;  // 1: an end of block follows (its bits are in `bits`)
+};
+
 // Special values of the macroblock address increment table (B.1).
 inline constexpr std::int8_t kMbaEscape = -1;    // '0000 0001 000': add 33
 inline constexpr std::int8_t kMbaStuffing = -2;  // '0000 0001 111': MPEG-1 macroblock_stuffing
@@ -62,6 +79,9 @@ struct VlcTables {
   // bits, so the next 17 bits, read as a number, are below 2^10 and index this table directly.
   static constexpr int kDctLongBits = 17;
   DctCodeEntry dctLong[1 << 10];
+  // B.14 / B.15 (as dctShort) in pairs for intra blocks, on the next kDctPairBits bits.
+  static constexpr int kDctPairBits = 11;  // 12 was slower in the play (32 KiB a table)
+  DctPairEntry dctPairs[2][1 << kDctPairBits];
   // B.14 for non-intra blocks on the next kDctShortBits bits: [0] for the first code of a block
   // ('1s' for run 0, level 1), [1] after it ('11s').
   DctCodeEobEntry dctNonIntra[2][1 << kDctShortBits];

@@ -48,6 +48,105 @@ std::size_t slicePayload(std::span<const std::uint8_t> d, int n) {
   return d.size();
 }
 
+// A 16x16 intra picture (libavcodec's headers, table B.14) whose one slice is written here: one
+// macroblock, intra with a quantiser ('01', scale code 1), a DC size of 0 ('100'), then `codes`
+// (each code with its sign, MSB first) and nothing else. Returns the bytes and, through `payload`,
+// the offset of the slice's first byte after its start code.
+std::vector<std::uint8_t> oneMacroblockPicture(const std::vector<std::pair<std::uint32_t, int>>& codes,
+                                               std::size_t& payload, int& headerBits) {
+  testing::EncodeOptions o;
+  o.width = o.height = 16;
+  o.frames = 1;
+  std::vector<std::uint8_t> es = testing::encodeIntra(o);
+  const std::size_t slice = slicePayload(es, 0);
+  es.resize(slice);
+  payload = slice;
+  std::uint64_t acc = 0;
+  int n = 0;
+  auto put = [&](std::uint32_t v, int bits) {
+    for (int b = bits - 1; b >= 0; --b) {
+      acc = acc << 1 | ((v >> b) & 1);
+      if (++n == 8) {
+        es.push_back(static_cast<std::uint8_t>(acc));
+        acc = 0;
+        n = 0;
+      }
+    }
+  };
+  put(0b00001, 5);  // quantiser_scale_code
+  put(0, 1);        // extra_bit_slice
+  put(1, 1);        // macroblock_address_increment 1
+  put(0b01, 2);     // macroblock_type: intra, quant
+  put(0b00001, 5);  // quantiser_scale_code
+  put(0b100, 3);    // dct_dc_size_luminance 0
+  headerBits = 17;
+  for (const auto& [code, bits] : codes) put(code, bits);
+  while (n != 0) put(0, 1);
+  es.insert(es.end(), {0, 0, 1, 0xB7});  // sequence_end_code
+  return es;
+}
+
+// Coefficients past the 64th of a block are an error (§7.2.2). The decoder reads short codes two at
+// a time; the report names the byte where reading a code at a time finds the error: after the
+// code that runs past the block, whether it is the first of the two read together or the second.
+// The bit counts are chosen so that the byte after either code differs.
+TEST(IpuRobustness, CoefficientsPastTheBlockAreReportedAfterTheirCode) {
+  constexpr std::pair<std::uint32_t, int> kRun0 = {0b110, 3};   // '11s' run 0, level 1, positive
+  constexpr std::pair<std::uint32_t, int> kRun1 = {0b0110, 4};  // '011s' run 1, level 1, positive
+  struct Case {
+    const char* name;
+    std::vector<std::pair<std::uint32_t, int>> codes;
+    int bitsToError;  // after the header and DC: the codes up to the one past the block
+    int wrongBits;    // what reading the pair's other code too, or not, would add
+  };
+  // 64 codes of run 0: the 64th (scan position 64) is the second of a pair read together.
+  std::vector<std::pair<std::uint32_t, int>> second(64, kRun0);
+  // Run 1 then 61 of run 0 reach position 63 with the 62nd code; the 63rd, past the block, is the
+  // first of a pair (with a 64th after it).
+  std::vector<std::pair<std::uint32_t, int>> first(1, kRun1);
+  first.insert(first.end(), 63, kRun0);
+  second.emplace_back(0b10, 2);  // an end of block, for a decoder that took the block as valid
+  first.emplace_back(0b10, 2);
+  const Case cases[] = {{"second of a pair", second, 64 * 3, -3}, {"first of a pair", first, 4 + 62 * 3, 3}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    std::size_t payload = 0;
+    int headerBits = 0;
+    const std::vector<std::uint8_t> es = oneMacroblockPicture(c.codes, payload, headerBits);
+    const std::size_t at = payload + static_cast<std::size_t>(headerBits + c.bitsToError) / 8;
+    // Reading one code too many (or too few) would name another byte.
+    ASSERT_NE(at, payload + static_cast<std::size_t>(headerBits + c.bitsToError + c.wrongBits) / 8);
+    Decoder dec;
+    const PictureReport r = dec.decode(es);
+    ASSERT_TRUE(r.produced) << r.describe();
+    ASSERT_FALSE(r.issues.empty()) << r.describe();  // then the blocks not covered
+    EXPECT_EQ(r.issues[0].kind, IssueKind::kCoefficientOverrun) << r.describe();
+    EXPECT_EQ(r.issues[0].byteOffset, at) << r.describe();
+    EXPECT_EQ(r.issues[0].mbX, 0);
+    EXPECT_EQ(r.issues[0].mbY, 0);
+    EXPECT_EQ(r.macroblocksConcealed, 1);
+  }
+}
+
+// The same macroblock with 63 coefficients and its end of block is clean: the error above is the
+// 64th.
+TEST(IpuRobustness, SixtyThreeCoefficientsFillABlock) {
+  std::size_t payload = 0;
+  int headerBits = 0;
+  std::vector<std::pair<std::uint32_t, int>> codes(63, {0b110, 3});
+  codes.emplace_back(0b10, 2);  // the end of block of block 0
+  // Blocks 1-5: DC size 0 (luma '100', chroma '00') and an end of block each.
+  for (int b = 1; b < 6; ++b) {
+    codes.emplace_back(b < 4 ? 0b100 : 0b00, b < 4 ? 3 : 2);
+    codes.emplace_back(0b10, 2);
+  }
+  std::vector<std::uint8_t> es = oneMacroblockPicture(codes, payload, headerBits);
+  Decoder dec;
+  const PictureReport r = dec.decode(es);
+  ASSERT_TRUE(r.produced) << r.describe();
+  EXPECT_TRUE(r.clean()) << r.describe();
+}
+
 TEST(IpuRobustness, CleanStreamHasNoIssues) {
   const auto es = stream();
   Decoder dec;

@@ -1,6 +1,8 @@
 // The non-intra DCT coefficient tables (VlcTables::dctNonIntra): every index against the short table
 // of B.14 it is built from and the rules of §7.2.2.1 (the '1s' form of a block's first code, the
 // end of block '10' read with the code before it when it fits), plus known answers from Table B.14.
+// The intra pair tables (VlcTables::dctPairs): every index against reading its bits a code at a
+// time from the short table, plus known answers from Tables B.14 and B.15.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -88,6 +90,96 @@ TEST(VlcTables, NonIntraEveryIndexMatchesTheShortTable) {
       const bool eobFits = code.bits + 2 <= kBits && ((index >> (kBits - code.bits - 2)) & 3) == 2;
       EXPECT_EQ(e.eob, eobFits ? 1 : 0);
       EXPECT_EQ(e.bits, code.bits + (eobFits ? 2 : 0));
+    }
+  }
+}
+
+// The pair entry for the bits `code` (MSB first, `len` bits) followed by zeros.
+DctPairEntry pairAt(int table, std::uint32_t code, int len) {
+  return vlcTables().dctPairs[table][code << (VlcTables::kDctPairBits - len)];
+}
+
+TEST(VlcTables, IntraPairKnownAnswers) {
+  // B.14: '11s' run 0 level 1, '011s' run 1 level 1, '10' end of block.
+  DctPairEntry e = pairAt(0, 0b110'0111'10, 9);
+  EXPECT_EQ(e.bits, 9);
+  EXPECT_EQ(e.step1, 1);
+  EXPECT_EQ(e.level1, 1);
+  EXPECT_EQ(e.negative1, 0);
+  EXPECT_EQ(e.step2, 2);
+  EXPECT_EQ(e.level2, 1);
+  EXPECT_EQ(e.negative2, 1);
+  EXPECT_EQ(e.eob, 1);
+  // B.14: '0010 0110s' run 0 level 5 (9 bits with its sign), then '11s' needs 3 more: one code only.
+  e = pairAt(0, 0b0010'0110'1'11, 11);
+  EXPECT_EQ(e.bits, 9);
+  EXPECT_EQ(e.step1, 1);
+  EXPECT_EQ(e.level1, 5);
+  EXPECT_EQ(e.negative1, 1);
+  EXPECT_EQ(e.step2, 0);
+  EXPECT_EQ(e.level2, 0);
+  EXPECT_EQ(e.eob, 0);
+  // B.15: '10s' run 0 level 1, '110s' run 0 level 2, then '0110' end of block needs 4 more of 11.
+  e = pairAt(1, 0b100'1101'0110, 11);
+  EXPECT_EQ(e.bits, 11);
+  EXPECT_EQ(e.step1, 1);
+  EXPECT_EQ(e.level1, 1);
+  EXPECT_EQ(e.step2, 1);
+  EXPECT_EQ(e.level2, 2);
+  EXPECT_EQ(e.negative2, 1);
+  EXPECT_EQ(e.eob, 1);
+  // B.15: '10s' then the end of block.
+  e = pairAt(1, 0b101'0110, 7);
+  EXPECT_EQ(e.bits, 7);
+  EXPECT_EQ(e.negative1, 1);
+  EXPECT_EQ(e.step2, 0);
+  EXPECT_EQ(e.eob, 1);
+  // Not a run/level code first: EOB, escape, a long code's prefix.
+  EXPECT_EQ(pairAt(0, 0b10, 2).step1, 0);
+  EXPECT_EQ(pairAt(1, 0b0110, 4).step1, 0);
+  EXPECT_EQ(pairAt(0, 0b0000'01, 6).step1, 0);
+  EXPECT_EQ(pairAt(1, 0, 1).step1, 0);
+}
+
+TEST(VlcTables, IntraPairsEveryIndexMatchesReadingCodeByCode) {
+  const VlcTables& t = vlcTables();
+  constexpr int kPairBits = VlcTables::kDctPairBits;
+  for (int table = 0; table < 2; ++table) {
+    for (std::uint32_t index = 0; index < (1u << kPairBits); ++index) {
+      SCOPED_TRACE("table " + std::to_string(table) + ", index " + std::to_string(index));
+      // The next symbol at bit `used` of the index: its entry in the short table, or nothing if its
+      // code does not lie within the index.
+      auto symbol = [&](int used, DctCodeEntry& c) {
+        // The short table's index: the 11 bits from `used`, zeros past the end of the index.
+        const std::uint64_t bits = static_cast<std::uint64_t>(index) << (64 - kPairBits);
+        c = t.dctShort[table][static_cast<std::uint32_t>((bits << used) >> (64 - kBits))];
+        return c.bits != 0 && used + c.bits <= kPairBits;
+      };
+      const DctPairEntry e = t.dctPairs[table][index];
+      DctCodeEntry c{};
+      if (!symbol(0, c) || c.level == 0) {
+        EXPECT_EQ(e.step1, 0);
+        continue;
+      }
+      int used = c.bits;
+      EXPECT_EQ(e.step1, c.step);
+      EXPECT_EQ(e.level1, c.level);
+      EXPECT_EQ(e.negative1, c.negative);
+      DctCodeEntry d{};
+      const bool second = symbol(used, d) && d.level != 0;
+      if (second) {
+        used += d.bits;
+        EXPECT_EQ(e.step2, d.step);
+        EXPECT_EQ(e.level2, d.level);
+        EXPECT_EQ(e.negative2, d.negative);
+      } else {
+        EXPECT_EQ(e.step2, 0);
+        EXPECT_EQ(e.level2, 0);
+      }
+      DctCodeEntry end{};
+      const bool eob = symbol(used, end) && end.level == 0 && end.step == kDctKindEob;
+      EXPECT_EQ(e.eob, eob ? 1 : 0);
+      EXPECT_EQ(e.bits, used + (eob ? end.bits : 0));
     }
   }
 }
