@@ -57,6 +57,7 @@ void addDecode(CLI::App& app) {
                   "alpha: what `vbim replay --frames` reads)")
       ->capture_default_str()
       ->check(CLI::IsMember({"png", "exr", "yuv", "rgba"}));
+  addPngLevelOption(*cmd, o->pngLevel);
   cmd->add_option("--stream-id", o->streamId, "PES stream id to decode, e.g. 0xE1 (default: the first video stream)");
   addThreadsOption(*cmd, o->threads, "Host threads for the slice-parallel decode");
   cmd->add_option("--idct", o->idct, "Inverse DCT as ipu.idct: pcsx2, libmpeg2 (mpeg2dec -c) or exact")

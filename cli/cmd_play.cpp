@@ -45,11 +45,7 @@ void addPlay(CLI::App& app) {
   cmd->add_option("--format", r->format, "Image format: png or exr")
       ->check(oneOf("--format", {"png", "exr"}))
       ->capture_default_str();
-  cmd->add_option(
-         "--png-level", r->pngLevel,
-         "PNG compression (zlib's level): 0 stores the pixels (fastest, ~2.5x the bytes), 1 to 9 compress (1: about "
-         "libpng's default size, ~3x the CPU of 0; docs/player.md, \"Saving frames\")")
-      ->capture_default_str();
+  addPngLevelOption(*cmd, r->pngLevel);
   cmd->add_option("--alpha", r->alpha,
                   "Alpha of the pictures: opaque (RGB files, no alpha, as viewers show the game) or gs (RGBA, the "
                   "texels as in VRAM: 0x80 is 1.0, the bytes hashes.txt hashes)")

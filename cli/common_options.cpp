@@ -120,4 +120,12 @@ void listWritten(const CLI::App& command) {
   }
 }
 
+CLI::Option* addPngLevelOption(CLI::App& cmd, int& level) {
+  return cmd
+      .add_option("--png-level", level,
+                  "PNG compression (zlib's level): 0 stores the pixels (fastest, ~2.5x the bytes), 1 to 9 compress (1: "
+                  "about libpng's default size, ~3x the CPU of 0; docs/player.md, \"Saving frames\")")
+      ->capture_default_str();
+}
+
 }  // namespace vbim::cli

@@ -39,6 +39,10 @@ CLI::Validator oneOf(const std::string& option, std::vector<std::string> values)
 // --policy: one of gs::kCatchupPolicies (play, replay; profile's list, each item).
 CLI::Validator catchupPolicy();
 
+// --png-level (play, decode): zlib's level for the PNG pictures a command writes, the same words and
+// default everywhere. The run checks the range (its message names the option and the range).
+CLI::Option* addPngLevelOption(CLI::App& cmd, int& level);
+
 // Under --verbose, after a command that wrote `out` (a directory or a file) finished: one line per
 // file written, with its size, on stderr. Nothing otherwise.
 void listWritten(const CLI::App& command);

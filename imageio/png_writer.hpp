@@ -1,4 +1,5 @@
-// PNG files, written by libpng's simplified API: the only PNG writer of the project. Small enough
+// PNG files, written by libpng's simplified API (png_encoder.hpp writes the pictures made in bulk,
+// at a chosen zlib level: `vbim play`'s and `vbim decode`'s). Small enough
 // for the lean `vbim` program (cli/main.cpp), which must not load OpenImageIO (its ~200 shared
 // libraries cost ~120 MB before it does anything; `vbim play` stays under 64 MB, issue #7).
 #pragma once

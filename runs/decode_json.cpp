@@ -97,7 +97,10 @@ std::string decodeSummaryJson(const DecodeRequest& r, const streams::DecodeInput
                     {"video_stream", s.streamId ? Json(streams::hexId(*s.streamId)) : Json(nullptr)},
                     {"bytes", input.bytes.size()}};
   // What decides the bytes out (--threads does not).
-  j["options"] = Json{{"format", r.format}, {"idct", r.idct}, {"th0", r.th0}, {"th1", r.th1}, {"strict", r.strict}};
+  j["options"] = Json{
+      {"format", r.format}, {"png_level", format == streams::FrameFileFormat::Png ? Json(r.pngLevel) : Json(nullptr)},
+      {"idct", r.idct},     {"th0", r.th0},
+      {"th1", r.th1},       {"strict", r.strict}};
   j["video"] = Json{{"width", s.width}, {"height", s.height}, {"mpeg", s.mpeg2 ? 2 : 1}};
   j["pictures"] = s.pictures;
   j["frames"] = s.frames;

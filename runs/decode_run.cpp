@@ -4,6 +4,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "imageio/png_encoder.hpp"
 #include "runs/decode_json.hpp"
 #include "runs/output_dir.hpp"
 #include "streams/decode/decode_input.hpp"
@@ -29,6 +30,7 @@ std::string summaryLine(const DecodeRequest& r, const streams::DecodeSummary& s,
   std::ostringstream line;
   line << "decoded " << s.frames << " pictures " << s.width << "x" << s.height << " ("
        << (s.mpeg2 ? "MPEG-2" : "MPEG-1") << ")" << s.streamLabel << " to " << directory << "/ as " << r.format;
+  if (r.format == "png") line << " (level " << r.pngLevel << ")";
   if (s.issues) line << "; " << s.issues << " issues, " << s.concealedMacroblocks << " macroblocks concealed";
   if (s.skippedPictures) {
     line << ", " << s.skippedPictures << (s.skippedPictures == 1 ? " picture" : " pictures")
@@ -41,6 +43,10 @@ std::string summaryLine(const DecodeRequest& r, const streams::DecodeSummary& s,
 }  // namespace
 
 DecodeResult decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
+  if (r.pngLevel < 0 || r.pngLevel > imageio::kMaxPngLevel) {
+    throw Error("--png-level " + std::to_string(r.pngLevel) + ": expected 0 (stored) to " +
+                std::to_string(imageio::kMaxPngLevel));
+  }
   streams::DecodeOptions options;
   options.threads = r.threads;
   options.idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);
@@ -49,7 +55,7 @@ DecodeResult decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
   const std::string name = streams::nameStandardInput(in.name);
   OutputDir dir(r.out, r.force);
   streams::FrameFileWriter writer(dir.directory(), streams::frameFileFormatNamed(r.format),
-                                  ipu::CscThresholds{r.th0, r.th1});
+                                  ipu::CscThresholds{r.th0, r.th1}, r.pngLevel);
   const streams::DecodeSummary s = streams::decodeStream(
       in.bytes, name, options,
       [&](int frame, const ipu::Decoder& d) {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 
+#include "imageio/texel_files.hpp"
 #include "ipu/kernels.hpp"
 
 namespace vbim::runs {
@@ -23,6 +24,7 @@ struct DecodeRequest {
   bool strict = false;   // a decode issue (a concealed picture) fails the run, and nothing is written
   bool json = false;     // DecodeResult::summary as JSON (runs/decode_json.hpp)
   int th0 = 0, th1 = 0;  // SETTH
+  int pngLevel = imageio::kDefaultTexelPngLevel;  // --png-level: 0 stored, 1 to 9 compressed (zlib), as vbim play's
 };
 
 struct DecodeResult {

@@ -25,8 +25,11 @@ std::string frameFileName(int frame, FrameFileFormat format);
 
 class FrameFileWriter {
  public:
-  // `thresholds`: the SETTH thresholds of the RGB32 conversion (PNG, EXR and RGBA).
-  FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds = {});
+  // `thresholds`: the SETTH thresholds of the RGB32 conversion (PNG, EXR and RGBA). `pngLevel`:
+  // zlib's level for PNG files, 0 (stored) to 9 (imageio/png_encoder.hpp). `directory` is a staged
+  // output directory (runs/output_dir.hpp): each file is written under its own name.
+  FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds = {},
+                  int pngLevel = 0);
 
   // Writes the frame the decoder holds as frame number `frame`. Throws Error (YUV, RGBA) or
   // imageio::ImageIoError (PNG, EXR) naming the file when it cannot be written.
@@ -36,6 +39,7 @@ class FrameFileWriter {
   std::filesystem::path directory_;
   FrameFileFormat format_;
   ipu::CscThresholds thresholds_;
+  int pngLevel_;
   Rgba8Image rgba_;  // reused from frame to frame
   Yuv420Image yuv_;
   std::vector<float> floats_;

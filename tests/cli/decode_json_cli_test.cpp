@@ -98,7 +98,8 @@ TEST_F(DecodeJson, ACleanStreamsDocumentHoldsWhatTheSummaryLineSays) {
   EXPECT_EQ(j["input"]["file"], nullptr);
   EXPECT_EQ(j["input"]["video_stream"], "0xE0");
   EXPECT_EQ(j["input"]["bytes"], fs::file_size(kSample));
-  EXPECT_EQ(j["options"], Json::parse(R"({"format":"yuv","idct":"exact","th0":3,"th1":0,"strict":false})"));
+  EXPECT_EQ(j["options"],
+            Json::parse(R"({"format":"yuv","png_level":null,"idct":"exact","th0":3,"th1":0,"strict":false})"));
   EXPECT_EQ(j["video"], Json::parse(R"({"width":256,"height":256,"mpeg":2})"));
   const int frames = j["frames"].get<int>();
   EXPECT_TRUE(has(text.out, "decoded " + std::to_string(frames) + " pictures 256x256 (MPEG-2) (video stream 0xE0)"))

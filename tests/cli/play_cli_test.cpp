@@ -5,6 +5,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -268,6 +269,48 @@ TEST(PlayCli, PicturesAreTheSameBytesAtAnyThreadCountAndLevelKeepsTheTexels) {
   }
   EXPECT_EQ(files, 2 * 9);  // vsyncs 0, 30, ..., 210 and 96 (1.6 s)
   for (const fs::path& d : {a, b, c}) fs::remove_all(d);
+}
+
+// vbim decode's PNGs (here beside play's for the PNG reader): written at --png-level, by default
+// play's level 0, where libpng's default level took 87 % of a decode's CPU; every level keeps the
+// pixels, which are the IPU's RGB32 output (--format rgba) with the GS alpha doubled.
+TEST(DecodeCli, PngLevelKeepsThePixelsOfTheRgbaFrames) {
+  const fs::path stored = scratch("dec0"), compressed = scratch("dec6"), raw = scratch("decraw");
+  const std::string vbimDecode = std::string(VBIM_BINARY) + " decode " + kSample;
+  const auto first = runCommand(vbimDecode + " --out " + stored.string());
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_NE(first.output.find("as png (level 0)"), std::string::npos) << first.output;
+  const auto level = runCommand(vbimDecode + " --png-level 6 --out " + compressed.string());
+  ASSERT_EQ(level.status, 0) << level.output;
+  EXPECT_NE(level.output.find("as png (level 6)"), std::string::npos) << level.output;
+  ASSERT_EQ(runCommand(vbimDecode + " --format rgba --out " + raw.string()).status, 0);
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(stored)) {
+    const std::string name = e.path().filename().string();
+    const vbim::Rgba8Image a = readPng(e.path());
+    const vbim::Rgba8Image b = readPng(compressed / name);
+    ASSERT_GT(a.width, 0) << name;
+    EXPECT_EQ(a.pixels, b.pixels) << name;
+    EXPECT_LT(fs::file_size(compressed / name), fs::file_size(e.path())) << name;
+    const std::string rgba = vbim::testing::readFileBytes(raw / (name.substr(0, name.size() - 3) + "rgba"));
+    ASSERT_EQ(rgba.size(), a.pixels.size()) << name;
+    for (std::size_t i = 0; i < rgba.size(); ++i) {
+      const auto byte = static_cast<std::uint8_t>(rgba[i]);
+      const int want = i % 4 == 3 ? std::min(255, 2 * byte) : byte;
+      if (a.pixels[i] != want) {
+        ADD_FAILURE() << name << ": byte " << i << " is " << int{a.pixels[i]} << ", the RGBA frame says " << want;
+        break;
+      }
+    }
+    ++files;
+  }
+  EXPECT_EQ(files, 24);  // the sample's 24 lightmap pictures (its first video stream)
+  const fs::path bad = scratch("dec10");
+  const auto refused = runCommand(vbimDecode + " --png-level 10 --out " + bad.string());
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--png-level 10: expected 0 (stored) to 9"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(bad));
+  for (const fs::path& d : {stored, compressed, raw}) fs::remove_all(d);
 }
 
 TEST(PlayCli, ExrFramesAreWritten) {
