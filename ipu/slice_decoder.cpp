@@ -133,7 +133,6 @@ template <bool Mpeg1>
   // Past the slice's bytes the reader yields zeros, which are no code of either table, so the loop
   // ends within 16 bits; the caller checks for overrun once per macroblock.
   int i = 0;
-  // Places the coefficient of magnitude mag at scan position i; false if i is past the block.
   // The value of the coefficient of magnitude mag at a scan slot (mag 0: zero).
   auto value = [&](const ScanSlot& slot, int mag, int negative) {
     int v;
