@@ -55,16 +55,27 @@ everything = {".clang-tidy", "bench/.clang-tidy", "CMakeLists.txt", "scripts/che
 if check_all or changed & everything or any(c.startswith("cmake/") for c in changed):
     print("\n".join(sources))
     sys.exit(0)
-# Each object's dependencies (the source and every header it included), from the build's depfiles.
+# Each object's dependencies (the source and every header it included), from the build's depfiles:
+# the compiler's own (OBJECT.o.d, written by every compile; its paths are relative to the directory
+# the compile ran in, the target's binary directory), and CMake's consolidated compiler_depend.make,
+# which a first build leaves empty (CMake fills it at the next `make`): reading only that, a check
+# right after a fresh build (CI) found no dependencies and checked every file.
 deps = {}
+def add(files):
+    if files:
+        deps.setdefault(files[0], set()).update(files)
+for depfile in glob.glob(os.path.join(build, "**", "*.o.d"), recursive=True):
+    cwd = depfile.split(os.sep + "CMakeFiles" + os.sep)[0]
+    rule = open(depfile).read().replace("\\\n", " ").split("\n")[0]  # the object's rule comes first
+    m = re.match(r"^\S+\.o:\s+(.*)$", rule)
+    if m:
+        add([os.path.relpath(os.path.realpath(os.path.join(cwd, f)), root) for f in m.group(1).split()])
 for make in glob.glob(os.path.join(build, "**", "compiler_depend.make"), recursive=True):
     text = open(make).read().replace("\\\n", " ")
     for line in text.splitlines():
         m = re.match(r"^(\S+\.cpp\.o):\s+(.*)$", line)
-        if not m:
-            continue
-        files = [os.path.relpath(os.path.realpath(f), root) for f in m.group(2).split()]
-        deps.setdefault(files[0], set()).update(files)
+        if m:
+            add([os.path.relpath(os.path.realpath(f), root) for f in m.group(2).split()])
 cmake_dirs = [os.path.dirname(c) for c in changed if os.path.basename(c) == "CMakeLists.txt"]
 for rel in sources:
     if rel not in deps:  # no dependency list (not built yet): check it
