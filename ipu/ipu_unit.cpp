@@ -139,9 +139,7 @@ Task<TimedPicture> IpuUnit::decodeUnshared(StreamId stream, std::span<const std:
     co_return result;
   }
   const PictureHeader& pic = dec.picture();
-  const bool fieldDct = dec.sequence().mpeg2 && pic.pictureStructure == 3 && !pic.framePredFrameDct;
-  cmd.flow = true;
-  cmd.flowWork = buildFlow(bytes, dec.macroblockTrace(), result.report.pictureCodingType == 1, fieldDct);
+  stageFlow(cmd, bytes, dec.sequence(), pic, dec.macroblockTrace());
   if (recordCommands_) {
     result.ctrl = ipuCtrl(dec.sequence(), pic);
     planFlowWords(cmd, bytes, dec);
@@ -279,9 +277,7 @@ Task<TimedPicture> IpuUnit::decodeFlowShared(StreamId stream, std::span<const st
     result.finished = s_.now();
     co_return result;
   }
-  const bool fieldDct = d.sequence.mpeg2 && d.picture.pictureStructure == 3 && !d.picture.framePredFrameDct;
-  cmd.flow = true;
-  cmd.flowWork = buildFlow(bytes, d.trace, result.report.pictureCodingType == 1, fieldDct);
+  stageFlow(cmd, bytes, d.sequence, d.picture, d.trace);
   int width = 0;
   int height = 0;
   if (d.shown) {
@@ -344,6 +340,14 @@ std::int64_t IpuUnit::stageDisplayCsc(Command& cmd, const Decoder& dec, const Fr
   out = Rgba8Image{};
   convertToRgba32(shown, shown.mbWidth * 16, shown.mbHeight * 16, th, cmd.staged, dec.kernels().cscRow);
   return stageCscTiming(cmd, shown.mbWidth, shown.mbHeight);
+}
+
+void IpuUnit::stageFlow(Command& cmd, std::span<const std::uint8_t> bytes, const SequenceHeader& seq,
+                        const PictureHeader& pic, const std::vector<MacroblockBits>& trace) {
+  // Field DCT is possible only in an MPEG-2 frame picture without frame_pred_frame_dct (§6.3.10).
+  const bool fieldDct = seq.mpeg2 && pic.pictureStructure == 3 && !pic.framePredFrameDct;
+  cmd.flow = true;
+  cmd.flowWork = buildFlow(bytes, trace, pic.codingType == 1, fieldDct);
 }
 
 std::int64_t IpuUnit::stageCscTiming(Command& cmd, int mbWidth, int mbHeight) const {

@@ -184,6 +184,9 @@ class IpuUnit {
   // its timing (24 qwords in per macroblock from EE memory); returns the output qwords.
   std::int64_t stageDisplayCsc(Command& cmd, const Decoder& dec, const FrameStore& shown, CscThresholds th,
                                Rgba8Image& out) const;
+  // The BDEC flow's work for a decoded picture (bdec_flow.hpp), from its headers and macroblock trace.
+  static void stageFlow(Command& cmd, std::span<const std::uint8_t> bytes, const SequenceHeader& seq,
+                        const PictureHeader& pic, const std::vector<MacroblockBits>& trace);
   // Its timing alone, for a frame of mbWidth x mbHeight macroblocks; returns the output qwords.
   std::int64_t stageCscTiming(Command& cmd, int mbWidth, int mbHeight) const;
   // The command log of a finished command (recordCommands).

@@ -37,7 +37,7 @@ std::optional<SharedDecodes::Taken> SharedDecodes::take(int side, std::span<cons
   }
   // A fresh start may be one the other side decoded further on (this side dropped a picture, or
   // went its own way on damaged bytes): it picks up there.
-  if (!kept_ && !me.pendingAfter && startsWithSequenceHeader(bytes)) {
+  if (freshStart(me.pendingAfter, bytes)) {
     for (std::size_t i = std::max(me.cursor, base_); i < end(); ++i) {
       if (at(i).freshStart && same(at(i), bytes, th)) {
         ++counters_.rejoined;
@@ -74,7 +74,7 @@ std::optional<SharedDecodes::Taken> SharedDecodes::takeAt(Side& me, std::size_t 
   ++counters_.taken;
   // Kept state: a decoder far behind what its side took catches up while the other's is level, so
   // that neither a replay nor the log grows while one side takes everything.
-  if (kept_ && me.cursor - me.replayFrom >= maxAhead_ / 2) copyFromLevel(static_cast<int>(&me - sides_.data()));
+  if (farBehind(me)) copyFromLevel(static_cast<int>(&me - sides_.data()));
   trim();
   return taken;
 }
@@ -103,7 +103,7 @@ void SharedDecodes::prepare(int side, std::unique_ptr<Decoder>& decoder, const D
     // About to change its decoder: a stale other side level with it takes its state first, if that
     // side's decoder is far behind (as in takeAt).
     const Side& other = sides_.at(1 - s);
-    if (kept_ && other.stale && other.cursor - other.replayFrom >= maxAhead_ / 2) copyFromLevel(1 - side);
+    if (farBehind(other)) copyFromLevel(1 - side);
     return;
   }
   if (copyFromLevel(side)) {
@@ -111,7 +111,7 @@ void SharedDecodes::prepare(int side, std::unique_ptr<Decoder>& decoder, const D
     return;
   }
   me.stale = false;
-  const bool fresh = !kept_ && !me.pendingAfter && startsWithSequenceHeader(bytes);
+  const bool fresh = freshStart(me.pendingAfter, bytes);
   // A decoder with a field pending would take the next field picture as its second: a new one has none.
   if ((fresh || me.replayFresh) && decoder->fieldPending()) decoder = std::make_unique<Decoder>(options);
   if (!fresh) {
@@ -142,9 +142,8 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   // Only when the two are level: the log's last entry is the picture this side had before this one
   // (the other decoded it after this side did). A side behind the other picks up again in take().
   // The byte comparisons last, so a side in step compares nothing.
-  const bool rejoin = !kept_ && (me.diverged || me.cursor != end()) && other.cursor == end() && !other.pendingAfter &&
-                      !pendingBefore && end() > base_ && at(end() - 1).bytes == me.previous &&
-                      startsWithSequenceHeader(bytes);
+  const bool rejoin = (me.diverged || me.cursor != end()) && other.cursor == end() && !other.pendingAfter &&
+                      end() > base_ && at(end() - 1).bytes == me.previous && freshStart(pendingBefore, bytes);
   if (rejoin) {
     ++counters_.offeredAgain;
     me.diverged = false;
@@ -178,7 +177,7 @@ void SharedDecodes::publish(int side, std::span<const std::uint8_t> bytes, CscTh
   Entry e;
   e.bytes.assign(bytes.begin(), bytes.end());
   e.th = th;
-  e.freshStart = !kept_ && !pendingBefore && startsWithSequenceHeader(bytes);
+  e.freshStart = freshStart(pendingBefore, bytes);
   e.pendingAfter = me.pendingAfter;
   imageBytes_ += bytesNeeded;
   e.result = Taken{std::move(decode), std::move(image)};

@@ -157,9 +157,17 @@ class SharedDecodes {
   Entry& at(std::size_t index) { return log_[index - base_]; }
   std::size_t end() const { return base_ + log_.size(); }
   std::optional<Taken> takeAt(Side& me, std::size_t index);
+  // `bytes` start afresh for a decoder with (pendingField) or without a field pending: its state
+  // before does not matter. Never with DecoderState::Kept (the reference frames carry over).
+  bool freshStart(bool pendingField, std::span<const std::uint8_t> bytes) const {
+    return !kept_ && !pendingField && startsWithSequenceHeader(bytes);
+  }
   // Whether `s` can never take an entry again: it left, or (DecoderState::Kept, where nothing is a
   // fresh start) it went its own way and its decoder has read again what it took.
   bool gone(const Side& s) const { return s.left || (kept_ && s.diverged && !s.stale); }
+  // DecoderState::Kept: `s`'s decoder is stale by half the log's limit or more (takes the other
+  // side's state whenever the two are level, so that its replay stays short).
+  bool farBehind(const Side& s) const { return kept_ && s.stale && s.cursor - s.replayFrom >= maxAhead_ / 2; }
   // DecoderState::Kept: `side`'s stale decoder takes the other side's state if the two are level
   // (the other's decoder, not stale, has read the same entries); whether it did.
   bool copyFromLevel(int side);

@@ -99,46 +99,31 @@ DctPairEntry pairAt(int table, std::uint32_t code, int len) {
   return vlcTables().dctPairs[table][code << (VlcTables::kDctPairBits - len)];
 }
 
+// An entry as text, so that a whole entry is compared at once and a difference reads plainly.
+std::string show(const DctPairEntry& e) {
+  return "bits " + std::to_string(e.bits) + ", (step " + std::to_string(e.step1) + ", level " +
+         std::to_string(e.level1) + ", negative " + std::to_string(e.negative1) + "), (step " +
+         std::to_string(e.step2) + ", level " + std::to_string(e.level2) + ", negative " + std::to_string(e.negative2) +
+         "), eob " + std::to_string(e.eob);
+}
+
 TEST(VlcTables, IntraPairKnownAnswers) {
-  // B.14: '11s' run 0 level 1, '011s' run 1 level 1, '10' end of block.
-  DctPairEntry e = pairAt(0, 0b110'0111'10, 9);
-  EXPECT_EQ(e.bits, 9);
-  EXPECT_EQ(e.step1, 1);
-  EXPECT_EQ(e.level1, 1);
-  EXPECT_EQ(e.negative1, 0);
-  EXPECT_EQ(e.step2, 2);
-  EXPECT_EQ(e.level2, 1);
-  EXPECT_EQ(e.negative2, 1);
-  EXPECT_EQ(e.eob, 1);
+  // Fields: bits, step1, level1, negative1, step2, level2, negative2, eob (step = run + 1).
+  // B.14: '11s' run 0 level 1, '011s' run 1 level 1 negative, '10' end of block.
+  EXPECT_EQ(show(pairAt(0, 0b110'0111'10, 9)), show({9, 1, 1, 0, 2, 1, 1, 1}));
   // B.14: '0010 0110s' run 0 level 5 (9 bits with its sign), then '11s' needs 3 more: one code only.
-  e = pairAt(0, 0b0010'0110'1'11, 11);
-  EXPECT_EQ(e.bits, 9);
-  EXPECT_EQ(e.step1, 1);
-  EXPECT_EQ(e.level1, 5);
-  EXPECT_EQ(e.negative1, 1);
-  EXPECT_EQ(e.step2, 0);
-  EXPECT_EQ(e.level2, 0);
-  EXPECT_EQ(e.eob, 0);
-  // B.15: '10s' run 0 level 1, '110s' run 0 level 2, then '0110' end of block needs 4 more of 11.
-  e = pairAt(1, 0b100'1101'0110, 11);
-  EXPECT_EQ(e.bits, 11);
-  EXPECT_EQ(e.step1, 1);
-  EXPECT_EQ(e.level1, 1);
-  EXPECT_EQ(e.step2, 1);
-  EXPECT_EQ(e.level2, 2);
-  EXPECT_EQ(e.negative2, 1);
-  EXPECT_EQ(e.eob, 1);
-  // B.15: '10s' then the end of block.
-  e = pairAt(1, 0b101'0110, 7);
-  EXPECT_EQ(e.bits, 7);
-  EXPECT_EQ(e.negative1, 1);
-  EXPECT_EQ(e.step2, 0);
-  EXPECT_EQ(e.eob, 1);
-  // Not a run/level code first: EOB, escape, a long code's prefix.
-  EXPECT_EQ(pairAt(0, 0b10, 2).step1, 0);
-  EXPECT_EQ(pairAt(1, 0b0110, 4).step1, 0);
-  EXPECT_EQ(pairAt(0, 0b0000'01, 6).step1, 0);
-  EXPECT_EQ(pairAt(1, 0, 1).step1, 0);
+  EXPECT_EQ(show(pairAt(0, 0b0010'0110'1'11, 11)), show({9, 1, 5, 1, 0, 0, 0, 0}));
+  // B.15: '10s' run 0 level 1, '110s' run 0 level 2 negative, then '0110' end of block: 11 bits.
+  EXPECT_EQ(show(pairAt(1, 0b100'1101'0110, 11)), show({11, 1, 1, 0, 1, 2, 1, 1}));
+  // B.15: '10s' negative, then the end of block.
+  EXPECT_EQ(show(pairAt(1, 0b101'0110, 7)), show({7, 1, 1, 1, 0, 0, 0, 1}));
+  // Not a run/level code first (an end of block, an escape, a long code's prefix): all zero, the
+  // decoder looks the symbol up in the short table.
+  const std::string none = show({0, 0, 0, 0, 0, 0, 0, 0});
+  EXPECT_EQ(show(pairAt(0, 0b10, 2)), none);
+  EXPECT_EQ(show(pairAt(1, 0b0110, 4)), none);
+  EXPECT_EQ(show(pairAt(0, 0b0000'01, 6)), none);
+  EXPECT_EQ(show(pairAt(1, 0, 1)), none);
 }
 
 TEST(VlcTables, IntraPairsEveryIndexMatchesReadingCodeByCode) {
@@ -158,7 +143,7 @@ TEST(VlcTables, IntraPairsEveryIndexMatchesReadingCodeByCode) {
       const DctPairEntry e = t.dctPairs[table][index];
       DctCodeEntry c{};
       if (!symbol(0, c) || c.level == 0) {
-        EXPECT_EQ(e.step1, 0);
+        EXPECT_EQ(show(e), show({0, 0, 0, 0, 0, 0, 0, 0}));
         continue;
       }
       int used = c.bits;
