@@ -85,8 +85,11 @@ struct HalfChange {
 // on, and keeps in rowA / rowB the largest s - d and d - s per byte lane (HalfChange turns them
 // into the change and the settled mark). Leaves i at the first byte of the scalar tail.
 template <class D8, class Blend, class V>
-HWY_INLINE void halfTrackRow(D8 d8, const Blend& blend, const std::uint8_t* HWY_RESTRICT s,
+HWY_INLINE void halfTrackRow(D8 d8, const Blend& blendIn, const std::uint8_t* HWY_RESTRICT s,
                              std::uint8_t* HWY_RESTRICT d, std::size_t bytes, std::size_t& i, V& rowA, V& rowB) {
+  // A local copy: the stores through d (bytes, which may alias anything) would otherwise make the
+  // compiler reload the blend's constant vectors from *blendIn at every step.
+  const Blend blend = blendIn;
   const std::size_t step = hn::Lanes(d8);
   for (; i + step <= bytes; i += step) {
     const auto sv = hn::LoadU(d8, s + i);
@@ -104,7 +107,8 @@ HWY_INLINE void halfTrackRow(D8 d8, const Blend& blend, const std::uint8_t* HWY_
 template <bool kTrack, bool kSettle, class D8, class BlendVector>
 HWY_INLINE int blendRows(D8 d8, std::uint8_t* HWY_RESTRICT dst, std::size_t dstStride,
                          const std::uint8_t* HWY_RESTRICT src, std::size_t srcStride, std::size_t pixels,
-                         std::size_t rows, const BlendSpec& spec, std::uint32_t* settled, const BlendVector& blend) {
+                         std::size_t rows, const BlendSpec& spec, std::uint32_t* settled, const BlendVector& blendIn) {
+  const BlendVector blend = blendIn;  // in registers: see halfTrackRow
   const std::size_t bytes = pixels * 4;
   const std::size_t step = hn::Lanes(d8);
   auto deltaAcc = hn::Zero(d8);
@@ -297,7 +301,8 @@ struct RowHash {
 template <class Blend>
 void blendHashRowsImpl(std::uint8_t* HWY_RESTRICT dst, const std::uint8_t* HWY_RESTRICT src, std::size_t pixels,
                        std::size_t rows, std::size_t tilePixels, const BlendSpec& spec, std::uint32_t* settled,
-                       int* delta, HashChain* chain, const Blend& blend) {
+                       int* delta, HashChain* chain, const Blend& blendIn) {
+  const Blend blend = blendIn;  // in registers: see halfTrackRow
   using D8 = hn::ScalableTag<std::uint8_t>;
   const D8 d8;
   const std::size_t step = hn::Lanes(d8);
