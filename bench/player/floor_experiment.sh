@@ -3,13 +3,16 @@
 # could be if the GS blend and the frame hash cost nothing: an upper bound for any work on them.
 # Builds `vbim` from this checkout's HEAD with floor_experiment.patch applied, in a temporary git
 # worktree (through ccache when there is one: mostly cache hits after a build of this checkout). The
-# patch adds two switches read from the environment, in that build only (never in the product):
-#   VBIM_FLOOR_NO_HASH   the player takes no frame hash (hashes.txt holds zeros);
-#   VBIM_FLOOR_NO_BLEND  every lightmap and sky blend returns at once, having moved nothing (so no
-#                        vsync has a changed frame to hash either).
-# Then plays the stream with the patched build as it is, without the hash, and without both, run by
-# run in turn so all three see the same machine; per batch, the medians over RUNS of the CPU-time
-# x-real-time figure of the play summary.
+# patch adds three switches read from the environment, in that build only (never in the product):
+#   VBIM_FLOOR_NO_HASH    the player takes no frame hash (hashes.txt holds zeros);
+#   VBIM_FLOOR_NO_BLEND   every lightmap and sky blend returns at once, having moved nothing (so no
+#                         vsync has a changed frame to hash either);
+#   VBIM_FLOOR_TILE_HASH  the cost of a frame hash kept per tile (a definition the planners could
+#                         choose; hashes.txt is then wrong): a changed vsync folds only the tiles it
+#                         blended, and the sky only when it moved.
+# Then plays the stream with the patched build as it is, with the per-tile hash's cost, without the
+# hash, and without both, run by run in turn so all four see the same machine; per batch, the
+# medians over RUNS of the CPU-time x-real-time figure of the play summary.
 #   floor_experiment.sh VBIM [BATCHES] [RUNS] [WORKDIR]
 # VBIM authors the stream (`vbim author` runs in vbim-full beside it); WORKDIR keeps it between
 # invocations (play_speed.sh's layout: the same WORKDIR serves both). PLAY_SPEED_SECONDS as there.
@@ -74,11 +77,13 @@ while [ "$b" -le "$batches" ]; do
   i=0
   while [ "$i" -lt "$runs" ]; do
     play built VBIM_FLOOR_NONE=1
+    play tilehash VBIM_FLOOR_TILE_HASH=1
     play nohash VBIM_FLOOR_NO_HASH=1
     play neither VBIM_FLOOR_NO_HASH=1 VBIM_FLOOR_NO_BLEND=1
     i=$((i + 1))
   done
-  printf 'batch %d (load average %s): as built %.0fx, without the frame hash %.0fx, without the hash and the blend %.0fx (CPU time)\n' \
-    "$b" "$load" "$(median <"$scratch/cpu-built")" "$(median <"$scratch/cpu-nohash")" "$(median <"$scratch/cpu-neither")"
+  printf 'batch %d (load average %s): as built %.0fx, hashing per tile %.0fx, without the frame hash %.0fx, without the hash and the blend %.0fx (CPU time)\n' \
+    "$b" "$load" "$(median <"$scratch/cpu-built")" "$(median <"$scratch/cpu-tilehash")" "$(median <"$scratch/cpu-nohash")" \
+    "$(median <"$scratch/cpu-neither")"
   b=$((b + 1))
 done
