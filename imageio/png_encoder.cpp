@@ -22,6 +22,7 @@
 #include "imageio/replace_file.hpp"
 #include "imageio/rgb_pack.hpp"
 #include "imageio/stored_png.hpp"
+#include "runtime/error.hpp"
 
 namespace vbim::imageio {
 
@@ -247,6 +248,12 @@ std::string lastError() {
 }
 
 }  // namespace
+
+void checkPngLevelOption(int level) {
+  if (level < 0 || level > kMaxPngLevel) {
+    throw Error("--png-level " + std::to_string(level) + ": expected 0 (stored) to " + std::to_string(kMaxPngLevel));
+  }
+}
 
 std::vector<std::uint8_t> encodePng(ImageView<std::uint8_t> image, int level, const fs::path& name,
                                     FileChannels channels) {

@@ -43,10 +43,7 @@ std::string summaryLine(const DecodeRequest& r, const streams::DecodeSummary& s,
 }  // namespace
 
 DecodeResult decodeRun(const DecodeRequest& r, const DecodeObserver& observer) {
-  if (r.pngLevel < 0 || r.pngLevel > imageio::kMaxPngLevel) {
-    throw Error("--png-level " + std::to_string(r.pngLevel) + ": expected 0 (stored) to " +
-                std::to_string(imageio::kMaxPngLevel));
-  }
+  imageio::checkPngLevelOption(r.pngLevel);
   streams::DecodeOptions options;
   options.threads = r.threads;
   options.idct = ipu::idctKindByName(r.idct).value_or(ipu::kDefaultIdct);

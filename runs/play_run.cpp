@@ -95,10 +95,7 @@ PlayerOptions playerOptions(const PlayRequest& r, const iop::SectorSource* disc,
     atTimes.insert(t);
   }
   if (r.format != "png" && r.format != "exr") throw Error("--format '" + r.format + "': expected png or exr");
-  if (r.pngLevel < 0 || r.pngLevel > imageio::kMaxPngLevel) {
-    throw Error("--png-level " + std::to_string(r.pngLevel) + ": expected 0 (stored) to " +
-                std::to_string(imageio::kMaxPngLevel));
-  }
+  imageio::checkPngLevelOption(r.pngLevel);
   if (r.out.empty() && (r.every > 0 || !r.at.empty())) {
     throw Error(std::string(r.every > 0 ? "--every" : "--at") +
                 " writes pictures into the run directory: give --out DIR (without --out, play writes nothing)");

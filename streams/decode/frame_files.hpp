@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "imageio/texel_files.hpp"
 #include "ipu/csc.hpp"
 #include "ipu/picture_decoder.hpp"
 #include "runtime/image.hpp"
@@ -29,7 +30,7 @@ class FrameFileWriter {
   // zlib's level for PNG files, 0 (stored) to 9 (imageio/png_encoder.hpp). `directory` is a staged
   // output directory (runs/output_dir.hpp): each file is written under its own name.
   FrameFileWriter(std::filesystem::path directory, FrameFileFormat format, ipu::CscThresholds thresholds = {},
-                  int pngLevel = 0);
+                  int pngLevel = imageio::kDefaultTexelPngLevel);
 
   // Writes the frame the decoder holds as frame number `frame`. Throws Error (YUV, RGBA) or
   // imageio::ImageIoError (PNG, EXR) naming the file when it cannot be written.
